@@ -1,0 +1,144 @@
+//! Rigid bodies (clumps), stored as a structure of arrays.
+//!
+//! Every body is an instance of a [`crate::shape::ClumpTemplate`]; its spheres
+//! are derived from the body pose each step (see [`crate::sphere`]).
+
+use glam::{DQuat, DVec3};
+use serde::{Deserialize, Serialize};
+
+/// Per-axis flags: `true` lets the world-frame force (or torque) component act.
+/// This is LIGGGHTS' `fflag`/`tflag`: a `false` component is frozen (the
+/// velocity or angular-momentum component is never kicked).
+pub type AxisFlags = [bool; 3];
+
+/// Everything needed to create one body.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BodyInit {
+    /// Index of the template in the world's template list.
+    pub template: u32,
+    /// Centre of mass, world frame, m.
+    pub position: DVec3,
+    /// Orientation, body → world.
+    pub orientation: DQuat,
+    /// Centre-of-mass velocity, world frame, m/s.
+    pub velocity: DVec3,
+    /// Angular velocity, world frame, rad/s.
+    pub angular_velocity: DVec3,
+    /// Force flags per world axis (LIGGGHTS `fflag`).
+    pub force_flag: AxisFlags,
+    /// Torque flags per world axis (LIGGGHTS `tflag`).
+    pub torque_flag: AxisFlags,
+    /// Step from which the body is integrated under forces. Before it the body
+    /// moves ballistically at `velocity` (the seed's `has_stream … start_step`
+    /// branch), ignoring forces.
+    pub start_step: u64,
+}
+
+impl BodyInit {
+    /// A body at rest at `position` with orientation `orientation`, all DOFs free.
+    pub fn at_rest(template: u32, position: DVec3, orientation: DQuat) -> Self {
+        Self {
+            template,
+            position,
+            orientation,
+            velocity: DVec3::ZERO,
+            angular_velocity: DVec3::ZERO,
+            force_flag: [true; 3],
+            torque_flag: [true; 3],
+            start_step: 0,
+        }
+    }
+}
+
+/// All bodies of a simulation, as a structure of arrays. Index `b` is the
+/// body's *storage* index, which changes when bodies are spatially re-sorted;
+/// `id[b]` is its permanent global id.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub struct Bodies {
+    /// Permanent global id (unique for the whole run, also across ranks).
+    pub id: Vec<u64>,
+    /// Template index.
+    pub template: Vec<u32>,
+    /// Centre of mass, world frame, m.
+    pub position: Vec<DVec3>,
+    /// Centre-of-mass velocity, world frame, m/s.
+    pub velocity: Vec<DVec3>,
+    /// Orientation, body → world (unit quaternion).
+    pub orientation: Vec<DQuat>,
+    /// Angular momentum about the centre of mass, world frame, kg m²/s.
+    pub angular_momentum: Vec<DVec3>,
+    /// Angular velocity, world frame, rad/s (derived from the angular momentum).
+    pub angular_velocity: Vec<DVec3>,
+    /// Total force (contacts + gravity), world frame, N.
+    pub force: Vec<DVec3>,
+    /// Total torque about the centre of mass, world frame, N m.
+    pub torque: Vec<DVec3>,
+    /// Mass, kg (the true clump mass; the added-mass factor is applied separately).
+    pub mass: Vec<f64>,
+    /// Principal moments of inertia, body frame, kg m².
+    pub inertia: Vec<DVec3>,
+    /// Force flags per world axis.
+    pub force_flag: Vec<AxisFlags>,
+    /// Torque flags per world axis.
+    pub torque_flag: Vec<AxisFlags>,
+    /// Step from which forces act (ballistic before it).
+    pub start_step: Vec<u64>,
+}
+
+impl Bodies {
+    /// Number of bodies.
+    pub fn len(&self) -> usize {
+        self.id.len()
+    }
+
+    /// True when there are no bodies.
+    pub fn is_empty(&self) -> bool {
+        self.id.is_empty()
+    }
+
+    /// Appends one body with the given global id, mass (kg) and principal
+    /// inertia (body frame, kg m²).
+    pub fn push(&mut self, id: u64, init: &BodyInit, mass: f64, inertia: DVec3) {
+        let q = init.orientation.normalize();
+        // L_world = R I Rᵀ ω_world
+        let w_body = q.inverse() * init.angular_velocity;
+        let l_world = q * (inertia * w_body);
+        self.id.push(id);
+        self.template.push(init.template);
+        self.position.push(init.position);
+        self.velocity.push(init.velocity);
+        self.orientation.push(q);
+        self.angular_momentum.push(l_world);
+        self.angular_velocity.push(init.angular_velocity);
+        self.force.push(DVec3::ZERO);
+        self.torque.push(DVec3::ZERO);
+        self.mass.push(mass);
+        self.inertia.push(inertia);
+        self.force_flag.push(init.force_flag);
+        self.torque_flag.push(init.torque_flag);
+        self.start_step.push(init.start_step);
+    }
+
+    /// Reorders all arrays so that new index `k` holds old index `perm[k]`.
+    /// `perm` may be shorter than `len()`: bodies not listed are dropped.
+    pub fn permute(&mut self, perm: &[u32]) {
+        fn apply<T: Copy>(v: &mut Vec<T>, perm: &[u32]) {
+            let old = std::mem::take(v);
+            v.extend(perm.iter().map(|&k| old[k as usize]));
+        }
+        apply(&mut self.id, perm);
+        apply(&mut self.template, perm);
+        apply(&mut self.position, perm);
+        apply(&mut self.velocity, perm);
+        apply(&mut self.orientation, perm);
+        apply(&mut self.angular_momentum, perm);
+        apply(&mut self.angular_velocity, perm);
+        apply(&mut self.force, perm);
+        apply(&mut self.torque, perm);
+        apply(&mut self.mass, perm);
+        apply(&mut self.inertia, perm);
+        apply(&mut self.force_flag, perm);
+        apply(&mut self.torque_flag, perm);
+        apply(&mut self.start_step, perm);
+    }
+}

@@ -1,0 +1,79 @@
+//! Quaternion helpers: exact exponential and logarithm maps, sign-insensitive
+//! distance, cross-product matrix, angle wrapping.
+
+use glam::{DMat3, DQuat, DVec3};
+
+/// Below this rotation angle (rad) the `sin(x)/x` factors use their Taylor
+/// series; the truncation error there is far below `f64` round-off.
+const SMALL_ANGLE: f64 = 1e-4;
+
+/// Exact exponential map: the unit quaternion of a rotation by angle `|v|`
+/// (rad) about the axis `v/|v|`, i.e. `(cos(|v|/2), sin(|v|/2) v/|v|)`.
+///
+/// The rotation vector `v` is expressed in whatever frame the caller uses:
+/// left-multiplying an orientation (`exp(v) * q`) applies a rotation about a
+/// **world**-frame axis; right-multiplying (`q * exp(v)`) applies it about a
+/// **body**-frame axis. `v = 0` gives the identity (no division by zero: the
+/// factor `sin(|v|/2)/|v|` is evaluated by its series near zero).
+pub fn quat_from_rotation_vector(v: DVec3) -> DQuat {
+    let angle = v.length();
+    let half = 0.5 * angle;
+    let s = if angle < SMALL_ANGLE {
+        // sin(a/2)/a = 1/2 - a^2/48 + a^4/3840 - ...
+        let a2 = angle * angle;
+        0.5 - a2 / 48.0 + a2 * a2 / 3840.0
+    } else {
+        half.sin() / angle
+    };
+    DQuat::from_xyzw(s * v.x, s * v.y, s * v.z, half.cos())
+}
+
+/// Logarithm map, inverse of [`quat_from_rotation_vector`]: the rotation
+/// vector (rad, axis times angle) of a unit quaternion, with angle in `[0, π]`
+/// (the sign of `q` is irrelevant: `q` and `-q` give the same vector).
+pub fn quat_to_rotation_vector(q: DQuat) -> DVec3 {
+    let q = if q.w < 0.0 { -q } else { q };
+    let v = DVec3::new(q.x, q.y, q.z);
+    let s = v.length();
+    // angle = 2 atan2(|v|, w), robust for all angles.
+    let angle = 2.0 * s.atan2(q.w);
+    if s < 1e-300 {
+        return 2.0 * v;
+    }
+    if angle < SMALL_ANGLE {
+        // angle / s with s = sin(angle/2): 2 (1 + angle^2/24 + ...)
+        let a2 = angle * angle;
+        return v * (2.0 * (1.0 + a2 / 24.0));
+    }
+    v * (angle / s)
+}
+
+/// Sign-insensitive distance between two orientations (unit quaternions):
+/// `min(|a - b|, |a + b|)` (4-vector Euclidean norm). `q` and `-q` are the same
+/// rotation, so this is the natural error measure for orientations.
+pub fn quat_distance(a: DQuat, b: DQuat) -> f64 {
+    let d1 = (a - b).length();
+    let d2 = (a + b).length();
+    d1.min(d2)
+}
+
+/// Cross-product matrix `[v]×` with `[v]× u = v × u` (same frame as `v`).
+pub fn skew(v: DVec3) -> DMat3 {
+    DMat3::from_cols(
+        DVec3::new(0.0, v.z, -v.y),
+        DVec3::new(-v.z, 0.0, v.x),
+        DVec3::new(v.y, -v.x, 0.0),
+    )
+}
+
+/// Wraps an angle (rad) into `[0, 2π)`.
+pub fn wrap_angle_2pi(a: f64) -> f64 {
+    let two_pi = std::f64::consts::TAU;
+    let r = a.rem_euclid(two_pi);
+    // rem_euclid can return exactly 2π for tiny negative inputs.
+    if r >= two_pi {
+        0.0
+    } else {
+        r
+    }
+}

@@ -1,0 +1,121 @@
+//! Uniform cell grid for the neighbour search.
+
+use crate::boundary::Domain;
+use glam::DVec3;
+
+/// A uniform grid of cubic-ish cells. Along periodic axes it spans the domain
+/// exactly (at least 3 cells); along other axes it spans the bounding box of
+/// the spheres.
+#[derive(Debug, Clone, Default)]
+pub struct CellGrid {
+    /// Lower corner, world frame, m.
+    pub origin: DVec3,
+    /// Cell edge lengths, m.
+    pub cell: DVec3,
+    /// Cells per axis.
+    pub dims: [usize; 3],
+    /// Periodic axes.
+    pub periodic: [bool; 3],
+}
+
+/// Largest number of cells the grid may have per sphere (bounds memory when
+/// spheres are sparse in a large box).
+const MAX_CELLS_PER_SPHERE: usize = 8;
+
+impl CellGrid {
+    /// Builds a grid for spheres at `positions` (world, m) with minimum cell
+    /// edge `min_cell` (m). Returns an error message if a periodic axis is
+    /// shorter than three cells.
+    pub fn new(domain: &Domain, positions: &[DVec3], min_cell: f64) -> Result<Self, String> {
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for &p in positions {
+            let w = domain.wrap(p);
+            lo = lo.min(w);
+            hi = hi.max(w);
+        }
+        if positions.is_empty() {
+            lo = domain.lo;
+            hi = domain.hi;
+        }
+        let mut g = CellGrid { periodic: domain.periodic, ..Default::default() };
+        let max_cells = (positions.len().max(1) * MAX_CELLS_PER_SPHERE) as f64;
+        let mut min_cell = min_cell;
+        loop {
+            let mut total = 1.0;
+            for a in 0..3 {
+                if domain.periodic[a] {
+                    let l = domain.hi[a] - domain.lo[a];
+                    let n = (l / min_cell).floor();
+                    if n < 3.0 {
+                        return Err(format!(
+                            "periodic axis {} is {l} m long, shorter than 3 neighbour cells of {min_cell} m \
+                             (largest sphere diameter + skin); enlarge the domain",
+                            ["x", "y", "z"][a]
+                        ));
+                    }
+                    g.origin[a] = domain.lo[a];
+                    g.dims[a] = n as usize;
+                    g.cell[a] = l / n;
+                } else {
+                    let l = (hi[a] - lo[a]).max(0.0);
+                    let n = (l / min_cell).floor().max(0.0) + 1.0;
+                    g.origin[a] = lo[a];
+                    g.dims[a] = n as usize;
+                    g.cell[a] = min_cell;
+                }
+                total *= g.dims[a] as f64;
+            }
+            if total <= max_cells || g.periodic.iter().all(|&p| p) {
+                break;
+            }
+            min_cell *= 1.5;
+        }
+        Ok(g)
+    }
+
+    /// Integer cell coordinates of a (wrapped) world position.
+    #[inline]
+    pub fn coords(&self, x: DVec3) -> [i64; 3] {
+        let mut c = [0i64; 3];
+        for a in 0..3 {
+            let k = ((x[a] - self.origin[a]) / self.cell[a]).floor() as i64;
+            c[a] = k.clamp(0, self.dims[a] as i64 - 1);
+        }
+        c
+    }
+
+    /// Linear cell index of integer coordinates (already in range).
+    #[inline]
+    pub fn index(&self, c: [i64; 3]) -> usize {
+        (c[0] as usize) + self.dims[0] * ((c[1] as usize) + self.dims[1] * (c[2] as usize))
+    }
+
+    /// Total number of cells.
+    pub fn len(&self) -> usize {
+        self.dims[0] * self.dims[1] * self.dims[2]
+    }
+
+    /// True when the grid has no cells.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The neighbour cell of `c` at offset `o`, wrapped along periodic axes;
+    /// `None` if outside along a non-periodic axis.
+    #[inline]
+    pub fn neighbor(&self, c: [i64; 3], o: [i64; 3]) -> Option<[i64; 3]> {
+        let mut n = [0i64; 3];
+        for a in 0..3 {
+            let d = self.dims[a] as i64;
+            let mut k = c[a] + o[a];
+            if self.periodic[a] {
+                k = k.rem_euclid(d);
+            } else if k < 0 || k >= d {
+                return None;
+            }
+            n[a] = k;
+        }
+        Some(n)
+    }
+}

@@ -1,0 +1,20 @@
+//! Broad phase: cell lists with a Verlet skin, spatial sorting, and the half
+//! list of sphere pairs from different bodies.
+//!
+//! - [`grid`]: the uniform cell grid (cell edge ≥ largest sphere diameter + skin).
+//! - [`sort`]: Morton (Z-order) sort of bodies, so spatial neighbours are
+//!   memory neighbours; each body's spheres stay contiguous.
+//! - [`pairs`]: the half pair list, built allocation-free after warm-up,
+//!   with same-body pairs excluded by construction; contact history is keyed
+//!   by the global sphere ids and survives rebuilds and re-sorting.
+//! - [`skin`]: the rebuild trigger: any sphere displaced by more than half the
+//!   skin since the last build, which counts rotation because it measures the
+//!   sphere centres themselves.
+
+pub mod grid;
+pub mod pairs;
+pub mod skin;
+pub mod sort;
+
+pub use grid::CellGrid;
+pub use pairs::{PairList, PairState, PairTopo};

@@ -1,0 +1,113 @@
+//! The complete dynamic state of a world, for checkpoints.
+//!
+//! A checkpoint holds everything that evolves: bodies (with the forces of
+//! the last evaluation, which the next half kick uses), walls, contact
+//! histories, the poses at the last neighbour build and the counters. Static
+//! set-up (materials, templates, contact models) comes from the scenario.
+//! Restoring rebuilds the neighbour list from the stored build poses, so the
+//! resumed run repeats the uninterrupted one bit for bit.
+
+use crate::body::Bodies;
+use crate::contact::ContactHistory;
+use crate::step::{rebuild, StepError};
+use crate::wall::{Wall, WallLoad};
+use crate::world::{ContactStats, World, WorldConfig, WALL_SLOTS};
+use glam::{DQuat, DVec3};
+use serde::{Deserialize, Serialize};
+
+/// Serializable dynamic state of a [`World`].
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct WorldState {
+    /// Global settings at the time of saving.
+    pub config: WorldConfig,
+    /// Steps taken.
+    pub step: u64,
+    /// Simulated time, s.
+    pub time: f64,
+    /// Bodies lost so far.
+    pub lost_bodies: u64,
+    /// Neighbour builds so far.
+    pub rebuilds: u64,
+    /// Next global body id.
+    pub next_id: u64,
+    /// Bodies, in storage order.
+    pub bodies: Bodies,
+    /// Walls (pose and motion).
+    pub walls: Vec<Wall>,
+    /// Wall loads of the last evaluation.
+    pub wall_loads: Vec<WallLoad>,
+    /// Statistics of the last evaluation.
+    pub stats: ContactStats,
+    /// Body poses (centre of mass, world; orientation) at the last neighbour build.
+    pub reference_pose: Vec<(DVec3, DQuat)>,
+    /// Sphere-pair histories keyed by (lower, higher) global sphere id.
+    pub pair_history: Vec<((u64, u64), ContactHistory)>,
+    /// Sphere–wall contact slot keys, per sphere in storage order.
+    pub wall_key: Vec<[u32; WALL_SLOTS]>,
+    /// Sphere–wall contact histories, per sphere in storage order.
+    pub wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
+}
+
+impl World {
+    /// Captures the dynamic state. Call between steps.
+    pub fn save_state(&mut self) -> Result<WorldState, StepError> {
+        if !self.forces_ready {
+            self.prepare()?;
+        }
+        let mut map = std::mem::take(&mut self.history_map);
+        self.pairs.save_history(&self.spheres.gid, &mut map);
+        let mut pair_history: Vec<_> = map.drain().collect();
+        pair_history.sort_by_key(|e| e.0);
+        self.history_map = map;
+        Ok(WorldState {
+            config: self.config,
+            step: self.step,
+            time: self.time,
+            lost_bodies: self.lost_bodies,
+            rebuilds: self.rebuilds,
+            next_id: self.next_id,
+            bodies: self.bodies.clone(),
+            walls: self.walls.clone(),
+            wall_loads: self.wall_loads.clone(),
+            stats: self.stats,
+            reference_pose: self.reference_pose.clone(),
+            pair_history,
+            wall_key: self.wall_key.clone(),
+            wall_hist: self.wall_hist.clone(),
+        })
+    }
+
+    /// Restores a state saved by [`World::save_state`] into a world built
+    /// from the same scenario (same templates, materials and walls).
+    pub fn restore_state(&mut self, s: WorldState) -> Result<(), String> {
+        if s.walls.len() != self.walls.len() {
+            return Err(format!("checkpoint has {} walls, the scenario {}", s.walls.len(), self.walls.len()));
+        }
+        if let Some(&t) = s.bodies.template.iter().find(|&&t| t as usize >= self.templates.len()) {
+            return Err(format!("checkpoint refers to template {t}, the scenario has {}", self.templates.len()));
+        }
+        let nb = s.bodies.len();
+        let ns: usize = s.bodies.template.iter().map(|&t| self.templates[t as usize].spheres.len()).sum();
+        if s.reference_pose.len() != nb || s.wall_key.len() != ns || s.wall_hist.len() != ns {
+            return Err("checkpoint arrays have inconsistent lengths".into());
+        }
+        self.config = s.config;
+        self.step = s.step;
+        self.time = s.time;
+        self.lost_bodies = s.lost_bodies;
+        self.rebuilds = s.rebuilds;
+        self.next_id = s.next_id;
+        self.bodies = s.bodies;
+        self.walls = s.walls;
+        self.wall_loads = s.wall_loads;
+        self.stats = s.stats;
+        self.reference_pose = s.reference_pose;
+        self.history_map = s.pair_history.into_iter().collect();
+        self.wall_key = s.wall_key;
+        self.wall_hist = s.wall_hist;
+        rebuild::rebuild(self, false).map_err(|e| e.to_string())?;
+        self.rebuilds = self.rebuilds.saturating_sub(1);
+        self.forces_ready = true;
+        Ok(())
+    }
+}

@@ -1,0 +1,278 @@
+//! Force stage: per-pair contact forces, then a per-body gather (in a fixed
+//! order) together with sphere–wall contacts and gravity.
+
+use super::shared::SharedMut;
+use crate::contact::{ContactHistory, ContactInput};
+use crate::multi_contact::{MultiContact, PartnerCounts};
+use crate::neighbor::pairs::{PairState, SIDE_J};
+use crate::sphere::{point_velocity, SPHERE_ID_BITS};
+use crate::wall::{WallLoad, WallTouch, MAX_TOUCHES_PER_WALL};
+use crate::world::{ContactStats, World, WALL_SLOTS};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Bodies per gather chunk. Fixed (never derived from the thread count) so
+/// that the chunked reductions of wall loads and statistics are the same for
+/// any number of threads.
+pub const BODY_CHUNK: usize = 128;
+
+/// Computes all contact forces and the total force and torque on every body.
+pub fn compute(w: &mut World) {
+    pair_forces(w);
+    gather(w);
+}
+
+/// Evaluates every candidate sphere pair; pairs that do not touch get zero
+/// force and their history is reset.
+fn pair_forces(w: &mut World) {
+    let dt = w.config.dt;
+    let domain = w.config.domain;
+    let any_periodic = domain.periodic.iter().any(|&p| p);
+    let sp = &w.spheres;
+    let b = &w.bodies;
+    let table = &w.contact_table;
+    w.pairs.topo.par_iter().zip(w.pairs.state.par_iter_mut()).with_min_len(512).for_each(|(t, st)| {
+        let (i, j) = (t.i as usize, t.j as usize);
+        let shift = if any_periodic { domain.shift_vector(t.shift) } else { DVec3::ZERO };
+        let xi = sp.position[i];
+        let xj = sp.position[j] - shift;
+        let d = xi - xj;
+        let (ri, rj) = (sp.radius[i], sp.radius[j]);
+        let rsum = ri + rj;
+        let dist2 = d.length_squared();
+        if dist2 >= rsum * rsum {
+            *st = PairState::default();
+            return;
+        }
+        let dist = dist2.sqrt();
+        let n = d / dist;
+        let overlap = rsum - dist;
+        let (bi, bj) = (sp.body[i] as usize, sp.body[j] as usize);
+        let xc = xi - n * (ri - 0.5 * overlap);
+        let (ci, cj) = (b.position[bi], b.position[bj] - shift);
+        let (wi, wj) = (b.angular_velocity[bi], b.angular_velocity[bj]);
+        let vi = point_velocity(ci, b.velocity[bi], wi, xc);
+        let vj = point_velocity(cj, b.velocity[bj], wj, xc);
+        let (mi, mj) = (b.mass[bi], b.mass[bj]);
+        let input = ContactInput {
+            normal: n,
+            overlap,
+            rel_velocity: vi - vj,
+            rel_omega: wi - wj,
+            radius: ri * rj / rsum,
+            mass: mi * mj / (mi + mj),
+            dt,
+        };
+        let model = table.get(sp.material[i], sp.material[j]);
+        let out = model.evaluate(&input, &mut st.history);
+        st.force = out.force;
+        st.torque_i = (xc - ci).cross(out.force) + out.torque;
+        st.torque_j = (xc - cj).cross(-out.force) - out.torque;
+        st.energy = out.elastic_energy;
+        st.overlap = overlap;
+    });
+}
+
+/// Per body: sum the pair forces of its spheres (scaled by 1/NCP under
+/// `average`), evaluate its sphere–wall contacts, add gravity. Bodies are
+/// processed in fixed chunks; wall loads and statistics are summed per chunk
+/// and then over chunks in order.
+fn gather(w: &mut World) {
+    let World { bodies, spheres: sp, pairs, walls, contact_table: table, wall_key, wall_hist, chunk_stats, chunk_wall_loads, config, wall_loads, stats, .. } = w;
+    let nb = bodies.len();
+    let nw = walls.len();
+    let nchunks = nb.div_ceil(BODY_CHUNK);
+    chunk_stats.clear();
+    chunk_stats.resize(nchunks, ContactStats::default());
+    chunk_wall_loads.clear();
+    chunk_wall_loads.resize(nchunks * nw, WallLoad::default());
+    let dt = config.dt;
+    let gravity = config.gravity;
+    let average = config.multi_contact == MultiContact::Average;
+    let walls_average = walls.iter().any(|x| x.multi_contact == MultiContact::Average);
+    let force = SharedMut::new(&mut bodies.force);
+    let torque = SharedMut::new(&mut bodies.torque);
+    let keys = SharedMut::new(wall_key);
+    let hists = SharedMut::new(wall_hist);
+    let loads = SharedMut::new(chunk_wall_loads);
+    let b = &*bodies;
+    chunk_stats.par_iter_mut().enumerate().for_each_init(
+        || (PartnerCounts::default(), PartnerCounts::default()),
+        |(counts, wcounts), (c, stat)| {
+            let b0 = c * BODY_CHUNK;
+            let b1 = (b0 + BODY_CHUNK).min(nb);
+            for bi in b0..b1 {
+                let com = b.position[bi];
+                let mut f = b.mass[bi] * gravity;
+                let mut m = DVec3::ZERO;
+                let spheres = sp.of_body(bi);
+                // --- sphere–sphere contacts
+                if average {
+                    counts.clear();
+                    for s in spheres.clone() {
+                        for &e in incident(pairs, s) {
+                            let p = (e & !SIDE_J) as usize;
+                            if pairs.state[p].overlap > 0.0 {
+                                counts.add(partner_body(sp, pairs, p, e));
+                            }
+                        }
+                    }
+                }
+                for s in spheres.clone() {
+                    for &e in incident(pairs, s) {
+                        let p = (e & !SIDE_J) as usize;
+                        let st = &pairs.state[p];
+                        if st.overlap <= 0.0 {
+                            continue;
+                        }
+                        let scale = if average { 1.0 / counts.get(partner_body(sp, pairs, p, e)) as f64 } else { 1.0 };
+                        if e & SIDE_J == 0 {
+                            f += st.force * scale;
+                            m += st.torque_i * scale;
+                            let t = pairs.topo[p];
+                            stat.pair_contacts += 1;
+                            stat.elastic_energy += st.energy * scale;
+                            let rmin = sp.radius[t.i as usize].min(sp.radius[t.j as usize]);
+                            stat.max_overlap_ratio = stat.max_overlap_ratio.max(st.overlap / rmin);
+                        } else {
+                            f -= st.force * scale;
+                            m += st.torque_j * scale;
+                        }
+                    }
+                }
+                // --- sphere–wall contacts
+                if nw > 0 {
+                    if walls_average {
+                        wcounts.clear();
+                        let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
+                        for s in spheres.clone() {
+                            for (wi, wall) in walls.iter().enumerate() {
+                                if wall.active {
+                                    let k = wall.shape.touches(sp.position[s], sp.radius[s], 0.0, &mut buf);
+                                    for _ in 0..k {
+                                        wcounts.add(wi as u64);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                    let ctx = WallCtx { sp, b, table, walls, dt, bi, com };
+                    for s in spheres {
+                        // SAFETY: sphere s belongs to body bi, handled by this chunk only.
+                        let (key, hist) = unsafe { (keys.get(s), hists.get(s)) };
+                        let mut new_key = [0u32; WALL_SLOTS];
+                        let mut new_hist = [ContactHistory::default(); WALL_SLOTS];
+                        let mut n_new = 0;
+                        let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
+                        for (wi, wall) in walls.iter().enumerate() {
+                            if !wall.active {
+                                continue;
+                            }
+                            let k = wall.shape.touches(sp.position[s], sp.radius[s], 0.0, &mut buf);
+                            for touch in &buf[..k] {
+                                let slot_key = ((wi as u32) << 8 | touch.face as u32) + 1;
+                                let mut h = key.iter().position(|&x| x == slot_key).map_or(ContactHistory::default(), |k| hist[k]);
+                                let scale = if wall.multi_contact == MultiContact::Average { 1.0 / wcounts.get(wi as u64) as f64 } else { 1.0 };
+                                let (fw, mw, tw, energy) = ctx.evaluate(s, wi, touch, &mut h);
+                                f += fw * scale;
+                                m += mw * scale;
+                                // SAFETY: row c of the chunk loads belongs to this chunk only.
+                                let load = unsafe { loads.get(c * nw + wi) };
+                                load.force -= fw * scale;
+                                load.torque -= tw * scale;
+                                stat.wall_contacts += 1;
+                                stat.elastic_energy += energy * scale;
+                                stat.max_overlap_ratio = stat.max_overlap_ratio.max(touch.overlap / sp.radius[s]);
+                                if n_new < WALL_SLOTS {
+                                    new_key[n_new] = slot_key;
+                                    new_hist[n_new] = h;
+                                    n_new += 1;
+                                }
+                            }
+                        }
+                        *key = new_key;
+                        *hist = new_hist;
+                    }
+                }
+                // SAFETY: body bi is handled by this chunk only.
+                unsafe {
+                    *force.get(bi) = f;
+                    *torque.get(bi) = m;
+                }
+            }
+        },
+    );
+    let mut total = ContactStats::default();
+    for s in chunk_stats.iter() {
+        total.pair_contacts += s.pair_contacts;
+        total.wall_contacts += s.wall_contacts;
+        total.elastic_energy += s.elastic_energy;
+        total.max_overlap_ratio = total.max_overlap_ratio.max(s.max_overlap_ratio);
+    }
+    *stats = total;
+    for (wi, load) in wall_loads.iter_mut().enumerate() {
+        let mut l = WallLoad::default();
+        for c in 0..nchunks {
+            l.force += chunk_wall_loads[c * nw + wi].force;
+            l.torque += chunk_wall_loads[c * nw + wi].torque;
+        }
+        *load = l;
+    }
+}
+
+/// Incidence entries of sphere `s`.
+#[inline(always)]
+fn incident(pairs: &crate::neighbor::PairList, s: usize) -> &[u32] {
+    &pairs.incidence[pairs.incidence_start[s] as usize..pairs.incidence_start[s + 1] as usize]
+}
+
+/// Global id of the body on the other side of pair `p` from incidence entry `e`.
+#[inline(always)]
+fn partner_body(sp: &crate::sphere::Spheres, pairs: &crate::neighbor::PairList, p: usize, e: u32) -> u64 {
+    let t = pairs.topo[p];
+    let other = if e & SIDE_J == 0 { t.j } else { t.i };
+    sp.gid[other as usize] >> SPHERE_ID_BITS
+}
+
+struct WallCtx<'a> {
+    sp: &'a crate::sphere::Spheres,
+    b: &'a crate::body::Bodies,
+    table: &'a crate::world::ContactTable,
+    walls: &'a [crate::wall::Wall],
+    dt: f64,
+    bi: usize,
+    com: DVec3,
+}
+
+impl WallCtx<'_> {
+    /// One sphere–wall contact: returns (force on the body, torque on the body
+    /// about its centre of mass, torque on the wall about its motion centre
+    /// *from the body's side* i.e. of the force on the body, elastic energy).
+    #[inline]
+    fn evaluate(&self, s: usize, wi: usize, touch: &WallTouch, h: &mut ContactHistory) -> (DVec3, DVec3, DVec3, f64) {
+        let wall = &self.walls[wi];
+        let r = self.sp.radius[s];
+        let n = touch.normal;
+        let xc = self.sp.position[s] - n * (r - 0.5 * touch.overlap);
+        let bi = self.bi;
+        let wb = self.b.angular_velocity[bi];
+        let v_body = point_velocity(self.com, self.b.velocity[bi], wb, xc);
+        let mut v_wall = wall.surface_velocity_at(xc);
+        let sv = wall.motion.surface_velocity;
+        v_wall -= n * n.dot(sv);
+        let input = ContactInput {
+            normal: n,
+            overlap: touch.overlap,
+            rel_velocity: v_body - v_wall,
+            rel_omega: wb - wall.motion.angular_velocity,
+            radius: r,
+            mass: self.b.mass[bi],
+            dt: self.dt,
+        };
+        let model = self.table.get(self.sp.material[s], wall.material);
+        let out = model.evaluate(&input, h);
+        let m_body = (xc - self.com).cross(out.force) + out.torque;
+        let m_wall_from_body = (xc - wall.motion.center).cross(out.force) + out.torque;
+        (out.force, m_body, m_wall_from_body, out.elastic_energy)
+    }
+}

@@ -1,0 +1,116 @@
+//! Neighbour-list rebuild: wrap periodic centres of mass, drop bodies that
+//! left the domain, Morton-sort the bodies, rebuild the sphere topology and
+//! the pair list (history carried by global sphere ids).
+
+use super::kinematics::update_spheres;
+use super::StepError;
+use crate::contact::ContactHistory;
+use crate::neighbor::pairs::BuildInput;
+use crate::neighbor::{sort, CellGrid};
+use crate::sphere::sphere_gid;
+use crate::world::{World, WALL_SLOTS};
+
+/// Rebuilds the neighbour list. With `reorganize`, bodies are first wrapped,
+/// filtered and re-sorted (this is what a normal rebuild does); without, the
+/// list is rebuilt from the stored reference poses only (used on restart so
+/// that a resumed run matches an uninterrupted one bit for bit).
+pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
+    let min_cell = 2.0 * w.max_radius() + w.skin();
+    if reorganize {
+        w.pairs.save_history(&w.spheres.gid, &mut w.history_map);
+        let domain = w.config.domain;
+        let n = w.bodies.len();
+        let mut keep = vec![true; n];
+        for b in 0..n {
+            let x = w.bodies.position[b];
+            if domain.is_outside(x) {
+                keep[b] = false;
+            } else {
+                w.bodies.position[b] = domain.wrap(x);
+            }
+        }
+        let grid = CellGrid::new(&domain, &w.bodies.position, min_cell).map_err(StepError::Neighbor)?;
+        sort::morton_order(&grid, &w.bodies.position, &w.bodies.id, &keep, &mut w.scratch_perm, &mut w.scratch_keys);
+        w.lost_bodies += (n - w.scratch_perm.len()) as u64;
+        // carry wall-contact slots along with their spheres; bodies added
+        // since the last build (indices ≥ old count) start with empty slots
+        let old_n = w.spheres.body_first.len().saturating_sub(1);
+        let old_key = std::mem::take(&mut w.wall_key);
+        let old_hist = std::mem::take(&mut w.wall_hist);
+        for &ob in &w.scratch_perm {
+            let ob = ob as usize;
+            if ob < old_n {
+                let r = w.spheres.of_body(ob);
+                w.wall_key.extend_from_slice(&old_key[r.clone()]);
+                w.wall_hist.extend_from_slice(&old_hist[r]);
+            } else {
+                let t = w.bodies.template[ob] as usize;
+                let ns = (w.template_first[t + 1] - w.template_first[t]) as usize;
+                w.wall_key.extend(std::iter::repeat([0; WALL_SLOTS]).take(ns));
+                w.wall_hist.extend(std::iter::repeat([ContactHistory::default(); WALL_SLOTS]).take(ns));
+            }
+        }
+        let perm = std::mem::take(&mut w.scratch_perm);
+        w.bodies.permute(&perm);
+        w.scratch_perm = perm;
+        rebuild_sphere_topology(w);
+        update_spheres(w);
+        w.reference_pose.clear();
+        w.reference_pose.extend(w.bodies.position.iter().zip(&w.bodies.orientation).map(|(&x, &q)| (x, q)));
+        w.reference_position.clear();
+        w.reference_position.extend_from_slice(&w.spheres.position);
+        w.topology_dirty = false;
+    } else {
+        // positions at the last build, recomputed from the stored poses
+        rebuild_sphere_topology(w);
+        let current: Vec<_> = w.bodies.position.iter().zip(&w.bodies.orientation).map(|(&x, &q)| (x, q)).collect();
+        for (b, &(x, q)) in w.reference_pose.iter().enumerate() {
+            w.bodies.position[b] = x;
+            w.bodies.orientation[b] = q;
+        }
+        update_spheres(w);
+        w.reference_position.clear();
+        w.reference_position.extend_from_slice(&w.spheres.position);
+        for (b, (x, q)) in current.into_iter().enumerate() {
+            w.bodies.position[b] = x;
+            w.bodies.orientation[b] = q;
+        }
+        update_spheres(w);
+        w.topology_dirty = false;
+    }
+    w.grid = CellGrid::new(&w.config.domain, &w.reference_position, min_cell).map_err(StepError::Neighbor)?;
+    let sp = &w.spheres;
+    let inp = BuildInput { position: &w.reference_position, radius: &sp.radius, body: &sp.body, gid: &sp.gid, skin: w.skin() };
+    w.pairs.build(&w.grid, &w.config.domain, &inp, &w.history_map);
+    w.history_map.clear();
+    w.rebuilds += 1;
+    Ok(())
+}
+
+/// Recomputes the per-sphere topology arrays from the bodies (storage order).
+pub(crate) fn rebuild_sphere_topology(w: &mut World) {
+    let sp = &mut w.spheres;
+    sp.body.clear();
+    sp.index_in_template.clear();
+    sp.gid.clear();
+    sp.radius.clear();
+    sp.material.clear();
+    sp.body_first.clear();
+    for (b, (&t, &id)) in w.bodies.template.iter().zip(&w.bodies.id).enumerate() {
+        sp.body_first.push(sp.body.len() as u32);
+        let (s0, s1) = (w.template_first[t as usize], w.template_first[t as usize + 1]);
+        for k in 0..(s1 - s0) {
+            sp.body.push(b as u32);
+            sp.index_in_template.push(k);
+            sp.gid.push(sphere_gid(id, k));
+            sp.radius.push(w.template_radius[(s0 + k) as usize]);
+            sp.material.push(w.template_material[t as usize]);
+        }
+    }
+    sp.body_first.push(sp.body.len() as u32);
+    let n = sp.body.len();
+    sp.position.resize(n, Default::default());
+    sp.velocity.resize(n, Default::default());
+    w.wall_key.resize(n, [0; WALL_SLOTS]);
+    w.wall_hist.resize(n, [ContactHistory::default(); WALL_SLOTS]);
+}

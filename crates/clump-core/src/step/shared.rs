@@ -1,0 +1,25 @@
+//! A raw pointer that parallel loops use to write disjoint elements.
+
+/// Pointer to the start of a slice, shared across threads. Safety: callers
+/// must write each element from at most one thread at a time, and keep the
+/// slice alive and unmoved while in use.
+#[derive(Clone, Copy)]
+pub(crate) struct SharedMut<T>(*mut T, usize);
+
+unsafe impl<T: Send> Send for SharedMut<T> {}
+unsafe impl<T: Send> Sync for SharedMut<T> {}
+
+impl<T> SharedMut<T> {
+    pub(crate) fn new(s: &mut [T]) -> Self {
+        SharedMut(s.as_mut_ptr(), s.len())
+    }
+
+    /// # Safety
+    /// `i` is written by this thread only, for the duration of the borrow.
+    #[inline(always)]
+    #[allow(clippy::mut_from_ref)]
+    pub(crate) unsafe fn get(&self, i: usize) -> &mut T {
+        debug_assert!(i < self.1);
+        &mut *self.0.add(i)
+    }
+}

@@ -1,0 +1,263 @@
+//! Everything one simulation owns, and how to set it up.
+
+use crate::body::{BodyInit, Bodies};
+use crate::boundary::Domain;
+use crate::contact::{ContactHistory, ContactModel, Material, PairProperties};
+use crate::multi_contact::MultiContact;
+use crate::neighbor::{CellGrid, PairList};
+use crate::rotation::RotationScheme;
+use crate::shape::ClumpTemplate;
+use crate::sphere::Spheres;
+use crate::wall::{Wall, WallLoad};
+use glam::{DQuat, DVec3};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use thiserror::Error;
+
+/// Added-mass model (seed 000): the body's inertia in the kicks is scaled by
+/// `1 + coefficient · fluid_density / body_density`. Gravity still acts on the
+/// true mass.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct AddedMass {
+    /// Added-mass coefficient `CAdd` (0.5 for a sphere in potential flow).
+    pub coefficient: f64,
+    /// Fluid density, kg/m³.
+    pub fluid_density: f64,
+}
+
+/// Global settings of a simulation.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct WorldConfig {
+    /// The domain and its periodic axes.
+    pub domain: Domain,
+    /// Gravitational acceleration, world frame, m/s².
+    pub gravity: DVec3,
+    /// Time step, s.
+    pub dt: f64,
+    /// Rotation scheme for the free-rotation sub-step.
+    pub rotation: RotationScheme,
+    /// Added-mass model.
+    pub added_mass: AddedMass,
+    /// Verlet skin, m. `None`: 10 % of the smallest sphere diameter... at
+    /// least; see [`World::skin`].
+    pub skin: Option<f64>,
+    /// Several-contact treatment between two bodies.
+    pub multi_contact: MultiContact,
+}
+
+/// Contact models for every pair of materials (symmetric table).
+#[derive(Debug, Clone, Default)]
+pub struct ContactTable {
+    n: usize,
+    models: Vec<ContactModel>,
+}
+
+impl ContactTable {
+    /// Builds the table; `props(a, b)` gives the pair properties of materials `a`, `b`.
+    pub fn new(materials: &[Material], mut props: impl FnMut(usize, usize) -> PairProperties) -> Result<Self, WorldError> {
+        let n = materials.len();
+        let mut models = Vec::with_capacity(n * n);
+        for a in 0..n {
+            for b in 0..n {
+                let (lo, hi) = (a.min(b), a.max(b));
+                let m = ContactModel::new(&materials[lo], &materials[hi], &props(lo, hi))
+                    .map_err(|e| WorldError::Contact(format!("materials {lo} and {hi}: {e}")))?;
+                models.push(m);
+            }
+        }
+        Ok(Self { n, models })
+    }
+
+    /// The model for materials `a` and `b`.
+    #[inline(always)]
+    pub fn get(&self, a: u16, b: u16) -> &ContactModel {
+        &self.models[a as usize * self.n + b as usize]
+    }
+}
+
+/// Errors while setting up a world.
+#[derive(Debug, Error)]
+pub enum WorldError {
+    /// A contact model could not be built.
+    #[error("contact model: {0}")]
+    Contact(String),
+    /// A reference to a missing template or material.
+    #[error("{0}")]
+    BadReference(String),
+    /// The neighbour grid could not be built.
+    #[error("neighbour grid: {0}")]
+    Grid(String),
+}
+
+/// Aggregates from the last force evaluation (for thermo output).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct ContactStats {
+    /// Touching sphere–sphere pairs.
+    pub pair_contacts: u64,
+    /// Touching sphere–wall contacts.
+    pub wall_contacts: u64,
+    /// Elastic energy in all contacts, J.
+    pub elastic_energy: f64,
+    /// Largest overlap divided by the smaller radius of the contact.
+    pub max_overlap_ratio: f64,
+}
+
+/// Per-sphere wall-contact slots (history carried while a contact persists).
+pub const WALL_SLOTS: usize = 4;
+
+/// The state of one simulation.
+pub struct World {
+    /// Global settings.
+    pub config: WorldConfig,
+    /// Materials.
+    pub materials: Vec<Material>,
+    /// Contact models per material pair.
+    pub contact_table: ContactTable,
+    /// Clump templates (body frame).
+    pub templates: Vec<ClumpTemplate>,
+    /// Material of each template's spheres.
+    pub template_material: Vec<u16>,
+    /// The bodies.
+    pub bodies: Bodies,
+    /// The walls.
+    pub walls: Vec<Wall>,
+    /// Load on each wall from the last force evaluation.
+    pub wall_loads: Vec<WallLoad>,
+    /// Steps taken.
+    pub step: u64,
+    /// Simulated time, s.
+    pub time: f64,
+    /// Bodies removed because they left the domain.
+    pub lost_bodies: u64,
+    /// Aggregates of the last force evaluation.
+    pub stats: ContactStats,
+    /// Number of neighbour-list builds so far.
+    pub rebuilds: u64,
+    pub(crate) next_id: u64,
+    pub(crate) spheres: Spheres,
+    pub(crate) pairs: PairList,
+    pub(crate) wall_key: Vec<[u32; WALL_SLOTS]>,
+    pub(crate) wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
+    pub(crate) template_first: Vec<u32>,
+    pub(crate) template_offset: Vec<DVec3>,
+    pub(crate) template_radius: Vec<f64>,
+    pub(crate) reference_position: Vec<DVec3>,
+    pub(crate) reference_pose: Vec<(DVec3, DQuat)>,
+    pub(crate) history_map: HashMap<(u64, u64), ContactHistory>,
+    pub(crate) grid: CellGrid,
+    pub(crate) topology_dirty: bool,
+    pub(crate) forces_ready: bool,
+    pub(crate) scratch_perm: Vec<u32>,
+    pub(crate) scratch_keys: Vec<(u64, u64, u32)>,
+    pub(crate) chunk_stats: Vec<ContactStats>,
+    pub(crate) chunk_wall_loads: Vec<WallLoad>,
+}
+
+impl World {
+    /// A new, empty world.
+    pub fn new(config: WorldConfig, materials: Vec<Material>, contact_table: ContactTable) -> Self {
+        World {
+            config,
+            materials,
+            contact_table,
+            templates: Vec::new(),
+            template_material: Vec::new(),
+            bodies: Bodies::default(),
+            walls: Vec::new(),
+            wall_loads: Vec::new(),
+            step: 0,
+            time: 0.0,
+            lost_bodies: 0,
+            stats: ContactStats::default(),
+            rebuilds: 0,
+            next_id: 1,
+            spheres: Spheres::default(),
+            pairs: PairList::default(),
+            wall_key: Vec::new(),
+            wall_hist: Vec::new(),
+            template_first: vec![0],
+            template_offset: Vec::new(),
+            template_radius: Vec::new(),
+            reference_position: Vec::new(),
+            reference_pose: Vec::new(),
+            history_map: HashMap::new(),
+            grid: CellGrid::default(),
+            topology_dirty: true,
+            forces_ready: false,
+            scratch_perm: Vec::new(),
+            scratch_keys: Vec::new(),
+            chunk_stats: Vec::new(),
+            chunk_wall_loads: Vec::new(),
+        }
+    }
+
+    /// Adds a template whose spheres are of material `material`; returns its index.
+    pub fn add_template(&mut self, template: ClumpTemplate, material: u16) -> Result<u32, WorldError> {
+        if material as usize >= self.materials.len() {
+            return Err(WorldError::BadReference(format!("template '{}' uses material {material}, which does not exist", template.name)));
+        }
+        for s in &template.spheres {
+            self.template_offset.push(s.center);
+            self.template_radius.push(s.radius);
+        }
+        self.template_first.push(self.template_offset.len() as u32);
+        self.templates.push(template);
+        self.template_material.push(material);
+        Ok(self.templates.len() as u32 - 1)
+    }
+
+    /// Adds a wall; returns its index.
+    pub fn add_wall(&mut self, wall: Wall) -> Result<usize, WorldError> {
+        if wall.material as usize >= self.materials.len() {
+            return Err(WorldError::BadReference(format!("wall '{}' uses material {}, which does not exist", wall.name, wall.material)));
+        }
+        self.walls.push(wall);
+        self.wall_loads.push(WallLoad::default());
+        self.forces_ready = false;
+        Ok(self.walls.len() - 1)
+    }
+
+    /// Adds a body; returns its global id.
+    pub fn add_body(&mut self, init: &BodyInit) -> Result<u64, WorldError> {
+        let t = self
+            .templates
+            .get(init.template as usize)
+            .ok_or_else(|| WorldError::BadReference(format!("body uses template {}, which does not exist", init.template)))?;
+        let id = self.next_id;
+        self.next_id += 1;
+        self.bodies.push(id, init, t.mass, t.principal_inertia);
+        self.topology_dirty = true;
+        self.forces_ready = false;
+        Ok(id)
+    }
+
+    /// The Verlet skin in use, m: the configured one, or by default 20 % of
+    /// the smallest sphere radius... of any template (never zero).
+    pub fn skin(&self) -> f64 {
+        self.config.skin.unwrap_or_else(|| {
+            let rmin = self.template_radius.iter().cloned().fold(f64::INFINITY, f64::min);
+            if rmin.is_finite() { 0.2 * rmin } else { 1e-3 }
+        })
+    }
+
+    /// Largest sphere radius of any template, m.
+    pub fn max_radius(&self) -> f64 {
+        self.template_radius.iter().cloned().fold(0.0, f64::max)
+    }
+
+    /// The spheres (derived from the bodies at the current step).
+    pub fn spheres(&self) -> &Spheres {
+        &self.spheres
+    }
+
+    /// Candidate and touching sphere pairs.
+    pub fn pairs(&self) -> &PairList {
+        &self.pairs
+    }
+
+    /// Storage index of the body with global id `id`, if present (linear search).
+    pub fn body_index(&self, id: u64) -> Option<usize> {
+        self.bodies.id.iter().position(|&x| x == id)
+    }
+
+}

@@ -1,0 +1,96 @@
+//! Helpers shared by the engine-level tests.
+#![allow(dead_code)]
+
+use clump_core::body::BodyInit;
+use clump_core::boundary::Domain;
+use clump_core::contact::{Material, PairProperties};
+use clump_core::multi_contact::MultiContact;
+use clump_core::rotation::RotationScheme;
+use clump_core::shape::{ClumpTemplate, Sphere};
+use clump_core::wall::{Wall, WallMotion, WallShape};
+use clump_core::world::{AddedMass, ContactTable, World, WorldConfig};
+use glam::{DQuat, DVec3};
+
+/// A world with one particle material (index 0) and a rigid wall material
+/// (index 1), the same pair properties everywhere.
+pub fn world(particle: Material, props: PairProperties, dt: f64, domain: Domain, gravity: DVec3) -> World {
+    let rigid = Material { youngs_modulus: f64::INFINITY, poisson_ratio: particle.poisson_ratio, density: 1.0 };
+    let mats = vec![particle, rigid];
+    let table = ContactTable::new(&mats, |_, _| props.clone()).expect("contact table");
+    let config = WorldConfig {
+        domain,
+        gravity,
+        dt,
+        rotation: RotationScheme::default(),
+        added_mass: AddedMass::default(),
+        skin: None,
+        multi_contact: MultiContact::Sum,
+    };
+    World::new(config, mats, table)
+}
+
+/// A large open domain (no periodic axes).
+pub fn open_domain(half: f64) -> Domain {
+    Domain { lo: DVec3::splat(-half), hi: DVec3::splat(half), periodic: [false; 3] }
+}
+
+/// A template of `n` coincident spheres of radius `r` at the origin.
+pub fn coincident(n: usize, r: f64, density: f64) -> ClumpTemplate {
+    let s: Vec<Sphere> = (0..n).map(|_| Sphere { center: DVec3::ZERO, radius: r }).collect();
+    ClumpTemplate::from_spheres("coincident", &s, density).expect("template")
+}
+
+/// A body moving at `v` with angular velocity `w` (world).
+pub fn moving(template: u32, x: DVec3, v: DVec3, w: DVec3) -> BodyInit {
+    BodyInit { velocity: v, angular_velocity: w, ..BodyInit::at_rest(template, x, DQuat::IDENTITY) }
+}
+
+/// A fixed plane wall of material 1.
+pub fn plane(point: DVec3, normal: DVec3, multi: MultiContact) -> Wall {
+    Wall {
+        name: "plane".into(),
+        shape: WallShape::Plane { point, normal },
+        material: 1,
+        motion: WallMotion::default(),
+        multi_contact: multi,
+        active: true,
+    }
+}
+
+/// Records the history of a head-on impact: the largest overlap (m), the
+/// largest contact force (N) and the contact duration (s).
+#[derive(Debug, Default, Clone, Copy)]
+pub struct Impact {
+    pub max_overlap: f64,
+    pub max_force: f64,
+    pub duration: f64,
+}
+
+/// Steps `world` until contact has started and ended (or `max_steps`),
+/// measuring on body `b` (storage index 0 unless re-sorted; we look up by id).
+pub fn run_impact(w: &mut World, body_id: u64, radius: f64, max_steps: usize) -> Impact {
+    let mut imp = Impact::default();
+    let mut touching_steps = 0usize;
+    let mut started = false;
+    for _ in 0..max_steps {
+        w.step().expect("step");
+        let t = w.thermo();
+        let contacts = t.pair_contacts + t.wall_contacts;
+        if contacts > 0 {
+            started = true;
+            touching_steps += 1;
+            imp.max_overlap = imp.max_overlap.max(t.max_overlap_ratio * radius);
+            let b = w.body_index(body_id).unwrap();
+            imp.max_force = imp.max_force.max((w.bodies.force[b] - w.bodies.mass[b] * w.config.gravity).length());
+        } else if started {
+            break;
+        }
+    }
+    imp.duration = touching_steps as f64 * w.config.dt;
+    imp
+}
+
+/// Relative difference.
+pub fn rel(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
