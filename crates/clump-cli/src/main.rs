@@ -1,1 +1,56 @@
-fn main() {}
+//! The `clump` command-line program.
+//!
+//! Exit status: 0 success, 2 bad input (scenario, checkpoint, arguments),
+//! 1 failure while running, 130 after SIGINT, 143 after SIGTERM (a
+//! checkpoint is written first).
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+mod cmd_check;
+mod cmd_resume;
+mod cmd_run;
+mod cmd_template;
+
+/// Clump: a DEM simulator for rigid clumps of overlapping spheres.
+#[derive(Parser)]
+#[command(name = "clump", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Commands,
+}
+
+#[derive(Subcommand)]
+enum Commands {
+    /// Run a scenario (TOML): write VTK, thermo, trajectories and checkpoints.
+    Run(cmd_run::RunArgs),
+    /// Validate a scenario without running it and print derived quantities.
+    Check(cmd_check::CheckArgs),
+    /// Continue a run from a checkpoint (bit-identically).
+    Resume(cmd_resume::ResumeArgs),
+    /// Mass properties of a multi-sphere template file (`x y z r` per line).
+    Template(cmd_template::TemplateArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    match cli.command {
+        Commands::Run(a) => cmd_run::run(&a),
+        Commands::Check(a) => cmd_check::run(&a),
+        Commands::Resume(a) => cmd_resume::run(&a),
+        Commands::Template(a) => match cmd_template::run(&a) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e:#}");
+                ExitCode::from(1)
+            }
+        },
+    }
+}

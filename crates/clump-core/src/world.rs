@@ -60,7 +60,14 @@ impl ContactTable {
         for a in 0..n {
             for b in 0..n {
                 let (lo, hi) = (a.min(b), a.max(b));
-                let m = ContactModel::new(&materials[lo], &materials[hi], &props(lo, hi))
+                let (mut ma, mut mb) = (materials[lo], materials[hi]);
+                if ma.youngs_modulus.is_infinite() && mb.youngs_modulus.is_infinite() {
+                    // Two rigid (wall) materials never touch each other; the
+                    // entry only fills the table.
+                    ma.youngs_modulus = 1.0;
+                    mb.youngs_modulus = 1.0;
+                }
+                let m = ContactModel::new(&ma, &mb, &props(lo, hi))
                     .map_err(|e| WorldError::Contact(format!("materials {lo} and {hi}: {e}")))?;
                 models.push(m);
             }

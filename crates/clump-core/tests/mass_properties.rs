@@ -45,9 +45,15 @@ fn max_offdiag(m: &DMat3) -> f64 {
 fn reference_table_two_spheres() {
     // d, V, I_axis, I_trans, naive V, naive I_axis, naive I_trans
     let table = [
-        (0.5, 5.726862, 2.428803, 3.131877, 8.377580, 3.351032, 3.874631),
-        (1.0, 7.068583, 3.004148, 5.213080, 8.377580, 3.351032, 5.445427),
-        (1.5, 8.017606, 3.297241, 8.032639, 8.377580, 3.351032, 8.063421),
+        (
+            0.5, 5.726862, 2.428803, 3.131877, 8.377580, 3.351032, 3.874631,
+        ),
+        (
+            1.0, 7.068583, 3.004148, 5.213080, 8.377580, 3.351032, 5.445427,
+        ),
+        (
+            1.5, 8.017606, 3.297241, 8.032639, 8.377580, 3.351032, 8.063421,
+        ),
     ];
     for (d, v, ia, it, nv, nia, nit) in table {
         let a = d / 2.0;
@@ -76,6 +82,52 @@ fn reference_table_two_spheres() {
         assert!(p.relative_error_bound <= 1e-6);
         assert!(p.relative_error_bound > 0.0);
     }
+}
+
+#[test]
+fn reference_pair_in_other_orientations() {
+    // The same pair along z (horizontal intersection circle: coaxial discs in
+    // every slice) and along a diagonal, off the origin.
+    for d in [0.5, 1.0, 1.5] {
+        let a: f64 = d / 2.0;
+        for dir in [
+            DVec3::Z,
+            DVec3::new(1.0, 1.0, 1.0).normalize(),
+            DVec3::new(0.3, -0.2, 0.9).normalize(),
+        ] {
+            let o = DVec3::new(3.0, -1.0, 2.0);
+            let s = [Sphere::new(o - a * dir, 1.0), Sphere::new(o + a * dir, 1.0)];
+            let p = mass_properties(&s, 1.0).unwrap();
+            assert!(rel(p.volume, ref_volume(a)) < 1e-9, "d={d} dir={dir}");
+            assert!(
+                rel(p.principal_moments.x, ref_axis(a)) < 1e-9,
+                "d={d} dir={dir}"
+            );
+            assert!(
+                rel(p.principal_moments.y, ref_trans(a)) < 1e-9,
+                "d={d} dir={dir}"
+            );
+            assert!(
+                rel(p.principal_moments.z, ref_trans(a)) < 1e-9,
+                "d={d} dir={dir}"
+            );
+            assert!((p.center_of_mass - o).length() < 1e-12);
+            assert!(p.principal_axis(0).dot(dir).abs() > 1.0 - 1e-12);
+            assert!(p.relative_error_bound <= 1e-6);
+        }
+    }
+}
+
+#[test]
+fn snowman_along_z() {
+    // Unequal coaxial spheres along z: V = V1 + V2 − lens (REFERENCE.md §2 lens formula).
+    let (r1, r2, d): (f64, f64, f64) = (1.0, 0.5, 1.0);
+    let s = [sphere(0.5, 0.5, 0.0, r1), sphere(0.5, 0.5, d, r2)];
+    let p = mass_properties(&s, 1.0).unwrap();
+    let lens = PI * (r1 + r2 - d).powi(2) * (d * d + 2.0 * d * (r1 + r2) - 3.0 * (r1 - r2).powi(2))
+        / (12.0 * d);
+    assert!(rel(p.volume, 4.0 / 3.0 * PI * (r1.powi(3) + r2.powi(3)) - lens) < 1e-9);
+    assert!(p.relative_error_bound <= 1e-6);
 }
 
 #[test]
@@ -111,7 +163,14 @@ fn coincident_spheres_count_once() {
     let one = mass_properties(&[Sphere::new(c, r)], 3.0).unwrap();
     let four = mass_properties(&[Sphere::new(c, r); 4], 3.0).unwrap();
     let m = 3.0 * 4.0 / 3.0 * PI * r.powi(3);
-    assert_eq!(one, MassProperties { naive_volume: one.naive_volume, naive_principal_moments: one.naive_principal_moments, ..four });
+    assert_eq!(
+        one,
+        MassProperties {
+            naive_volume: one.naive_volume,
+            naive_principal_moments: one.naive_principal_moments,
+            ..four
+        }
+    );
     assert!(rel(four.mass, m) < 1e-14);
     for k in 0..3 {
         assert!(rel(four.principal_moments[k], single_sphere_inertia(r, 3.0)) < 1e-13);
@@ -137,7 +196,11 @@ fn sphere_inside_another() {
 #[test]
 fn tangent_and_disjoint_spheres() {
     // Externally tangent and disjoint spheres: volume is the plain sum.
-    let s = [sphere(0.0, 0.0, 0.0, 1.0), sphere(2.0, 0.0, 0.0, 1.0), sphere(0.0, 5.0, 1.0, 0.5)];
+    let s = [
+        sphere(0.0, 0.0, 0.0, 1.0),
+        sphere(2.0, 0.0, 0.0, 1.0),
+        sphere(0.0, 5.0, 1.0, 0.5),
+    ];
     let p = mass_properties(&s, 1.0).unwrap();
     assert!(rel(p.volume, p.naive_volume) < 1e-12);
     for k in 0..3 {
@@ -157,17 +220,27 @@ fn l_trimer() -> Vec<Sphere> {
 fn l_trimer_body_frame_is_principal() {
     let t = ClumpTemplate::from_spheres("L", &l_trimer(), 1200.0).unwrap();
     let p = &t.properties;
-    assert!(max_offdiag(&p.inertia) > 1e-3 * p.principal_moments.z, "input tensor should not be diagonal");
-    assert!(p.principal_moments.x < p.principal_moments.y && p.principal_moments.y < p.principal_moments.z);
+    assert!(
+        max_offdiag(&p.inertia) > 1e-3 * p.principal_moments.z,
+        "input tensor should not be diagonal"
+    );
+    assert!(
+        p.principal_moments.x < p.principal_moments.y
+            && p.principal_moments.y < p.principal_moments.z
+    );
     // Right-handed, orthonormal rows.
     let r = p.principal_axes;
     assert!(mat_max_abs(&(r * r.transpose() - DMat3::IDENTITY)) < 1e-13);
     assert!((r.determinant() - 1.0).abs() < 1e-13);
-    assert!((p.principal_axis(0).cross(p.principal_axis(1)) - p.principal_axis(2)).length() < 1e-13);
+    assert!(
+        (p.principal_axis(0).cross(p.principal_axis(1)) - p.principal_axis(2)).length() < 1e-13
+    );
     // Each axis is an eigenvector.
     for k in 0..3 {
         let a = p.principal_axis(k);
-        assert!((p.inertia * a - p.principal_moments[k] * a).length() < 1e-12 * p.principal_moments.z);
+        assert!(
+            (p.inertia * a - p.principal_moments[k] * a).length() < 1e-12 * p.principal_moments.z
+        );
     }
     // Body-frame spheres: COM at the origin, diagonal inertia = principal_inertia.
     let b = mass_properties(&t.spheres, 1200.0).unwrap();
@@ -183,9 +256,16 @@ fn l_trimer_body_frame_is_principal() {
     for (s_in, s_b) in l_trimer().iter().zip(&t.spheres) {
         let c = t.input_to_body * (s_in.center - t.input_center_of_mass);
         assert!((c - s_b.center).length() < 1e-13);
-        assert!((t.body_to_input() * s_b.center + t.input_center_of_mass - s_in.center).length() < 1e-13);
+        assert!(
+            (t.body_to_input() * s_b.center + t.input_center_of_mass - s_in.center).length()
+                < 1e-13
+        );
     }
-    let br = t.spheres.iter().map(|s| s.center.length() + s.radius).fold(0.0, f64::max);
+    let br = t
+        .spheres
+        .iter()
+        .map(|s| s.center.length() + s.radius)
+        .fold(0.0, f64::max);
     assert_eq!(t.bounding_radius, br);
     assert_eq!((t.min_radius, t.max_radius), (0.5, 1.0));
     assert!(rel(t.mass, 1200.0 * t.volume) < 1e-15);
@@ -196,7 +276,10 @@ fn scaled_is_exact() {
     let t = ClumpTemplate::from_spheres("L", &l_trimer(), 2.0).unwrap();
     let s = 0.001;
     let ts = t.scaled(s);
-    let spheres: Vec<Sphere> = l_trimer().iter().map(|x| Sphere::new(x.center * s, x.radius * s)).collect();
+    let spheres: Vec<Sphere> = l_trimer()
+        .iter()
+        .map(|x| Sphere::new(x.center * s, x.radius * s))
+        .collect();
     let direct = ClumpTemplate::from_spheres("L", &spheres, 2.0).unwrap();
     assert!(rel(ts.mass, direct.mass) < 1e-10);
     assert!(rel(ts.mass, t.mass * 1e-9) < 1e-15);
@@ -239,11 +322,23 @@ fn with_mass_and_override() {
         Err(ShapeError::InvalidMass { .. })
     ));
     assert!(matches!(
-        ClumpTemplate::with_override("L", &spheres, 1000.0, 1.0, DMat3::from_diagonal(DVec3::new(1.0, 1.0, 3.0))),
+        ClumpTemplate::with_override(
+            "L",
+            &spheres,
+            1000.0,
+            1.0,
+            DMat3::from_diagonal(DVec3::new(1.0, 1.0, 3.0))
+        ),
         Err(ShapeError::InvalidInertia { .. })
     ));
     assert!(matches!(
-        ClumpTemplate::with_override("L", &spheres, 1000.0, 1.0, DMat3::from_diagonal(DVec3::new(-1.0, 1.0, 1.0))),
+        ClumpTemplate::with_override(
+            "L",
+            &spheres,
+            1000.0,
+            1.0,
+            DMat3::from_diagonal(DVec3::new(-1.0, 1.0, 1.0))
+        ),
         Err(ShapeError::InvalidInertia { .. })
     ));
 }
@@ -273,9 +368,15 @@ fn degenerate_inputs_are_errors() {
         Err(ShapeError::NonFiniteSphere { index: 0, .. })
     ));
     for rho in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        assert!(matches!(mass_properties(&[ok], rho), Err(ShapeError::InvalidDensity { .. })));
+        assert!(matches!(
+            mass_properties(&[ok], rho),
+            Err(ShapeError::InvalidDensity { .. })
+        ));
     }
-    assert!(matches!(ClumpTemplate::with_mass("x", &[ok], 0.0), Err(ShapeError::InvalidMass { .. })));
+    assert!(matches!(
+        ClumpTemplate::with_mass("x", &[ok], 0.0),
+        Err(ShapeError::InvalidMass { .. })
+    ));
     // Messages are readable.
     let e = mass_properties(&[ok, sphere(1.0, 0.0, 0.0, 0.0)], 1.0).unwrap_err();
     assert!(e.to_string().contains("radius must be > 0"), "{e}");
@@ -289,7 +390,11 @@ fn tetra_bed_template() {
         let t = ClumpTemplate::from_spheres("tetra", spheres, 2500.0).unwrap();
         assert!(rel(t.mass, 3.166825e-05) < 1e-3, "mass {}", t.mass);
         for k in 0..3 {
-            assert!(rel(t.principal_inertia[k], 2.84709e-11) < 1e-3, "I {}", t.principal_inertia[k]);
+            assert!(
+                rel(t.principal_inertia[k], 2.84709e-11) < 1e-3,
+                "I {}",
+                t.principal_inertia[k]
+            );
         }
         // Isotropic (tetrahedral symmetry): identity principal frame.
         assert!(rel(t.principal_inertia.x, t.principal_inertia.z) < 1e-9);
@@ -298,7 +403,10 @@ fn tetra_bed_template() {
         t
     };
     let builtin = check(&tetrahedron(1e-3, 1.2e-3));
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/bench/tetra-bed/tetra.xyzr");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/bench/tetra-bed/tetra.xyzr"
+    );
     if let Ok(text) = std::fs::read_to_string(path) {
         let spheres: Vec<Sphere> = text
             .lines()
@@ -326,6 +434,26 @@ fn builtins() {
     assert!(mat_max_abs(&(p.principal_axes - DMat3::IDENTITY)) < 1e-12);
     assert!(p.volume < p.naive_volume);
 
+    // The same rod along z (coaxial discs in every slice) and along a diagonal.
+    let q = DQuat::from_rotation_arc(DVec3::X, DVec3::Z);
+    let rz: Vec<Sphere> = r
+        .iter()
+        .map(|s| Sphere::new(q * s.center, s.radius))
+        .collect();
+    let pz = mass_properties(&rz, 1.0).unwrap();
+    assert!(rel(pz.volume, p.volume) < 1e-9);
+    assert!((pz.principal_axis(0) - DVec3::Z).length() < 1e-9);
+    let qd = DQuat::from_rotation_arc(DVec3::X, DVec3::new(1.0, -2.0, 0.5).normalize());
+    let rd: Vec<Sphere> = r
+        .iter()
+        .map(|s| Sphere::new(qd * s.center, s.radius))
+        .collect();
+    let pd = mass_properties(&rd, 1.0).unwrap();
+    for k in 0..3 {
+        assert!(rel(pz.principal_moments[k], p.principal_moments[k]) < 1e-9);
+        assert!(rel(pd.principal_moments[k], p.principal_moments[k]) < 1e-9);
+    }
+
     let c = cube_octet(0.6, 1.0);
     assert_eq!(c.len(), 8);
     let p = mass_properties(&c, 1.0).unwrap();
@@ -346,7 +474,9 @@ fn fifty_sphere_cluster_is_accurate() {
     // A deterministic pseudo-random "stone" of 50 overlapping spheres.
     let mut seed = 12345u64;
     let mut rnd = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (seed >> 11) as f64 / (1u64 << 53) as f64
     };
     let spheres: Vec<Sphere> = (0..50)
@@ -362,7 +492,11 @@ fn arb_cluster() -> impl Strategy<Value = Vec<Sphere>> {
         ((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), 0.3f64..1.2),
         1..7,
     )
-    .prop_map(|v| v.into_iter().map(|((x, y, z), r)| sphere(x, y, z, r)).collect())
+    .prop_map(|v| {
+        v.into_iter()
+            .map(|((x, y, z), r)| sphere(x, y, z, r))
+            .collect()
+    })
 }
 
 proptest! {

@@ -1,1 +1,10 @@
 //! io
+pub mod atomic;
+pub mod bodies_csv;
+pub mod checkpoint;
+pub mod run;
+pub mod scenario;
+pub mod template_file;
+pub mod thermo_csv;
+pub mod trajectory;
+pub mod vtk;

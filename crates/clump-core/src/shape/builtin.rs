@@ -24,10 +24,15 @@ pub fn rod(n: usize, radius: f64, spacing: f64) -> Vec<Sphere> {
 /// (edge / 2√2) · (±1, ±1, ±1) with an even number of minus signs.
 pub fn tetrahedron(radius: f64, edge: f64) -> Vec<Sphere> {
     let s = edge / (2.0 * std::f64::consts::SQRT_2);
-    [[1.0, 1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, 1.0]]
-        .iter()
-        .map(|p| Sphere::new(DVec3::from_array(*p) * s, radius))
-        .collect()
+    [
+        [1.0, 1.0, 1.0],
+        [1.0, -1.0, -1.0],
+        [-1.0, 1.0, -1.0],
+        [-1.0, -1.0, 1.0],
+    ]
+    .iter()
+    .map(|p| Sphere::new(DVec3::from_array(*p) * s, radius))
+    .collect()
 }
 
 /// 8 spheres of radius `radius` (m) on the corners of an axis-aligned cube of

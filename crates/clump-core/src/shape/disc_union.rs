@@ -39,6 +39,7 @@ pub type AreaMoments = [f64; 6];
 #[derive(Debug, Default, Clone)]
 pub struct DiscUnion {
     intervals: Vec<(f64, f64)>,
+    sorted: Vec<Disc>,
 }
 
 /// Antiderivatives at angle θ of cos^m θ sin^n θ needed by the forms above,
@@ -51,17 +52,17 @@ fn antiderivatives(theta: f64) -> [f64; 11] {
     let s4 = 2.0 * s2 * c2; // sin 4θ
     let c3 = c * c * c;
     [
-        s,                                               // I10 = ∫c
-        -c,                                              // I01 = ∫s
-        0.5 * theta + 0.25 * s2,                         // I20 = ∫c²
-        0.5 * theta - 0.25 * s2,                         // I02 = ∫s²
-        0.5 * s * s,                                     // I11 = ∫cs
-        s - s * s * s / 3.0,                             // I30 = ∫c³
-        -c + c3 / 3.0,                                   // I03 = ∫s³
-        -c3 / 3.0,                                       // I21 = ∫c²s
-        0.375 * theta + 0.25 * s2 + s4 / 32.0,           // I40 = ∫c⁴
-        0.375 * theta - 0.25 * s2 + s4 / 32.0,           // I04 = ∫s⁴
-        -0.25 * c3 * c,                                  // I31 = ∫c³s
+        s,                                     // I10 = ∫c
+        -c,                                    // I01 = ∫s
+        0.5 * theta + 0.25 * s2,               // I20 = ∫c²
+        0.5 * theta - 0.25 * s2,               // I02 = ∫s²
+        0.5 * s * s,                           // I11 = ∫cs
+        s - s * s * s / 3.0,                   // I30 = ∫c³
+        -c + c3 / 3.0,                         // I03 = ∫s³
+        -c3 / 3.0,                             // I21 = ∫c²s
+        0.375 * theta + 0.25 * s2 + s4 / 32.0, // I40 = ∫c⁴
+        0.375 * theta - 0.25 * s2 + s4 / 32.0, // I04 = ∫s⁴
+        -0.25 * c3 * c,                        // I31 = ∫c³s
     ]
 }
 
@@ -111,13 +112,25 @@ impl DiscUnion {
     /// identical discs are counted once.
     pub fn moments(&mut self, discs: &[Disc]) -> AreaMoments {
         let mut m = [0.0; 6];
+        // Sort by centre x (ties by y, r) so that only discs within
+        // rk + rmax in x are examined; the order also breaks ties between
+        // identical discs.
+        self.sorted.clear();
+        self.sorted.extend(discs.iter().filter(|d| d.r > 0.0));
+        self.sorted.sort_unstable_by(|p, q| {
+            p.x.total_cmp(&q.x)
+                .then(p.y.total_cmp(&q.y))
+                .then(p.r.total_cmp(&q.r))
+        });
+        let discs = &self.sorted[..];
+        let rmax = discs.iter().map(|d| d.r).fold(0.0, f64::max);
         'circles: for (k, dk) in discs.iter().enumerate() {
-            if dk.r <= 0.0 {
-                continue;
-            }
             self.intervals.clear();
-            for (j, dj) in discs.iter().enumerate() {
-                if j == k || dj.r <= 0.0 {
+            let reach = dk.r + rmax;
+            let lo = discs.partition_point(|d| d.x < dk.x - reach);
+            let hi = discs.partition_point(|d| d.x <= dk.x + reach);
+            for (j, dj) in discs.iter().enumerate().take(hi).skip(lo) {
+                if j == k {
                     continue;
                 }
                 let dx = dj.x - dk.x;
@@ -161,8 +174,9 @@ impl DiscUnion {
                 full_disc(&mut m, dk);
                 continue;
             }
-            self.intervals
-                .sort_unstable_by(|p, q| p.0.partial_cmp(&q.0).unwrap_or(std::cmp::Ordering::Equal));
+            self.intervals.sort_unstable_by(|p, q| {
+                p.0.partial_cmp(&q.0).unwrap_or(std::cmp::Ordering::Equal)
+            });
             // Sweep the uncovered gaps of [0, 2π].
             let mut d = [0.0; 11];
             let mut covered_to = 0.0_f64;
@@ -203,7 +217,11 @@ mod tests {
 
     #[test]
     fn single_disc_and_duplicates() {
-        let d = Disc { x: 0.3, y: -0.7, r: 1.3 };
+        let d = Disc {
+            x: 0.3,
+            y: -0.7,
+            r: 1.3,
+        };
         let mut u = DiscUnion::new();
         let m1 = u.moments(&[d]);
         let m3 = u.moments(&[d, d, d]);
@@ -218,7 +236,18 @@ mod tests {
         let dist: f64 = 1.0;
         let lens = 2.0 * (dist / 2.0).acos() - dist / 2.0 * (4.0 - dist * dist).sqrt();
         let mut u = DiscUnion::new();
-        let m = u.moments(&[Disc { x: 0.0, y: 0.0, r: 1.0 }, Disc { x: 0.6, y: 0.8, r: 1.0 }]);
+        let m = u.moments(&[
+            Disc {
+                x: 0.0,
+                y: 0.0,
+                r: 1.0,
+            },
+            Disc {
+                x: 0.6,
+                y: 0.8,
+                r: 1.0,
+            },
+        ]);
         assert!(close(m[0], 2.0 * PI - lens, 1e-14), "{}", m[0]);
         // centroid at the midpoint by symmetry
         assert!(close(m[1] / m[0], 0.3, 1e-14));
@@ -228,8 +257,19 @@ mod tests {
     #[test]
     fn contained_disc() {
         let mut u = DiscUnion::new();
-        let big = Disc { x: 0.0, y: 0.0, r: 2.0 };
-        let m = u.moments(&[Disc { x: 0.5, y: 0.2, r: 0.3 }, big]);
+        let big = Disc {
+            x: 0.0,
+            y: 0.0,
+            r: 2.0,
+        };
+        let m = u.moments(&[
+            Disc {
+                x: 0.5,
+                y: 0.2,
+                r: 0.3,
+            },
+            big,
+        ]);
         assert_eq!(m, u.moments(&[big]));
     }
 }

@@ -39,12 +39,13 @@ pub fn symmetric_eigen(m: &DMat3) -> (DVec3, [DVec3; 3]) {
             let t = if theta == 0.0 { 1.0 } else { t };
             let cs = 1.0 / (t * t + 1.0).sqrt();
             let sn = t * cs;
-            for k in 0..3 {
-                let akp = a[k][p];
-                let akq = a[k][q];
-                a[k][p] = cs * akp - sn * akq;
-                a[k][q] = sn * akp + cs * akq;
+            for row in a.iter_mut() {
+                let akp = row[p];
+                let akq = row[q];
+                row[p] = cs * akp - sn * akq;
+                row[q] = sn * akp + cs * akq;
             }
+            #[allow(clippy::needless_range_loop)]
             for k in 0..3 {
                 let apk = a[p][k];
                 let aqk = a[q][k];
@@ -114,7 +115,8 @@ pub fn principal_frame(m: &DMat3) -> (DVec3, [DVec3; 3]) {
             // Projector onto the cluster's eigenspace.
             let proj = |x: DVec3| -> DVec3 { (i..j).map(|k| vecs[k] * vecs[k].dot(x)).sum() };
             let basis = [DVec3::X, DVec3::Y, DVec3::Z];
-            let mut cand: Vec<(f64, usize)> = (0..3).map(|k| (proj(basis[k]).length(), k)).collect();
+            let mut cand: Vec<(f64, usize)> =
+                (0..3).map(|k| (proj(basis[k]).length(), k)).collect();
             // Decreasing length, ties (within 1e-9) by index.
             cand.sort_by(|p, q| {
                 if (p.0 - q.0).abs() <= 1e-9 {
@@ -148,7 +150,11 @@ pub fn principal_frame(m: &DMat3) -> (DVec3, [DVec3; 3]) {
     // Clean rounding noise (components below a few ulps) for exact
     // coordinate axes where the frame is aligned with them.
     for axis in axes.iter_mut() {
-        let cleaned = DVec3::select(axis.abs().cmplt(DVec3::splat(4.0 * f64::EPSILON)), DVec3::ZERO, *axis);
+        let cleaned = DVec3::select(
+            axis.abs().cmplt(DVec3::splat(4.0 * f64::EPSILON)),
+            DVec3::ZERO,
+            *axis,
+        );
         *axis = cleaned.normalize();
     }
     if axes[0].cross(axes[1]).dot(axes[2]) < 0.0 {

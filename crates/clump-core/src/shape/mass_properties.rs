@@ -87,7 +87,10 @@ pub fn validate_inertia(m: &DMat3) -> Result<(), ShapeError> {
         });
     }
     let scale = m.to_cols_array().iter().fold(0.0f64, |a, x| a.max(x.abs()));
-    let asym = (*m - m.transpose()).to_cols_array().iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let asym = (*m - m.transpose())
+        .to_cols_array()
+        .iter()
+        .fold(0.0f64, |a, x| a.max(x.abs()));
     if asym > 1e-9 * scale {
         return Err(ShapeError::InvalidInertia {
             reason: format!("tensor must be symmetric (largest asymmetry {asym:e} kg m²)"),

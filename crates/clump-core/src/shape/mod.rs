@@ -3,7 +3,7 @@
 //!
 //! A *template* is a list of [`Sphere`]s (centre and radius, m) given in some
 //! *input frame* chosen by the user, plus a density (kg/m³) or a mass (kg).
-//! [`mass_properties`] integrates over the **union** of the spheres, so that
+//! [`mass_properties()`] integrates over the **union** of the spheres, so that
 //! overlapping regions are counted once (unlike the naive sums of the seed,
 //! eqs. 4.89–4.90, which are also reported for comparison).
 //! [`ClumpTemplate`] re-expresses the template in its *principal body frame*:
@@ -20,13 +20,13 @@
 //! in [`MassProperties::relative_error_bound`].
 //!
 //! Submodules:
-//! - [`sphere`]: the [`Sphere`] type.
-//! - [`error`]: [`ShapeError`].
-//! - [`mass_properties`]: [`MassProperties`] and [`mass_properties()`].
-//! - [`template`]: [`ClumpTemplate`] (principal body frame).
-//! - [`builtin`]: a few built-in shapes.
-//! - [`eigen`]: symmetric 3×3 eigen-solver with a deterministic principal frame.
-//! - [`union_integral`] and [`disc_union`]: the exact union integrals.
+//! - [`sphere`] — the [`Sphere`] type;
+//! - [`error`] — [`ShapeError`];
+//! - [`mass_properties`](mod@mass_properties) — [`MassProperties`] and [`mass_properties()`];
+//! - [`template`] — [`ClumpTemplate`] (principal body frame);
+//! - [`builtin`] — a few built-in shapes;
+//! - [`eigen`] — symmetric 3×3 eigen-solver with a deterministic principal frame;
+//! - [`union_integral`] and [`disc_union`] — the exact union integrals.
 
 pub mod builtin;
 pub mod disc_union;

@@ -84,7 +84,12 @@ impl ClumpTemplate {
     }
 
     /// Builds the body-frame template from already computed properties.
-    fn from_properties(name: &str, spheres: &[Sphere], density: f64, props: MassProperties) -> Self {
+    fn from_properties(
+        name: &str,
+        spheres: &[Sphere],
+        density: f64,
+        props: MassProperties,
+    ) -> Self {
         let rot = props.principal_axes; // rows = axes: input → body
         let input_to_body = DQuat::from_mat3(&rot).normalize();
         let com = props.center_of_mass;
@@ -121,7 +126,10 @@ impl ClumpTemplate {
     /// # Panics
     /// If `s` is not finite and > 0.
     pub fn scaled(&self, s: f64) -> Self {
-        assert!(s.is_finite() && s > 0.0, "scale factor must be finite and > 0, got {s}");
+        assert!(
+            s.is_finite() && s > 0.0,
+            "scale factor must be finite and > 0, got {s}"
+        );
         let (s3, s5) = (s * s * s, s.powi(5));
         let mut p = self.properties;
         p.volume *= s3;

@@ -29,6 +29,7 @@ use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 use glam::{DMat3, DVec3};
+use rayon::prelude::*;
 
 use super::disc_union::{Disc, DiscUnion};
 use super::sphere::{union_sphere_indices, Sphere};
@@ -198,9 +199,25 @@ fn gk15(slicer: &mut Slicer, a: f64, b: f64, t0: f64, t1: f64) -> (Vals, Vals) {
 /// Heights (shifted frame) where the cross-section topology may change.
 fn breakpoints(sph: &[Sphere]) -> Vec<f64> {
     let n = sph.len();
-    let inside_other = |p: DVec3, skip: &[usize]| -> bool {
-        sph.iter().enumerate().any(|(l, s)| {
-            !skip.contains(&l) && (p - s.center).length_squared() < s.radius * s.radius * (1.0 - 1e-12)
+    // Overlapping pairs (symmetric adjacency lists, ascending).
+    let mut adjacent = vec![Vec::<usize>::new(); n];
+    for i in 0..n {
+        for j in i + 1..n {
+            let d2 = (sph[j].center - sph[i].center).length_squared();
+            let rs = sph[i].radius + sph[j].radius;
+            if d2 < rs * rs && d2 > 0.0 {
+                adjacent[i].push(j);
+                adjacent[j].push(i);
+            }
+        }
+    }
+    // A point on the surface of sphere i can only lie strictly inside a
+    // sphere that overlaps sphere i.
+    let inside_other = |p: DVec3, i: usize, skip: &[usize]| -> bool {
+        adjacent[i].iter().any(|&l| {
+            let s = &sph[l];
+            !skip.contains(&l)
+                && (p - s.center).length_squared() < s.radius * s.radius * (1.0 - 1e-12)
         })
     };
     let mut z = Vec::with_capacity(4 * n);
@@ -208,17 +225,11 @@ fn breakpoints(sph: &[Sphere]) -> Vec<f64> {
         z.push(s.center.z - s.radius);
         z.push(s.center.z + s.radius);
     }
-    // Overlapping pairs.
-    let mut adjacent = vec![Vec::<usize>::new(); n];
     for i in 0..n {
-        for j in i + 1..n {
+        for &j in adjacent[i].iter().filter(|&&j| j > i) {
             let (si, sj) = (&sph[i], &sph[j]);
             let u = sj.center - si.center;
             let d = u.length();
-            if d >= si.radius + sj.radius || d == 0.0 {
-                continue;
-            }
-            adjacent[i].push(j);
             let nrm = u / d;
             let t = (d * d + si.radius * si.radius - sj.radius * sj.radius) / (2.0 * d);
             let h2 = si.radius * si.radius - t * t;
@@ -235,7 +246,7 @@ fn breakpoints(sph: &[Sphere]) -> Vec<f64> {
             }
             for sign in [-1.0, 1.0] {
                 let p = m + sign * h / el * e;
-                if !inside_other(p, &[i, j]) {
+                if !inside_other(p, i, &[i, j]) {
                     z.push(p.z);
                 }
             }
@@ -243,9 +254,10 @@ fn breakpoints(sph: &[Sphere]) -> Vec<f64> {
     }
     // Overlapping triples: common points of three spheres.
     for i in 0..n {
-        for (aj, &j) in adjacent[i].iter().enumerate() {
-            for &k in &adjacent[i][aj + 1..] {
-                if !adjacent[j.min(k)].contains(&j.max(k)) {
+        let up: Vec<usize> = adjacent[i].iter().copied().filter(|&j| j > i).collect();
+        for (aj, &j) in up.iter().enumerate() {
+            for &k in &up[aj + 1..] {
+                if adjacent[j].binary_search(&k).is_err() {
                     continue;
                 }
                 let ci = sph[i].center;
@@ -272,7 +284,7 @@ fn breakpoints(sph: &[Sphere]) -> Vec<f64> {
                 let s = (rest / w2).sqrt();
                 for sign in [-1.0, 1.0] {
                     let p = ci + q0 + sign * s * w;
-                    if !inside_other(p, &[i, j, k]) {
+                    if !inside_other(p, i, &[i, j, k]) {
                         z.push(p.z);
                     }
                 }
@@ -320,7 +332,7 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
         .fold(f64::NEG_INFINITY, f64::max);
     let z: Vec<f64> = z.into_iter().filter(|&v| v >= zmin && v <= zmax).collect();
 
-    let mut slicer = Slicer {
+    let new_slicer = || Slicer {
         spheres: &shifted,
         discs: Vec::with_capacity(shifted.len()),
         union: DiscUnion::new(),
@@ -329,27 +341,27 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
 
     // Scales of the 10 components (volume-like, ×L, ×L²), from a first estimate
     // of the volume: the largest sphere is a lower bound.
-    let vmax = shifted
-        .iter()
-        .map(|s| s.volume())
-        .fold(0.0, f64::max);
-    let mut segments: Vec<Segment> = Vec::with_capacity(2 * z.len());
-    for w in z.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        if b <= a {
-            continue;
-        }
-        let (value, error) = gk15(&mut slicer, a, b, 0.0, 1.0);
-        segments.push(Segment {
-            a,
-            b,
-            t0: 0.0,
-            t1: 1.0,
-            value,
-            error,
-            norm: 0.0,
-        });
-    }
+    let vmax = shifted.iter().map(|s| s.volume()).fold(0.0, f64::max);
+    // First pass over all sub-intervals, in parallel (each result depends on
+    // its interval only, so the outcome does not depend on the thread count).
+    let segments: Vec<Segment> = z
+        .par_windows(2)
+        .filter(|w| w[1] > w[0])
+        .map_init(new_slicer, |slicer, w| {
+            let (value, error) = gk15(slicer, w[0], w[1], 0.0, 1.0);
+            Segment {
+                a: w[0],
+                b: w[1],
+                t0: 0.0,
+                t1: 1.0,
+                value,
+                error,
+                norm: 0.0,
+            }
+        })
+        .collect();
+    let mut slicer = new_slicer();
+    slicer.evaluations = 15 * segments.len();
     let total_volume: f64 = segments.iter().map(|s| s.value[0]).sum::<f64>().max(vmax);
     let scales: Vals = {
         let (v, v1, v2) = (total_volume, total_volume * l, total_volume * l * l);
@@ -373,10 +385,7 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
         let Some(seg) = heap.pop() else { break };
         let tm = 0.5 * (seg.t0 + seg.t1);
         if tm <= seg.t0 || tm >= seg.t1 {
-            heap.push(Segment {
-                norm: 0.0,
-                ..seg
-            });
+            heap.push(Segment { norm: 0.0, ..seg });
             total_err -= seg.norm;
             continue;
         }

@@ -1,0 +1,259 @@
+//! `clump bench`: the shared tetra-bed benchmark (../shared/bench/tetra-bed),
+//! timed phase by phase, optionally side by side with LIGGGHTS.
+//!
+//! The case: 4-sphere tetrahedral clumps (r = 1 mm, edge 1.2 mm, ρ = 2500)
+//! fall from a common initial condition into a 40 × 40 mm box and settle;
+//! Hertz–Mindlin with history, E = 5e6, ν = 0.3, e = 0.5, μ = 0.5, LIGGGHTS'
+//! damping law (for a like-for-like comparison), dt = 1e-5. Phase A (fall and
+//! settle) and phase B (dense bed) are timed separately; throughput is
+//! spheres × steps / wall seconds.
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use clump_core::body::BodyInit;
+use clump_core::boundary::Domain;
+use clump_core::contact::{DampingLaw, Material, PairProperties};
+use clump_core::multi_contact::MultiContact;
+use clump_core::shape::ClumpTemplate;
+use clump_core::wall::{Wall, WallMotion, WallShape};
+use clump_core::world::{AddedMass, ContactTable, World, WorldConfig};
+use glam::{DQuat, DVec3};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Arguments of `clump bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// The benchmark folder (holds tetra.xyzr, ic_N.txt, liggghts/).
+    #[arg(long, default_value = "../shared/bench/tetra-bed")]
+    pub dir: PathBuf,
+    /// Number of clumps (an ic_N.txt must exist): 2000 or 10000.
+    #[arg(long, default_value_t = 2000)]
+    pub n: usize,
+    /// Steps of phase A (fall and settle).
+    #[arg(long, default_value_t = 40_000)]
+    pub na: u64,
+    /// Steps of phase B (dense bed, timed on its own).
+    #[arg(long, default_value_t = 10_000)]
+    pub nb: u64,
+    /// Threads for Clump (rayon).
+    #[arg(long, default_value_t = 1)]
+    pub threads: usize,
+    /// Verlet skin, m.
+    #[arg(long, default_value_t = 0.5e-3)]
+    pub skin: f64,
+    /// Also run LIGGGHTS (if installed), alternating Clump and LIGGGHTS this many rounds.
+    #[arg(long, default_value_t = 0)]
+    pub liggghts_rounds: usize,
+    /// Where to write the final sphere centres (LIGGGHTS dump format, for analyze.py).
+    #[arg(long)]
+    pub dump: Option<PathBuf>,
+}
+
+/// Figures of one timed run.
+#[derive(Debug, Clone, Copy)]
+struct Figures {
+    a_seconds: f64,
+    b_seconds: f64,
+    spheres: usize,
+    peak_rss_mb: f64,
+}
+
+/// Runs the benchmark.
+pub fn run(args: &BenchArgs) -> Result<()> {
+    let rounds = args.liggghts_rounds.max(1);
+    let lig = if args.liggghts_rounds > 0 { which("liggghts") } else { None };
+    if args.liggghts_rounds > 0 && lig.is_none() {
+        eprintln!("liggghts is not installed (apt-get install liggghts): running Clump only");
+    }
+    let mut clump = Vec::new();
+    let mut peer = Vec::new();
+    for round in 0..rounds {
+        let f = run_clump(args)?;
+        report("clump", round, args, &f);
+        clump.push(f);
+        if let Some(bin) = &lig {
+            let f = run_liggghts(args, bin)?;
+            report("liggghts", round, args, &f);
+            peer.push(f);
+        }
+    }
+    let med = |v: &[Figures], key: fn(&Figures) -> f64| {
+        let mut x: Vec<f64> = v.iter().map(key).collect();
+        x.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        x[x.len() / 2]
+    };
+    let tput = |s: f64, steps: u64, n: usize| n as f64 * steps as f64 / s;
+    let ns = clump[0].spheres;
+    let (ca, cb) = (tput(med(&clump, |f| f.a_seconds), args.na, ns), tput(med(&clump, |f| f.b_seconds), args.nb, ns));
+    println!("clump    (threads {}): phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s, peak RSS {:.0} MB", args.threads, ca / 1e6, cb / 1e6, med(&clump, |f| f.peak_rss_mb));
+    if !peer.is_empty() {
+        let (la, lb) = (tput(med(&peer, |f| f.a_seconds), args.na, ns), tput(med(&peer, |f| f.b_seconds), args.nb, ns));
+        println!("liggghts (serial):    phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s, peak RSS {:.0} MB", la / 1e6, lb / 1e6, med(&peer, |f| f.peak_rss_mb));
+        println!("ratio clump/liggghts: phase A {:.2}x, phase B {:.2}x", ca / la, cb / lb);
+    }
+    Ok(())
+}
+
+fn report(code: &str, round: usize, args: &BenchArgs, f: &Figures) {
+    let ns = f.spheres as f64;
+    println!(
+        "round {round} {code}: A {:.2} s ({:.3} M sph-steps/s)  B {:.2} s ({:.3} M sph-steps/s)  peak RSS {:.0} MB",
+        f.a_seconds,
+        ns * args.na as f64 / f.a_seconds / 1e6,
+        f.b_seconds,
+        ns * args.nb as f64 / f.b_seconds / 1e6,
+        f.peak_rss_mb
+    );
+}
+
+fn which(name: &str) -> Option<PathBuf> {
+    std::env::var_os("PATH").and_then(|p| std::env::split_paths(&p).map(|d| d.join(name)).find(|f| f.is_file()))
+}
+
+/// Builds the tetra-bed world from the shared files.
+pub fn build_world(dir: &Path, n: usize, skin: f64) -> Result<World> {
+    let ztop = if n <= 2000 { 0.2 } else { 0.31 };
+    let text = std::fs::read_to_string(dir.join("tetra.xyzr")).with_context(|| format!("reading {}", dir.join("tetra.xyzr").display()))?;
+    let spheres = clump_io::template_file::parse_template(&text, &dir.join("tetra.xyzr")).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let mat = Material { youngs_modulus: 5e6, poisson_ratio: 0.3, density: 2500.0 };
+    let props = PairProperties { restitution: 0.5, friction: 0.5, damping: DampingLaw::Liggghts, ..PairProperties::default() };
+    let mats = vec![mat];
+    let table = ContactTable::new(&mats, |_, _| props.clone())?;
+    let config = WorldConfig {
+        domain: Domain { lo: DVec3::new(-0.021, -0.021, -0.001), hi: DVec3::new(0.021, 0.021, ztop + 0.001), periodic: [false; 3] },
+        gravity: DVec3::new(0.0, 0.0, -9.81),
+        dt: 1e-5,
+        rotation: Default::default(),
+        added_mass: AddedMass::default(),
+        skin: Some(skin),
+        multi_contact: MultiContact::Sum,
+    };
+    let mut w = World::new(config, mats, table);
+    let tmpl = ClumpTemplate::from_spheres("tetra", &spheres, mat.density)?;
+    // The file's frame has the COM at the origin; bodies are given in that
+    // frame's orientation, so compose with the template's input→body rotation.
+    let input_to_body = tmpl.input_to_body;
+    let t = w.add_template(tmpl, 0)?;
+    for (p, nrm) in [
+        (DVec3::ZERO, DVec3::Z),
+        (DVec3::new(0.0, 0.0, ztop), -DVec3::Z),
+        (DVec3::new(-0.02, 0.0, 0.0), DVec3::X),
+        (DVec3::new(0.02, 0.0, 0.0), -DVec3::X),
+        (DVec3::new(0.0, -0.02, 0.0), DVec3::Y),
+        (DVec3::new(0.0, 0.02, 0.0), -DVec3::Y),
+    ] {
+        w.add_wall(Wall { name: format!("wall{}", w.walls.len()), shape: WallShape::Plane { point: p, normal: nrm }, material: 0, motion: WallMotion::default(), multi_contact: MultiContact::Sum, active: true })?;
+    }
+    let icp = dir.join(format!("ic_{n}.txt"));
+    let ic = std::fs::read_to_string(&icp).with_context(|| format!("reading {}", icp.display()))?;
+    let mut count = 0;
+    for (ln, line) in ic.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let v: Vec<f64> = line.split_whitespace().map(|x| x.parse::<f64>()).collect::<Result<_, _>>().with_context(|| format!("{}:{}: expected 8 numbers", icp.display(), ln + 1))?;
+        if v.len() != 8 {
+            bail!("{}:{}: expected 8 numbers `id xc yc zc qw qx qy qz`, found {}", icp.display(), ln + 1, v.len());
+        }
+        // q_ic maps the file frame to world; body → world = q_ic · (input→body)⁻¹
+        let q_ic = DQuat::from_xyzw(v[5], v[6], v[7], v[4]).normalize();
+        let q = (q_ic * input_to_body.inverse()).normalize();
+        w.add_body(&BodyInit::at_rest(t, DVec3::new(v[1], v[2], v[3]), q))?;
+        count += 1;
+    }
+    if count != n {
+        bail!("{} holds {count} clumps, expected {n}", icp.display());
+    }
+    Ok(w)
+}
+
+fn run_clump(args: &BenchArgs) -> Result<Figures> {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads).build()?;
+    pool.install(|| {
+        let mut w = build_world(&args.dir, args.n, args.skin)?;
+        w.prepare()?;
+        let t0 = Instant::now();
+        w.run(args.na)?;
+        let a = t0.elapsed().as_secs_f64();
+        let t1 = Instant::now();
+        w.run(args.nb)?;
+        let b = t1.elapsed().as_secs_f64();
+        let th = w.thermo();
+        eprintln!("clump: {} bodies, {} contacts, lost {}, KE {:.3e} J, rebuilds {}", th.bodies, th.pair_contacts + th.wall_contacts, th.lost_bodies, th.kinetic_translational + th.kinetic_rotational, w.rebuilds);
+        if let Some(p) = &args.dump {
+            write_dump(&w, p)?;
+        }
+        Ok(Figures { a_seconds: a, b_seconds: b, spheres: w.spheres().len(), peak_rss_mb: peak_rss_mb() })
+    })
+}
+
+/// Final sphere centres in the LIGGGHTS/LAMMPS dump format, ordered by body id.
+fn write_dump(w: &World, path: &Path) -> Result<()> {
+    use std::fmt::Write;
+    let sp = w.spheres();
+    let mut order: Vec<usize> = (0..w.bodies.len()).collect();
+    order.sort_by_key(|&b| w.bodies.id[b]);
+    let mut s = String::new();
+    writeln!(s, "ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{}", w.step, sp.len())?;
+    let d = w.config.domain;
+    writeln!(s, "ITEM: BOX BOUNDS ff ff ff\n{} {}\n{} {}\n{} {}", d.lo.x, d.hi.x, d.lo.y, d.hi.y, d.lo.z, d.hi.z)?;
+    writeln!(s, "ITEM: ATOMS id mol x y z radius")?;
+    let mut id = 1;
+    for b in order {
+        for k in sp.of_body(b) {
+            let x = sp.position[k];
+            writeln!(s, "{id} {} {:.9e} {:.9e} {:.9e} {:.6e}", w.bodies.id[b], x.x, x.y, x.z, sp.radius[k])?;
+            id += 1;
+        }
+    }
+    std::fs::write(path, s)?;
+    Ok(())
+}
+
+/// Peak resident set size of this process so far, MB (Linux VmHWM).
+fn peak_rss_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok()))
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}
+
+fn run_liggghts(args: &BenchArgs, bin: &Path) -> Result<Figures> {
+    let work = std::env::temp_dir().join(format!("clump-bench-liggghts-{}", std::process::id()));
+    std::fs::create_dir_all(&work)?;
+    let src = args.dir.join("liggghts");
+    for f in ["in.bench", "tetra.multisphere", "gen_liggghts.py"] {
+        std::fs::copy(src.join(f), work.join(f)).with_context(|| format!("copying {}", src.join(f).display()))?;
+    }
+    for f in std::fs::read_dir(&args.dir)? {
+        let p = f?.path();
+        if p.is_file() {
+            std::fs::copy(&p, work.join(p.file_name().unwrap()))?;
+        }
+    }
+    let ztop = if args.n <= 2000 { "0.2" } else { "0.31" };
+    let ok = std::process::Command::new("python3").arg("gen_liggghts.py").arg(args.n.to_string()).current_dir(&work).status()?;
+    if !ok.success() {
+        bail!("gen_liggghts.py failed");
+    }
+    let out = std::process::Command::new("/usr/bin/time")
+        .args(["-f", "MAXRSS_KB %M"])
+        .arg(bin)
+        .args(["-in", "in.bench", "-var", "N", &args.n.to_string(), "-var", "ZTOP", ztop, "-var", "NA", &args.na.to_string(), "-var", "NB", &args.nb.to_string()])
+        .current_dir(&work)
+        .output()?;
+    let text = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    let loops: Vec<f64> = text.lines().filter(|l| l.starts_with("Loop time of")).filter_map(|l| l.split_whitespace().nth(3)?.parse().ok()).collect();
+    let rss = text.lines().find(|l| l.starts_with("MAXRSS_KB")).and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok()).unwrap_or(f64::NAN) / 1024.0;
+    if loops.len() < 2 {
+        bail!("could not read LIGGGHTS' loop times; its output ends with:\n{}", text.lines().rev().take(20).collect::<Vec<_>>().into_iter().rev().collect::<Vec<_>>().join("\n"));
+    }
+    if let Some(p) = &args.dump {
+        let f = work.join(format!("final_{}.dump", args.n));
+        let _ = std::fs::copy(f, p.with_extension("liggghts.dump"));
+    }
+    let _ = std::fs::remove_dir_all(&work);
+    Ok(Figures { a_seconds: loops[0], b_seconds: loops[1], spheres: 4 * args.n, peak_rss_mb: rss })
+}

@@ -1,0 +1,36 @@
+//! `clump resume CHECKPOINT [-o OUTDIR] [--threads N] [--steps N]`.
+
+use crate::cmd_run::{drive, error_exit};
+use crate::cmd_run::progress::init_logging;
+use clap::Args;
+use clump_io::run::Runner;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Arguments of `clump resume`.
+#[derive(Debug, Args)]
+pub struct ResumeArgs {
+    /// Checkpoint file (`checkpoint_<step>.ckpt`); it holds the scenario, so
+    /// nothing else is needed.
+    pub checkpoint: PathBuf,
+    /// Output directory (default: the checkpoint's directory).
+    #[arg(short = 'o', long = "out")]
+    pub outdir: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Stop when the run reaches this step (total, counted from the start of
+    /// the original run).
+    #[arg(long)]
+    pub steps: Option<u64>,
+}
+
+/// Runs `clump resume`.
+pub fn run(args: &ResumeArgs) -> ExitCode {
+    init_logging();
+    let runner = match Runner::resume(&args.checkpoint, args.outdir.as_deref()) {
+        Ok(r) => r,
+        Err(e) => return error_exit(&e),
+    };
+    drive(runner, args.threads, args.steps)
+}

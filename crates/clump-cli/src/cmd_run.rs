@@ -1,0 +1,261 @@
+//! `clump run SCENARIO [-o OUTDIR] [--threads N] [--steps N]`.
+
+use progress::{init_logging, Display};
+use clap::Args;
+use clump_io::run::{RunError, RunOptions, RunStatus, Runner};
+use clump_io::scenario;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, AtomicUsize};
+use std::sync::Arc;
+
+/// Arguments of `clump run`.
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// Scenario file (TOML, SI units; see docs/scenario.md).
+    pub scenario: PathBuf,
+    /// Output directory (default: [output] directory of the scenario, else out/<scenario name>).
+    #[arg(short = 'o', long = "out")]
+    pub outdir: Option<PathBuf>,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Stop when the run reaches this step (counted from the start of the
+    /// run), writing a checkpoint; for tests and quick looks.
+    #[arg(long)]
+    pub steps: Option<u64>,
+}
+
+/// Exit status for a run error.
+pub fn error_exit(e: &RunError) -> ExitCode {
+    eprint!("{e}");
+    if !e.to_string().ends_with('\n') {
+        eprintln!();
+    }
+    ExitCode::from(if e.is_input() { 2 } else { 1 })
+}
+
+/// Registers SIGINT/SIGTERM: the first sets the returned flag to the signal
+/// number (the run then checkpoints and stops); a second one terminates at once.
+pub fn install_signals() -> Arc<AtomicUsize> {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    let flag = Arc::new(AtomicUsize::new(0));
+    let seen = Arc::new(AtomicBool::new(false));
+    for sig in [SIGINT, SIGTERM] {
+        let _ = signal_hook::flag::register_conditional_shutdown(sig, 128 + sig, Arc::clone(&seen));
+        let _ = signal_hook::flag::register(sig, Arc::clone(&seen));
+        let _ = signal_hook::flag::register_usize(sig, Arc::clone(&flag), sig as usize);
+    }
+    flag
+}
+
+/// Runs `runner` to the end (or the step limit / a signal) in a pool of
+/// `threads`, with progress display and summary; returns the exit status.
+pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>) -> ExitCode {
+    let mut b = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = threads {
+        if n == 0 {
+            eprintln!("error: --threads must be at least 1");
+            return ExitCode::from(2);
+        }
+        b = b.num_threads(n);
+    }
+    let pool = match b.build() {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: cannot start {threads:?} threads: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    let flag = install_signals();
+    let total = runner.scenario().total_steps();
+    let end_step = max_steps.map_or(total, |m| m.min(total));
+    let mut display = Display::new(end_step, runner.world().step);
+    let interval = display.interval();
+    let nthreads = pool.current_num_threads();
+    tracing::info!(
+        threads = nthreads,
+        dt = runner.world().config.dt,
+        steps = total,
+        "running {} into {}",
+        runner.scenario().path.display(),
+        runner.outdir().display()
+    );
+    let result = pool.install(|| {
+        let mut cb = |p: &clump_io::run::Progress| display.update(p);
+        let opts = RunOptions {
+            max_steps,
+            interrupt: Some(flag.clone()),
+            progress: Some(&mut cb),
+            progress_interval: interval,
+            threads: nthreads,
+        };
+        runner.run(opts)
+    });
+    display.finish();
+    let s = match result {
+        Ok(s) => s,
+        Err(e) => return error_exit(&e),
+    };
+    let status = match s.status {
+        RunStatus::Completed => "completed",
+        RunStatus::StepLimit => "stopped at the --steps limit",
+        RunStatus::Interrupted(_) => "interrupted",
+    };
+    println!(
+        "{status}: steps {} → {} ({} steps, t = {:.6} s), {} bodies, {} spheres, wall time {:.2} s, {:.3e} sphere-steps/s on {} threads",
+        s.first_step,
+        s.final_step,
+        s.steps(),
+        s.time,
+        s.bodies,
+        s.spheres,
+        s.wall_time,
+        s.throughput(),
+        nthreads
+    );
+    println!("output: {}", runner.outdir().display());
+    if let Some(c) = &s.checkpoint {
+        if s.status != RunStatus::Completed {
+            println!("checkpoint: {} (continue with `clump resume {}`)", c.display(), c.display());
+        }
+    }
+    match s.status {
+        RunStatus::Interrupted(sig) => ExitCode::from((128 + sig).clamp(0, 255) as u8),
+        _ => ExitCode::SUCCESS,
+    }
+}
+
+/// Default output directory: the scenario's `[output] directory`, else
+/// `out/<scenario file stem>`.
+pub fn default_outdir(sc: &scenario::Scenario, path: &Path) -> PathBuf {
+    match &sc.output.directory {
+        Some(d) => PathBuf::from(d),
+        None => Path::new("out").join(path.file_stem().unwrap_or_default()),
+    }
+}
+
+/// Runs `clump run`.
+pub fn run(args: &RunArgs) -> ExitCode {
+    init_logging();
+    let sc = match scenario::load(&args.scenario) {
+        Ok(s) => s,
+        Err(e) => {
+            eprint!("{e}");
+            return ExitCode::from(2);
+        }
+    };
+    for w in &sc.warnings {
+        eprint!("{w}");
+    }
+    let outdir = args.outdir.clone().unwrap_or_else(|| default_outdir(&sc, &args.scenario));
+    let runner = match Runner::new(sc, &outdir) {
+        Ok(r) => r,
+        Err(e) => return error_exit(&e),
+    };
+    drive(runner, args.threads, args.steps)
+}
+
+/// Logging (tracing) and progress display shared by `run` and `resume`.
+pub mod progress {
+
+    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+    use std::io::{IsTerminal, Write};
+    use std::sync::OnceLock;
+    use std::time::{Duration, Instant};
+
+    static BAR: OnceLock<ProgressBar> = OnceLock::new();
+
+    /// A writer that prints log lines above the progress bar (if any).
+    struct LogWriter;
+
+    impl Write for LogWriter {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            match BAR.get() {
+                Some(pb) if !pb.is_hidden() => pb.suspend(|| std::io::stderr().write_all(buf))?,
+                _ => std::io::stderr().write_all(buf)?,
+            }
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            std::io::stderr().flush()
+        }
+    }
+
+    /// Installs the tracing subscriber (`RUST_LOG` overrides the default
+    /// `info` level for Clump's own messages).
+    pub fn init_logging() {
+        use tracing_subscriber::EnvFilter;
+        let filter = EnvFilter::try_from_default_env().unwrap_or_else(|_| EnvFilter::new("warn,clump_io=info,clump=info"));
+        let _ = tracing_subscriber::fmt()
+            .with_env_filter(filter)
+            .with_target(false)
+            .with_ansi(std::io::stderr().is_terminal())
+            .with_writer(|| LogWriter)
+            .try_init();
+    }
+
+    /// Progress display: an indicatif bar on a terminal, plain lines otherwise.
+    pub struct Display {
+        bar: Option<ProgressBar>,
+        last_line: Instant,
+        line_every: Duration,
+    }
+
+    impl Display {
+        /// A display for a run ending at `end_step`.
+        pub fn new(end_step: u64, start_step: u64) -> Self {
+            if std::io::stderr().is_terminal() {
+                let pb = ProgressBar::with_draw_target(Some(end_step), ProgressDrawTarget::stderr_with_hz(4));
+                pb.set_style(
+                    ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:30.cyan/blue} {msg} ETA {eta}")
+                        .unwrap_or_else(|_| ProgressStyle::default_bar())
+                        .progress_chars("=> "),
+                );
+                pb.set_position(start_step);
+                pb.reset_eta();
+                let _ = BAR.set(pb.clone());
+                Display { bar: Some(pb), last_line: Instant::now(), line_every: Duration::from_secs(5) }
+            } else {
+                Display { bar: None, last_line: Instant::now(), line_every: Duration::from_secs(5) }
+            }
+        }
+
+        /// Wall time between progress callbacks the display wants.
+        pub fn interval(&self) -> Duration {
+            if self.bar.is_some() {
+                Duration::from_millis(250)
+            } else {
+                Duration::from_secs(1)
+            }
+        }
+
+        /// Shows one progress report.
+        pub fn update(&mut self, p: &clump_io::run::Progress) {
+            let msg = format!(
+                "t = {:.4}/{:.4} s  step {}/{}  {:.0} steps/s  {} bodies  {} contacts  [{}]",
+                p.time, p.end_time, p.step, p.end_step, p.steps_per_second, p.bodies, p.contacts, p.stage
+            );
+            match &self.bar {
+                Some(pb) => {
+                    pb.set_position(p.step);
+                    pb.set_message(msg);
+                }
+                None => {
+                    if self.last_line.elapsed() >= self.line_every || p.step == p.end_step {
+                        self.last_line = Instant::now();
+                        let pct = 100.0 * p.step as f64 / p.end_step.max(1) as f64;
+                        eprintln!("progress {pct:5.1}%  {msg}");
+                    }
+                }
+            }
+        }
+
+        /// Removes the bar.
+        pub fn finish(&self) {
+            if let Some(pb) = &self.bar {
+                pb.finish_and_clear();
+            }
+        }
+    }
+}

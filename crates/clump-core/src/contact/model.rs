@@ -1,0 +1,298 @@
+//! [`ContactModel`]: the normal, damping, tangential and rolling sub-models
+//! composed and precomputed for one pair of materials.
+//!
+//! Both normal laws share one code path. With the stiffness scale
+//! `s = √(R*δ)` (Hertz) or `s = 1` (linear):
+//! - elastic normal force `F_el = k̂_n s δ` (`k̂_n = (4/3)E*` or `k_n`),
+//! - tangential stiffness `k_t = k̂_t s` (`k̂_t = 8G*` or `k_t`),
+//! - dashpots `γ_n = ĝ_n √(s m*)`, `γ_t = ĝ_t √(s m*)`, where for Hertz
+//!   `ĝ_n = −2√(5/6)β√(2E*)`, `ĝ_t = −2√(5/6)β√(8G*)` and for linear
+//!   `ĝ_n = −2β√k_n`, `ĝ_t = −2β√k_t` (see [`super::damping`] for `β`).
+
+use super::damping::{exact_hertz_beta, log_beta, DampingLaw, HERTZ_DAMPING_PREFACTOR};
+use super::material::{effective_modulus, effective_shear_modulus, Material};
+use super::normal::NormalLaw;
+use super::rolling::{cdt, epsd, rolling_omega, RollingLaw};
+use super::tangential::history_spring;
+use super::time_scale::hertz_contact_time;
+use super::{ContactError, ContactHistory, ContactInput, ContactOutput};
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// Contact properties the user gives per pair of materials. Missing fields
+/// in a serialized form take their [`Default`] values.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct PairProperties {
+    /// Normal coefficient of restitution `e ∈ [0, 1]`, dimensionless.
+    pub restitution: f64,
+    /// Sliding (Coulomb) friction coefficient `μ ≥ 0`, dimensionless.
+    pub friction: f64,
+    /// Rolling friction coefficient `μ_r ≥ 0`, dimensionless (the limiting
+    /// rolling couple is `μ_r R*|F_n|`).
+    pub rolling_friction: f64,
+    /// Normal force law.
+    pub normal: NormalLaw,
+    /// How the dashpots are derived from `e`.
+    pub damping: DampingLaw,
+    /// Rolling-resistance law.
+    pub rolling: RollingLaw,
+}
+
+impl Default for PairProperties {
+    /// `e = 0.5`, `μ = 0.5`, `μ_r = 0`, Hertz, exact damping, no rolling resistance.
+    fn default() -> Self {
+        PairProperties {
+            restitution: 0.5,
+            friction: 0.5,
+            rolling_friction: 0.0,
+            normal: NormalLaw::Hertz,
+            damping: DampingLaw::Exact,
+            rolling: RollingLaw::None,
+        }
+    }
+}
+
+/// Precomputed contact model for one pair of materials. Cheap to evaluate;
+/// `Copy`, `Send + Sync`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactModel {
+    props: PairProperties,
+    hertz: bool,
+    e_star: f64,
+    g_star: f64,
+    /// Damping ratio actually used (β or β'), ≤ 0.
+    beta: f64,
+    kn_coef: f64,
+    kt_coef: f64,
+    gn_coef: f64,
+    gt_coef: f64,
+    energy_factor: f64,
+    friction: f64,
+    rolling_friction: f64,
+    rolling: RollingLaw,
+    rolling_damping: f64,
+}
+
+impl ContactModel {
+    /// Builds the model for materials `a` and `b` (symmetric in `a`, `b`) with
+    /// pair properties `p`. Validates: `E > 0` (∞ for a rigid wall, but not both
+    /// rigid), `ν ∈ (−1, 0.5)`, `ρ > 0`, `0 ≤ e ≤ 1`, `μ ≥ 0`, `μ_r ≥ 0`, and for
+    /// the linear law `k_n > 0`, `k_t ≥ 0`, all finite. Cheap (closed-form
+    /// coefficients, see [`super::damping`]).
+    pub fn new(a: &Material, b: &Material, p: &PairProperties) -> Result<Self, ContactError> {
+        a.validate("a")?;
+        b.validate("b")?;
+        let perr = |s: String| Err(ContactError::Property(s));
+        let e = p.restitution;
+        if !(0.0..=1.0).contains(&e) {
+            return perr(format!("restitution must lie in [0, 1], got {e}"));
+        }
+        if !(p.friction >= 0.0 && p.friction.is_finite()) {
+            return perr(format!(
+                "friction coefficient must be finite and >= 0, got {}",
+                p.friction
+            ));
+        }
+        if !(p.rolling_friction >= 0.0 && p.rolling_friction.is_finite()) {
+            return perr(format!(
+                "rolling friction coefficient must be finite and >= 0, got {}",
+                p.rolling_friction
+            ));
+        }
+        let e_star = effective_modulus(a, b);
+        let g_star = effective_shear_modulus(a, b);
+        let (hertz, beta, kn_coef, kt_coef, gn_coef, gt_coef, energy_factor) = match p.normal {
+            NormalLaw::Hertz => {
+                if !e_star.is_finite() {
+                    return perr(
+                        "Hertz contact between two rigid materials (E* is infinite)".into(),
+                    );
+                }
+                let beta = match p.damping {
+                    DampingLaw::Exact => exact_hertz_beta(e),
+                    DampingLaw::Liggghts => log_beta(e),
+                };
+                let pre = -HERTZ_DAMPING_PREFACTOR * beta;
+                (
+                    true,
+                    beta,
+                    4.0 / 3.0 * e_star,
+                    8.0 * g_star,
+                    pre * (2.0 * e_star).sqrt(),
+                    pre * (8.0 * g_star).sqrt(),
+                    0.4,
+                )
+            }
+            NormalLaw::Linear { kn, kt } => {
+                if !(kn > 0.0 && kn.is_finite()) {
+                    return perr(format!(
+                        "linear normal stiffness kn must be finite and > 0 N/m, got {kn}"
+                    ));
+                }
+                if !(kt >= 0.0 && kt.is_finite()) {
+                    return perr(format!(
+                        "linear tangential stiffness kt must be finite and >= 0 N/m, got {kt}"
+                    ));
+                }
+                // Exact and LIGGGHTS coincide for a linear spring.
+                let beta = log_beta(e);
+                (
+                    false,
+                    beta,
+                    kn,
+                    kt,
+                    -2.0 * beta * kn.sqrt(),
+                    -2.0 * beta * kt.sqrt(),
+                    0.5,
+                )
+            }
+        };
+        Ok(ContactModel {
+            props: *p,
+            hertz,
+            e_star,
+            g_star,
+            beta,
+            kn_coef,
+            kt_coef,
+            gn_coef,
+            gt_coef,
+            energy_factor,
+            friction: p.friction,
+            rolling_friction: p.rolling_friction,
+            rolling: p.rolling,
+            rolling_damping: 0.0,
+        })
+    }
+
+    /// Sets the EPSD rolling viscous ratio `η_r ≥ 0` (dimensionless; default 0):
+    /// `C_r = η_r·2√(I_r k_r)`, `I_r = (7/5)m*R*²`, active only while the rolling
+    /// spring is not fully mobilised. No effect for other rolling laws.
+    pub fn with_rolling_damping(mut self, eta_r: f64) -> Result<Self, ContactError> {
+        if !(eta_r >= 0.0 && eta_r.is_finite()) {
+            return Err(ContactError::Property(format!(
+                "rolling damping ratio must be finite and >= 0, got {eta_r}"
+            )));
+        }
+        self.rolling_damping = eta_r;
+        Ok(self)
+    }
+
+    /// Evaluates one contact (see the [module docs](super) for conventions):
+    /// returns the force on `i` (N, world), the rolling couple on `i` (N m,
+    /// world), the stored elastic energy (J) and the signed normal force (N),
+    /// and updates the history springs in `h`. Requires `c.overlap > 0`; no
+    /// allocation.
+    #[inline]
+    pub fn evaluate(&self, c: &ContactInput, h: &mut ContactHistory) -> ContactOutput {
+        let n = c.normal;
+        let d = c.overlap;
+        let s = if self.hertz {
+            (c.radius * d).sqrt()
+        } else {
+            1.0
+        };
+        let kn = self.kn_coef * s;
+        let kt = self.kt_coef * s;
+        let q = (s * c.mass).sqrt();
+        let gamma_n = self.gn_coef * q;
+        let gamma_t = self.gt_coef * q;
+        let vn = c.rel_velocity.dot(n);
+        let vt = c.rel_velocity - vn * n;
+        let f_el = kn * d;
+        let f_n = f_el - gamma_n * vn;
+        let abs_fn = f_n.abs();
+        let inv_kt = if kt > 0.0 { 1.0 / kt } else { 0.0 };
+        let f_t = history_spring(
+            &mut h.tangential,
+            n,
+            vt,
+            c.dt,
+            kt,
+            inv_kt,
+            gamma_t,
+            self.friction * abs_fn,
+        );
+        let mut energy = self.energy_factor * f_el * d + 0.5 * kt * h.tangential.length_squared();
+        let torque = match self.rolling {
+            RollingLaw::None => DVec3::ZERO,
+            RollingLaw::Cdt => cdt(
+                rolling_omega(c.rel_omega, n),
+                self.rolling_friction * c.radius * abs_fn,
+            ),
+            RollingLaw::Epsd => {
+                let mr = self.rolling_friction * c.radius;
+                let kr = 2.25 * kn * mr * mr;
+                let cr =
+                    self.rolling_damping * 2.0 * (1.4 * c.mass * c.radius * c.radius * kr).sqrt();
+                let (t, e_r) = epsd(
+                    &mut h.rolling,
+                    n,
+                    rolling_omega(c.rel_omega, n),
+                    c.dt,
+                    kr,
+                    cr,
+                    mr * abs_fn,
+                );
+                energy += e_r;
+                t
+            }
+        };
+        ContactOutput {
+            force: f_n * n + f_t,
+            torque,
+            elastic_energy: energy,
+            normal_force: f_n,
+        }
+    }
+
+    /// Effective Young's modulus `E*`, Pa.
+    pub fn effective_modulus(&self) -> f64 {
+        self.e_star
+    }
+
+    /// Effective shear modulus `G*`, Pa.
+    pub fn effective_shear_modulus(&self) -> f64 {
+        self.g_star
+    }
+
+    /// The damping ratio `β` used, dimensionless, in `[−1, 0]`
+    /// (`ln e/√(ln²e+π²)`, restitution-exact for both normal laws).
+    pub fn damping_ratio(&self) -> f64 {
+        self.beta
+    }
+
+    /// The pair properties this model was built from.
+    pub fn properties(&self) -> &PairProperties {
+        &self.props
+    }
+
+    /// Normal stiffness for time-step estimates, N/m: the Hertz tangent
+    /// stiffness `2E*√(R*δ)` at overlap `δ` (m), or the linear `k_n`.
+    pub fn normal_stiffness(&self, r_star: f64, overlap: f64) -> f64 {
+        if self.hertz {
+            1.5 * self.kn_coef * (r_star * overlap).sqrt()
+        } else {
+            self.kn_coef
+        }
+    }
+
+    /// Contact duration of a head-on impact, s, at relative normal speed
+    /// `v_normal` (m/s), effective radius `r_star` (m) and mass `m_star` (kg):
+    /// Hertz: the undamped `2.9432 δ_max/v`; linear: the exact damped
+    /// `π/(ω₀√(1−β²))`, `ω₀ = √(k_n/m*)` (infinite for `e = 0`).
+    pub fn contact_time(&self, r_star: f64, m_star: f64, v_normal: f64) -> f64 {
+        if self.hertz {
+            hertz_contact_time(self.e_star, r_star, m_star, v_normal)
+        } else {
+            let w0 = (self.kn_coef / m_star).sqrt();
+            let r = 1.0 - self.beta * self.beta;
+            if r > 0.0 {
+                std::f64::consts::PI / (w0 * r.sqrt())
+            } else {
+                f64::INFINITY
+            }
+        }
+    }
+}

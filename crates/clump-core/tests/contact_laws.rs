@@ -1,0 +1,772 @@
+//! Contact-law tests against values from outside the code: Chung & Ooi (2011)
+//! benchmarks 1–3 (see shared/validation/REFERENCE.md §3), closed-form Hertz
+//! theory, and the definitions of the Coulomb and rolling limits.
+//!
+//! Impacts are integrated with a small velocity-Verlet loop calling
+//! `ContactModel::evaluate` directly (no engine).
+
+use clump_core::contact::damping::{
+    exact_hertz_beta, exact_hertz_beta_numeric, hertz_restitution, log_beta,
+};
+use clump_core::contact::material::{effective_modulus, effective_shear_modulus};
+use clump_core::contact::time_scale::{hertz_contact_time, rayleigh_time};
+use clump_core::contact::{
+    ContactError, ContactHistory, ContactInput, ContactModel, DampingLaw, Material, NormalLaw,
+    PairProperties, RollingLaw,
+};
+use glam::DVec3;
+use std::f64::consts::PI;
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+fn sphere_mass(m: &Material, r: f64) -> f64 {
+    m.density * 4.0 / 3.0 * PI * r.powi(3)
+}
+
+fn glass() -> Material {
+    Material {
+        youngs_modulus: 4.8e10,
+        poisson_ratio: 0.20,
+        density: 2800.0,
+    }
+}
+fn limestone() -> Material {
+    Material {
+        youngs_modulus: 2.0e10,
+        poisson_ratio: 0.25,
+        density: 2500.0,
+    }
+}
+fn al_alloy() -> Material {
+    Material {
+        youngs_modulus: 7.0e10,
+        poisson_ratio: 0.30,
+        density: 2699.0,
+    }
+}
+fn mg_alloy() -> Material {
+    Material {
+        youngs_modulus: 4.0e10,
+        poisson_ratio: 0.35,
+        density: 1800.0,
+    }
+}
+fn alumina() -> Material {
+    Material {
+        youngs_modulus: 3.8e11,
+        poisson_ratio: 0.23,
+        density: 4000.0,
+    }
+}
+fn cast_iron() -> Material {
+    Material {
+        youngs_modulus: 1.0e11,
+        poisson_ratio: 0.25,
+        density: 7000.0,
+    }
+}
+fn wall() -> Material {
+    Material {
+        youngs_modulus: f64::INFINITY,
+        poisson_ratio: 0.3,
+        density: 1.0,
+    }
+}
+
+fn props(e: f64, mu: f64) -> PairProperties {
+    PairProperties {
+        restitution: e,
+        friction: mu,
+        ..PairProperties::default()
+    }
+}
+
+#[derive(Debug)]
+struct Impact {
+    /// Maximum overlap, m.
+    max_overlap: f64,
+    /// Maximum normal force, N.
+    max_force: f64,
+    /// Contact duration, s.
+    duration: f64,
+    /// Normal restitution (rebound speed / impact speed).
+    restitution: f64,
+    /// Largest |kinetic + elastic − initial kinetic| / initial kinetic.
+    energy_drift: f64,
+}
+
+/// Head-on impact along x. Body `i` (mass `mi`, radius `ri`) starts touching
+/// body `j` (mass `mj`, radius `rj`; `mj = ∞`, `rj = ∞` for a rigid plane at
+/// x = 0) and approaches it at relative speed `v` (split so the total momentum
+/// is zero). Velocity Verlet; the contact force uses the predicted full-step
+/// velocity.
+/// With `clamp`, tensile normal forces are set to zero (LIGGGHTS'
+/// `limitForce`), which the engine does not do.
+#[allow(clippy::too_many_arguments)]
+fn head_on(
+    model: &ContactModel,
+    mi: f64,
+    ri: f64,
+    mj: f64,
+    rj: f64,
+    v: f64,
+    dt: f64,
+    clamp: bool,
+) -> Impact {
+    let wall = mj.is_infinite();
+    let (r_star, m_star) = if wall {
+        (ri, mi)
+    } else {
+        (ri * rj / (ri + rj), mi * mj / (mi + mj))
+    };
+    let rsum = if wall { ri } else { ri + rj };
+    // i on the +x side of j.
+    let (mut xi, mut xj) = (rsum, 0.0_f64);
+    let (mut vi, mut vj) = if wall {
+        (-v, 0.0)
+    } else {
+        (-v * mj / (mi + mj), v * mi / (mi + mj))
+    };
+    let ke0 = 0.5 * mi * vi * vi + if wall { 0.0 } else { 0.5 * mj * vj * vj };
+    let (mut ai, mut aj) = (0.0_f64, 0.0_f64);
+    let mut h = ContactHistory::default();
+    let (mut max_overlap, mut max_force, mut drift) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let mut t = 0.0;
+    let mut prev_overlap = 0.0;
+    for _ in 0..100_000_000u64 {
+        vi += 0.5 * dt * ai;
+        vj += 0.5 * dt * aj;
+        xi += dt * vi;
+        xj += dt * vj;
+        t += dt;
+        let overlap = rsum - (xi - xj);
+        if overlap <= 0.0 {
+            // End of contact inside this step: interpolate the time.
+            let duration = t - dt + dt * prev_overlap / (prev_overlap - overlap);
+            // The force is zero from here on: the velocities are final
+            // (the half-kick with the last force was already applied).
+            let vrel_out = vi - vj;
+            return Impact {
+                max_overlap,
+                max_force,
+                duration,
+                restitution: vrel_out / v,
+                energy_drift: drift,
+            };
+        }
+        let input = ContactInput {
+            normal: DVec3::X,
+            overlap,
+            rel_velocity: DVec3::new((vi + 0.5 * dt * ai) - (vj + 0.5 * dt * aj), 0.0, 0.0),
+            rel_omega: DVec3::ZERO,
+            radius: r_star,
+            mass: m_star,
+            dt,
+        };
+        let out = model.evaluate(&input, &mut h);
+        let f = if clamp {
+            out.force.x.max(0.0)
+        } else {
+            out.force.x
+        };
+        ai = f / mi;
+        aj = if wall { 0.0 } else { -f / mj };
+        vi += 0.5 * dt * ai;
+        vj += 0.5 * dt * aj;
+        max_overlap = max_overlap.max(overlap);
+        max_force = max_force.max(out.normal_force);
+        let ke = 0.5 * mi * vi * vi + if wall { 0.0 } else { 0.5 * mj * vj * vj };
+        drift = drift.max((ke + out.elastic_energy - ke0).abs() / ke0);
+        prev_overlap = overlap;
+    }
+    panic!("contact did not end");
+}
+
+fn sphere_pair_impact(mat: Material, p: &PairProperties, r: f64, v_rel: f64, steps: f64) -> Impact {
+    let model = ContactModel::new(&mat, &mat, p).unwrap();
+    let m = sphere_mass(&mat, r);
+    let tc = hertz_contact_time(model.effective_modulus(), r / 2.0, m / 2.0, v_rel);
+    head_on(&model, m, r, m, r, v_rel, tc / steps, false)
+}
+
+fn wall_impact(mat: Material, p: &PairProperties, r: f64, v: f64, steps: f64) -> Impact {
+    wall_impact_clamp(mat, p, r, v, steps, false)
+}
+
+fn wall_impact_clamp(
+    mat: Material,
+    p: &PairProperties,
+    r: f64,
+    v: f64,
+    steps: f64,
+    clamp: bool,
+) -> Impact {
+    let model = ContactModel::new(&mat, &wall(), p).unwrap();
+    let m = sphere_mass(&mat, r);
+    let tc = model.contact_time(r, m, v);
+    head_on(
+        &model,
+        m,
+        r,
+        f64::INFINITY,
+        f64::INFINITY,
+        v,
+        tc / steps,
+        clamp,
+    )
+}
+
+/// Chung & Ooi test 1: two identical spheres, R = 0.01 m, ±10 m/s, elastic.
+#[test]
+fn chung_ooi_test1_sphere_sphere() {
+    for (name, mat, dmax, fmax, tc) in [
+        ("glass", glass(), 274.1e-6, 10.70e3, 40.3e-6),
+        ("limestone", limestone(), 368.3e-6, 7.108e3, 54.2e-6),
+    ] {
+        let imp = sphere_pair_impact(mat, &props(1.0, 0.0), 0.01, 20.0, 1000.0);
+        eprintln!(
+            "test1 {name}: δmax {:.2} µm (ref {:.1}), Fmax {:.4} kN (ref {}), tc {:.2} µs (ref {}), e {:.6}, energy drift {:.1e}",
+            imp.max_overlap * 1e6,
+            dmax * 1e6,
+            imp.max_force / 1e3,
+            fmax / 1e3,
+            imp.duration * 1e6,
+            tc * 1e6,
+            imp.restitution,
+            imp.energy_drift
+        );
+        assert!(rel(imp.max_overlap, dmax) < 0.005, "δmax");
+        assert!(rel(imp.max_force, fmax) < 0.005, "Fmax");
+        assert!(rel(imp.duration, tc) < 0.02, "t_c");
+        assert!((imp.restitution - 1.0).abs() < 1e-4, "elastic rebound");
+        assert!(
+            imp.energy_drift < 1e-4,
+            "energy conservation with the reported elastic energy"
+        );
+    }
+}
+
+/// Chung & Ooi test 2: sphere R = 0.1 m onto a rigid wall at 0.2 m/s, elastic.
+#[test]
+fn chung_ooi_test2_sphere_wall() {
+    for (name, mat, fmax, dmax, tc) in [
+        ("Al alloy", al_alloy(), 11.37e3, 49.72e-6, 731.7e-6),
+        ("Mg alloy", mg_alloy(), 7.233e3, 52.12e-6, 767.1e-6),
+    ] {
+        let imp = wall_impact(mat, &props(1.0, 0.0), 0.10, 0.2, 1000.0);
+        eprintln!(
+            "test2 {name}: Fmax {:.4} kN (ref {}), δmax {:.3} µm (ref {}), tc {:.2} µs (ref {}), e {:.6}",
+            imp.max_force / 1e3,
+            fmax / 1e3,
+            imp.max_overlap * 1e6,
+            dmax * 1e6,
+            imp.duration * 1e6,
+            tc * 1e6,
+            imp.restitution
+        );
+        assert!(rel(imp.max_overlap, dmax) < 0.005, "δmax");
+        assert!(rel(imp.max_force, fmax) < 0.005, "Fmax");
+        assert!(rel(imp.duration, tc) < 0.02, "t_c");
+        assert!((imp.restitution - 1.0).abs() < 1e-4, "elastic rebound");
+    }
+}
+
+/// Chung & Ooi test 3: restitution out vs in, R = 2.5 mm, 3.9 m/s onto a rigid wall.
+#[test]
+fn chung_ooi_test3_restitution() {
+    let (r, v) = (2.5e-3, 3.9);
+    for (name, mat) in [("alumina", alumina()), ("cast iron", cast_iron())] {
+        let m = sphere_mass(&mat, r);
+        let e_star = ContactModel::new(&mat, &wall(), &props(1.0, 0.0))
+            .unwrap()
+            .effective_modulus();
+        let tc_hertz = hertz_contact_time(e_star, r, m, v);
+        // Linear spring with the same undamped contact time π√(m/kn).
+        let kn = m * (PI / tc_hertz).powi(2);
+        for k in 1..=5 {
+            let e = 0.2 * k as f64;
+            let hertz = wall_impact(mat, &props(e, 0.0), r, v, 1000.0);
+            let pl = PairProperties {
+                normal: NormalLaw::Linear {
+                    kn,
+                    kt: 2.0 / 7.0 * kn,
+                },
+                ..props(e, 0.0)
+            };
+            let linear = wall_impact(mat, &pl, r, v, 1000.0);
+            let pg = PairProperties {
+                damping: DampingLaw::Liggghts,
+                ..props(e, 0.0)
+            };
+            let lig = wall_impact(mat, &pg, r, v, 1000.0);
+            // What the non-dimensional ODE predicts for LIGGGHTS' β.
+            let lig_pred = hertz_restitution(log_beta(e));
+            // The same LIGGGHTS coefficients with the tensile force clamped to
+            // zero (LIGGGHTS' `limitForce`): this is where the bias comes from.
+            let clamped = wall_impact_clamp(mat, &pg, r, v, 1000.0, true);
+            eprintln!(
+                "test3 {name} (linear kn {kn:.3e} N/m) e_in {e:.1}: hertz/exact {:.5}  linear/exact {:.5}  hertz/liggghts {:.5} (ODE {:.5})  hertz/liggghts+clamp {:.5}",
+                hertz.restitution, linear.restitution, lig.restitution, lig_pred, clamped.restitution
+            );
+            assert!(
+                (hertz.restitution - e).abs() < 0.01,
+                "hertz exact e_out {}",
+                hertz.restitution
+            );
+            assert!(
+                (linear.restitution - e).abs() < 0.01,
+                "linear exact e_out {}",
+                linear.restitution
+            );
+            // Without clamping, LIGGGHTS' formula is exact for Hertz too (see
+            // contact::damping: the δ^{1/4} dashpot maps onto a linear
+            // oscillator in the phase plane).
+            assert!(
+                (lig.restitution - e).abs() < 0.01,
+                "liggghts e_out {}",
+                lig.restitution
+            );
+            assert!((lig.restitution - lig_pred).abs() < 0.01);
+            // Clamping removes the tensile (decelerating) dashpot force at the
+            // end of the rebound, so less energy is dissipated: e_out > e_in.
+            if e < 1.0 {
+                assert!(
+                    clamped.restitution > e + 0.005,
+                    "clamping the tensile force biases e upwards"
+                );
+            }
+        }
+    }
+}
+
+/// With the δ^{1/4} dashpot and exact β', e does not depend on impact speed.
+#[test]
+fn hertz_exact_restitution_independent_of_velocity() {
+    for e in [0.3, 0.5, 0.9] {
+        let slow = wall_impact(alumina(), &props(e, 0.0), 2.5e-3, 0.5, 1000.0);
+        let fast = wall_impact(alumina(), &props(e, 0.0), 2.5e-3, 5.0, 1000.0);
+        eprintln!(
+            "velocity independence e_in {e}: 0.5 m/s → {:.5}, 5 m/s → {:.5}",
+            slow.restitution, fast.restitution
+        );
+        assert!((slow.restitution - e).abs() < 0.01 && (fast.restitution - e).abs() < 0.01);
+        assert!((slow.restitution - fast.restitution).abs() < 0.002);
+    }
+}
+
+/// e = 0: no rebound (the overlap decays without separation within a long
+/// window), both laws; the normal force stays finite.
+#[test]
+fn zero_restitution_does_not_rebound() {
+    for normal in [NormalLaw::Hertz, NormalLaw::Linear { kn: 1e6, kt: 0.0 }] {
+        let p = PairProperties {
+            normal,
+            ..props(0.0, 0.0)
+        };
+        let model = ContactModel::new(&glass(), &wall(), &p).unwrap();
+        let (m, r, v) = (0.01, 0.005, 1.0);
+        let tc =
+            model
+                .contact_time(r, m, v)
+                .min(hertz_contact_time(model.effective_modulus(), r, m, v));
+        let dt = tc.min(PI * (m / 1e6f64).sqrt()) / 1000.0;
+        let (mut x, mut vx, mut a) = (0.0_f64, -v, 0.0_f64); // x = −overlap
+        let mut h = ContactHistory::default();
+        let mut separated = false;
+        for _ in 0..200_000 {
+            vx += 0.5 * dt * a;
+            x += dt * vx;
+            if x >= 0.0 {
+                separated = true;
+                break;
+            }
+            let c = ContactInput {
+                normal: DVec3::X,
+                overlap: -x,
+                rel_velocity: DVec3::new(vx + 0.5 * dt * a, 0.0, 0.0),
+                rel_omega: DVec3::ZERO,
+                radius: r,
+                mass: m,
+                dt,
+            };
+            let out = model.evaluate(&c, &mut h);
+            assert!(out.force.is_finite());
+            a = out.force.x / m;
+            vx += 0.5 * dt * a;
+        }
+        eprintln!("e = 0 ({normal:?}): β = {}, separated: {separated}, final overlap {:.3e}, velocity {:.3e}", model.damping_ratio(), -x, vx);
+        assert!(!separated || vx.abs() < 1e-3 * v);
+    }
+}
+
+fn unit(v: DVec3) -> DVec3 {
+    v.normalize()
+}
+
+/// Sliding with a large tangential velocity: |F_t| = μ|F_n| exactly, opposing
+/// the slip; the spring stays in the tangent plane; a later stick step holds
+/// exactly the limit with the elastic spring alone (e = 1, no dashpot).
+#[test]
+fn coulomb_limit_and_history() {
+    let n = unit(DVec3::new(1.0, 2.0, 2.0));
+    let t1 = unit(n.cross(DVec3::Z));
+    for e in [1.0, 0.5] {
+        let mu = 0.3;
+        let model = ContactModel::new(&glass(), &limestone(), &props(e, mu)).unwrap();
+        let mut h = ContactHistory::default();
+        let c = ContactInput {
+            normal: n,
+            overlap: 2e-5,
+            rel_velocity: 5.0 * t1 - 0.1 * n,
+            rel_omega: DVec3::ZERO,
+            radius: 0.005,
+            mass: 0.005,
+            dt: 1e-6,
+        };
+        let out = model.evaluate(&c, &mut h);
+        let ft = out.force - out.force.dot(n) * n;
+        eprintln!(
+            "sliding e={e}: F_n {:.6} N, |F_t| {:.6} N, μF_n {:.6} N, ξ·n {:.1e}, |ξ| {:.3e} m",
+            out.normal_force,
+            ft.length(),
+            mu * out.normal_force,
+            h.tangential.dot(n),
+            h.tangential.length()
+        );
+        assert!(out.normal_force > 0.0);
+        assert!((out.force.dot(n) - out.normal_force).abs() < 1e-12 * out.normal_force);
+        assert!(
+            rel(ft.length(), mu * out.normal_force.abs()) < 1e-12,
+            "|F_t| = μ|F_n|"
+        );
+        assert!(
+            rel(ft.dot(-t1), ft.length()) < 1e-12,
+            "friction opposes slip"
+        );
+        assert!(
+            h.tangential.dot(n).abs() < 1e-14 * h.tangential.length(),
+            "ξ in the tangent plane"
+        );
+        if e == 1.0 {
+            // Stick step with no relative motion: elastic spring alone = limit.
+            let still = ContactInput {
+                rel_velocity: DVec3::ZERO,
+                ..c
+            };
+            let out2 = model.evaluate(&still, &mut h);
+            let ft2 = out2.force - out2.force.dot(n) * n;
+            assert!(
+                rel(ft2.length(), mu * out2.normal_force) < 1e-12,
+                "truncated spring consistent with the limit"
+            );
+        }
+    }
+}
+
+/// Mindlin stiffness, sign convention, history rotation and elastic energy.
+#[test]
+fn tangential_spring_and_rotation() {
+    let (a, b) = (glass(), limestone());
+    let model = ContactModel::new(&a, &b, &props(1.0, 10.0)).unwrap();
+    let (r, d, dt): (f64, f64, f64) = (0.005, 1e-5, 1e-7);
+    let g_star = effective_shear_modulus(&a, &b);
+    let e_star = effective_modulus(&a, &b);
+    // G* from the Mindlin formula with shear moduli.
+    let g_from_g = 1.0 / ((2.0 - 0.2) / a.shear_modulus() + (2.0 - 0.25) / b.shear_modulus());
+    assert!(rel(g_star, g_from_g) < 1e-14);
+    assert!(rel(model.effective_shear_modulus(), g_star) < 1e-15);
+    let kt = 8.0 * g_star * (r * d).sqrt();
+    let n = DVec3::Z;
+    let vt = DVec3::new(0.01, -0.02, 0.0);
+    let mut h = ContactHistory::default();
+    let c = ContactInput {
+        normal: n,
+        overlap: d,
+        rel_velocity: vt,
+        rel_omega: DVec3::ZERO,
+        radius: r,
+        mass: 0.01,
+        dt,
+    };
+    let out = model.evaluate(&c, &mut h);
+    // Normal force: elastic Hertz, pushes i along +n.
+    let f_hertz = 4.0 / 3.0 * e_star * r.sqrt() * d.powf(1.5);
+    assert!(rel(out.normal_force, f_hertz) < 1e-14);
+    assert!(out.force.z > 0.0);
+    let ft_expected = -kt * vt * dt;
+    assert!(
+        (out.force - DVec3::new(0.0, 0.0, f_hertz) - ft_expected).length()
+            < 1e-12 * ft_expected.length()
+    );
+    let energy = 0.4 * f_hertz * d + 0.5 * kt * (vt * dt).length_squared();
+    assert!(rel(out.elastic_energy, energy) < 1e-14);
+
+    // The contact rotates: the stored spring is rotated into the new tangent
+    // plane with its length kept.
+    let xi0 = DVec3::new(3e-7, -1e-7, 2e-7); // has a normal component
+    let n2 = unit(DVec3::new(0.1, 0.0, 1.0));
+    let mut h2 = ContactHistory {
+        tangential: xi0,
+        rolling: DVec3::ZERO,
+    };
+    let c2 = ContactInput {
+        normal: n2,
+        rel_velocity: DVec3::ZERO,
+        ..c
+    };
+    let out2 = model.evaluate(&c2, &mut h2);
+    eprintln!(
+        "rotated spring: ξ·n {:.1e}, |ξ| {:.6e} (was {:.6e})",
+        h2.tangential.dot(n2),
+        h2.tangential.length(),
+        xi0.length()
+    );
+    assert!(h2.tangential.dot(n2).abs() < 1e-15 * xi0.length());
+    assert!(rel(h2.tangential.length(), xi0.length()) < 1e-14);
+    let ft2 = out2.force - out2.normal_force * n2;
+    assert!((ft2 + kt * h2.tangential).length() < 1e-12 * ft2.length());
+}
+
+/// Linear law: force kn δ, damping −2β√(m kn) v_n, kt = 0 gives no friction.
+#[test]
+fn linear_law_values() {
+    let (kn, kt, e, m) = (2e5, 5e4, 0.5, 0.02);
+    let p = PairProperties {
+        normal: NormalLaw::Linear { kn, kt },
+        ..props(e, 0.4)
+    };
+    let model = ContactModel::new(&glass(), &glass(), &p).unwrap();
+    let beta = e.ln() / (e.ln().powi(2) + PI * PI).sqrt();
+    let c = ContactInput {
+        normal: DVec3::Y,
+        overlap: 1e-4,
+        rel_velocity: DVec3::new(0.0, -0.3, 0.0),
+        rel_omega: DVec3::ZERO,
+        radius: 0.01,
+        mass: m,
+        dt: 1e-6,
+    };
+    let out = model.evaluate(&c, &mut ContactHistory::default());
+    let expected = kn * 1e-4 - 2.0 * beta * (m * kn).sqrt() * 0.3;
+    assert!(rel(out.normal_force, expected) < 1e-14);
+    assert!(rel(out.elastic_energy, 0.5 * kn * 1e-8) < 1e-14);
+    let p0 = PairProperties {
+        normal: NormalLaw::Linear { kn, kt: 0.0 },
+        ..props(e, 0.4)
+    };
+    let m0 = ContactModel::new(&glass(), &glass(), &p0).unwrap();
+    let mut h = ContactHistory::default();
+    let out0 = m0.evaluate(
+        &ContactInput {
+            rel_velocity: DVec3::new(1.0, -0.3, 0.0),
+            ..c
+        },
+        &mut h,
+    );
+    assert_eq!(out0.force.x, 0.0);
+    assert_eq!(h.tangential, DVec3::ZERO);
+    assert!(out0.force.is_finite());
+}
+
+fn rolling_input(n: DVec3, omega: DVec3) -> ContactInput {
+    ContactInput {
+        normal: n,
+        overlap: 1e-5,
+        rel_velocity: DVec3::ZERO,
+        rel_omega: omega,
+        radius: 0.004,
+        mass: 0.003,
+        dt: 1e-6,
+    }
+}
+
+/// CDT: magnitude μ_r R* |F_n|, opposing the rolling part of ω_rel; zero
+/// (and finite) at ω_rel = 0.
+#[test]
+fn rolling_cdt() {
+    let mu_r = 0.1;
+    let p = PairProperties {
+        rolling_friction: mu_r,
+        rolling: RollingLaw::Cdt,
+        ..props(0.5, 0.5)
+    };
+    let model = ContactModel::new(&glass(), &glass(), &p).unwrap();
+    let n = unit(DVec3::new(0.0, 1.0, 1.0));
+    let omega = DVec3::new(3.0, 0.0, 0.0) + 7.0 * n; // rolling + twisting
+    let c = rolling_input(n, omega);
+    let out = model.evaluate(&c, &mut ContactHistory::default());
+    let expected = mu_r * c.radius * out.normal_force;
+    eprintln!(
+        "CDT: |M| {:.6e} N m, μ_r R* F_n {:.6e} N m",
+        out.torque.length(),
+        expected
+    );
+    assert!(rel(out.torque.length(), expected) < 1e-12);
+    assert!(
+        rel(out.torque.dot(-DVec3::X), expected) < 1e-12,
+        "opposes rolling, ignores twisting"
+    );
+    let out0 = model.evaluate(
+        &rolling_input(n, DVec3::ZERO),
+        &mut ContactHistory::default(),
+    );
+    assert_eq!(out0.torque, DVec3::ZERO);
+    let out_twist = model.evaluate(&rolling_input(n, 5.0 * n), &mut ContactHistory::default());
+    assert!(out_twist.torque.length() < 1e-12 * expected);
+}
+
+/// EPSD: elastic increments k_r ω Δt with k_r = 2.25 k_n μ_r² R*² (secant k_n),
+/// then saturation at μ_r R* |F_n|, the same value as CDT.
+#[test]
+fn rolling_epsd_saturates_at_cdt_value() {
+    let mu_r = 0.1;
+    let p = PairProperties {
+        rolling_friction: mu_r,
+        rolling: RollingLaw::Epsd,
+        ..props(0.5, 0.5)
+    };
+    let model = ContactModel::new(&glass(), &glass(), &p).unwrap();
+    let pc = PairProperties {
+        rolling: RollingLaw::Cdt,
+        ..p
+    };
+    let cdt = ContactModel::new(&glass(), &glass(), &pc).unwrap();
+    let n = DVec3::Z;
+    let omega = DVec3::new(0.0, 2.0, 0.0);
+    let c = rolling_input(n, omega);
+    let mut h = ContactHistory::default();
+    let first = model.evaluate(&c, &mut h);
+    let kn_secant = 4.0 / 3.0 * model.effective_modulus() * (c.radius * c.overlap).sqrt();
+    let kr = 2.25 * kn_secant * mu_r * mu_r * c.radius * c.radius;
+    assert!((first.torque - (-kr * omega * c.dt)).length() < 1e-12 * kr * 2.0 * c.dt);
+    let mut steps = 1;
+    let mut last = first;
+    while steps < 1_000_000 {
+        last = model.evaluate(&c, &mut h);
+        steps += 1;
+        if (last.torque - (-kr * omega * c.dt * steps as f64)).length()
+            > 1e-9 * last.torque.length()
+        {
+            break; // saturated
+        }
+    }
+    for _ in 0..10 {
+        last = model.evaluate(&c, &mut h);
+    }
+    let m_cdt = cdt.evaluate(&c, &mut ContactHistory::default()).torque;
+    eprintln!(
+        "EPSD: k_r {kr:.4e} N m/rad, saturated after {steps} steps at |M| {:.6e} N m; CDT {:.6e} N m",
+        last.torque.length(),
+        m_cdt.length()
+    );
+    assert!(rel(last.torque.length(), m_cdt.length()) < 1e-12);
+    assert!((last.torque - m_cdt).length() < 1e-12 * m_cdt.length());
+    // Reversal unloads elastically.
+    let back = model.evaluate(&rolling_input(n, -omega), &mut h);
+    assert!(back.torque.length() < m_cdt.length());
+}
+
+/// Time scales against hand-computed values.
+#[test]
+fn time_scales() {
+    // Rayleigh time, glass, R = 1 cm: G = E/(2(1+ν)) = 2e10 Pa.
+    let tr = rayleigh_time(&glass(), 0.01);
+    let expected = PI * 0.01 * (2800.0f64 / 2.0e10).sqrt() / (0.1631 * 0.2 + 0.8766);
+    assert!(rel(tr, expected) < 1e-14);
+    // Hertz contact time, test 1 glass: 40.3 µs.
+    let m = sphere_mass(&glass(), 0.01);
+    let tc = hertz_contact_time(2.5e10, 0.005, m / 2.0, 20.0);
+    eprintln!(
+        "Rayleigh time glass R=1cm {:.4e} s; Hertz t_c test 1 glass {:.4e} s",
+        tr, tc
+    );
+    assert!(rel(tc, 40.3e-6) < 0.005);
+}
+
+#[test]
+fn validation_errors() {
+    let ok = props(0.5, 0.5);
+    let bad_e = ContactModel::new(&glass(), &glass(), &props(1.5, 0.5)).unwrap_err();
+    assert!(matches!(bad_e, ContactError::Property(_)));
+    eprintln!("{bad_e}");
+    assert!(ContactModel::new(&glass(), &glass(), &props(-0.1, 0.5)).is_err());
+    assert!(ContactModel::new(&glass(), &glass(), &props(f64::NAN, 0.5)).is_err());
+    assert!(ContactModel::new(&glass(), &glass(), &props(0.5, -1.0)).is_err());
+    let bad_nu = Material {
+        poisson_ratio: 0.5,
+        ..glass()
+    };
+    let err = ContactModel::new(&bad_nu, &glass(), &ok).unwrap_err();
+    eprintln!("{err}");
+    assert!(matches!(err, ContactError::Material { which: "a", .. }));
+    assert!(ContactModel::new(
+        &glass(),
+        &Material {
+            youngs_modulus: 0.0,
+            ..glass()
+        },
+        &ok
+    )
+    .is_err());
+    assert!(ContactModel::new(
+        &glass(),
+        &Material {
+            density: 0.0,
+            ..glass()
+        },
+        &ok
+    )
+    .is_err());
+    assert!(ContactModel::new(&wall(), &wall(), &ok).is_err());
+    let lin_bad = PairProperties {
+        normal: NormalLaw::Linear { kn: 0.0, kt: 1.0 },
+        ..ok
+    };
+    assert!(ContactModel::new(&glass(), &glass(), &lin_bad).is_err());
+    assert!(ContactModel::new(&glass(), &Material::rigid(), &ok).is_ok());
+    assert!(ContactModel::new(&glass(), &glass(), &ok)
+        .unwrap()
+        .with_rolling_damping(-1.0)
+        .is_err());
+}
+
+/// The closed-form exact Hertz β agrees with a numerical root search on the
+/// non-dimensional impact ODE (the brief's bisection approach).
+#[test]
+fn exact_beta_closed_form_vs_numeric() {
+    let t0 = std::time::Instant::now();
+    for e in [0.05, 0.2, 0.4, 0.6, 0.8, 0.95] {
+        let closed = exact_hertz_beta(e);
+        let numeric = exact_hertz_beta_numeric(e);
+        eprintln!(
+            "e {e}: β closed form {closed:.9}, numeric {numeric:.9}, e(β) from ODE {:.7}",
+            hertz_restitution(closed)
+        );
+        assert!((closed - numeric).abs() < 1e-5);
+    }
+    eprintln!(
+        "numeric solve: {:.2} ms per e",
+        t0.elapsed().as_secs_f64() * 1e3 / 6.0
+    );
+    let t1 = std::time::Instant::now();
+    for k in 0..=20 {
+        let _ = ContactModel::new(&glass(), &limestone(), &props(0.05 * k as f64, 0.5)).unwrap();
+    }
+    let per = t1.elapsed().as_secs_f64() / 21.0;
+    eprintln!("ContactModel::new: {:.2} µs", per * 1e6);
+    assert!(per < 5e-3);
+}
+
+#[test]
+fn serde_defaults() {
+    let p = PairProperties::default();
+    assert_eq!(
+        (p.restitution, p.friction, p.rolling_friction),
+        (0.5, 0.5, 0.0)
+    );
+    assert_eq!(p.normal, NormalLaw::Hertz);
+    assert_eq!(p.damping, DampingLaw::Exact);
+    assert_eq!(p.rolling, RollingLaw::None);
+}

@@ -1,0 +1,137 @@
+//! Scenario files: a TOML description of a whole simulation (materials,
+//! contact laws, clump templates, particle mixes, insertion, walls, stages,
+//! output), in SI units. See `docs/scenario.md` for the key-by-key reference.
+//!
+//! [`load`] reads and validates a file and returns a resolved [`Scenario`];
+//! every problem is reported as a [`Diagnostic`] with the file, line and
+//! column, the key and what is allowed. [`Scenario::build_world`] creates the
+//! engine's [`World`] (materials, contact table, templates, walls; no bodies —
+//! insertion is done by the run driver, [`crate::run`]).
+
+mod bodies_file;
+mod build;
+pub mod diag;
+mod model;
+pub mod raw;
+mod source;
+pub mod units;
+
+pub use build::{DT_ERROR_FRACTION, DT_WARN_FRACTION, PACK_ERROR_FRACTION};
+pub use diag::{Diagnostic, Location, ScenarioError, Severity};
+pub use model::*;
+pub use source::{Seg, Source};
+
+use clump_core::world::{ContactTable, World};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Where the files a scenario refers to come from: the disk (relative to the
+/// scenario's folder) or, when resuming, the copies stored in a checkpoint.
+pub struct Files {
+    base: PathBuf,
+    embedded: Option<BTreeMap<String, Vec<u8>>>,
+    pub(crate) loaded: BTreeMap<String, Vec<u8>>,
+}
+
+impl Files {
+    /// Files on disk, relative to `base`.
+    pub fn disk(base: &Path) -> Self {
+        Files { base: base.to_path_buf(), embedded: None, loaded: BTreeMap::new() }
+    }
+
+    /// Files stored in a checkpoint.
+    pub fn embedded(files: BTreeMap<String, Vec<u8>>) -> Self {
+        Files { base: PathBuf::from("<checkpoint>"), embedded: Some(files), loaded: BTreeMap::new() }
+    }
+
+    /// Reads `rel` (as written in the scenario).
+    pub fn read(&mut self, rel: &str) -> std::io::Result<Vec<u8>> {
+        let bytes = match &self.embedded {
+            Some(m) => m
+                .get(rel)
+                .cloned()
+                .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "not stored in the checkpoint"))?,
+            None => std::fs::read(self.base.join(rel))?,
+        };
+        self.loaded.insert(rel.to_string(), bytes.clone());
+        Ok(bytes)
+    }
+
+    fn base_display(&self) -> String {
+        let s = self.base.display().to_string();
+        if s.is_empty() {
+            ".".into()
+        } else {
+            s
+        }
+    }
+}
+
+/// Reads, parses and validates the scenario file at `path`.
+pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        ScenarioError::one(Diagnostic::new(Severity::Error, path, format!("cannot read scenario file '{}': {e}", path.display())))
+    })?;
+    let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    parse(path, text, Files::disk(&base))
+}
+
+/// Parses and validates scenario `text` (named `path` in messages), reading
+/// referenced files from `files`.
+pub fn parse(path: &Path, text: String, mut files: Files) -> Result<Scenario, ScenarioError> {
+    let src = Source::new(path, text);
+    let raw: raw::RawScenario = toml::from_str(&src.text).map_err(|e| ScenarioError::one(src.from_toml_error(&e)))?;
+    build::build(&src, raw, &mut files).map_err(ScenarioError::one)
+}
+
+impl Scenario {
+    /// A 64-bit fingerprint (FNV-1a) of the scenario text and every file it
+    /// refers to.
+    pub fn fingerprint(&self) -> u64 {
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        let mut eat = |b: &[u8]| {
+            for &x in b {
+                h ^= x as u64;
+                h = h.wrapping_mul(0x0100_0000_01b3);
+            }
+            h ^= 0xff;
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        };
+        eat(self.text.as_bytes());
+        for (k, v) in &self.files {
+            eat(k.as_bytes());
+            eat(v);
+        }
+        h
+    }
+
+    /// Builds the engine world: materials, contact table, templates and
+    /// walls (no bodies).
+    pub fn build_world(&self) -> Result<World, String> {
+        let n = self.materials.len();
+        let table = ContactTable::new(&self.materials, |a, b| self.pair_table[a * n + b]).map_err(|e| e.to_string())?;
+        let mut world = World::new(self.config, self.materials.clone(), table);
+        for t in &self.templates {
+            world.add_template(t.template.clone(), t.material).map_err(|e| e.to_string())?;
+        }
+        for w in &self.walls {
+            world.add_wall(w.clone()).map_err(|e| e.to_string())?;
+        }
+        Ok(world)
+    }
+
+    /// An error located at `[[insert]]` number `index` (0-based), for
+    /// insertion failures found while running.
+    pub fn insert_error(&self, index: usize, message: impl Into<String>) -> ScenarioError {
+        let src = Source::new(&self.path, self.text.clone());
+        let key = match &self.inserts[index].kind {
+            InsertSpec::Pack { spec, .. } => match spec.target {
+                clump_core::insert::PackTarget::Count(_) => "count",
+                clump_core::insert::PackTarget::VolumeFraction(_) => "volume_fraction",
+            },
+            InsertSpec::Stream { .. } => "region",
+            InsertSpec::File { .. } => "file",
+        };
+        ScenarioError::one(src.error_at(&[Seg::K("insert"), Seg::I(index), Seg::K(key)], message))
+    }
+}

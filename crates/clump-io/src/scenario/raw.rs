@@ -1,0 +1,531 @@
+//! The scenario file as written (serde structures, `deny_unknown_fields`).
+//!
+//! These types mirror the TOML layout one to one; units are SI and are stated
+//! on every field. Validation and cross-references are resolved in
+//! [`super::build`]. See `docs/scenario.md` for the reference.
+
+use clump_core::contact::{DampingLaw, RollingLaw};
+use clump_core::insert::FractionBasis;
+use clump_core::multi_contact::MultiContact;
+use clump_core::rotation::RotationScheme;
+use serde::de::{self, Visitor};
+use serde::{Deserialize, Deserializer};
+use std::fmt;
+
+/// The whole scenario file.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScenario {
+    /// `[simulation]`: time step, gravity, duration.
+    pub simulation: Option<RawSimulation>,
+    /// `[domain]`: simulation box and periodic axes.
+    pub domain: Option<RawDomain>,
+    /// `[integrator]`: rotation scheme, added mass.
+    #[serde(default)]
+    pub integrator: RawIntegrator,
+    /// `[[material]]` entries.
+    #[serde(default)]
+    pub material: Vec<RawMaterial>,
+    /// `[contact]`: default contact properties for pairs not listed.
+    #[serde(default)]
+    pub contact: RawContact,
+    /// `[[pair]]` entries: contact properties of one pair of materials.
+    #[serde(default)]
+    pub pair: Vec<RawPair>,
+    /// `[[template]]` entries: clump shapes.
+    #[serde(default)]
+    pub template: Vec<RawTemplate>,
+    /// `[[mix]]` entries: particle mixes.
+    #[serde(default)]
+    pub mix: Vec<RawMix>,
+    /// `[[insert]]` entries.
+    #[serde(default)]
+    pub insert: Vec<RawInsert>,
+    /// `[[wall]]` entries.
+    #[serde(default)]
+    pub wall: Vec<RawWall>,
+    /// `[[stage]]` entries, run in order.
+    #[serde(default)]
+    pub stage: Vec<RawStage>,
+    /// `[output]`.
+    #[serde(default)]
+    pub output: RawOutput,
+}
+
+/// A time step: a number of seconds or `"auto"`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DtSpec {
+    /// Explicit time step, s.
+    Fixed(f64),
+    /// `dt_fraction` × the Rayleigh time of the smallest sphere.
+    Auto,
+}
+
+impl<'de> Deserialize<'de> for DtSpec {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = DtSpec;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a time step in s (a number such as 1e-5) or \"auto\"")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<DtSpec, E> {
+                Ok(DtSpec::Fixed(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<DtSpec, E> {
+                Ok(DtSpec::Fixed(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<DtSpec, E> {
+                Ok(DtSpec::Fixed(v as f64))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<DtSpec, E> {
+                if v == "auto" {
+                    Ok(DtSpec::Auto)
+                } else {
+                    Err(E::invalid_value(de::Unexpected::Str(v), &self))
+                }
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// `[simulation]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSimulation {
+    /// Time step, s, or `"auto"` (default `"auto"`).
+    pub dt: Option<DtSpec>,
+    /// Fraction of the Rayleigh time used by `dt = "auto"` (default 0.2).
+    pub dt_fraction: Option<f64>,
+    /// Gravity, world frame, m/s² (default `[0, 0, -9.81]`).
+    pub gravity: Option<[f64; 3]>,
+    /// Duration of the single implicit stage when there is no `[[stage]]`, s.
+    pub duration: Option<f64>,
+    /// Steps of the single implicit stage when there is no `[[stage]]`.
+    pub steps: Option<u64>,
+    /// Verlet skin, m (default 20 % of the smallest sphere radius).
+    pub skin: Option<f64>,
+    /// Several-contact treatment between two bodies (default `"sum"`).
+    pub multi_contact: Option<MultiContact>,
+}
+
+/// A coordinate axis name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AxisName {
+    /// x.
+    X,
+    /// y.
+    Y,
+    /// z.
+    Z,
+}
+
+/// `[domain]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDomain {
+    /// Lower corner, world frame, m.
+    pub lo: Option<[f64; 3]>,
+    /// Upper corner, world frame, m.
+    pub hi: Option<[f64; 3]>,
+    /// Periodic axes, e.g. `["x", "y"]` (default none).
+    #[serde(default)]
+    pub periodic: Vec<AxisName>,
+}
+
+/// `[integrator]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawIntegrator {
+    /// Rotation scheme (default the engine's, `"no_squish"`).
+    pub rotation: Option<RotationScheme>,
+    /// `[integrator.added_mass]`.
+    pub added_mass: Option<RawAddedMass>,
+}
+
+/// `[integrator.added_mass]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawAddedMass {
+    /// Added-mass coefficient (dimensionless, default 0.5).
+    pub coefficient: Option<f64>,
+    /// Fluid density, kg/m³.
+    pub fluid_density: Option<f64>,
+}
+
+/// `[[material]]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMaterial {
+    /// Name used by templates, walls and pairs.
+    pub name: Option<String>,
+    /// Young's modulus, Pa.
+    pub youngs_modulus: Option<f64>,
+    /// Poisson's ratio (dimensionless).
+    pub poisson_ratio: Option<f64>,
+    /// Density, kg/m³.
+    pub density: Option<f64>,
+}
+
+/// Normal force law name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LawName {
+    /// Hertz–Mindlin.
+    Hertz,
+    /// Linear spring–dashpot (needs `kn`, `kt`).
+    Linear,
+}
+
+/// `[contact]`: defaults for every pair of materials.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawContact {
+    /// Coefficient of restitution (dimensionless).
+    pub restitution: Option<f64>,
+    /// Sliding friction coefficient (dimensionless).
+    pub friction: Option<f64>,
+    /// Rolling friction coefficient (dimensionless).
+    pub rolling_friction: Option<f64>,
+    /// Normal law.
+    pub law: Option<LawName>,
+    /// Linear normal stiffness, N/m.
+    pub kn: Option<f64>,
+    /// Linear tangential stiffness, N/m.
+    pub kt: Option<f64>,
+    /// Damping law.
+    pub damping: Option<DampingLaw>,
+    /// Rolling resistance law.
+    pub rolling: Option<RollingLaw>,
+}
+
+/// `[[pair]]`: like `[contact]` for one pair of materials.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPair {
+    /// The two material names.
+    pub materials: Option<Vec<String>>,
+    /// Coefficient of restitution (dimensionless).
+    pub restitution: Option<f64>,
+    /// Sliding friction coefficient (dimensionless).
+    pub friction: Option<f64>,
+    /// Rolling friction coefficient (dimensionless).
+    pub rolling_friction: Option<f64>,
+    /// Normal law.
+    pub law: Option<LawName>,
+    /// Linear normal stiffness, N/m.
+    pub kn: Option<f64>,
+    /// Linear tangential stiffness, N/m.
+    pub kt: Option<f64>,
+    /// Damping law.
+    pub damping: Option<DampingLaw>,
+    /// Rolling resistance law.
+    pub rolling: Option<RollingLaw>,
+}
+
+/// Built-in template shape name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShapeName {
+    /// One sphere.
+    Sphere,
+    /// `n` spheres in a row.
+    Rod,
+    /// 4 spheres on a regular tetrahedron.
+    Tetrahedron,
+    /// 8 spheres on the corners of a cube.
+    CubeOctet,
+}
+
+/// `[[template]]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawTemplate {
+    /// Name.
+    pub name: Option<String>,
+    /// Material name.
+    pub material: Option<String>,
+    /// Inline spheres `[x, y, z, r]`, m (input frame).
+    pub spheres: Option<Vec<[f64; 4]>>,
+    /// LIGGGHTS `x y z r` file, relative to the scenario file.
+    pub file: Option<String>,
+    /// Built-in shape.
+    pub shape: Option<ShapeName>,
+    /// Sphere radius of a built-in shape, m.
+    pub radius: Option<f64>,
+    /// Number of spheres of a rod.
+    pub n: Option<u32>,
+    /// Centre spacing of a rod, m.
+    pub spacing: Option<f64>,
+    /// Edge of a tetrahedron or cube, m.
+    pub edge: Option<f64>,
+    /// Length scale factor applied to the spheres (dimensionless, default 1).
+    pub scale: Option<f64>,
+    /// Mass override, kg (needs `inertia`).
+    pub mass: Option<f64>,
+    /// Inertia tensor override about the centre of mass, input frame, kg m².
+    pub inertia: Option<[[f64; 3]; 3]>,
+}
+
+/// Size distribution kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SizeKind {
+    /// A fixed scale.
+    Fixed,
+    /// Uniform in `[min, max]`.
+    Uniform,
+    /// Normal truncated to `[min, max]`.
+    Normal,
+}
+
+/// Size distribution of one mix component (scale factors, dimensionless).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSize {
+    /// Kind of distribution.
+    pub distribution: Option<SizeKind>,
+    /// Scale of a fixed distribution.
+    pub scale: Option<f64>,
+    /// Smallest scale.
+    pub min: Option<f64>,
+    /// Largest scale.
+    pub max: Option<f64>,
+    /// Mean scale (normal).
+    pub mean: Option<f64>,
+    /// Standard deviation of the scale (normal).
+    pub std: Option<f64>,
+}
+
+/// One `[[mix.component]]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawComponent {
+    /// Template name.
+    pub template: Option<String>,
+    /// Relative share (by number or mass), default 1.
+    pub fraction: Option<f64>,
+    /// Size distribution (default: the template as is).
+    pub size: Option<RawSize>,
+}
+
+/// `[[mix]]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMix {
+    /// Name.
+    pub name: Option<String>,
+    /// `"number"` (default) or `"mass"`.
+    pub basis: Option<FractionBasis>,
+    /// Components.
+    #[serde(default)]
+    pub component: Vec<RawComponent>,
+}
+
+/// Region kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RegionKind {
+    /// Axis-aligned box.
+    Box,
+    /// Finite cylinder.
+    Cylinder,
+}
+
+/// An insertion region.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRegion {
+    /// `"box"` or `"cylinder"`.
+    #[serde(rename = "type")]
+    pub kind: Option<RegionKind>,
+    /// Box lower corner, m.
+    pub lo: Option<[f64; 3]>,
+    /// Box upper corner, m.
+    pub hi: Option<[f64; 3]>,
+    /// Cylinder: centre of the bottom disc, m.
+    pub base: Option<[f64; 3]>,
+    /// Cylinder axis (unit vector, default `[0, 0, 1]`).
+    pub axis: Option<[f64; 3]>,
+    /// Cylinder radius, m.
+    pub radius: Option<f64>,
+    /// Cylinder height, m.
+    pub height: Option<f64>,
+}
+
+/// Insertion kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InsertKind {
+    /// Bodies listed in a CSV file.
+    File,
+    /// Random packing of a region.
+    Pack,
+    /// Stream through a region at a rate.
+    Stream,
+}
+
+/// `[[insert]]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawInsert {
+    /// `"file"`, `"pack"` or `"stream"`.
+    pub kind: Option<InsertKind>,
+    /// Stage in which it happens (default the first).
+    pub stage: Option<String>,
+    /// CSV file (kind = "file"), relative to the scenario file.
+    pub file: Option<String>,
+    /// Mix name.
+    pub mix: Option<String>,
+    /// Template name (instead of a mix).
+    pub template: Option<String>,
+    /// Number of bodies (pack; stream: optional limit).
+    pub count: Option<u64>,
+    /// Solid volume fraction of the region (pack).
+    pub volume_fraction: Option<f64>,
+    /// Region.
+    pub region: Option<RawRegion>,
+    /// Random seed (default 1).
+    pub seed: Option<u64>,
+    /// Initial velocity, world frame, m/s.
+    pub velocity: Option<[f64; 3]>,
+    /// Fixed orientation quaternion `[w, x, y, z]` (default random).
+    pub orientation: Option<[f64; 4]>,
+    /// Stream rate, bodies/s.
+    pub bodies_per_second: Option<f64>,
+    /// Stream rate, kg/s.
+    pub kg_per_second: Option<f64>,
+    /// Stream start, s after the stage start.
+    pub start: Option<f64>,
+    /// Stream end, s after the stage start (default the end of the stage).
+    pub end: Option<f64>,
+    /// Placement attempts per body.
+    pub max_attempts: Option<u32>,
+}
+
+/// Wall kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WallKind {
+    /// Infinite plane.
+    Plane,
+    /// Infinite cylinder.
+    Cylinder,
+    /// Axis-aligned box.
+    Box,
+}
+
+/// `[[wall]]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawWall {
+    /// Name.
+    pub name: Option<String>,
+    /// Material name.
+    pub material: Option<String>,
+    /// `"plane"`, `"cylinder"`, `"box"`.
+    #[serde(rename = "type")]
+    pub kind: Option<WallKind>,
+    /// Plane: a point; cylinder: a point on the axis, m.
+    pub point: Option<[f64; 3]>,
+    /// Plane unit normal (towards the particles).
+    pub normal: Option<[f64; 3]>,
+    /// Cylinder unit axis.
+    pub axis: Option<[f64; 3]>,
+    /// Cylinder radius, m.
+    pub radius: Option<f64>,
+    /// Cylinder/box: particles inside (default true).
+    pub inside: Option<bool>,
+    /// Box lower corner, m.
+    pub lo: Option<[f64; 3]>,
+    /// Box upper corner, m.
+    pub hi: Option<[f64; 3]>,
+    /// Translation velocity, m/s.
+    pub velocity: Option<[f64; 3]>,
+    /// Angular velocity about `center`, rad/s.
+    pub angular_velocity: Option<[f64; 3]>,
+    /// Centre of rotation, m.
+    pub center: Option<[f64; 3]>,
+    /// Extra tangential surface velocity, m/s.
+    pub surface_velocity: Option<[f64; 3]>,
+    /// Several-contact treatment.
+    pub multi_contact: Option<MultiContact>,
+    /// Whether the wall is active at the start (default true).
+    pub active: Option<bool>,
+}
+
+/// `[[stage.wall]]`: a change to one wall at the start of a stage.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawWallChange {
+    /// Wall name.
+    pub name: Option<String>,
+    /// Set active/inactive.
+    pub active: Option<bool>,
+    /// New translation velocity, m/s.
+    pub velocity: Option<[f64; 3]>,
+    /// New angular velocity, rad/s.
+    pub angular_velocity: Option<[f64; 3]>,
+    /// New centre of rotation, m.
+    pub center: Option<[f64; 3]>,
+    /// New surface velocity, m/s.
+    pub surface_velocity: Option<[f64; 3]>,
+}
+
+/// `[[stage]]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStage {
+    /// Name (default `stage1`, `stage2`, …).
+    pub name: Option<String>,
+    /// Duration, s.
+    pub duration: Option<f64>,
+    /// Duration in steps.
+    pub steps: Option<u64>,
+    /// New gravity from this stage on, m/s².
+    pub gravity: Option<[f64; 3]>,
+    /// Wall changes.
+    #[serde(default)]
+    pub wall: Vec<RawWallChange>,
+}
+
+/// An output interval.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawEvery {
+    /// Interval, s.
+    pub every: Option<f64>,
+    /// Interval, steps.
+    pub every_steps: Option<u64>,
+}
+
+/// `[output.trajectory]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawTrajectory {
+    /// Body ids (1-based global ids, in insertion order).
+    #[serde(default)]
+    pub bodies: Vec<u64>,
+    /// Interval, s.
+    pub every: Option<f64>,
+    /// Interval, steps.
+    pub every_steps: Option<u64>,
+}
+
+/// `[output]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOutput {
+    /// Output directory, relative to the working directory (default `out`).
+    pub directory: Option<String>,
+    /// VTK interval.
+    pub vtk: Option<RawEvery>,
+    /// Thermo interval.
+    pub thermo: Option<RawEvery>,
+    /// Checkpoint interval.
+    pub checkpoint: Option<RawEvery>,
+    /// Trajectories.
+    pub trajectory: Option<RawTrajectory>,
+}

@@ -1,0 +1,170 @@
+//! `thermo.csv`: one row of global quantities per thermo output (SI units,
+//! world frame).
+//!
+//! Columns: `time` (s), `step`, `bodies`, `contacts` (pair + wall),
+//! `pair_contacts`, `wall_contacts`, `ke_translational` (J),
+//! `ke_rotational` (J), `elastic_energy` (J), `potential_energy` (J),
+//! `max_overlap_ratio`, `lost_bodies`, then per wall
+//! `<name>_fx,<name>_fy,<name>_fz` (N) and `<name>_tx,<name>_ty,<name>_tz`
+//! (N m, about the wall's motion centre): the load the particles exert on it.
+//!
+//! The file is an append-only log: each row is flushed as it is written, so
+//! an interrupted run keeps every row written so far (a row cut by a crash is
+//! dropped on resume). This is deliberately not written through
+//! [`crate::atomic`]: rewriting the whole log at every row would be
+//! quadratic. On resume, [`ThermoWriter::resume`] rewrites the file
+//! atomically without the rows after the resume step and then appends.
+
+use crate::atomic::write_atomic;
+use clump_core::thermo::Thermo;
+use std::fs::{File, OpenOptions};
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// Writes `thermo.csv` rows.
+pub struct ThermoWriter {
+    path: PathBuf,
+    header: String,
+    n_walls: usize,
+    out: BufWriter<File>,
+}
+
+/// Formats a float so that it reads back exactly (shortest round-trip),
+/// in exponent notation for very small or large magnitudes.
+pub fn fmt_f64(v: f64) -> String {
+    let a = v.abs();
+    if v == 0.0 || (1e-4..1e15).contains(&a) || !v.is_finite() {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// A wall name usable in a CSV column: characters other than ASCII letters,
+/// digits, `_`, `-` and `.` become `_`.
+pub fn column_name(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.' { c } else { '_' })
+        .collect();
+    if s.is_empty() {
+        "wall".into()
+    } else {
+        s
+    }
+}
+
+impl ThermoWriter {
+    /// The header line (without newline) for the given wall names.
+    pub fn header(wall_names: &[String]) -> String {
+        let mut h = String::from(
+            "time,step,bodies,contacts,pair_contacts,wall_contacts,ke_translational,ke_rotational,\
+             elastic_energy,potential_energy,max_overlap_ratio,lost_bodies",
+        );
+        let mut used: Vec<String> = Vec::new();
+        for (i, n) in wall_names.iter().enumerate() {
+            let mut c = column_name(n);
+            if used.contains(&c) {
+                c = format!("{c}_{i}");
+            }
+            used.push(c.clone());
+            for s in ["fx", "fy", "fz", "tx", "ty", "tz"] {
+                h.push_str(&format!(",{c}_{s}"));
+            }
+        }
+        h
+    }
+
+    /// Creates (truncates) `path` and writes the header.
+    pub fn create(path: impl AsRef<Path>, wall_names: &[String]) -> io::Result<Self> {
+        let path = path.as_ref().to_path_buf();
+        let header = Self::header(wall_names);
+        write_atomic(&path, format!("{header}\n").as_bytes())?;
+        Self::open_append(path, header, wall_names.len())
+    }
+
+    /// Reopens `path` for a resumed run: keeps the header and the complete
+    /// rows with `step ≤ resume_step`, drops the others, then appends. A
+    /// missing file is created. Fails if the existing header differs (the
+    /// walls changed).
+    pub fn resume(path: impl AsRef<Path>, wall_names: &[String], resume_step: u64) -> io::Result<Self> {
+        let path = path.as_ref().to_path_buf();
+        let header = Self::header(wall_names);
+        let text = match std::fs::read(&path) {
+            Ok(b) => String::from_utf8_lossy(&b).into_owned(),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => return Self::create(path, wall_names),
+            Err(e) => return Err(io::Error::new(e.kind(), format!("cannot read {}: {e}", path.display()))),
+        };
+        let mut lines = text.split_inclusive('\n');
+        let first = lines.next().unwrap_or("").trim_end();
+        if first != header {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!(
+                    "{}: the header does not match this run's columns (were walls added, removed or renamed?); found `{first}`, expected `{header}`",
+                    path.display()
+                ),
+            ));
+        }
+        let mut keep = format!("{header}\n");
+        for line in lines {
+            if !line.ends_with('\n') {
+                break; // a row cut by an interruption
+            }
+            let step = line.split(',').nth(1).and_then(|s| s.trim().parse::<u64>().ok());
+            match step {
+                Some(s) if s <= resume_step => keep.push_str(line),
+                _ => {}
+            }
+        }
+        write_atomic(&path, keep.as_bytes())?;
+        Self::open_append(path, header, wall_names.len())
+    }
+
+    fn open_append(path: PathBuf, header: String, n_walls: usize) -> io::Result<Self> {
+        let f = OpenOptions::new()
+            .append(true)
+            .open(&path)
+            .map_err(|e| io::Error::new(e.kind(), format!("cannot open {} for appending: {e}", path.display())))?;
+        Ok(ThermoWriter { path, header, n_walls, out: BufWriter::new(f) })
+    }
+
+    /// The file path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The header line.
+    pub fn header_line(&self) -> &str {
+        &self.header
+    }
+
+    /// Appends one row and flushes it to the file.
+    pub fn write(&mut self, t: &Thermo) -> io::Result<()> {
+        let mut row = format!(
+            "{},{},{},{},{},{},{},{},{},{},{},{}",
+            fmt_f64(t.time),
+            t.step,
+            t.bodies,
+            t.pair_contacts + t.wall_contacts,
+            t.pair_contacts,
+            t.wall_contacts,
+            fmt_f64(t.kinetic_translational),
+            fmt_f64(t.kinetic_rotational),
+            fmt_f64(t.elastic),
+            fmt_f64(t.potential),
+            fmt_f64(t.max_overlap_ratio),
+            t.lost_bodies
+        );
+        for i in 0..self.n_walls {
+            let l = t.wall_loads.get(i).copied().unwrap_or_default();
+            for v in [l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z] {
+                row.push(',');
+                row.push_str(&fmt_f64(v));
+            }
+        }
+        row.push('\n');
+        self.out.write_all(row.as_bytes())?;
+        self.out.flush()
+    }
+}

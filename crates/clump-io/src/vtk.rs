@@ -1,0 +1,543 @@
+//! ParaView-ready VTK XML PolyData (`.vtp`) output with binary appended raw
+//! data (`<AppendedData encoding="raw">`, `header_type="UInt64"`, little
+//! endian), and `.pvd` time-series collections.
+//!
+//! Three files per output frame, all in the world frame, SI units:
+//! - **spheres**: points = sphere centres (m); point data `radius` (m),
+//!   `body_id` (global body id, UInt64), `velocity` (m/s). One vertex cell per
+//!   point, so every representation (Point Gaussian, Glyph) works.
+//! - **bodies**: points = centres of mass (m); point data `body_id`,
+//!   `quaternion` (4 components w, x, y, z, body → world), `ex`, `ey`, `ez`
+//!   (the body-frame axes expressed in the world frame, for glyphs),
+//!   `velocity` (m/s), `angular_velocity` (rad/s, world), `template` (index),
+//!   `mass` (kg).
+//! - **walls**: one polygon per face: planes clipped to the domain box,
+//!   cylinders tessellated with [`CYLINDER_SEGMENTS`] quads over the domain's
+//!   extent along their axis, boxes as 6 quads; cell data `wall_index` and
+//!   `active` (1/0).
+//!
+//! Sphere positions are recomputed from the body poses (so a frame written
+//! right after inserting bodies is correct); they are not wrapped into a
+//! periodic box. [`VtkSeries`] writes the three files as
+//! `spheres_000123.vtp`, `bodies_000123.vtp`, `walls_000123.vtp` and keeps
+//! `spheres.pvd`, `bodies.pvd`, `walls.pvd` up to date. Every file is
+//! written atomically ([`crate::atomic`]).
+
+use crate::atomic::write_atomic;
+use clump_core::boundary::Domain;
+use clump_core::wall::WallShape;
+use clump_core::world::World;
+use glam::DVec3;
+use std::fmt::Write as _;
+use std::io;
+use std::path::{Path, PathBuf};
+
+/// Number of segments around a cylinder wall.
+pub const CYLINDER_SEGMENTS: usize = 64;
+
+/// Element types of the data arrays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Ty {
+    F64,
+    I64,
+    U64,
+    I32,
+    U8,
+}
+
+impl Ty {
+    fn name(self) -> &'static str {
+        match self {
+            Ty::F64 => "Float64",
+            Ty::I64 => "Int64",
+            Ty::U64 => "UInt64",
+            Ty::I32 => "Int32",
+            Ty::U8 => "UInt8",
+        }
+    }
+}
+
+struct Array {
+    name: String,
+    ty: Ty,
+    components: usize,
+    offset: usize,
+}
+
+/// Assembles one `.vtp` file: arrays go to the appended block as they are added.
+#[derive(Default)]
+struct Vtp {
+    data: Vec<u8>,
+    point_data: Vec<Array>,
+    cell_data: Vec<Array>,
+    points: Option<Array>,
+    verts: Vec<Array>,
+    polys: Vec<Array>,
+    n_points: usize,
+    n_verts: usize,
+    n_polys: usize,
+}
+
+impl Vtp {
+    fn push_block(&mut self, name: &str, ty: Ty, components: usize, bytes: Vec<u8>) -> Array {
+        let offset = self.data.len();
+        self.data.extend_from_slice(&(bytes.len() as u64).to_le_bytes());
+        self.data.extend_from_slice(&bytes);
+        Array { name: name.to_string(), ty, components, offset }
+    }
+
+    fn f64s(values: impl Iterator<Item = f64>) -> Vec<u8> {
+        let mut b = Vec::new();
+        for v in values {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        b
+    }
+
+    fn vec3s<'a>(values: impl Iterator<Item = &'a DVec3>) -> Vec<u8> {
+        Self::f64s(values.flat_map(|v| [v.x, v.y, v.z]))
+    }
+
+    fn set_points(&mut self, pts: &[DVec3]) {
+        self.n_points = pts.len();
+        let a = self.push_block("Points", Ty::F64, 3, Self::vec3s(pts.iter()));
+        self.points = Some(a);
+    }
+
+    fn point_vec3(&mut self, name: &str, v: &[DVec3]) {
+        let a = self.push_block(name, Ty::F64, 3, Self::vec3s(v.iter()));
+        self.point_data.push(a);
+    }
+
+    fn point_f64(&mut self, name: &str, comps: usize, v: impl Iterator<Item = f64>) {
+        let a = self.push_block(name, Ty::F64, comps, Self::f64s(v));
+        self.point_data.push(a);
+    }
+
+    fn point_u64(&mut self, name: &str, v: impl Iterator<Item = u64>) {
+        let bytes: Vec<u8> = v.flat_map(|x| x.to_le_bytes()).collect();
+        let a = self.push_block(name, Ty::U64, 1, bytes);
+        self.point_data.push(a);
+    }
+
+    fn point_i32(&mut self, name: &str, v: impl Iterator<Item = i32>) {
+        let bytes: Vec<u8> = v.flat_map(|x| x.to_le_bytes()).collect();
+        let a = self.push_block(name, Ty::I32, 1, bytes);
+        self.point_data.push(a);
+    }
+
+    fn cell_i32(&mut self, name: &str, v: impl Iterator<Item = i32>) {
+        let bytes: Vec<u8> = v.flat_map(|x| x.to_le_bytes()).collect();
+        let a = self.push_block(name, Ty::I32, 1, bytes);
+        self.cell_data.push(a);
+    }
+
+    fn cell_u8(&mut self, name: &str, v: impl Iterator<Item = u8>) {
+        let bytes: Vec<u8> = v.collect();
+        let a = self.push_block(name, Ty::U8, 1, bytes);
+        self.cell_data.push(a);
+    }
+
+    /// One vertex cell per point.
+    fn vertex_cells(&mut self) {
+        let n = self.n_points as i64;
+        self.n_verts = self.n_points;
+        let conn: Vec<u8> = (0..n).flat_map(|i| i.to_le_bytes()).collect();
+        let offs: Vec<u8> = (1..=n).flat_map(|i| i.to_le_bytes()).collect();
+        let a = self.push_block("connectivity", Ty::I64, 1, conn);
+        let b = self.push_block("offsets", Ty::I64, 1, offs);
+        self.verts = vec![a, b];
+    }
+
+    /// Polygons given as lists of point indices.
+    fn polygons(&mut self, polys: &[Vec<i64>]) {
+        self.n_polys = polys.len();
+        let mut conn = Vec::new();
+        let mut offs = Vec::new();
+        let mut end = 0i64;
+        for p in polys {
+            for &i in p {
+                conn.extend_from_slice(&i.to_le_bytes());
+            }
+            end += p.len() as i64;
+            offs.extend_from_slice(&end.to_le_bytes());
+        }
+        let a = self.push_block("connectivity", Ty::I64, 1, conn);
+        let b = self.push_block("offsets", Ty::I64, 1, offs);
+        self.polys = vec![a, b];
+    }
+
+    fn finish(self) -> Vec<u8> {
+        let mut x = String::new();
+        let arr = |x: &mut String, a: &Array, indent: &str| {
+            let _ = writeln!(
+                x,
+                "{indent}<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{}\"/>",
+                a.ty.name(),
+                a.name,
+                a.components,
+                a.offset
+            );
+        };
+        x.push_str("<?xml version=\"1.0\"?>\n");
+        x.push_str("<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
+        x.push_str("  <PolyData>\n");
+        let _ = writeln!(
+            x,
+            "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"{}\">",
+            self.n_points, self.n_verts, self.n_polys
+        );
+        x.push_str("      <PointData>\n");
+        for a in &self.point_data {
+            arr(&mut x, a, "        ");
+        }
+        x.push_str("      </PointData>\n      <CellData>\n");
+        for a in &self.cell_data {
+            arr(&mut x, a, "        ");
+        }
+        x.push_str("      </CellData>\n      <Points>\n");
+        if let Some(a) = &self.points {
+            arr(&mut x, a, "        ");
+        }
+        x.push_str("      </Points>\n");
+        for (tag, list) in [("Verts", &self.verts), ("Polys", &self.polys)] {
+            if !list.is_empty() {
+                let _ = writeln!(x, "      <{tag}>");
+                for a in list {
+                    arr(&mut x, a, "        ");
+                }
+                let _ = writeln!(x, "      </{tag}>");
+            }
+        }
+        x.push_str("    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _");
+        let mut out = x.into_bytes();
+        out.extend_from_slice(&self.data);
+        out.extend_from_slice(b"\n  </AppendedData>\n</VTKFile>\n");
+        out
+    }
+}
+
+/// The spheres file (see the [module docs](self)) as bytes.
+pub fn spheres_vtp(world: &World) -> Vec<u8> {
+    let b = &world.bodies;
+    let mut pos = Vec::new();
+    let mut vel = Vec::new();
+    let mut rad = Vec::new();
+    let mut ids = Vec::new();
+    for i in 0..b.len() {
+        let t = &world.templates[b.template[i] as usize];
+        let (x, q, v, w) = (b.position[i], b.orientation[i], b.velocity[i], b.angular_velocity[i]);
+        for s in &t.spheres {
+            let c = x + q * s.center;
+            pos.push(c);
+            vel.push(v + w.cross(c - x));
+            rad.push(s.radius);
+            ids.push(b.id[i]);
+        }
+    }
+    let mut f = Vtp::default();
+    f.set_points(&pos);
+    f.point_f64("radius", 1, rad.into_iter());
+    f.point_u64("body_id", ids.into_iter());
+    f.point_vec3("velocity", &vel);
+    f.vertex_cells();
+    f.finish()
+}
+
+/// The bodies file (see the [module docs](self)) as bytes.
+pub fn bodies_vtp(world: &World) -> Vec<u8> {
+    let b = &world.bodies;
+    let mut f = Vtp::default();
+    f.set_points(&b.position);
+    f.point_u64("body_id", b.id.iter().copied());
+    f.point_f64("quaternion", 4, b.orientation.iter().flat_map(|q| [q.w, q.x, q.y, q.z]));
+    for (name, axis) in [("ex", DVec3::X), ("ey", DVec3::Y), ("ez", DVec3::Z)] {
+        let v: Vec<DVec3> = b.orientation.iter().map(|q| *q * axis).collect();
+        f.point_vec3(name, &v);
+    }
+    f.point_vec3("velocity", &b.velocity);
+    f.point_vec3("angular_velocity", &b.angular_velocity);
+    f.point_i32("template", b.template.iter().map(|&t| t as i32));
+    f.point_f64("mass", 1, b.mass.iter().copied());
+    f.vertex_cells();
+    f.finish()
+}
+
+/// Polygon (3–6 vertices, ordered) of the plane through `p` with unit
+/// normal `n` clipped to the box; a domain-sized square centred on the
+/// projection of the box centre when the plane misses the box.
+fn clip_plane(p: DVec3, n: DVec3, d: &Domain) -> Vec<DVec3> {
+    let (lo, hi) = (d.lo, d.hi);
+    let corner = |k: usize| {
+        DVec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        )
+    };
+    let mut pts: Vec<DVec3> = Vec::new();
+    for a in 0..8usize {
+        for bit in [1usize, 2, 4] {
+            if a & bit != 0 {
+                continue;
+            }
+            let (ca, cb) = (corner(a), corner(a | bit));
+            let (sa, sb) = ((ca - p).dot(n), (cb - p).dot(n));
+            if sa == 0.0 {
+                pts.push(ca);
+            }
+            if sb == 0.0 {
+                pts.push(cb);
+            }
+            if (sa < 0.0 && sb > 0.0) || (sa > 0.0 && sb < 0.0) {
+                pts.push(ca + (cb - ca) * (sa / (sa - sb)));
+            }
+        }
+    }
+    let tol = 1e-12 * (hi - lo).length();
+    let mut uniq: Vec<DVec3> = Vec::new();
+    for q in pts {
+        if !uniq.iter().any(|u| (*u - q).length() <= tol) {
+            uniq.push(q);
+        }
+    }
+    let (e1, e2) = n.any_orthonormal_pair();
+    if uniq.len() < 3 {
+        let c0 = 0.5 * (lo + hi);
+        let c = c0 - n * (c0 - p).dot(n);
+        let h = 0.5 * (hi - lo).max_element();
+        return vec![c - e1 * h - e2 * h, c + e1 * h - e2 * h, c + e1 * h + e2 * h, c - e1 * h + e2 * h];
+    }
+    let c = uniq.iter().fold(DVec3::ZERO, |s, q| s + *q) / uniq.len() as f64;
+    uniq.sort_by(|a, b| {
+        let fa = (*a - c).dot(e2).atan2((*a - c).dot(e1));
+        let fb = (*b - c).dot(e2).atan2((*b - c).dot(e1));
+        fa.total_cmp(&fb)
+    });
+    uniq
+}
+
+/// The walls file (see the [module docs](self)) as bytes.
+pub fn walls_vtp(world: &World) -> Vec<u8> {
+    let d = &world.config.domain;
+    let mut pts: Vec<DVec3> = Vec::new();
+    let mut polys: Vec<Vec<i64>> = Vec::new();
+    let mut wall_index = Vec::new();
+    let mut active = Vec::new();
+    for (wi, w) in world.walls.iter().enumerate() {
+        let first = polys.len();
+        match w.shape {
+            WallShape::Plane { point, normal } => {
+                let poly = clip_plane(point, normal, d);
+                let base = pts.len() as i64;
+                polys.push((0..poly.len() as i64).map(|k| base + k).collect());
+                pts.extend(poly);
+            }
+            WallShape::Cylinder { point, axis, radius, .. } => {
+                let (mut t0, mut t1) = (f64::INFINITY, f64::NEG_INFINITY);
+                for k in 0..8 {
+                    let c = DVec3::new(
+                        if k & 1 == 0 { d.lo.x } else { d.hi.x },
+                        if k & 2 == 0 { d.lo.y } else { d.hi.y },
+                        if k & 4 == 0 { d.lo.z } else { d.hi.z },
+                    );
+                    let t = (c - point).dot(axis);
+                    t0 = t0.min(t);
+                    t1 = t1.max(t);
+                }
+                let (e1, e2) = axis.any_orthonormal_pair();
+                let base = pts.len() as i64;
+                let m = CYLINDER_SEGMENTS;
+                for k in 0..m {
+                    let phi = std::f64::consts::TAU * k as f64 / m as f64;
+                    let r = (e1 * phi.cos() + e2 * phi.sin()) * radius;
+                    pts.push(point + axis * t0 + r);
+                    pts.push(point + axis * t1 + r);
+                }
+                for k in 0..m {
+                    let k2 = (k + 1) % m;
+                    let (a0, a1, b0, b1) = (2 * k, 2 * k + 1, 2 * k2, 2 * k2 + 1);
+                    polys.push(vec![base + a0 as i64, base + b0 as i64, base + b1 as i64, base + a1 as i64]);
+                }
+            }
+            WallShape::Box { lo, hi, .. } => {
+                let base = pts.len() as i64;
+                for k in 0..8 {
+                    pts.push(DVec3::new(
+                        if k & 1 == 0 { lo.x } else { hi.x },
+                        if k & 2 == 0 { lo.y } else { hi.y },
+                        if k & 4 == 0 { lo.z } else { hi.z },
+                    ));
+                }
+                for face in [[0, 2, 6, 4], [1, 5, 7, 3], [0, 4, 5, 1], [2, 3, 7, 6], [0, 1, 3, 2], [4, 6, 7, 5]] {
+                    polys.push(face.iter().map(|&i| base + i).collect());
+                }
+            }
+        }
+        for _ in first..polys.len() {
+            wall_index.push(wi as i32);
+            active.push(w.active as u8);
+        }
+    }
+    let mut f = Vtp::default();
+    f.set_points(&pts);
+    f.polygons(&polys);
+    f.cell_i32("wall_index", wall_index.into_iter());
+    f.cell_u8("active", active.into_iter());
+    f.finish()
+}
+
+/// Writes the spheres file to `path` (atomically).
+pub fn write_spheres(path: impl AsRef<Path>, world: &World) -> io::Result<()> {
+    write_atomic(path, &spheres_vtp(world))
+}
+
+/// Writes the bodies file to `path` (atomically).
+pub fn write_bodies(path: impl AsRef<Path>, world: &World) -> io::Result<()> {
+    write_atomic(path, &bodies_vtp(world))
+}
+
+/// Writes the walls file to `path` (atomically).
+pub fn write_walls(path: impl AsRef<Path>, world: &World) -> io::Result<()> {
+    write_atomic(path, &walls_vtp(world))
+}
+
+/// A ParaView `.pvd` collection (time series), rewritten atomically on every
+/// append.
+#[derive(Debug, Clone)]
+pub struct PvdWriter {
+    path: PathBuf,
+    /// (time in s, file name relative to the .pvd's directory).
+    entries: Vec<(f64, String)>,
+}
+
+impl PvdWriter {
+    /// A new, empty collection at `path` (written at the first append).
+    pub fn new(path: impl Into<PathBuf>) -> Self {
+        PvdWriter { path: path.into(), entries: Vec::new() }
+    }
+
+    /// Reopens the collection at `path` for a resumed run, keeping the
+    /// entries with time ≤ `max_time` (s). A missing or unreadable file
+    /// starts an empty collection.
+    pub fn resume(path: impl Into<PathBuf>, max_time: f64) -> Self {
+        let path = path.into();
+        let mut entries = Vec::new();
+        if let Ok(text) = std::fs::read_to_string(&path) {
+            for line in text.lines() {
+                let (Some(t), Some(f)) = (attr(line, "timestep"), attr(line, "file")) else {
+                    continue;
+                };
+                if let Ok(t) = t.parse::<f64>() {
+                    if t <= max_time {
+                        entries.push((t, unescape(&f)));
+                    }
+                }
+            }
+        }
+        PvdWriter { path, entries }
+    }
+
+    /// The collection's path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The entries: (time in s, file name).
+    pub fn entries(&self) -> &[(f64, String)] {
+        &self.entries
+    }
+
+    /// Adds a data set at `time` (s), `file` relative to the .pvd's
+    /// directory, and rewrites the collection.
+    pub fn append(&mut self, time: f64, file: &str) -> io::Result<()> {
+        self.entries.push((time, file.to_string()));
+        self.write()
+    }
+
+    /// Rewrites the collection file atomically.
+    pub fn write(&self) -> io::Result<()> {
+        let mut x = String::from(
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n",
+        );
+        for (t, f) in &self.entries {
+            let _ = writeln!(x, "    <DataSet timestep=\"{t:e}\" group=\"\" part=\"0\" file=\"{}\"/>", escape(f));
+        }
+        x.push_str("  </Collection>\n</VTKFile>\n");
+        write_atomic(&self.path, x.as_bytes())
+    }
+}
+
+fn attr(line: &str, name: &str) -> Option<String> {
+    let key = format!(" {name}=\"");
+    let i = line.find(&key)? + key.len();
+    let j = line[i..].find('"')?;
+    Some(line[i..i + j].to_string())
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('"', "&quot;").replace('<', "&lt;").replace('>', "&gt;")
+}
+
+fn unescape(s: &str) -> String {
+    s.replace("&quot;", "\"").replace("&lt;", "<").replace("&gt;", ">").replace("&amp;", "&")
+}
+
+/// Writes spheres/bodies/walls frames into one directory and keeps the three
+/// `.pvd` collections current.
+#[derive(Debug, Clone)]
+pub struct VtkSeries {
+    dir: PathBuf,
+    spheres: PvdWriter,
+    bodies: PvdWriter,
+    walls: PvdWriter,
+}
+
+impl VtkSeries {
+    /// A new series in `dir` (created if missing).
+    pub fn new(dir: impl Into<PathBuf>) -> io::Result<Self> {
+        let dir = dir.into();
+        std::fs::create_dir_all(&dir).map_err(|e| io::Error::new(e.kind(), format!("cannot create {}: {e}", dir.display())))?;
+        Ok(VtkSeries {
+            spheres: PvdWriter::new(dir.join("spheres.pvd")),
+            bodies: PvdWriter::new(dir.join("bodies.pvd")),
+            walls: PvdWriter::new(dir.join("walls.pvd")),
+            dir,
+        })
+    }
+
+    /// Reopens a series in `dir` for a resumed run: collection entries after
+    /// `max_time` (s) are dropped (their frame files are overwritten later).
+    pub fn resume(dir: impl Into<PathBuf>, max_time: f64) -> io::Result<Self> {
+        let dir = dir.into();
+        std::fs::create_dir_all(&dir).map_err(|e| io::Error::new(e.kind(), format!("cannot create {}: {e}", dir.display())))?;
+        let s = VtkSeries {
+            spheres: PvdWriter::resume(dir.join("spheres.pvd"), max_time),
+            bodies: PvdWriter::resume(dir.join("bodies.pvd"), max_time),
+            walls: PvdWriter::resume(dir.join("walls.pvd"), max_time),
+            dir,
+        };
+        s.spheres.write()?;
+        s.bodies.write()?;
+        s.walls.write()?;
+        Ok(s)
+    }
+
+    /// The output directory.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Writes `spheres_<label>.vtp`, `bodies_<label>.vtp`, `walls_<label>.vtp`
+    /// (label zero-padded to 6 digits, e.g. the step number) at `world.time`
+    /// and appends them to the collections.
+    pub fn write_frame(&mut self, world: &World, label: u64) -> io::Result<()> {
+        let names = [format!("spheres_{label:06}.vtp"), format!("bodies_{label:06}.vtp"), format!("walls_{label:06}.vtp")];
+        write_spheres(self.dir.join(&names[0]), world)?;
+        write_bodies(self.dir.join(&names[1]), world)?;
+        write_walls(self.dir.join(&names[2]), world)?;
+        self.spheres.append(world.time, &names[0])?;
+        self.bodies.append(world.time, &names[1])?;
+        self.walls.append(world.time, &names[2])
+    }
+}

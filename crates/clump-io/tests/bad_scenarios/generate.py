@@ -1,0 +1,171 @@
+#!/usr/bin/env python3
+"""Regenerates the bad-scenario corpus from base_valid.toml.
+
+Each case edits the valid base scenario, writes NN_name.toml and
+NN_name.expected: one substring per line that the error message must
+contain, including `:LINE:` where LINE is the line of the offending key
+(found by a marker string in the edited text). Run from this folder:
+python3 generate.py
+"""
+import os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+BASE = open(os.path.join(HERE, "base_valid.toml")).read()
+
+
+def rep(old, new, count=1):
+    def f(t):
+        assert old in t, old
+        return t.replace(old, new, count)
+    return f
+
+
+def chain(*fs):
+    def f(t):
+        for g in fs:
+            t = g(t)
+        return t
+    return f
+
+
+def append(s):
+    return lambda t: t + s
+
+
+def line_of(text, marker, nth=1):
+    pos = -1
+    for _ in range(nth):
+        pos = text.index(marker, pos + 1)
+    return text[:pos].count("\n") + 1
+
+
+CASES = [
+    ("unknown_key_pair", rep("restitution = 0.4", "restitutoin = 0.4"), "restitutoin",
+     ["unknown key 'restitutoin' in [[pair]]", "did you mean 'restitution'?"]),
+    ("unknown_table", rep("[simulation]", "[simulaton]"), "[simulaton]",
+     ["unknown key 'simulaton' at the top level", "did you mean 'simulation'?"]),
+    ("unknown_key_material", rep("youngs_modulus = 5e6", "youngs = 5e6"), "youngs =",
+     ["unknown key 'youngs' in [[material]]", "did you mean 'youngs_modulus'?"]),
+    ("radius_with_unit", rep("radius = 0.002", 'radius = "2 mm"'), '"2 mm"',
+     ["wrong type for 'radius' in [[template]]: expected a number in m", "radius = 0.002"]),
+    ("friction_bool", rep("friction = 0.5", "friction = true"), "friction = true",
+     ["wrong type for 'friction' in [contact]: expected a number", "found boolean"]),
+    ("gravity_two_components", rep("gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, -9.81]"), "gravity",
+     ["'gravity' in [simulation]: expected an array of 3 numbers [x, y, z] in m/s^2"]),
+    ("rotation_typo", rep("[simulation]", '[integrator]\nrotation = "richardsen"\n\n[simulation]'), "richardsen",
+     ["invalid value \"richardsen\" for 'rotation' in [integrator]", 'did you mean "richardson"?', '"no_squish"']),
+    ("template_material_missing", rep('material = "rock"\nshape', 'material = "granite"\nshape'), '"granite"',
+     ["material 'granite' does not exist", "defined materials: 'rock' and 'steel'"]),
+    ("insert_template_missing", rep('mix = "pebbles"\ncount', 'template = "pebbel"\ncount'), '"pebbel"',
+     ["template 'pebbel' does not exist", "did you mean 'pebble'?"]),
+    ("insert_mix_missing", rep('mix = "pebbles"\ncount', 'mix = "gravel"\ncount'), '"gravel"',
+     ["mix 'gravel' does not exist", "defined mixes: 'pebbles'"]),
+    ("stage_wall_missing", rep('name = "gate"\nactive = false', 'name = "gat"\nactive = false'), '"gat"',
+     ["wall 'gat' does not exist", "did you mean 'gate'?", "defined walls: 'floor' and 'gate'"]),
+    ("insert_stage_missing", rep('stage = "fill"', 'stage = "filling"'), '"filling"',
+     ["stage 'filling' does not exist", "defined stages: 'fill' and 'drain'"]),
+    ("negative_radius_shape", rep("radius = 0.002", "radius = -0.002"), "-0.002",
+     ["'radius' must be > 0 m, found -0.002"]),
+    ("negative_radius_inline",
+     rep('shape = "tetrahedron"\nradius = 0.002\nedge = 0.0025', 'spheres = [\n    [0.0, 0.0, 0.0, 0.002],\n    [0.002, 0.0, 0.0, -0.001],\n]'),
+     "-0.001", ["sphere 1 of template has radius -0.001 m; radii must be > 0"]),
+    ("poisson_half", rep("poisson_ratio = 0.3", "poisson_ratio = 0.5"), "poisson_ratio = 0.5",
+     ["poisson_ratio must be < 0.5, found 0.5"]),
+    ("restitution_above_one", rep("restitution = 0.5", "restitution = 1.2"), "1.2",
+     ["restitution must lie in [0, 1], found 1.2"]),
+    ("negative_density", rep("density = 7800", "density = -7800"), "-7800",
+     ["density must be > 0 kg/m^3, found -7800"]),
+    ("dt_above_limit", rep('dt = "auto"', "dt = 1e-3"), "dt = 1e-3",
+     ["dt = 1e-3 s is above the stability limit", "Rayleigh time", "help: use dt <="]),
+    ("dt_fraction_too_big", rep('dt = "auto"', 'dt = "auto"\ndt_fraction = 0.8'), "dt_fraction",
+     ["dt_fraction must lie in (0, 0.5], found 0.8"]),
+    ("region_too_small", rep("count = 100", "count = 100000"), "count = 100000",
+     ["the region cannot hold 100000 bodies", "at most about"]),
+    ("template_file_missing", rep('shape = "tetrahedron"\nradius = 0.002\nedge = 0.0025', 'file = "no_such_stone.txt"'), "no_such_stone",
+     ["cannot read template file 'no_such_stone.txt'", "relative to the scenario file"]),
+    ("template_file_bad", rep('shape = "tetrahedron"\nradius = 0.002\nedge = 0.0025', 'file = "data_bad_template.txt"'), "data_bad_template",
+     ["template file 'data_bad_template.txt' is invalid", "data_bad_template.txt:3"]),
+    ("body_file_missing", rep('kind = "pack"\nstage = "fill"\nmix = "pebbles"\ncount = 100\nregion = { type = "box", lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1] }\nseed = 1', 'kind = "file"\nfile = "no_such_bodies.csv"'), "no_such_bodies",
+     ["cannot read body file 'no_such_bodies.csv'"]),
+    ("body_file_bad_column", rep('kind = "pack"\nstage = "fill"\nmix = "pebbles"\ncount = 100\nregion = { type = "box", lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1] }\nseed = 1', 'kind = "file"\nfile = "data_bad_bodies.csv"'), "data_bad_bodies",
+     ["data_bad_bodies.csv:2: unknown column 'vxx'"]),
+    ("missing_domain", rep('[domain]\nlo = [-0.1, -0.1, -0.01]\nhi = [0.1, 0.1, 0.3]\n', ''), None,
+     ["missing table [domain]", "lo = ["]),
+    ("missing_duration", rep('name = "fill"\nduration = 0.1', 'name = "fill"'), '[[stage]]',
+     ["missing key 'duration' in [[stage]]"]),
+    ("duration_and_steps", rep('name = "fill"\nduration = 0.1', 'name = "fill"\nduration = 0.1\nsteps = 100'), 'duration = 0.1',
+     ["give either 'duration' (s) or 'steps' in [[stage]], not both"]),
+    ("linear_without_kn", rep("friction = 0.5\n", 'friction = 0.5\nlaw = "linear"\n'), "[contact]",
+     ["missing key 'kn' in [contact]", "kn = 1e5"]),
+    ("kn_with_hertz", rep("friction = 0.3\n", "friction = 0.3\nkn = 1e5\n"), "kn = 1e5",
+     ["'kn' is only used with law = \"linear\""]),
+    ("plane_with_radius", rep("normal = [0.0, 0.0, 1.0]", "normal = [0.0, 0.0, 1.0]\nradius = 0.1"), "radius = 0.1",
+     ["'radius' does not apply to a wall of type \"plane\"", "a plane uses point, normal"]),
+    ("duplicate_material", rep('name = "steel"', 'name = "rock"'), 'name = "rock"',
+     ["duplicate material name 'rock'"], 2),
+    ("toml_syntax", rep("friction = 0.5", "friction = 0.5 0.6"), "0.6",
+     ["invalid TOML"]),
+    ("zero_normal", rep("normal = [0.0, 0.0, 1.0]", "normal = [0.0, 0.0, 0.0]"), "normal = [0.0, 0.0, 0.0]",
+     ["'normal' must be a non-zero direction vector"]),
+    ("pack_count_and_fraction", rep("count = 100", "count = 100\nvolume_fraction = 0.2"), "volume_fraction",
+     ["give either 'count' or 'volume_fraction', not both"]),
+    ("stream_without_rate", rep('kind = "pack"\nstage = "fill"\nmix = "pebbles"\ncount = 100', 'kind = "stream"\nstage = "fill"\nmix = "pebbles"'), "[[insert]]",
+     ["missing key 'bodies_per_second' in [[insert]] of kind \"stream\"", "kg_per_second"]),
+    ("template_two_sources", rep("edge = 0.0025", 'edge = 0.0025\nfile = "x.txt"'), 'file = "x.txt"',
+     ["gives more than one of 'spheres', 'file', 'shape'"]),
+    ("region_unknown_key", rep("hi = [0.05, 0.05, 0.1] }", "hi = [0.05, 0.05, 0.1], hieght = 0.1 }"), "hieght",
+     ["unknown key 'hieght'", "did you mean 'height'?"]),
+    ("pair_material_missing", rep('materials = ["rock", "steel"]', 'materials = ["rock", "stel"]'), '"stel"',
+     ["material 'stel' does not exist", "did you mean 'steel'?"]),
+    ("mass_without_inertia", rep("edge = 0.0025", "edge = 0.0025\nmass = 0.001"), "mass = 0.001",
+     ["'mass' needs 'inertia' too"]),
+    ("inertia_not_positive", rep("edge = 0.0025", "edge = 0.0025\nmass = 0.001\ninertia = [[1e-9, 0.0, 0.0], [0.0, -1e-9, 0.0], [0.0, 0.0, 1e-9]]"), "inertia =",
+     ["invalid inertia tensor"]),
+    ("size_max_below_min", rep("fraction = 1.0", 'fraction = 1.0\nsize = { distribution = "uniform", min = 1.2, max = 0.8 }'), "size =",
+     ["size 'max' (0.8) is below 'min' (1.2)"]),
+    ("volume_fraction_too_high", rep("count = 100", "volume_fraction = 0.6"), "volume_fraction",
+     ["volume_fraction 0.6 cannot be reached by random packing"]),
+    ("domain_hi_below_lo", rep("hi = [0.1, 0.1, 0.3]", "hi = [0.1, -0.2, 0.3]"), "hi = [0.1, -0.2",
+     ["domain 'hi'", "must be above 'lo'"]),
+    ("duplicate_pair", append('\n[[pair]]\nmaterials = ["steel", "rock"]\nfriction = 0.2\n'), 'materials = ["steel", "rock"]',
+     ["pair steel – rock is defined twice"]),
+    ("negative_friction", rep("friction = 0.3", "friction = -0.3"), "friction = -0.3",
+     ["'friction' must be >= 0, found -0.3"]),
+    ("periodic_axis_unknown", rep("hi = [0.1, 0.1, 0.3]", 'hi = [0.1, 0.1, 0.3]\nperiodic = ["x", "w"]'), '"w"',
+     ["invalid value \"w\" for 'periodic' in [domain]", '"x", "y", "z"']),
+    ("output_every_both", rep("thermo = { every_steps = 100 }", "thermo = { every = 0.01, every_steps = 100 }"), "thermo =",
+     ["give either 'every' (s) or 'every_steps', not both"]),
+    ("trajectory_body_zero", append("trajectory = { bodies = [0, 5] }\n"), "trajectory",
+     ["body ids start at 1"]),
+    ("wall_type_missing", rep('type = "plane"\n', ''), '[[wall]]',
+     ["missing key 'type' in [[wall]]", "type = \"plane\""]),
+    ("simulation_duration_with_stages", rep('dt = "auto"', 'dt = "auto"\nduration = 1.0'), "duration = 1.0",
+     ["'duration' in [simulation] conflicts with the [[stage]] list"]),
+    ("negative_dt", rep('dt = "auto"', 'dt = -1e-5'), "dt = -1e-5",
+     ["'dt' must be > 0 s, found -0.00001"]),
+    ("dt_bad_string", rep('dt = "auto"', 'dt = "fast"'), '"fast"',
+     ["wrong type for 'dt' in [simulation]", "\"auto\""]),
+]
+
+
+def main():
+    for f in os.listdir(HERE):
+        if f[:2].isdigit() and (f.endswith(".toml") or f.endswith(".expected")):
+            os.remove(os.path.join(HERE, f))
+    for k, case in enumerate(CASES, start=1):
+        name, fn, marker, subs = case[:4]
+        nth = case[4] if len(case) > 4 else 1
+        text = fn(BASE)
+        stem = f"{k:02d}_{name}"
+        with open(os.path.join(HERE, stem + ".toml"), "w") as f:
+            f.write(text)
+        lines = list(subs)
+        if marker is not None:
+            lines.append(f"{stem}.toml:{line_of(text, marker, nth)}:")
+        with open(os.path.join(HERE, stem + ".expected"), "w") as f:
+            f.write("\n".join(lines) + "\n")
+    print(len(CASES), "cases")
+
+
+if __name__ == "__main__":
+    main()
