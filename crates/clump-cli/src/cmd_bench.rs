@@ -114,8 +114,7 @@ fn which(name: &str) -> Option<PathBuf> {
 /// Builds the tetra-bed world from the shared files.
 pub fn build_world(dir: &Path, n: usize, skin: f64) -> Result<World> {
     let ztop = if n <= 2000 { 0.2 } else { 0.31 };
-    let text = std::fs::read_to_string(dir.join("tetra.xyzr")).with_context(|| format!("reading {}", dir.join("tetra.xyzr").display()))?;
-    let spheres = clump_io::template_file::parse_template(&text, &dir.join("tetra.xyzr")).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let spheres = clump_io::template_file::read_template_file(&dir.join("tetra.xyzr")).map_err(|e| anyhow::anyhow!("{e}"))?;
     let mat = Material { youngs_modulus: 5e6, poisson_ratio: 0.3, density: 2500.0 };
     let props = PairProperties { restitution: 0.5, friction: 0.5, damping: DampingLaw::Liggghts, ..PairProperties::default() };
     let mats = vec![mat];

@@ -7,6 +7,7 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+mod cmd_bench;
 mod cmd_check;
 mod cmd_resume;
 mod cmd_run;
@@ -30,6 +31,8 @@ enum Commands {
     Resume(cmd_resume::ResumeArgs),
     /// Mass properties of a multi-sphere template file (`x y z r` per line).
     Template(cmd_template::TemplateArgs),
+    /// The shared tetra-bed benchmark, optionally side by side with LIGGGHTS.
+    Bench(cmd_bench::BenchArgs),
 }
 
 fn main() -> ExitCode {
@@ -45,6 +48,13 @@ fn main() -> ExitCode {
         Commands::Run(a) => cmd_run::run(&a),
         Commands::Check(a) => cmd_check::run(&a),
         Commands::Resume(a) => cmd_resume::run(&a),
+        Commands::Bench(a) => match cmd_bench::run(&a) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e:#}");
+                ExitCode::from(1)
+            }
+        },
         Commands::Template(a) => match cmd_template::run(&a) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {

@@ -8,7 +8,7 @@ use crate::neighbor::{CellGrid, PairList};
 use crate::rotation::RotationScheme;
 use crate::shape::ClumpTemplate;
 use crate::sphere::Spheres;
-use crate::wall::{Wall, WallLoad};
+use crate::wall::{TriMesh, Wall, WallLoad, WallShape};
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -128,6 +128,9 @@ pub struct World {
     pub bodies: Bodies,
     /// The walls.
     pub walls: Vec<Wall>,
+    /// Triangle meshes that [`WallShape::Mesh`] walls refer to (static
+    /// geometry from the scenario, mesh frame; not checkpointed).
+    pub meshes: Vec<TriMesh>,
     /// Load on each wall from the last force evaluation.
     pub wall_loads: Vec<WallLoad>,
     /// Steps taken.
@@ -171,6 +174,7 @@ impl World {
             template_material: Vec::new(),
             bodies: Bodies::default(),
             walls: Vec::new(),
+            meshes: Vec::new(),
             wall_loads: Vec::new(),
             step: 0,
             time: 0.0,
@@ -218,10 +222,24 @@ impl World {
         if wall.material as usize >= self.materials.len() {
             return Err(WorldError::BadReference(format!("wall '{}' uses material {}, which does not exist", wall.name, wall.material)));
         }
+        if let WallShape::Mesh { mesh, .. } = wall.shape {
+            if mesh as usize >= self.meshes.len() {
+                return Err(WorldError::BadReference(format!("wall '{}' uses mesh {mesh}, which does not exist", wall.name)));
+            }
+        }
+        if self.walls.len() >= crate::step::force::MAX_WALLS {
+            return Err(WorldError::BadReference(format!("too many walls (at most {})", crate::step::force::MAX_WALLS)));
+        }
         self.walls.push(wall);
         self.wall_loads.push(WallLoad::default());
         self.forces_ready = false;
         Ok(self.walls.len() - 1)
+    }
+
+    /// Adds a triangle mesh for [`WallShape::Mesh`] walls; returns its index.
+    pub fn add_mesh(&mut self, mesh: TriMesh) -> u32 {
+        self.meshes.push(mesh);
+        self.meshes.len() as u32 - 1
     }
 
     /// Adds a body; returns its global id.

@@ -5,8 +5,8 @@ use clump_core::body::BodyInit;
 use clump_core::boundary::Domain;
 use clump_core::contact::{Material, PairProperties};
 use clump_core::insert::{
-    pack, FractionBasis, InsertError, Mix, MixEntry, Orientation, PackSpec, PackTarget, Region, SizeDistribution,
-    StreamInserter, StreamRate, StreamSpec,
+    pack, FractionBasis, InsertError, Mix, MixEntry, Orientation, PackSpec, PackTarget, Region,
+    SizeDistribution, StreamInserter, StreamRate, StreamSpec,
 };
 use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::RotationScheme;
@@ -16,7 +16,11 @@ use clump_core::world::{AddedMass, ContactTable, World, WorldConfig};
 use glam::{DQuat, DVec3};
 
 fn world_with(domain: Domain, gravity: DVec3) -> World {
-    let mats = vec![Material { youngs_modulus: 1e7, poisson_ratio: 0.3, density: 2500.0 }];
+    let mats = vec![Material {
+        youngs_modulus: 1e7,
+        poisson_ratio: 0.3,
+        density: 2500.0,
+    }];
     let table = ContactTable::new(&mats, |_, _| PairProperties::default()).unwrap();
     let config = WorldConfig {
         domain,
@@ -31,7 +35,14 @@ fn world_with(domain: Domain, gravity: DVec3) -> World {
 }
 
 fn open_world() -> World {
-    world_with(Domain { lo: DVec3::splat(-1.0), hi: DVec3::splat(1.0), periodic: [false; 3] }, DVec3::ZERO)
+    world_with(
+        Domain {
+            lo: DVec3::splat(-1.0),
+            hi: DVec3::splat(1.0),
+            periodic: [false; 3],
+        },
+        DVec3::ZERO,
+    )
 }
 
 fn tetra() -> ClumpTemplate {
@@ -39,7 +50,10 @@ fn tetra() -> ClumpTemplate {
 }
 
 fn cube_region() -> Region {
-    Region::Box { lo: DVec3::splat(0.0), hi: DVec3::splat(0.03) }
+    Region::Box {
+        lo: DVec3::splat(0.0),
+        hi: DVec3::splat(0.03),
+    }
 }
 
 fn count_spec(region: Region, n: usize, template: u32) -> PackSpec {
@@ -81,7 +95,8 @@ fn worst_overlap(s: &[(DVec3, f64, usize)]) -> f64 {
 }
 
 fn inside_box(s: &[(DVec3, f64, usize)], lo: DVec3, hi: DVec3) -> bool {
-    s.iter().all(|&(c, r, _)| (c - r).cmpge(lo - 1e-12).all() && (c + r).cmple(hi + 1e-12).all())
+    s.iter()
+        .all(|&(c, r, _)| (c - r).cmpge(lo - 1e-12).all() && (c + r).cmple(hi + 1e-12).all())
 }
 
 #[test]
@@ -93,7 +108,10 @@ fn pack_300_tetra_no_overlap_inside() {
     assert_eq!(rep.placed, 300);
     assert_eq!(w.bodies.len(), 300);
     assert_eq!(rep.ids.len(), 300);
-    assert!(rep.templates_added.is_empty(), "a fixed scale of 1 must reuse the base template");
+    assert!(
+        rep.templates_added.is_empty(),
+        "a fixed scale of 1 must reuse the base template"
+    );
     let s = spheres_of(&w);
     assert_eq!(s.len(), 1200);
     let ov = worst_overlap(&s);
@@ -101,15 +119,24 @@ fn pack_300_tetra_no_overlap_inside() {
     assert!(inside_box(&s, DVec3::ZERO, DVec3::splat(0.03)));
     let phi = rep.volume_fraction;
     let expect = 300.0 * w.templates[0].volume / region.volume();
-    assert!((phi - expect).abs() < 1e-12 * expect.max(1.0), "{phi} vs {expect}");
+    assert!(
+        (phi - expect).abs() < 1e-12 * expect.max(1.0),
+        "{phi} vs {expect}"
+    );
     // the same check on the engine's own sphere positions
     w.prepare().unwrap();
     let sp = w.spheres();
-    let es: Vec<_> = (0..sp.len()).map(|i| (sp.position[i], sp.radius[i], sp.body[i] as usize)).collect();
+    let es: Vec<_> = (0..sp.len())
+        .map(|i| (sp.position[i], sp.radius[i], sp.body[i] as usize))
+        .collect();
     assert!(worst_overlap(&es) <= 1e-12);
     assert_eq!(w.stats.pair_contacts, 0);
     // orientations are unit quaternions and not all equal
-    assert!(w.bodies.orientation.iter().all(|q| (q.length() - 1.0).abs() < 1e-12));
+    assert!(w
+        .bodies
+        .orientation
+        .iter()
+        .all(|q| (q.length() - 1.0).abs() < 1e-12));
     assert!(w.bodies.orientation[0] != w.bodies.orientation[1]);
 }
 
@@ -132,7 +159,10 @@ fn pack_is_deterministic_per_seed() {
 fn impossible_requests_fail_cleanly() {
     let mut w = open_world();
     let t = w.add_template(tetra(), 0).unwrap();
-    let region = Region::Box { lo: DVec3::ZERO, hi: DVec3::splat(0.01) };
+    let region = Region::Box {
+        lo: DVec3::ZERO,
+        hi: DVec3::splat(0.01),
+    };
     // way above the packing limit: refused at once
     let e = pack(&mut w, &count_spec(region, 5000, t), 1).unwrap_err();
     assert!(matches!(e, InsertError::RegionTooSmall { .. }), "{e}");
@@ -144,20 +174,43 @@ fn impossible_requests_fail_cleanly() {
     spec.max_attempts_per_body = 200;
     let e = pack(&mut w, &spec, 1).unwrap_err();
     match &e {
-        InsertError::TargetNotReached { placed, volume_fraction, .. } => {
+        InsertError::TargetNotReached {
+            placed,
+            volume_fraction,
+            ..
+        } => {
             assert!(*placed > 0 && *placed < n);
             assert!(*volume_fraction > 0.05 && *volume_fraction < 0.55);
         }
         other => panic!("unexpected {other}"),
     }
     let msg = e.to_string();
-    assert!(msg.contains("placed") && msg.contains("larger region"), "{msg}");
-    assert_eq!(w.bodies.len(), 0, "a failed pack leaves the world unchanged");
+    assert!(
+        msg.contains("placed") && msg.contains("larger region"),
+        "{msg}"
+    );
+    assert_eq!(
+        w.bodies.len(),
+        0,
+        "a failed pack leaves the world unchanged"
+    );
     // bad template
     let e = pack(&mut w, &count_spec(region, 1, 9), 1).unwrap_err();
     assert!(matches!(e, InsertError::InvalidSpec(_)), "{e}");
     // bad region
-    let e = pack(&mut w, &count_spec(Region::Box { lo: DVec3::ONE, hi: DVec3::ZERO }, 1, t), 1).unwrap_err();
+    let e = pack(
+        &mut w,
+        &count_spec(
+            Region::Box {
+                lo: DVec3::ONE,
+                hi: DVec3::ZERO,
+            },
+            1,
+            t,
+        ),
+        1,
+    )
+    .unwrap_err();
     assert!(matches!(e, InsertError::InvalidSpec(_)), "{e}");
 }
 
@@ -167,7 +220,10 @@ fn pack_respects_existing_bodies_walls_and_cylinders() {
     let t = w.add_template(tetra(), 0).unwrap();
     w.add_wall(Wall {
         name: "floor".into(),
-        shape: WallShape::Plane { point: DVec3::new(0.0, 0.0, 0.01), normal: DVec3::Z },
+        shape: WallShape::Plane {
+            point: DVec3::new(0.0, 0.0, 0.01),
+            normal: DVec3::Z,
+        },
         material: 0,
         motion: WallMotion::default(),
         multi_contact: MultiContact::Sum,
@@ -176,12 +232,20 @@ fn pack_respects_existing_bodies_walls_and_cylinders() {
     .unwrap();
     pack(&mut w, &count_spec(cube_region(), 60, t), 1).unwrap();
     pack(&mut w, &count_spec(cube_region(), 60, t), 2).unwrap();
-    let cyl = Region::Cylinder { base: DVec3::new(0.015, 0.015, 0.0), axis: DVec3::Z, radius: 0.012, height: 0.03 };
+    let cyl = Region::Cylinder {
+        base: DVec3::new(0.015, 0.015, 0.0),
+        axis: DVec3::Z,
+        radius: 0.012,
+        height: 0.03,
+    };
     let rep = pack(&mut w, &count_spec(cyl, 40, t), 3).unwrap();
     assert_eq!(w.bodies.len(), 160);
     let s = spheres_of(&w);
     assert!(worst_overlap(&s) <= 1e-15);
-    assert!(s.iter().all(|&(c, r, _)| c.z - r >= 0.01 - 1e-12), "a sphere crosses the wall");
+    assert!(
+        s.iter().all(|&(c, r, _)| c.z - r >= 0.01 - 1e-12),
+        "a sphere crosses the wall"
+    );
     for &id in &rep.ids {
         let b = w.body_index(id).unwrap();
         for &(c, r, bb) in &s {
@@ -194,9 +258,19 @@ fn pack_respects_existing_bodies_walls_and_cylinders() {
 
 #[test]
 fn pack_periodic_images_do_not_overlap() {
-    let mut w = world_with(Domain { lo: DVec3::ZERO, hi: DVec3::splat(0.02), periodic: [true; 3] }, DVec3::ZERO);
+    let mut w = world_with(
+        Domain {
+            lo: DVec3::ZERO,
+            hi: DVec3::splat(0.02),
+            periodic: [true; 3],
+        },
+        DVec3::ZERO,
+    );
     let t = w.add_template(tetra(), 0).unwrap();
-    let region = Region::Box { lo: DVec3::ZERO, hi: DVec3::splat(0.02) };
+    let region = Region::Box {
+        lo: DVec3::ZERO,
+        hi: DVec3::splat(0.02),
+    };
     pack(&mut w, &count_spec(region, 80, t), 5).unwrap();
     let s = spheres_of(&w);
     let l = 0.02;
@@ -216,17 +290,33 @@ fn pack_periodic_images_do_not_overlap() {
 #[test]
 fn mix_by_mass_with_sizes() {
     let mut w = open_world();
-    let small = w.add_template(ClumpTemplate::from_spheres("s", &shape::single_sphere(5e-4), 2500.0).unwrap(), 0).unwrap();
+    let small = w
+        .add_template(
+            ClumpTemplate::from_spheres("s", &shape::single_sphere(5e-4), 2500.0).unwrap(),
+            0,
+        )
+        .unwrap();
     let big = w.add_template(tetra(), 0).unwrap();
     let mix = Mix {
         basis: FractionBasis::Mass,
         entries: vec![
-            MixEntry { template: small, fraction: 0.5, size: SizeDistribution::Uniform { min: 0.8, max: 1.2 } },
-            MixEntry { template: big, fraction: 0.5, size: SizeDistribution::Fixed { scale: 0.9 } },
+            MixEntry {
+                template: small,
+                fraction: 0.5,
+                size: SizeDistribution::Uniform { min: 0.8, max: 1.2 },
+            },
+            MixEntry {
+                template: big,
+                fraction: 0.5,
+                size: SizeDistribution::Fixed { scale: 0.9 },
+            },
         ],
     };
     let spec = PackSpec {
-        region: Region::Box { lo: DVec3::ZERO, hi: DVec3::new(0.06, 0.06, 0.03) },
+        region: Region::Box {
+            lo: DVec3::ZERO,
+            hi: DVec3::new(0.06, 0.06, 0.03),
+        },
         target: PackTarget::VolumeFraction(0.1),
         mix,
         velocity: DVec3::new(0.0, 0.0, -1.0),
@@ -236,7 +326,11 @@ fn mix_by_mass_with_sizes() {
     let rep = pack(&mut w, &spec, 3).unwrap();
     assert!(rep.volume_fraction >= 0.1);
     let (mut m_small, mut m_big) = (0.0, 0.0);
-    let big_scaled = w.templates.iter().position(|t| t.name == "tetra" && (t.max_radius - 0.9e-3).abs() < 1e-15).unwrap();
+    let big_scaled = w
+        .templates
+        .iter()
+        .position(|t| t.name == "tetra" && (t.max_radius - 0.9e-3).abs() < 1e-15)
+        .unwrap();
     for b in 0..w.bodies.len() {
         let tt = w.bodies.template[b] as usize;
         if tt == big_scaled {
@@ -248,16 +342,27 @@ fn mix_by_mass_with_sizes() {
         assert_eq!(w.bodies.velocity[b], DVec3::new(0.0, 0.0, -1.0));
     }
     let frac = m_small / (m_small + m_big);
-    assert!((frac - 0.5).abs() < 0.1, "mass fraction of small spheres {frac}");
+    assert!(
+        (frac - 0.5).abs() < 0.1,
+        "mass fraction of small spheres {frac}"
+    );
     // one template for the fixed scale, one per distinct uniform scale
-    let n_big = w.bodies.template.iter().filter(|&&t| t as usize == big_scaled).count();
+    let n_big = w
+        .bodies
+        .template
+        .iter()
+        .filter(|&&t| t as usize == big_scaled)
+        .count();
     assert_eq!(w.templates.len(), 2 + 1 + (w.bodies.len() - n_big));
     assert!(worst_overlap(&spheres_of(&w)) <= 1e-15);
 }
 
 fn stream_spec(template: u32, rate: StreamRate) -> StreamSpec {
     StreamSpec {
-        region: Region::Box { lo: DVec3::new(0.0, 0.0, 0.5), hi: DVec3::new(0.05, 0.05, 0.52) },
+        region: Region::Box {
+            lo: DVec3::new(0.0, 0.0, 0.5),
+            hi: DVec3::new(0.05, 0.05, 0.52),
+        },
         mix: Mix::single(template),
         rate,
         velocity: DVec3::new(0.0, 0.0, -2.0),
@@ -274,7 +379,8 @@ fn stream_honours_rate() {
     let mut w = open_world();
     w.config.dt = 1e-4;
     let t = w.add_template(tetra(), 0).unwrap();
-    let mut s = StreamInserter::new(stream_spec(t, StreamRate::BodiesPerSecond(2000.0)), &w, 9).unwrap();
+    let mut s =
+        StreamInserter::new(stream_spec(t, StreamRate::BodiesPerSecond(2000.0)), &w, 9).unwrap();
     let mut total = 0;
     for _ in 0..500 {
         w.step().unwrap();
@@ -288,7 +394,11 @@ fn stream_honours_rate() {
     // ballistic until the exit face: start steps lie in the future, by at most 0.02/2/dt steps
     let last = w.bodies.len() - 1;
     let ss = w.bodies.start_step[last];
-    assert!(ss >= w.step && ss <= w.step + 101, "start_step {ss} at step {}", w.step);
+    assert!(
+        ss >= w.step && ss <= w.step + 101,
+        "start_step {ss} at step {}",
+        w.step
+    );
     assert!(worst_overlap(&spheres_of(&w)) <= 1e-15);
 
     // mass rate with a window
@@ -304,7 +414,11 @@ fn stream_honours_rate() {
         w.step().unwrap();
         s.insert_due(&mut w).unwrap();
     }
-    assert!((w.bodies.len() as i64 - 20).abs() <= 1, "{}", w.bodies.len());
+    assert!(
+        (w.bodies.len() as i64 - 20).abs() <= 1,
+        "{}",
+        w.bodies.len()
+    );
     assert!((s.inserted_mass() - 20.0 * m).abs() <= 1.01 * m);
     assert!(s.finished(w.time));
 }
@@ -316,7 +430,10 @@ fn stream_postpones_when_full_and_resumes_bit_identically() {
     w.config.dt = 1e-4;
     let t = w.add_template(tetra(), 0).unwrap();
     let mut spec = stream_spec(t, StreamRate::BodiesPerSecond(1e4));
-    spec.region = Region::Box { lo: DVec3::new(0.0, 0.0, 0.5), hi: DVec3::new(0.004, 0.004, 0.504) };
+    spec.region = Region::Box {
+        lo: DVec3::new(0.0, 0.0, 0.5),
+        hi: DVec3::new(0.004, 0.004, 0.504),
+    };
     spec.exit_normal = None;
     spec.velocity = DVec3::ZERO;
     let mut s = StreamInserter::new(spec, &w, 2).unwrap();
@@ -335,7 +452,8 @@ fn stream_postpones_when_full_and_resumes_bit_identically() {
         (w, t)
     };
     let (mut a, t) = build();
-    let mut sa = StreamInserter::new(stream_spec(t, StreamRate::BodiesPerSecond(3000.0)), &a, 4).unwrap();
+    let mut sa =
+        StreamInserter::new(stream_spec(t, StreamRate::BodiesPerSecond(3000.0)), &a, 4).unwrap();
     for _ in 0..200 {
         a.step().unwrap();
         sa.insert_due(&mut a).unwrap();

@@ -12,7 +12,10 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 
 /// The temporary path used for `path`: `.<name>.tmp.<pid>.<n>` next to it.
 fn temp_path(path: &Path) -> PathBuf {
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
     let n = COUNTER.fetch_add(1, Ordering::Relaxed);
     let tmp = format!(".{name}.tmp.{}.{n}", std::process::id());
     match path.parent() {
@@ -43,8 +46,13 @@ impl AtomicWriter {
     pub fn create(path: impl AsRef<Path>) -> io::Result<Self> {
         let target = path.as_ref().to_path_buf();
         let tmp = temp_path(&target);
-        let file = File::create(&tmp).map_err(|e| with_path(e, &tmp, "cannot create temporary file"))?;
-        Ok(AtomicWriter { target, tmp, file: Some(io::BufWriter::new(file)) })
+        let file =
+            File::create(&tmp).map_err(|e| with_path(e, &tmp, "cannot create temporary file"))?;
+        Ok(AtomicWriter {
+            target,
+            tmp,
+            file: Some(io::BufWriter::new(file)),
+        })
     }
 
     /// The final path.
@@ -55,10 +63,14 @@ impl AtomicWriter {
     /// Flushes, syncs and renames the temporary file over the target.
     pub fn commit(mut self) -> io::Result<()> {
         let buf = self.file.take().expect("not yet committed");
-        let file = buf.into_inner().map_err(|e| with_path(e.into_error(), &self.tmp, "cannot write"))?;
-        file.sync_all().map_err(|e| with_path(e, &self.tmp, "cannot sync"))?;
+        let file = buf
+            .into_inner()
+            .map_err(|e| with_path(e.into_error(), &self.tmp, "cannot write"))?;
+        file.sync_all()
+            .map_err(|e| with_path(e, &self.tmp, "cannot sync"))?;
         drop(file);
-        fs::rename(&self.tmp, &self.target).map_err(|e| with_path(e, &self.target, "cannot rename temporary file onto"))?;
+        fs::rename(&self.tmp, &self.target)
+            .map_err(|e| with_path(e, &self.target, "cannot rename temporary file onto"))?;
         // Make the rename durable where the platform allows syncing a directory.
         if let Some(dir) = self.target.parent().filter(|p| !p.as_os_str().is_empty()) {
             if let Ok(d) = File::open(dir) {
@@ -74,7 +86,10 @@ impl Write for AtomicWriter {
         self.file.as_mut().expect("not yet committed").write(buf)
     }
     fn write_all(&mut self, buf: &[u8]) -> io::Result<()> {
-        self.file.as_mut().expect("not yet committed").write_all(buf)
+        self.file
+            .as_mut()
+            .expect("not yet committed")
+            .write_all(buf)
     }
     fn flush(&mut self) -> io::Result<()> {
         self.file.as_mut().expect("not yet committed").flush()

@@ -25,8 +25,9 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 /// All columns, in order.
-pub const BODY_COLUMNS: [&str; 14] =
-    ["template", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz"];
+pub const BODY_COLUMNS: [&str; 14] = [
+    "template", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz",
+];
 
 /// Why a bodies file could not be read.
 #[derive(Debug, Error)]
@@ -74,7 +75,10 @@ pub struct BodyRecord {
 /// Reads and parses a bodies file.
 pub fn read_bodies_csv(path: impl AsRef<Path>) -> Result<Vec<BodyRecord>, BodiesCsvError> {
     let path = path.as_ref();
-    let bytes = std::fs::read(path).map_err(|source| BodiesCsvError::Io { path: path.to_path_buf(), source })?;
+    let bytes = std::fs::read(path).map_err(|source| BodiesCsvError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
     let text = match String::from_utf8(bytes) {
         Ok(t) => t,
         Err(e) => {
@@ -111,7 +115,10 @@ pub fn parse_bodies_csv(text: &str, path: &Path) -> Result<Vec<BodyRecord>, Bodi
         let Some(n) = ncols else {
             let n = fields.len();
             let ok = matches!(n, 8 | 11 | 14)
-                && fields.iter().zip(BODY_COLUMNS.iter()).all(|(a, b)| a.eq_ignore_ascii_case(b));
+                && fields
+                    .iter()
+                    .zip(BODY_COLUMNS.iter())
+                    .all(|(a, b)| a.eq_ignore_ascii_case(b));
             if !ok {
                 return Err(err(
                     line_no,
@@ -129,27 +136,43 @@ pub fn parse_bodies_csv(text: &str, path: &Path) -> Result<Vec<BodyRecord>, Bodi
             return Err(err(
                 line_no,
                 None,
-                format!("expected {n} comma-separated fields as in the header ({}), found {}", BODY_COLUMNS[..n].join(","), fields.len()),
+                format!(
+                    "expected {n} comma-separated fields as in the header ({}), found {}",
+                    BODY_COLUMNS[..n].join(","),
+                    fields.len()
+                ),
             ));
         }
         let template = fields[0];
         if template.is_empty() {
-            return Err(err(line_no, Some("template"), "is empty; give the name of a template".into()));
+            return Err(err(
+                line_no,
+                Some("template"),
+                "is empty; give the name of a template".into(),
+            ));
         }
         let mut v = [0.0f64; 14];
         for c in 1..n {
             let f = fields[c];
             let x: f64 = f.parse().map_err(|_| {
-                err(line_no, Some(BODY_COLUMNS[c]), format!("`{f}` is not a number (expected a finite decimal number)"))
+                err(
+                    line_no,
+                    Some(BODY_COLUMNS[c]),
+                    format!("`{f}` is not a number (expected a finite decimal number)"),
+                )
             })?;
             if !x.is_finite() {
-                return Err(err(line_no, Some(BODY_COLUMNS[c]), format!("`{f}` is not finite (expected a finite number)")));
+                return Err(err(
+                    line_no,
+                    Some(BODY_COLUMNS[c]),
+                    format!("`{f}` is not finite (expected a finite number)"),
+                ));
             }
             v[c] = x;
         }
         let q = DQuat::from_xyzw(v[5], v[6], v[7], v[4]);
         let len = q.length();
-        if !(len > 1e-300) || !len.is_finite() {
+        if len <= 1e-300 || !len.is_finite() {
             return Err(err(
                 line_no,
                 Some("qw"),
@@ -169,7 +192,10 @@ pub fn parse_bodies_csv(text: &str, path: &Path) -> Result<Vec<BodyRecord>, Bodi
         return Err(err(
             text.lines().count().max(1),
             None,
-            format!("no header line found; the file must start with `{}`", BODY_COLUMNS.join(",")),
+            format!(
+                "no header line found; the file must start with `{}`",
+                BODY_COLUMNS.join(",")
+            ),
         ));
     }
     Ok(out)
@@ -186,12 +212,19 @@ pub fn resolve_bodies(
     records
         .iter()
         .map(|r| {
-            let t = template_names.iter().position(|n| *n == r.template).ok_or_else(|| BodiesCsvError::Invalid {
-                path: path.to_path_buf(),
-                line: r.line,
-                column: Some("template".into()),
-                message: format!("unknown template `{}`; known templates: {}", r.template, template_names.join(", ")),
-            })?;
+            let t = template_names
+                .iter()
+                .position(|n| *n == r.template)
+                .ok_or_else(|| BodiesCsvError::Invalid {
+                    path: path.to_path_buf(),
+                    line: r.line,
+                    column: Some("template".into()),
+                    message: format!(
+                        "unknown template `{}`; known templates: {}",
+                        r.template,
+                        template_names.join(", ")
+                    ),
+                })?;
             Ok(BodyInit {
                 velocity: r.velocity,
                 angular_velocity: r.angular_velocity,

@@ -42,7 +42,9 @@ pub enum CheckpointError {
         source: std::io::Error,
     },
     /// The file is shorter than the header.
-    #[error("checkpoint {path}: file is truncated ({len} bytes, the header alone has {HEADER_LEN})")]
+    #[error(
+        "checkpoint {path}: file is truncated ({len} bytes, the header alone has {HEADER_LEN})"
+    )]
     TooShort {
         /// The file.
         path: PathBuf,
@@ -117,7 +119,10 @@ pub struct CheckpointHeader {
 }
 
 /// Encodes `value` with the checkpoint header (in memory).
-pub fn encode_checkpoint<T: Serialize>(value: &T, fingerprint: u64) -> Result<Vec<u8>, postcard::Error> {
+pub fn encode_checkpoint<T: Serialize>(
+    value: &T,
+    fingerprint: u64,
+) -> Result<Vec<u8>, postcard::Error> {
     let payload = postcard::to_allocvec(value)?;
     let mut out = Vec::with_capacity(HEADER_LEN + payload.len());
     out.extend_from_slice(&CHECKPOINT_MAGIC);
@@ -130,11 +135,20 @@ pub fn encode_checkpoint<T: Serialize>(value: &T, fingerprint: u64) -> Result<Ve
 }
 
 /// Writes `value` as a checkpoint to `path` (atomically).
-pub fn write_checkpoint<T: Serialize>(path: impl AsRef<Path>, value: &T, fingerprint: u64) -> Result<(), CheckpointError> {
+pub fn write_checkpoint<T: Serialize>(
+    path: impl AsRef<Path>,
+    value: &T,
+    fingerprint: u64,
+) -> Result<(), CheckpointError> {
     let path = path.as_ref();
-    let bytes = encode_checkpoint(value, fingerprint)
-        .map_err(|e| CheckpointError::Encode { path: path.to_path_buf(), message: e.to_string() })?;
-    write_atomic(path, &bytes).map_err(|source| CheckpointError::Io { path: path.to_path_buf(), source })
+    let bytes = encode_checkpoint(value, fingerprint).map_err(|e| CheckpointError::Encode {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    write_atomic(path, &bytes).map_err(|source| CheckpointError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Parses and checks the header of checkpoint bytes (`path` is for messages).
@@ -142,25 +156,43 @@ pub fn decode_header(bytes: &[u8], path: &Path) -> Result<CheckpointHeader, Chec
     let p = || path.to_path_buf();
     if bytes.len() < CHECKPOINT_MAGIC.len() || bytes[..8] != CHECKPOINT_MAGIC {
         if bytes.len() < 8 && CHECKPOINT_MAGIC.starts_with(bytes) {
-            return Err(CheckpointError::TooShort { path: p(), len: bytes.len() });
+            return Err(CheckpointError::TooShort {
+                path: p(),
+                len: bytes.len(),
+            });
         }
         return Err(CheckpointError::BadMagic { path: p() });
     }
     if bytes.len() < HEADER_LEN {
-        return Err(CheckpointError::TooShort { path: p(), len: bytes.len() });
+        return Err(CheckpointError::TooShort {
+            path: p(),
+            len: bytes.len(),
+        });
     }
     let u32_at = |i: usize| u32::from_le_bytes(bytes[i..i + 4].try_into().expect("4 bytes"));
     let u64_at = |i: usize| u64::from_le_bytes(bytes[i..i + 8].try_into().expect("8 bytes"));
     let version = u32_at(8);
     if version != CHECKPOINT_VERSION {
-        return Err(CheckpointError::UnsupportedVersion { path: p(), found: version, expected: CHECKPOINT_VERSION });
+        return Err(CheckpointError::UnsupportedVersion {
+            path: p(),
+            found: version,
+            expected: CHECKPOINT_VERSION,
+        });
     }
-    Ok(CheckpointHeader { version, fingerprint: u64_at(12), payload_len: u64_at(20), crc: u32_at(28) })
+    Ok(CheckpointHeader {
+        version,
+        fingerprint: u64_at(12),
+        payload_len: u64_at(20),
+        crc: u32_at(28),
+    })
 }
 
 /// Decodes checkpoint bytes (`path` is for messages): the value and the
 /// scenario fingerprint.
-pub fn decode_checkpoint<T: DeserializeOwned>(bytes: &[u8], path: &Path) -> Result<(T, u64), CheckpointError> {
+pub fn decode_checkpoint<T: DeserializeOwned>(
+    bytes: &[u8],
+    path: &Path,
+) -> Result<(T, u64), CheckpointError> {
     let h = decode_header(bytes, path)?;
     let payload = &bytes[HEADER_LEN..];
     if payload.len() as u64 != h.payload_len {
@@ -172,10 +204,17 @@ pub fn decode_checkpoint<T: DeserializeOwned>(bytes: &[u8], path: &Path) -> Resu
     }
     let computed = crc32fast::hash(payload);
     if computed != h.crc {
-        return Err(CheckpointError::BadChecksum { path: path.to_path_buf(), stored: h.crc, computed });
+        return Err(CheckpointError::BadChecksum {
+            path: path.to_path_buf(),
+            stored: h.crc,
+            computed,
+        });
     }
-    let (value, rest) = postcard::take_from_bytes::<T>(payload)
-        .map_err(|e| CheckpointError::Decode { path: path.to_path_buf(), message: e.to_string() })?;
+    let (value, rest) =
+        postcard::take_from_bytes::<T>(payload).map_err(|e| CheckpointError::Decode {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
     if !rest.is_empty() {
         return Err(CheckpointError::Decode {
             path: path.to_path_buf(),
@@ -186,9 +225,14 @@ pub fn decode_checkpoint<T: DeserializeOwned>(bytes: &[u8], path: &Path) -> Resu
 }
 
 /// Reads a checkpoint: the value and the scenario fingerprint it was written with.
-pub fn read_checkpoint<T: DeserializeOwned>(path: impl AsRef<Path>) -> Result<(T, u64), CheckpointError> {
+pub fn read_checkpoint<T: DeserializeOwned>(
+    path: impl AsRef<Path>,
+) -> Result<(T, u64), CheckpointError> {
     let path = path.as_ref();
-    let bytes = std::fs::read(path).map_err(|source| CheckpointError::Io { path: path.to_path_buf(), source })?;
+    let bytes = std::fs::read(path).map_err(|source| CheckpointError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
     decode_checkpoint(&bytes, path)
 }
 
@@ -196,10 +240,16 @@ pub fn read_checkpoint<T: DeserializeOwned>(path: impl AsRef<Path>) -> Result<(T
 pub fn read_checkpoint_header(path: impl AsRef<Path>) -> Result<CheckpointHeader, CheckpointError> {
     use std::io::Read;
     let path = path.as_ref();
-    let f = std::fs::File::open(path).map_err(|source| CheckpointError::Io { path: path.to_path_buf(), source })?;
+    let f = std::fs::File::open(path).map_err(|source| CheckpointError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
     let mut buf = Vec::with_capacity(HEADER_LEN);
     f.take(HEADER_LEN as u64)
         .read_to_end(&mut buf)
-        .map_err(|source| CheckpointError::Io { path: path.to_path_buf(), source })?;
+        .map_err(|source| CheckpointError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
     decode_header(&buf, path)
 }

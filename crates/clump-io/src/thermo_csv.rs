@@ -45,7 +45,13 @@ pub fn fmt_f64(v: f64) -> String {
 pub fn column_name(name: &str) -> String {
     let s: String = name
         .chars()
-        .map(|c| if c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.' { c } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.' {
+                c
+            } else {
+                '_'
+            }
+        })
         .collect();
     if s.is_empty() {
         "wall".into()
@@ -87,13 +93,22 @@ impl ThermoWriter {
     /// rows with `step ≤ resume_step`, drops the others, then appends. A
     /// missing file is created. Fails if the existing header differs (the
     /// walls changed).
-    pub fn resume(path: impl AsRef<Path>, wall_names: &[String], resume_step: u64) -> io::Result<Self> {
+    pub fn resume(
+        path: impl AsRef<Path>,
+        wall_names: &[String],
+        resume_step: u64,
+    ) -> io::Result<Self> {
         let path = path.as_ref().to_path_buf();
         let header = Self::header(wall_names);
         let text = match std::fs::read(&path) {
             Ok(b) => String::from_utf8_lossy(&b).into_owned(),
             Err(e) if e.kind() == io::ErrorKind::NotFound => return Self::create(path, wall_names),
-            Err(e) => return Err(io::Error::new(e.kind(), format!("cannot read {}: {e}", path.display()))),
+            Err(e) => {
+                return Err(io::Error::new(
+                    e.kind(),
+                    format!("cannot read {}: {e}", path.display()),
+                ))
+            }
         };
         let mut lines = text.split_inclusive('\n');
         let first = lines.next().unwrap_or("").trim_end();
@@ -111,7 +126,10 @@ impl ThermoWriter {
             if !line.ends_with('\n') {
                 break; // a row cut by an interruption
             }
-            let step = line.split(',').nth(1).and_then(|s| s.trim().parse::<u64>().ok());
+            let step = line
+                .split(',')
+                .nth(1)
+                .and_then(|s| s.trim().parse::<u64>().ok());
             match step {
                 Some(s) if s <= resume_step => keep.push_str(line),
                 _ => {}
@@ -122,11 +140,18 @@ impl ThermoWriter {
     }
 
     fn open_append(path: PathBuf, header: String, n_walls: usize) -> io::Result<Self> {
-        let f = OpenOptions::new()
-            .append(true)
-            .open(&path)
-            .map_err(|e| io::Error::new(e.kind(), format!("cannot open {} for appending: {e}", path.display())))?;
-        Ok(ThermoWriter { path, header, n_walls, out: BufWriter::new(f) })
+        let f = OpenOptions::new().append(true).open(&path).map_err(|e| {
+            io::Error::new(
+                e.kind(),
+                format!("cannot open {} for appending: {e}", path.display()),
+            )
+        })?;
+        Ok(ThermoWriter {
+            path,
+            header,
+            n_walls,
+            out: BufWriter::new(f),
+        })
     }
 
     /// The file path.
@@ -158,7 +183,9 @@ impl ThermoWriter {
         );
         for i in 0..self.n_walls {
             let l = t.wall_loads.get(i).copied().unwrap_or_default();
-            for v in [l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z] {
+            for v in [
+                l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z,
+            ] {
                 row.push(',');
                 row.push_str(&fmt_f64(v));
             }

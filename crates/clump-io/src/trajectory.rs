@@ -43,7 +43,9 @@ impl TrajectoryWriter {
     }
 
     fn open(dir: &Path, ids: &[u64], resume: Option<f64>) -> io::Result<Self> {
-        std::fs::create_dir_all(dir).map_err(|e| io::Error::new(e.kind(), format!("cannot create {}: {e}", dir.display())))?;
+        std::fs::create_dir_all(dir).map_err(|e| {
+            io::Error::new(e.kind(), format!("cannot create {}: {e}", dir.display()))
+        })?;
         let mut uniq = Vec::new();
         for &id in ids {
             if !uniq.contains(&id) {
@@ -61,7 +63,11 @@ impl TrajectoryWriter {
                         if !line.ends_with('\n') {
                             break;
                         }
-                        match line.split(',').next().and_then(|s| s.trim().parse::<f64>().ok()) {
+                        match line
+                            .split(',')
+                            .next()
+                            .and_then(|s| s.trim().parse::<f64>().ok())
+                        {
                             Some(t) if t <= max_time => keep.push_str(line),
                             _ => {}
                         }
@@ -69,14 +75,17 @@ impl TrajectoryWriter {
                 }
             }
             write_atomic(&path, keep.as_bytes())?;
-            let f = OpenOptions::new()
-                .append(true)
-                .open(&path)
-                .map_err(|e| io::Error::new(e.kind(), format!("cannot open {}: {e}", path.display())))?;
+            let f = OpenOptions::new().append(true).open(&path).map_err(|e| {
+                io::Error::new(e.kind(), format!("cannot open {}: {e}", path.display()))
+            })?;
             files.push(BufWriter::new(f));
         }
         let slot = uniq.iter().enumerate().map(|(k, &id)| (id, k)).collect();
-        Ok(TrajectoryWriter { ids: uniq, files, slot })
+        Ok(TrajectoryWriter {
+            ids: uniq,
+            files,
+            slot,
+        })
     }
 
     /// The tracked global body ids.
@@ -96,10 +105,16 @@ impl TrajectoryWriter {
         }
         for (k, f) in self.files.iter_mut().enumerate() {
             let Some(i) = index[k] else { continue };
-            let (x, v, q, w) = (b.position[i], b.velocity[i], b.orientation[i], b.angular_velocity[i]);
+            let (x, v, q, w) = (
+                b.position[i],
+                b.velocity[i],
+                b.orientation[i],
+                b.angular_velocity[i],
+            );
             let wb = q.inverse() * w;
             let vals = [
-                world.time, x.x, x.y, x.z, v.x, v.y, v.z, q.w, q.x, q.y, q.z, w.x, w.y, w.z, wb.x, wb.y, wb.z,
+                world.time, x.x, x.y, x.z, v.x, v.y, v.z, q.w, q.x, q.y, q.z, w.x, w.y, w.z, wb.x,
+                wb.y, wb.z,
             ];
             let row: Vec<String> = vals.iter().map(|&v| fmt_f64(v)).collect();
             f.write_all(row.join(",").as_bytes())?;

@@ -13,7 +13,8 @@
 //!   `mass` (kg).
 //! - **walls**: one polygon per face: planes clipped to the domain box,
 //!   cylinders tessellated with [`CYLINDER_SEGMENTS`] quads over the domain's
-//!   extent along their axis, boxes as 6 quads; cell data `wall_index` and
+//!   extent along their axis, boxes as 6 quads, meshes as their triangles
+//!   at the wall's pose; cell data `wall_index` and
 //!   `active` (1/0).
 //!
 //! Sphere positions are recomputed from the body poses (so a frame written
@@ -81,9 +82,15 @@ struct Vtp {
 impl Vtp {
     fn push_block(&mut self, name: &str, ty: Ty, components: usize, bytes: Vec<u8>) -> Array {
         let offset = self.data.len();
-        self.data.extend_from_slice(&(bytes.len() as u64).to_le_bytes());
+        self.data
+            .extend_from_slice(&(bytes.len() as u64).to_le_bytes());
         self.data.extend_from_slice(&bytes);
-        Array { name: name.to_string(), ty, components, offset }
+        Array {
+            name: name.to_string(),
+            ty,
+            components,
+            offset,
+        }
     }
 
     fn f64s(values: impl Iterator<Item = f64>) -> Vec<u8> {
@@ -226,7 +233,12 @@ pub fn spheres_vtp(world: &World) -> Vec<u8> {
     let mut ids = Vec::new();
     for i in 0..b.len() {
         let t = &world.templates[b.template[i] as usize];
-        let (x, q, v, w) = (b.position[i], b.orientation[i], b.velocity[i], b.angular_velocity[i]);
+        let (x, q, v, w) = (
+            b.position[i],
+            b.orientation[i],
+            b.velocity[i],
+            b.angular_velocity[i],
+        );
         for s in &t.spheres {
             let c = x + q * s.center;
             pos.push(c);
@@ -250,7 +262,11 @@ pub fn bodies_vtp(world: &World) -> Vec<u8> {
     let mut f = Vtp::default();
     f.set_points(&b.position);
     f.point_u64("body_id", b.id.iter().copied());
-    f.point_f64("quaternion", 4, b.orientation.iter().flat_map(|q| [q.w, q.x, q.y, q.z]));
+    f.point_f64(
+        "quaternion",
+        4,
+        b.orientation.iter().flat_map(|q| [q.w, q.x, q.y, q.z]),
+    );
     for (name, axis) in [("ex", DVec3::X), ("ey", DVec3::Y), ("ez", DVec3::Z)] {
         let v: Vec<DVec3> = b.orientation.iter().map(|q| *q * axis).collect();
         f.point_vec3(name, &v);
@@ -306,7 +322,12 @@ fn clip_plane(p: DVec3, n: DVec3, d: &Domain) -> Vec<DVec3> {
         let c0 = 0.5 * (lo + hi);
         let c = c0 - n * (c0 - p).dot(n);
         let h = 0.5 * (hi - lo).max_element();
-        return vec![c - e1 * h - e2 * h, c + e1 * h - e2 * h, c + e1 * h + e2 * h, c - e1 * h + e2 * h];
+        return vec![
+            c - e1 * h - e2 * h,
+            c + e1 * h - e2 * h,
+            c + e1 * h + e2 * h,
+            c - e1 * h + e2 * h,
+        ];
     }
     let c = uniq.iter().fold(DVec3::ZERO, |s, q| s + *q) / uniq.len() as f64;
     uniq.sort_by(|a, b| {
@@ -333,7 +354,12 @@ pub fn walls_vtp(world: &World) -> Vec<u8> {
                 polys.push((0..poly.len() as i64).map(|k| base + k).collect());
                 pts.extend(poly);
             }
-            WallShape::Cylinder { point, axis, radius, .. } => {
+            WallShape::Cylinder {
+                point,
+                axis,
+                radius,
+                ..
+            } => {
                 let (mut t0, mut t1) = (f64::INFINITY, f64::NEG_INFINITY);
                 for k in 0..8 {
                     let c = DVec3::new(
@@ -357,7 +383,25 @@ pub fn walls_vtp(world: &World) -> Vec<u8> {
                 for k in 0..m {
                     let k2 = (k + 1) % m;
                     let (a0, a1, b0, b1) = (2 * k, 2 * k + 1, 2 * k2, 2 * k2 + 1);
-                    polys.push(vec![base + a0 as i64, base + b0 as i64, base + b1 as i64, base + a1 as i64]);
+                    polys.push(vec![
+                        base + a0 as i64,
+                        base + b0 as i64,
+                        base + b1 as i64,
+                        base + a1 as i64,
+                    ]);
+                }
+            }
+            WallShape::Mesh {
+                mesh,
+                position,
+                orientation,
+            } => {
+                if let Some(m) = world.meshes.get(mesh as usize) {
+                    let base = pts.len() as i64;
+                    pts.extend(m.vertices_at(position, orientation));
+                    for t in m.triangles() {
+                        polys.push(t.iter().map(|&i| base + i as i64).collect());
+                    }
                 }
             }
             WallShape::Box { lo, hi, .. } => {
@@ -369,7 +413,14 @@ pub fn walls_vtp(world: &World) -> Vec<u8> {
                         if k & 4 == 0 { lo.z } else { hi.z },
                     ));
                 }
-                for face in [[0, 2, 6, 4], [1, 5, 7, 3], [0, 4, 5, 1], [2, 3, 7, 6], [0, 1, 3, 2], [4, 6, 7, 5]] {
+                for face in [
+                    [0, 2, 6, 4],
+                    [1, 5, 7, 3],
+                    [0, 4, 5, 1],
+                    [2, 3, 7, 6],
+                    [0, 1, 3, 2],
+                    [4, 6, 7, 5],
+                ] {
                     polys.push(face.iter().map(|&i| base + i).collect());
                 }
             }
@@ -414,7 +465,10 @@ pub struct PvdWriter {
 impl PvdWriter {
     /// A new, empty collection at `path` (written at the first append).
     pub fn new(path: impl Into<PathBuf>) -> Self {
-        PvdWriter { path: path.into(), entries: Vec::new() }
+        PvdWriter {
+            path: path.into(),
+            entries: Vec::new(),
+        }
     }
 
     /// Reopens the collection at `path` for a resumed run, keeping the
@@ -461,7 +515,11 @@ impl PvdWriter {
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n",
         );
         for (t, f) in &self.entries {
-            let _ = writeln!(x, "    <DataSet timestep=\"{t:e}\" group=\"\" part=\"0\" file=\"{}\"/>", escape(f));
+            let _ = writeln!(
+                x,
+                "    <DataSet timestep=\"{t:e}\" group=\"\" part=\"0\" file=\"{}\"/>",
+                escape(f)
+            );
         }
         x.push_str("  </Collection>\n</VTKFile>\n");
         write_atomic(&self.path, x.as_bytes())
@@ -476,11 +534,17 @@ fn attr(line: &str, name: &str) -> Option<String> {
 }
 
 fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('"', "&quot;").replace('<', "&lt;").replace('>', "&gt;")
+    s.replace('&', "&amp;")
+        .replace('"', "&quot;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 fn unescape(s: &str) -> String {
-    s.replace("&quot;", "\"").replace("&lt;", "<").replace("&gt;", ">").replace("&amp;", "&")
+    s.replace("&quot;", "\"")
+        .replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&amp;", "&")
 }
 
 /// Writes spheres/bodies/walls frames into one directory and keeps the three
@@ -497,7 +561,9 @@ impl VtkSeries {
     /// A new series in `dir` (created if missing).
     pub fn new(dir: impl Into<PathBuf>) -> io::Result<Self> {
         let dir = dir.into();
-        std::fs::create_dir_all(&dir).map_err(|e| io::Error::new(e.kind(), format!("cannot create {}: {e}", dir.display())))?;
+        std::fs::create_dir_all(&dir).map_err(|e| {
+            io::Error::new(e.kind(), format!("cannot create {}: {e}", dir.display()))
+        })?;
         Ok(VtkSeries {
             spheres: PvdWriter::new(dir.join("spheres.pvd")),
             bodies: PvdWriter::new(dir.join("bodies.pvd")),
@@ -510,7 +576,9 @@ impl VtkSeries {
     /// `max_time` (s) are dropped (their frame files are overwritten later).
     pub fn resume(dir: impl Into<PathBuf>, max_time: f64) -> io::Result<Self> {
         let dir = dir.into();
-        std::fs::create_dir_all(&dir).map_err(|e| io::Error::new(e.kind(), format!("cannot create {}: {e}", dir.display())))?;
+        std::fs::create_dir_all(&dir).map_err(|e| {
+            io::Error::new(e.kind(), format!("cannot create {}: {e}", dir.display()))
+        })?;
         let s = VtkSeries {
             spheres: PvdWriter::resume(dir.join("spheres.pvd"), max_time),
             bodies: PvdWriter::resume(dir.join("bodies.pvd"), max_time),
@@ -532,7 +600,11 @@ impl VtkSeries {
     /// (label zero-padded to 6 digits, e.g. the step number) at `world.time`
     /// and appends them to the collections.
     pub fn write_frame(&mut self, world: &World, label: u64) -> io::Result<()> {
-        let names = [format!("spheres_{label:06}.vtp"), format!("bodies_{label:06}.vtp"), format!("walls_{label:06}.vtp")];
+        let names = [
+            format!("spheres_{label:06}.vtp"),
+            format!("bodies_{label:06}.vtp"),
+            format!("walls_{label:06}.vtp"),
+        ];
         write_spheres(self.dir.join(&names[0]), world)?;
         write_bodies(self.dir.join(&names[1]), world)?;
         write_walls(self.dir.join(&names[2]), world)?;

@@ -55,25 +55,36 @@ impl SizeDistribution {
         match *self {
             SizeDistribution::Fixed { scale } => {
                 if !(scale.is_finite() && scale > 0.0) {
-                    return bad(format!("fixed size scale must be finite and > 0, got {scale}"));
+                    return bad(format!(
+                        "fixed size scale must be finite and > 0, got {scale}"
+                    ));
                 }
             }
             SizeDistribution::Uniform { min, max } => {
                 if !(min.is_finite() && max.is_finite() && min > 0.0 && max >= min) {
-                    return bad(format!("uniform size needs 0 < min ≤ max, got min = {min}, max = {max}"));
+                    return bad(format!(
+                        "uniform size needs 0 < min ≤ max, got min = {min}, max = {max}"
+                    ));
                 }
             }
-            SizeDistribution::Normal { mean, std, min, max } => {
+            SizeDistribution::Normal {
+                mean,
+                std,
+                min,
+                max,
+            } => {
                 if !(mean.is_finite() && std.is_finite() && std >= 0.0) {
                     return bad(format!("normal size needs a finite mean and std ≥ 0, got mean = {mean}, std = {std}"));
                 }
                 if !(min.is_finite() && max.is_finite() && min > 0.0 && max >= min) {
-                    return bad(format!("normal size needs 0 < min ≤ max, got min = {min}, max = {max}"));
+                    return bad(format!(
+                        "normal size needs 0 < min ≤ max, got min = {min}, max = {max}"
+                    ));
                 }
                 if std == 0.0 && !(min..=max).contains(&mean) {
                     return bad(format!("normal size with std = 0 needs min ≤ mean ≤ max, got mean = {mean} outside [{min}, {max}]"));
                 }
-                if std > 0.0 && (min - mean) / std > 6.0 || std > 0.0 && (mean - max) / std > 6.0 {
+                if std > 0.0 && ((min - mean) / std > 6.0 || (mean - max) / std > 6.0) {
                     return bad(format!(
                         "normal size: the interval [{min}, {max}] lies more than 6 standard deviations from the mean {mean}"
                     ));
@@ -94,7 +105,12 @@ impl SizeDistribution {
                     min
                 }
             }
-            SizeDistribution::Normal { mean, std, min, max } => {
+            SizeDistribution::Normal {
+                mean,
+                std,
+                min,
+                max,
+            } => {
                 if std == 0.0 {
                     return mean.clamp(min, max);
                 }
@@ -122,7 +138,12 @@ impl SizeDistribution {
                     min.powi(3)
                 }
             }
-            SizeDistribution::Normal { mean, std, min, max } => {
+            SizeDistribution::Normal {
+                mean,
+                std,
+                min,
+                max,
+            } => {
                 if std == 0.0 || max == min {
                     return mean.clamp(min, max).powi(3);
                 }
@@ -132,7 +153,13 @@ impl SizeDistribution {
                 let (mut w_sum, mut m_sum) = (0.0, 0.0);
                 for i in 0..=n {
                     let s = min + i as f64 * h;
-                    let c = if i == 0 || i == n { 1.0 } else if i % 2 == 1 { 4.0 } else { 2.0 };
+                    let c = if i == 0 || i == n {
+                        1.0
+                    } else if i % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
                     let p = (-0.5 * ((s - mean) / std).powi(2)).exp();
                     w_sum += c * p;
                     m_sum += c * p * s.powi(3);
@@ -202,7 +229,11 @@ impl Mix {
     pub fn single(template: u32) -> Self {
         Mix {
             basis: FractionBasis::Number,
-            entries: vec![MixEntry { template, fraction: 1.0, size: SizeDistribution::default() }],
+            entries: vec![MixEntry {
+                template,
+                fraction: 1.0,
+                size: SizeDistribution::default(),
+            }],
         }
     }
 
@@ -210,7 +241,9 @@ impl Mix {
     /// selection probabilities.
     pub fn resolve(&self, world: &World) -> Result<ResolvedMix, InsertError> {
         if self.entries.is_empty() {
-            return Err(InsertError::InvalidSpec("the particle mix has no entries".into()));
+            return Err(InsertError::InvalidSpec(
+                "the particle mix has no entries".into(),
+            ));
         }
         let mut entries = Vec::with_capacity(self.entries.len());
         let mut weights = Vec::with_capacity(self.entries.len());
@@ -259,7 +292,15 @@ impl Mix {
             max_radius = max_radius.max(t.max_radius * e.size.max_scale());
             max_bounding = max_bounding.max(t.bounding_radius * e.size.max_scale());
         }
-        Ok(ResolvedMix { entries, cumulative, probability, mean_volume, mean_mass, max_radius, max_bounding })
+        Ok(ResolvedMix {
+            entries,
+            cumulative,
+            probability,
+            mean_volume,
+            mean_mass,
+            max_radius,
+            max_bounding,
+        })
     }
 }
 
@@ -285,7 +326,11 @@ impl ResolvedMix {
     /// Draws an entry index and a scale factor.
     pub fn sample<R: Rng + ?Sized>(&self, rng: &mut R) -> (usize, f64) {
         let u: f64 = rng.gen();
-        let k = self.cumulative.iter().position(|&c| u < c).unwrap_or(self.entries.len() - 1);
+        let k = self
+            .cumulative
+            .iter()
+            .position(|&c| u < c)
+            .unwrap_or(self.entries.len() - 1);
         let s = self.entries[k].size.sample(rng);
         (k, s)
     }
@@ -315,7 +360,12 @@ impl TemplateCache {
     /// The world template index for `base` scaled by `scale`: the base itself
     /// for a scale of exactly 1, a cached scaled copy, or a newly added
     /// [`ClumpTemplate::scaled`] copy with the base's material.
-    pub fn resolve(&mut self, world: &mut World, base: u32, scale: f64) -> Result<u32, InsertError> {
+    pub fn resolve(
+        &mut self,
+        world: &mut World,
+        base: u32,
+        scale: f64,
+    ) -> Result<u32, InsertError> {
         if scale == 1.0 {
             return Ok(base);
         }

@@ -30,7 +30,7 @@ pub mod stream;
 
 pub use error::InsertError;
 pub use mix::{FractionBasis, Mix, MixEntry, ResolvedMix, SizeDistribution, TemplateCache};
-pub use pack::{pack, Orientation, PackReport, PackSpec, PackTarget, RSA_LIMIT, PACKING_LIMIT};
+pub use pack::{pack, Orientation, PackReport, PackSpec, PackTarget, PACKING_LIMIT, RSA_LIMIT};
 pub use region::Region;
 pub use stream::{StreamInserter, StreamRate, StreamSpec};
 

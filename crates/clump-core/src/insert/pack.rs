@@ -118,10 +118,15 @@ pub fn pack(world: &mut World, spec: &PackSpec, seed: u64) -> Result<PackReport,
     spec.region.validate()?;
     spec.orientation.validate()?;
     if !spec.velocity.is_finite() {
-        return Err(InsertError::InvalidSpec(format!("velocity must be finite, got {}", spec.velocity)));
+        return Err(InsertError::InvalidSpec(format!(
+            "velocity must be finite, got {}",
+            spec.velocity
+        )));
     }
     if spec.max_attempts_per_body == 0 {
-        return Err(InsertError::InvalidSpec("max_attempts_per_body must be at least 1".into()));
+        return Err(InsertError::InvalidSpec(
+            "max_attempts_per_body must be at least 1".into(),
+        ));
     }
     let mix = spec.mix.resolve(world)?;
     let region_volume = spec.region.volume();
@@ -129,7 +134,9 @@ pub fn pack(world: &mut World, spec: &PackSpec, seed: u64) -> Result<PackReport,
         PackTarget::Count(n) => (n as f64 * mix.mean_volume, format!("{n} bodies")),
         PackTarget::VolumeFraction(phi) => {
             if !(phi.is_finite() && phi > 0.0) {
-                return Err(InsertError::InvalidSpec(format!("volume fraction must be > 0, got {phi}")));
+                return Err(InsertError::InvalidSpec(format!(
+                    "volume fraction must be > 0, got {phi}"
+                )));
             }
             (phi * region_volume, format!("solid volume fraction {phi}"))
         }
@@ -166,7 +173,7 @@ pub fn pack(world: &mut World, spec: &PackSpec, seed: u64) -> Result<PackReport,
             };
             let q = spec.orientation.sample(&mut rng);
             body_spheres(t, scale, x, q, &mut buf);
-            if fits(&buf, &spec.region, &world.walls, &occ) {
+            if fits(&buf, &spec.region, world, &occ) {
                 for &(c, r) in &buf {
                     occ.insert(c, r);
                 }
@@ -190,7 +197,10 @@ pub fn pack(world: &mut World, spec: &PackSpec, seed: u64) -> Result<PackReport,
     let mut ids = Vec::with_capacity(placed.len());
     for &(base, scale, x, q) in &placed {
         let template = cache.resolve(world, base, scale)?;
-        let init = BodyInit { velocity: spec.velocity, ..BodyInit::at_rest(template, x, q) };
+        let init = BodyInit {
+            velocity: spec.velocity,
+            ..BodyInit::at_rest(template, x, q)
+        };
         ids.push(world.add_body(&init)?);
     }
     Ok(PackReport {

@@ -42,7 +42,12 @@ impl Region {
                     )));
                 }
             }
-            Region::Cylinder { base, axis, radius, height } => {
+            Region::Cylinder {
+                base,
+                axis,
+                radius,
+                height,
+            } => {
                 if !base.is_finite() || !axis.is_finite() || (axis.length() - 1.0).abs() > 1e-6 {
                     return Err(InsertError::InvalidSpec(format!(
                         "cylinder region needs a finite base and a unit axis, got base = {base}, axis = {axis} (length {})",
@@ -66,7 +71,9 @@ impl Region {
                 let d = hi - lo;
                 d.x * d.y * d.z
             }
-            Region::Cylinder { radius, height, .. } => std::f64::consts::PI * radius * radius * height,
+            Region::Cylinder { radius, height, .. } => {
+                std::f64::consts::PI * radius * radius * height
+            }
         }
     }
 
@@ -78,7 +85,12 @@ impl Region {
             Region::Box { lo, hi } => {
                 (center - radius).cmpge(lo).all() && (center + radius).cmple(hi).all()
             }
-            Region::Cylinder { base, axis, radius: rc, height } => {
+            Region::Cylinder {
+                base,
+                axis,
+                radius: rc,
+                height,
+            } => {
                 let rel = center - base;
                 let h = rel.dot(axis);
                 if h - radius < 0.0 || h + radius > height {
@@ -99,7 +111,12 @@ impl Region {
     pub fn bounds(&self) -> (DVec3, DVec3) {
         match *self {
             Region::Box { lo, hi } => (lo, hi),
-            Region::Cylinder { base, axis, radius, height } => {
+            Region::Cylinder {
+                base,
+                axis,
+                radius,
+                height,
+            } => {
                 let top = base + axis * height;
                 // extent of a disc of radius r perpendicular to a: r·sqrt(1 − a_i²)
                 let e = DVec3::new(
@@ -119,21 +136,32 @@ impl Region {
             Region::Box { lo, hi } => {
                 let mut s = 0.0;
                 for a in 0..3 {
-                    s += if n[a] >= 0.0 { hi[a] * n[a] } else { lo[a] * n[a] };
+                    s += if n[a] >= 0.0 {
+                        hi[a] * n[a]
+                    } else {
+                        lo[a] * n[a]
+                    };
                 }
                 s
             }
-            Region::Cylinder { base, axis, radius, height } => {
+            Region::Cylinder {
+                base,
+                axis,
+                radius,
+                height,
+            } => {
                 let top = base + axis * height;
                 let an = axis.dot(n);
-                base.dot(n).max(top.dot(n)) + radius * (n.length_squared() - an * an).max(0.0).sqrt()
+                base.dot(n).max(top.dot(n))
+                    + radius * (n.length_squared() - an * an).max(0.0).sqrt()
             }
         }
     }
 
     /// A point drawn uniformly from the region (world, m).
     pub fn sample<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-        self.sample_eroded(rng, 0.0).expect("a valid region is never empty")
+        self.sample_eroded(rng, 0.0)
+            .expect("a valid region is never empty")
     }
 
     /// A point drawn uniformly from the region shrunk by `margin` ≥ 0 (m) on
@@ -148,7 +176,12 @@ impl Region {
                 let u = DVec3::new(rng.gen(), rng.gen(), rng.gen());
                 Some(lo + (hi - lo) * u)
             }
-            Region::Cylinder { base, axis, radius, height } => {
+            Region::Cylinder {
+                base,
+                axis,
+                radius,
+                height,
+            } => {
                 let (r, h) = (radius - margin, height - 2.0 * margin);
                 if r < 0.0 || h < 0.0 {
                     return None;

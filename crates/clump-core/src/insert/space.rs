@@ -2,7 +2,7 @@
 //! (with periodic images) and wall checks.
 
 use super::region::Region;
-use crate::wall::{Wall, WallTouch, MAX_TOUCHES_PER_WALL};
+use crate::wall::{TriMesh, Wall, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::World;
 use glam::{DQuat, DVec3};
 use std::collections::HashMap;
@@ -104,10 +104,13 @@ impl Occupancy {
     }
 }
 
-/// True when a sphere at `c` with radius `r` touches any active wall.
-pub(crate) fn touches_walls(walls: &[Wall], c: DVec3, r: f64) -> bool {
+/// True when a sphere at `c` with radius `r` touches any active wall
+/// (`meshes`: the world's mesh table, for mesh walls).
+pub(crate) fn touches_walls(walls: &[Wall], meshes: &[TriMesh], c: DVec3, r: f64) -> bool {
     let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
-    walls.iter().any(|w| w.active && w.shape.touches(c, r, 0.0, &mut buf) > 0)
+    walls
+        .iter()
+        .any(|w| w.active && w.shape.contacts(meshes, c, r, 0.0, &mut buf) > 0)
 }
 
 /// World-frame spheres (centre, radius) of a template's spheres scaled by
@@ -120,13 +123,24 @@ pub(crate) fn body_spheres(
     out: &mut Vec<(DVec3, f64)>,
 ) {
     out.clear();
-    out.extend(t.spheres.iter().map(|s| (x + q * (s.center * scale), s.radius * scale)));
+    out.extend(
+        t.spheres
+            .iter()
+            .map(|s| (x + q * (s.center * scale), s.radius * scale)),
+    );
 }
 
 /// True when all spheres lie in the region, touch no active wall and
 /// overlap no stored sphere.
-pub(crate) fn fits(spheres: &[(DVec3, f64)], region: &Region, walls: &[Wall], occ: &Occupancy) -> bool {
+pub(crate) fn fits(
+    spheres: &[(DVec3, f64)],
+    region: &Region,
+    world: &World,
+    occ: &Occupancy,
+) -> bool {
     spheres.iter().all(|&(c, r)| region.contains_sphere(c, r))
-        && !spheres.iter().any(|&(c, r)| touches_walls(walls, c, r))
+        && !spheres
+            .iter()
+            .any(|&(c, r)| touches_walls(&world.walls, &world.meshes, c, r))
         && !spheres.iter().any(|&(c, r)| occ.overlaps(c, r))
 }

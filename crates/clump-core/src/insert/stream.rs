@@ -89,14 +89,23 @@ impl StreamInserter {
         spec.region.validate()?;
         let bad = |m: String| Err(InsertError::InvalidSpec(m));
         if !spec.velocity.is_finite() {
-            return bad(format!("stream velocity must be finite, got {}", spec.velocity));
+            return bad(format!(
+                "stream velocity must be finite, got {}",
+                spec.velocity
+            ));
         }
         if !spec.start.is_finite() {
-            return bad(format!("stream start time must be finite, got {}", spec.start));
+            return bad(format!(
+                "stream start time must be finite, got {}",
+                spec.start
+            ));
         }
         if let Some(end) = spec.end {
             if !(end.is_finite() || end == f64::INFINITY) || end < spec.start {
-                return bad(format!("stream end time {end} s must not be before its start {} s", spec.start));
+                return bad(format!(
+                    "stream end time {end} s must not be before its start {} s",
+                    spec.start
+                ));
             }
         }
         if spec.max_attempts_per_body == 0 {
@@ -105,7 +114,9 @@ impl StreamInserter {
         if let Some(n) = spec.exit_normal {
             let len = n.length();
             if !(len.is_finite() && len > 0.0) {
-                return bad(format!("stream exit_normal must be a finite non-zero vector, got {n}"));
+                return bad(format!(
+                    "stream exit_normal must be a finite non-zero vector, got {n}"
+                ));
             }
             let n = n / len;
             if spec.velocity.dot(n) <= 0.0 {
@@ -122,7 +133,10 @@ impl StreamInserter {
             StreamRate::MassPerSecond(m) => m / mix.mean_mass,
         };
         if !(body_rate.is_finite() && body_rate >= 0.0) {
-            return bad(format!("stream rate must be finite and ≥ 0, got {:?}", spec.rate));
+            return bad(format!(
+                "stream rate must be finite and ≥ 0, got {:?}",
+                spec.rate
+            ));
         }
         Ok(StreamInserter {
             spec,
@@ -186,7 +200,11 @@ impl StreamInserter {
         }
         let t_eff = self.spec.end.map_or(t, |e| t.min(e));
         let due = (self.body_rate * (t_eff - self.spec.start) * (1.0 + 1e-12) + 1e-9).floor();
-        let due = if due.is_finite() && due > 0.0 { due as u64 } else { 0 };
+        let due = if due.is_finite() && due > 0.0 {
+            due as u64
+        } else {
+            0
+        };
         if due > self.scheduled {
             self.backlog += due - self.scheduled;
             self.scheduled = due;
@@ -213,7 +231,7 @@ impl StreamInserter {
                 };
                 let q = self.spec.orientation.sample(&mut self.rng);
                 body_spheres(t, scale, x, q, &mut buf);
-                if fits(&buf, &self.spec.region, &world.walls, &occ) {
+                if fits(&buf, &self.spec.region, world, &occ) {
                     pose = Some((x, q));
                     break;
                 }
@@ -235,7 +253,11 @@ impl StreamInserter {
                 }
                 None => world.step,
             };
-            let init = BodyInit { velocity: self.spec.velocity, start_step, ..BodyInit::at_rest(template, x, q) };
+            let init = BodyInit {
+                velocity: self.spec.velocity,
+                start_step,
+                ..BodyInit::at_rest(template, x, q)
+            };
             world.add_body(&init)?;
             self.backlog -= 1;
             self.inserted += 1;

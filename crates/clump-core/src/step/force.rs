@@ -6,7 +6,7 @@ use crate::contact::{ContactHistory, ContactInput};
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::{PairState, SIDE_J};
 use crate::sphere::{point_velocity, SPHERE_ID_BITS};
-use crate::wall::{WallLoad, WallTouch, MAX_TOUCHES_PER_WALL};
+use crate::wall::{WallLoad, WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::{ContactStats, World, WALL_SLOTS};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -41,7 +41,11 @@ fn pair_forces(w: &mut World) {
         let rsum = ri + rj;
         let dist2 = d.length_squared();
         if dist2 >= rsum * rsum {
-            *st = PairState::default();
+            // not touching: clear what a previous contact left (rarely needed,
+            // so test before writing to keep memory traffic low)
+            if st.overlap != 0.0 || st.history != ContactHistory::default() {
+                *st = PairState::default();
+            }
             return;
         }
         let dist = dist2.sqrt();
@@ -78,7 +82,7 @@ fn pair_forces(w: &mut World) {
 /// processed in fixed chunks; wall loads and statistics are summed per chunk
 /// and then over chunks in order.
 fn gather(w: &mut World) {
-    let World { bodies, spheres: sp, pairs, walls, contact_table: table, wall_key, wall_hist, chunk_stats, chunk_wall_loads, config, wall_loads, stats, .. } = w;
+    let World { bodies, spheres: sp, pairs, walls, meshes, contact_table: table, wall_key, wall_hist, chunk_stats, chunk_wall_loads, config, wall_loads, stats, .. } = w;
     let nb = bodies.len();
     let nw = walls.len();
     let nchunks = nb.div_ceil(BODY_CHUNK);
@@ -148,7 +152,7 @@ fn gather(w: &mut World) {
                         for s in spheres.clone() {
                             for (wi, wall) in walls.iter().enumerate() {
                                 if wall.active {
-                                    let k = wall.shape.touches(sp.position[s], sp.radius[s], 0.0, &mut buf);
+                                    let k = wall.shape.contacts(meshes, sp.position[s], sp.radius[s], 0.0, &mut buf);
                                     for _ in 0..k {
                                         wcounts.add(wi as u64);
                                     }
@@ -163,15 +167,29 @@ fn gather(w: &mut World) {
                         let mut new_key = [0u32; WALL_SLOTS];
                         let mut new_hist = [ContactHistory::default(); WALL_SLOTS];
                         let mut n_new = 0;
+                        let mut used = [false; WALL_SLOTS];
                         let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
                         for (wi, wall) in walls.iter().enumerate() {
                             if !wall.active {
                                 continue;
                             }
-                            let k = wall.shape.touches(sp.position[s], sp.radius[s], 0.0, &mut buf);
+                            let k = wall.shape.contacts(meshes, sp.position[s], sp.radius[s], 0.0, &mut buf);
+                            let is_mesh = matches!(wall.shape, WallShape::Mesh { .. });
                             for touch in &buf[..k] {
-                                let slot_key = ((wi as u32) << 8 | touch.face as u32) + 1;
-                                let mut h = key.iter().position(|&x| x == slot_key).map_or(ContactHistory::default(), |k| hist[k]);
+                                let (slot_key, old) = if is_mesh {
+                                    let slot_key = slot_key(wi, oct_encode(touch.normal));
+                                    (slot_key, match_mesh_slot(key, &used, wi, touch.normal))
+                                } else {
+                                    let slot_key = slot_key(wi, touch.face as u16);
+                                    (slot_key, key.iter().position(|&x| x == slot_key))
+                                };
+                                let mut h = match old {
+                                    Some(o) => {
+                                        used[o] = true;
+                                        hist[o]
+                                    }
+                                    None => ContactHistory::default(),
+                                };
                                 let scale = if wall.multi_contact == MultiContact::Average { 1.0 / wcounts.get(wi as u64) as f64 } else { 1.0 };
                                 let (fw, mw, tw, energy) = ctx.evaluate(s, wi, touch, &mut h);
                                 f += fw * scale;
@@ -218,6 +236,74 @@ fn gather(w: &mut World) {
         }
         *load = l;
     }
+}
+
+/// Most walls a world may have: a sphere–wall contact slot key holds the wall
+/// index in 16 bits.
+pub const MAX_WALLS: usize = 0xFFFF;
+
+/// Largest angle (rad) between a mesh contact's normal and the normal stored
+/// with a slot of the previous step for the contact to continue that slot's
+/// history (30°; larger than the mesh merge angle, so that a contact patch
+/// moving onto the next facet keeps its history).
+pub const MESH_MATCH_ANGLE: f64 = std::f64::consts::PI / 6.0;
+
+/// Key of a sphere–wall contact slot (0 = empty): wall index in the high 16
+/// bits, and in the low 16 bits the face (analytic walls) or the octahedral
+/// code of the contact normal (mesh walls), plus one.
+#[inline(always)]
+fn slot_key(wi: usize, sub: u16) -> u32 {
+    ((wi as u32) << 16 | sub as u32) + 1
+}
+
+/// History slot of the previous step that continues a mesh contact with
+/// normal `n` on wall `wi`: the unused slot of that wall whose stored normal
+/// is closest, within [`MESH_MATCH_ANGLE`]. Mesh contacts are keyed by contact
+/// patch (normal), not by triangle, so the history follows a contact that
+/// slides from one triangle onto the next; the contact law rotates it into
+/// the new tangent plane.
+#[inline]
+fn match_mesh_slot(key: &[u32; WALL_SLOTS], used: &[bool; WALL_SLOTS], wi: usize, n: glam::DVec3) -> Option<usize> {
+    let cos_min = MESH_MATCH_ANGLE.cos();
+    let mut best: Option<(usize, f64)> = None;
+    for (k, &x) in key.iter().enumerate() {
+        if x == 0 || used[k] || ((x - 1) >> 16) as usize != wi {
+            continue;
+        }
+        let c = oct_decode(((x - 1) & 0xFFFF) as u16).dot(n);
+        if c > cos_min && best.map_or(true, |b| c > b.1) {
+            best = Some((k, c));
+        }
+    }
+    best.map(|b| b.0)
+}
+
+/// Octahedral encoding of a unit vector in 16 bits (8 per coordinate; about
+/// 1° resolution), used to remember a mesh contact's normal in its slot key.
+#[inline]
+pub fn oct_encode(n: glam::DVec3) -> u16 {
+    let l1 = n.x.abs() + n.y.abs() + n.z.abs();
+    if !(l1 > 0.0) {
+        return 0;
+    }
+    let (mut u, mut v) = (n.x / l1, n.y / l1);
+    if n.z < 0.0 {
+        let (pu, pv) = (u, v);
+        u = (1.0 - pv.abs()) * pu.signum();
+        v = (1.0 - pu.abs()) * pv.signum();
+    }
+    let q = |a: f64| ((a.clamp(-1.0, 1.0) * 0.5 + 0.5) * 255.0).round() as u16;
+    q(u) << 8 | q(v)
+}
+
+/// Inverse of [`oct_encode`] (unit vector).
+#[inline]
+pub fn oct_decode(k: u16) -> glam::DVec3 {
+    let u = (k >> 8) as f64 / 255.0 * 2.0 - 1.0;
+    let v = (k & 0xFF) as f64 / 255.0 * 2.0 - 1.0;
+    let z = 1.0 - u.abs() - v.abs();
+    let (x, y) = if z < 0.0 { ((1.0 - v.abs()) * u.signum(), (1.0 - u.abs()) * v.signum()) } else { (u, v) };
+    glam::DVec3::new(x, y, z).normalize()
 }
 
 /// Incidence entries of sphere `s`.

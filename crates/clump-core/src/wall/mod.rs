@@ -1,12 +1,15 @@
-//! Walls: analytic boundaries that spheres touch.
+//! Walls: boundaries that spheres touch.
 //!
-//! A wall has a [`WallShape`] (plane, cylinder, axis-aligned box), a material,
+//! A wall has a [`WallShape`] (plane, cylinder, axis-aligned box, or a
+//! triangle [`mesh`] at a pose), a material,
 //! a [`WallMotion`] and a several-contact treatment. Walls have infinite mass:
 //! their motion is prescribed. The force and torque that the spheres exert on
 //! each wall are recorded every step ([`WallLoad`]).
 
+pub mod mesh;
 mod shape;
 
+pub use mesh::{MeshError, TriMesh};
 pub use shape::{WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
 
 use crate::multi_contact::MultiContact;
@@ -19,7 +22,7 @@ pub struct WallMotion {
     /// Translation velocity, world frame, m/s. Moves the geometry.
     pub velocity: DVec3,
     /// Angular velocity, world frame, rad/s, about `center`. Rotates the
-    /// geometry (planes and cylinders) and gives the surface velocity ω × (x − c).
+    /// geometry (planes, cylinders and meshes) and gives the surface velocity ω × (x − c).
     pub angular_velocity: DVec3,
     /// Centre of rotation, world frame, m (moves with `velocity`).
     pub center: DVec3,

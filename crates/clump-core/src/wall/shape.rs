@@ -1,11 +1,12 @@
 //! Wall geometry and sphere–wall contact detection.
 
+use super::mesh::{MeshContact, TriMesh, MAX_MESH_CONTACTS};
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
 /// At most this many faces of one wall can touch one sphere (an inside box
-/// corner touches three).
-pub const MAX_TOUCHES_PER_WALL: usize = 3;
+/// corner touches three; a mesh up to [`MAX_MESH_CONTACTS`]).
+pub const MAX_TOUCHES_PER_WALL: usize = MAX_MESH_CONTACTS;
 
 /// Geometry of a wall, world frame, m.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -43,6 +44,18 @@ pub enum WallShape {
         /// Spheres inside (`true`) or outside (`false`).
         inside: bool,
     },
+    /// A triangle mesh (two-sided): [`World::meshes`](crate::world::World::meshes)`[mesh]`
+    /// placed at the pose `x_world = position + orientation · x_mesh`. The
+    /// pose moves with the wall's motion; the mesh is static geometry. See
+    /// [`super::mesh`] for the contact rules.
+    Mesh {
+        /// Index into `World::meshes`.
+        mesh: u32,
+        /// Position of the mesh-frame origin, world frame, m.
+        position: DVec3,
+        /// Rotation mesh frame → world frame (unit quaternion).
+        orientation: DQuat,
+    },
 }
 
 /// One touching face of a wall.
@@ -57,13 +70,35 @@ pub struct WallTouch {
 }
 
 impl WallShape {
+    /// Like [`WallShape::contacts`] without the mesh table: a
+    /// [`WallShape::Mesh`] reports no touch here. Use `contacts` with
+    /// `&world.meshes` wherever mesh walls may occur.
+    pub fn touches(&self, x: DVec3, r: f64, margin: f64, out: &mut [WallTouch; MAX_TOUCHES_PER_WALL]) -> usize {
+        self.contacts(&[], x, r, margin, out)
+    }
+
     /// Touching faces for a sphere with centre `x` (world, m) and radius `r`
     /// (m), within the extra distance `margin` ≥ 0 (m; use 0 for real
-    /// contacts). Writes into `out` and returns the count. A touch with
-    /// `overlap ≤ 0` is only reported when `margin > 0` (it is then a near
-    /// miss within the margin).
-    pub fn touches(&self, x: DVec3, r: f64, margin: f64, out: &mut [WallTouch; MAX_TOUCHES_PER_WALL]) -> usize {
+    /// contacts); `meshes` is the mesh table of the world
+    /// ([`World::meshes`](crate::world::World::meshes)) that
+    /// [`WallShape::Mesh`] indexes. Writes into `out` and returns the count. A
+    /// touch with `overlap ≤ 0` is only reported when `margin > 0` (it is
+    /// then a near miss within the margin). A mesh wall gives one touch per
+    /// contact patch, deepest first, with `face = 0`.
+    pub fn contacts(&self, meshes: &[TriMesh], x: DVec3, r: f64, margin: f64, out: &mut [WallTouch; MAX_TOUCHES_PER_WALL]) -> usize {
         match *self {
+            WallShape::Mesh { mesh, position, orientation } => {
+                let Some(m) = meshes.get(mesh as usize) else { return 0 };
+                let identity = orientation == DQuat::IDENTITY;
+                let xl = if identity { x - position } else { orientation.inverse() * (x - position) };
+                let mut buf = [MeshContact::default(); MAX_MESH_CONTACTS];
+                let k = m.sphere_contacts(xl, r, margin, &mut buf);
+                for (o, c) in out.iter_mut().zip(&buf[..k]) {
+                    let normal = if identity { c.normal } else { orientation * c.normal };
+                    *o = WallTouch { face: 0, normal, overlap: c.overlap };
+                }
+                k
+            }
             WallShape::Plane { point, normal } => {
                 let dist = (x - point).dot(normal);
                 let overlap = r - dist;
@@ -165,6 +200,31 @@ impl WallShape {
                 *lo += shift;
                 *hi += shift;
             }
+            WallShape::Mesh { position, orientation, .. } => {
+                *position += shift;
+                if let Some(q) = rot {
+                    *position = c_new + q * (*position - c_new);
+                    *orientation = (q * *orientation).normalize();
+                }
+            }
         }
+    }
+
+    /// For a mesh wall: its mesh index and pose `(mesh, position m,
+    /// orientation mesh → world)`; `None` for analytic shapes.
+    pub fn mesh_pose(&self) -> Option<(u32, DVec3, DQuat)> {
+        match *self {
+            WallShape::Mesh { mesh, position, orientation } => Some((mesh, position, orientation)),
+            _ => None,
+        }
+    }
+
+    /// For a mesh wall: its vertices in the world frame at the current pose
+    /// and its triangles (e.g. for VTK output); `None` for analytic shapes or
+    /// a mesh index not in `meshes`.
+    pub fn mesh_at_pose<'m>(&self, meshes: &'m [TriMesh]) -> Option<(Vec<DVec3>, &'m [[u32; 3]])> {
+        let (mesh, position, orientation) = self.mesh_pose()?;
+        let m = meshes.get(mesh as usize)?;
+        Some((m.vertices_at(position, orientation), m.triangles()))
     }
 }

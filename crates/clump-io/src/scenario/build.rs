@@ -30,6 +30,14 @@ pub const DT_WARN_FRACTION: f64 = 0.3;
 /// Requested solid fraction of a pack region above which the scenario is refused.
 pub const PACK_ERROR_FRACTION: f64 = 0.45;
 
+fn sp(unit: &str) -> String {
+    if unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {unit}")
+    }
+}
+
 fn v3(a: [f64; 3]) -> DVec3 {
     DVec3::from_array(a)
 }
@@ -57,7 +65,7 @@ impl Cx<'_> {
         if x.is_finite() && x > 0.0 {
             Ok(x)
         } else {
-            Err(self.err(path, format!("'{key}' must be > 0 {unit}, found {x}")).label("must be positive"))
+            Err(self.err(path, format!("'{key}' must be > 0{}, found {x}", sp(unit))).label("must be positive"))
         }
     }
 
@@ -65,7 +73,7 @@ impl Cx<'_> {
         if x.is_finite() && x >= 0.0 {
             Ok(x)
         } else {
-            Err(self.err(path, format!("'{key}' must be >= 0 {unit}, found {x}")).label("must not be negative"))
+            Err(self.err(path, format!("'{key}' must be >= 0{}, found {x}", sp(unit))).label("must not be negative"))
         }
     }
 
@@ -653,7 +661,14 @@ fn build_template(
         let d = if nsrc == 0 {
             cx.err(&tp, format!("template '{name}' needs its spheres: one of 'spheres', 'file' or 'shape'"))
         } else {
-            let k = if t.file.is_some() && t.spheres.is_some() { "file" } else { "shape" };
+            // point at the source key given last
+            let k = ["spheres", "file", "shape"]
+                .into_iter()
+                .zip(sources)
+                .filter(|(_, present)| *present)
+                .map(|(k, _)| k)
+                .max_by_key(|k| cx.src.key_span(&p(k)).map_or(0, |s| s.start))
+                .unwrap_or("shape");
             cx.src.error_at_key(&p(k), format!("template '{name}' gives more than one of 'spheres', 'file', 'shape'"))
         };
         return Err(d.note("help: spheres = [[x, y, z, r], ...] (m), file = \"stone.txt\" (LIGGGHTS x y z r), or shape = \"sphere\"|\"rod\"|\"tetrahedron\"|\"cube_octet\""));
@@ -859,6 +874,8 @@ fn build_wall(cx: &mut Cx, i: usize, w: &RawWall, material_names: &[String], see
     let default_center = match shape {
         WallShape::Plane { point, .. } | WallShape::Cylinder { point, .. } => point,
         WallShape::Box { lo, hi, .. } => 0.5 * (lo + hi),
+        #[allow(unreachable_patterns)]
+        _ => DVec3::ZERO,
     };
     let o3 = |cx: &Cx, k: &'static str, v: Option<[f64; 3]>| -> R<DVec3> { v.map(|a| cx.vec3(&p(k), a, k)).transpose().map(|x| x.unwrap_or_default()) };
     let motion = WallMotion {

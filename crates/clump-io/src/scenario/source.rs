@@ -153,7 +153,18 @@ impl Source {
     /// The header (`[[pair]]`, `[simulation]`) of the table that contains byte
     /// `pos`, or `None` at the top level.
     pub fn table_at(&self, pos: usize) -> Option<String> {
-        let before = &self.text[..pos.min(self.text.len())];
+        let pos = pos.min(self.text.len());
+        let line_start = self.text[..pos].rfind('\n').map_or(0, |i| i + 1);
+        let line_end = self.text[pos..].find('\n').map_or(self.text.len(), |i| pos + i);
+        let current = self.text[line_start..line_end].trim_start();
+        if current.starts_with('[') && !current.contains('=') {
+            // the key is (part of) a table header: report the parent table
+            let name = current.trim_start_matches('[');
+            let name = &name[..name.find(']').unwrap_or(name.len())];
+            let parent = name.rsplit_once('.').map(|p| p.0.trim());
+            return parent.map(|p| format!("[{p}]"));
+        }
+        let before = &self.text[..line_start];
         for line in before.lines().rev() {
             let t = line.trim_start();
             if t.starts_with('[') {

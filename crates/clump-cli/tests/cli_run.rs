@@ -1,0 +1,315 @@
+//! End-to-end tests of `clump run` / `clump resume`: a run split by a
+//! checkpoint repeats the uninterrupted run bit for bit, SIGTERM/SIGINT
+//! checkpoint and exit with 143/130, VTK series are complete, and bad input
+//! exits with status 2.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn clump() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_clump"))
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("clump-cli-run-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// A few dozen clumps (tetrahedra and rods, scaled ±10 %) fall onto a
+/// frictional floor in a box; in stage 2 gravity tilts and a stream adds
+/// bodies. Rolling friction (EPSD) and sliding friction make contact
+/// histories matter.
+fn scenario(stage2_steps: u64) -> String {
+    format!(
+        r#"
+[simulation]
+dt = 4e-5
+gravity = [0.0, 0.0, -9.81]
+
+[domain]
+lo = [-0.03, -0.03, -0.01]
+hi = [0.03, 0.03, 0.1]
+
+[[material]]
+name = "rock"
+youngs_modulus = 5e6
+poisson_ratio = 0.3
+density = 2500
+
+[[material]]
+name = "steel"
+youngs_modulus = 5e7
+poisson_ratio = 0.3
+density = 7800
+
+[contact]
+restitution = 0.3
+friction = 0.5
+rolling_friction = 0.1
+rolling = "epsd"
+
+[[pair]]
+materials = ["rock", "steel"]
+friction = 0.4
+
+[[template]]
+name = "tetra"
+material = "rock"
+shape = "tetrahedron"
+radius = 0.002
+edge = 0.0025
+
+[[template]]
+name = "rod"
+material = "rock"
+shape = "rod"
+n = 3
+radius = 0.0015
+spacing = 0.0015
+
+[[mix]]
+name = "m"
+basis = "mass"
+[[mix.component]]
+template = "tetra"
+fraction = 0.5
+size = {{ distribution = "uniform", min = 0.9, max = 1.1 }}
+[[mix.component]]
+template = "rod"
+fraction = 0.5
+
+[[wall]]
+name = "floor"
+material = "steel"
+type = "plane"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+
+[[wall]]
+name = "box"
+material = "steel"
+type = "box"
+lo = [-0.012, -0.012, -0.005]
+hi = [0.012, 0.012, 0.1]
+
+[[stage]]
+name = "fill"
+steps = 600
+
+[[stage]]
+name = "tilt"
+steps = {stage2_steps}
+gravity = [2.0, 0.0, -9.81]
+
+[[insert]]
+kind = "pack"
+stage = "fill"
+mix = "m"
+count = 60
+region = {{ type = "box", lo = [-0.011, -0.011, 0.001], hi = [0.011, 0.011, 0.05] }}
+velocity = [0.0, 0.0, -0.5]
+seed = 11
+
+[[insert]]
+kind = "stream"
+stage = "tilt"
+mix = "m"
+region = {{ type = "box", lo = [-0.01, -0.01, 0.06], hi = [0.01, 0.01, 0.09] }}
+velocity = [0.0, 0.0, -0.5]
+bodies_per_second = 1000
+end = 0.02
+seed = 5
+
+[output]
+vtk = {{ every_steps = 200 }}
+thermo = {{ every_steps = 50 }}
+checkpoint = {{ every_steps = 250 }}
+trajectory = {{ bodies = [1, 2], every_steps = 10 }}
+"#
+    )
+}
+
+fn write_scenario(dir: &Path, stage2_steps: u64) -> PathBuf {
+    let p = dir.join("fall.toml");
+    std::fs::write(&p, scenario(stage2_steps)).unwrap();
+    p
+}
+
+fn run_ok(cmd: &mut Command) -> String {
+    let o = cmd.output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "{cmd:?} failed ({:?}):\n{err}\n{}", o.status, String::from_utf8_lossy(&o.stdout));
+    err
+}
+
+fn read(p: &Path) -> String {
+    std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+fn last_thermo(dir: &Path) -> Vec<String> {
+    read(&dir.join("thermo.csv")).lines().last().unwrap().split(',').map(str::to_string).collect()
+}
+
+#[test]
+fn split_run_is_bit_identical_to_uninterrupted_run() {
+    let d = tmp("split");
+    let sc = write_scenario(&d, 600);
+    let (a, b, c) = (d.join("a"), d.join("b"), d.join("c"));
+    // uninterrupted, 2 threads
+    run_ok(clump().arg("run").arg(&sc).arg("-o").arg(&a).args(["--threads", "2"]));
+    // first half on 1 thread, stopped at step 900 (inside the streaming stage)
+    run_ok(clump().arg("run").arg(&sc).arg("-o").arg(&b).args(["--threads", "1", "--steps", "900"]));
+    let ck = b.join("checkpoint_000000900.ckpt");
+    assert!(ck.is_file());
+    let m: serde_json::Value = serde_json::from_str(&read(&b.join("manifest.json"))).unwrap();
+    assert_eq!(m["status"], "step_limit");
+    // resume needs nothing but the checkpoint: move the scenario away
+    std::fs::rename(&sc, d.join("moved.toml")).unwrap();
+    run_ok(clump().arg("resume").arg(&ck).args(["--threads", "2"]));
+    let fa = read(&a.join("final_state.json"));
+    let fb = read(&b.join("final_state.json"));
+    assert!(fa == fb, "final states differ between the uninterrupted and the split run");
+    assert_eq!(read(&a.join("thermo.csv")), read(&b.join("thermo.csv")), "thermo.csv differs");
+    for id in [1, 2] {
+        let f = format!("traj_{id}.csv");
+        assert_eq!(read(&a.join(&f)), read(&b.join(&f)), "{f} differs");
+    }
+    // resuming from a periodic checkpoint of the uninterrupted run, into a new folder
+    run_ok(clump().arg("resume").arg(a.join("checkpoint_000000500.ckpt")).arg("-o").arg(&c).args(["--threads", "2"]));
+    assert!(read(&c.join("final_state.json")) == fa, "resume from the periodic checkpoint differs");
+    // the run was not trivial: bodies were streamed in and touch each other and the walls
+    let fs: serde_json::Value = serde_json::from_str(&fa).unwrap();
+    assert!(fs["bodies"].as_array().unwrap().len() > 65, "the stream inserted nothing");
+    let last = last_thermo(&a);
+    let pair: u64 = last[4].parse().unwrap();
+    let wall: u64 = last[5].parse().unwrap();
+    assert!(pair > 20 && wall > 20, "too few contacts for a meaningful test: {last:?}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn vtk_series_lists_every_frame() {
+    let d = tmp("vtk");
+    let sc = write_scenario(&d, 200);
+    let out = d.join("out");
+    run_ok(clump().arg("run").arg(&sc).arg("-o").arg(&out).args(["--threads", "2"]));
+    for kind in ["spheres", "bodies", "walls"] {
+        let pvd = read(&out.join(format!("{kind}.pvd")));
+        let files: Vec<&str> = pvd.split("file=\"").skip(1).map(|s| s.split('"').next().unwrap()).collect();
+        // every 200 steps over 800 steps: steps 0, 200, ..., 800
+        assert_eq!(files.len(), 5, "{kind}.pvd: {pvd}");
+        for (k, f) in files.iter().enumerate() {
+            assert_eq!(*f, format!("{kind}_{:06}.vtp", 200 * k));
+            let body = std::fs::read(out.join(f)).unwrap();
+            assert!(body.starts_with(b"<?xml") || body.starts_with(b"<VTKFile"), "{f} is not VTK XML");
+        }
+    }
+    let m: serde_json::Value = serde_json::from_str(&read(&out.join("manifest.json"))).unwrap();
+    assert_eq!(m["status"], "completed");
+    assert_eq!(m["final_step"], 800);
+    assert!(m["sphere_steps_per_s"].as_f64().unwrap() > 0.0);
+    assert!(m["threads"].as_u64().unwrap() == 2);
+    assert!(read(&out.join("scenario.toml")).contains("[[stage]]"));
+    let header = read(&out.join("thermo.csv")).lines().next().unwrap().to_string();
+    assert!(header.contains("floor_fz") && header.contains("box_fz"), "{header}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+fn wait_for_rows(child: &mut std::process::Child, path: &Path, rows: usize, timeout: Duration) {
+    let t = Instant::now();
+    while t.elapsed() < timeout {
+        if let Some(st) = child.try_wait().unwrap() {
+            let mut err = String::new();
+            use std::io::Read;
+            child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
+            panic!("the run ended early ({st:?}):\n{err}");
+        }
+        if std::fs::read_to_string(path).map(|s| s.lines().count() > rows).unwrap_or(false) {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    panic!("{} did not reach {rows} rows in {timeout:?}", path.display());
+}
+
+fn interrupt_and_resume(signal: &str, code: i32) {
+    let d = tmp(&format!("sig{signal}"));
+    let sc = write_scenario(&d, 1_000_000);
+    let out = d.join("out");
+    let mut child = clump()
+        .arg("run")
+        .arg(&sc)
+        .arg("-o")
+        .arg(&out)
+        .args(["--threads", "2"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // the signal handlers are installed before the first thermo row
+    wait_for_rows(&mut child, &out.join("thermo.csv"), 20, Duration::from_secs(120));
+    let st = Command::new("kill").arg(format!("-{signal}")).arg(child.id().to_string()).status().unwrap();
+    assert!(st.success());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(code), "stderr:\n{}", String::from_utf8_lossy(&o.stderr));
+    let m: serde_json::Value = serde_json::from_str(&read(&out.join("manifest.json"))).unwrap();
+    assert!(m["status"].as_str().unwrap().starts_with("interrupted"), "{m}");
+    let step = m["final_step"].as_u64().unwrap();
+    let ck = out.join(format!("checkpoint_{step:09}.ckpt"));
+    assert!(ck.is_file(), "no checkpoint at the interrupt step {step}");
+    assert_eq!(m["checkpoint"].as_str().unwrap(), ck.display().to_string());
+    // resume a little further and compare with an uninterrupted run to the same step
+    let target = (step + 300).to_string();
+    run_ok(clump().arg("resume").arg(&ck).args(["--threads", "1", "--steps", &target]));
+    let straight = d.join("straight");
+    run_ok(clump().arg("run").arg(&sc).arg("-o").arg(&straight).args(["--threads", "2", "--steps", &target]));
+    assert!(
+        read(&out.join("final_state.json")) == read(&straight.join("final_state.json")),
+        "interrupted + resumed run differs from the uninterrupted one"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn sigterm_checkpoints_and_exits_143_then_resumes() {
+    interrupt_and_resume("TERM", 143);
+}
+
+#[test]
+fn sigint_checkpoints_and_exits_130() {
+    interrupt_and_resume("INT", 130);
+}
+
+#[test]
+fn bad_input_exits_with_status_2() {
+    let d = tmp("bad");
+    let p = d.join("bad.toml");
+    std::fs::write(&p, scenario(10).replace("restitution = 0.3", "restitutoin = 0.3")).unwrap();
+    for sub in ["run", "check"] {
+        let o = clump().arg(sub).arg(&p).arg("-o").arg(d.join("o")).output();
+        let o = match sub {
+            "check" => clump().arg(sub).arg(&p).output().unwrap(),
+            _ => o.unwrap(),
+        };
+        assert_eq!(o.status.code(), Some(2), "{sub}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("unknown key 'restitutoin' in [contact]") && err.contains("bad.toml:23:"), "{err}");
+        assert!(err.contains("did you mean 'restitution'?"), "{err}");
+    }
+    // a missing scenario, a missing and a corrupt checkpoint
+    let o = clump().args(["run", "/nonexistent/x.toml"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let o = clump().args(["resume", "/nonexistent/c.ckpt"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let junk = d.join("junk.ckpt");
+    std::fs::write(&junk, b"not a checkpoint at all, but long enough to have a header").unwrap();
+    let o = clump().arg("resume").arg(&junk).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    // unknown command-line option
+    let o = clump().args(["run", "--bogus"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(&d);
+}

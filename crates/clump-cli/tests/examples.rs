@@ -1,0 +1,73 @@
+//! Every shipped example parses, passes `clump check`, and runs a short
+//! horizon (`--steps`) with the real engine, writing its outputs.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn clump() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_clump"))
+}
+
+fn examples() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    v.sort();
+    v
+}
+
+fn out_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("clump-examples-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+#[test]
+fn the_four_examples_exist() {
+    let names: Vec<String> = examples().iter().map(|p| p.file_stem().unwrap().to_string_lossy().into_owned()).collect();
+    for want in ["stones", "hopper", "drum", "t_handle"] {
+        assert!(names.iter().any(|n| n == want), "examples/{want}.toml is missing (found {names:?})");
+    }
+}
+
+#[test]
+fn every_example_passes_check() {
+    for ex in examples() {
+        let o = clump().arg("check").arg(&ex).output().unwrap();
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "clump check {} failed:\n{stdout}\n{stderr}", ex.display());
+        assert!(stdout.contains("Rayleigh time"), "{stdout}");
+        assert!(stdout.contains("estimated memory"), "{stdout}");
+        assert!(stdout.contains("ok: "), "{stdout}");
+        assert!(!stderr.contains("warning"), "{} gives warnings:\n{stderr}", ex.display());
+    }
+}
+
+#[test]
+fn every_example_runs_a_short_horizon() {
+    for ex in examples() {
+        let name = ex.file_stem().unwrap().to_string_lossy().into_owned();
+        let out = out_dir(&name);
+        let o = clump().arg("run").arg(&ex).arg("-o").arg(&out).args(["--steps", "200", "--threads", "2"]).output().unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "clump run {name} --steps 200 failed ({:?}):\n{stderr}", o.status);
+        let manifest: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("manifest.json")).unwrap()).unwrap();
+        assert_eq!(manifest["final_step"], 200, "{manifest}");
+        assert_eq!(manifest["status"], "step_limit");
+        for f in ["scenario.toml", "final_state.json", "thermo.csv", "spheres.pvd", "bodies.pvd", "walls.pvd", "checkpoint_000000200.ckpt"] {
+            assert!(out.join(f).is_file(), "{name}: {f} was not written");
+        }
+        // every body is finite and inside the domain
+        let fs: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("final_state.json")).unwrap()).unwrap();
+        for b in fs["bodies"].as_array().unwrap() {
+            for x in b["position"].as_array().unwrap() {
+                assert!(x.as_f64().unwrap().is_finite(), "{name}: non-finite position {b}");
+            }
+        }
+        let _ = std::fs::remove_dir_all(&out);
+    }
+}
