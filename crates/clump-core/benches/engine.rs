@@ -6,14 +6,13 @@ use clump_core::body::BodyInit;
 use clump_core::boundary::Domain;
 use clump_core::contact::{ContactHistory, ContactInput, ContactModel, DampingLaw, Material, PairProperties};
 use clump_core::multi_contact::MultiContact;
-use clump_core::neighbor::pairs::BuildInput;
+use clump_core::neighbor::pairs::{BuildInput, HistoryMap};
 use clump_core::neighbor::{CellGrid, PairList};
 use clump_core::shape::{ClumpTemplate, Sphere};
 use clump_core::wall::{Wall, WallMotion, WallShape};
 use clump_core::world::{AddedMass, ContactTable, World, WorldConfig};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::{DQuat, DVec3};
-use std::collections::HashMap;
 
 fn material() -> Material {
     Material { youngs_modulus: 5e6, poisson_ratio: 0.3, density: 2500.0 }
@@ -64,7 +63,7 @@ fn neighbor_build(c: &mut Criterion) {
     let grid = CellGrid::new(&w.config.domain, &sp.position, 2e-3 + 0.5e-3).unwrap();
     let inp = BuildInput { position: &sp.position, radius: &sp.radius, body: &sp.body, gid: &sp.gid, skin: 0.5e-3 };
     let mut list = PairList::default();
-    let hist = HashMap::new();
+    let hist = HistoryMap::default();
     let mut g = c.benchmark_group("neighbor");
     g.throughput(Throughput::Elements(sp.len() as u64));
     g.bench_function("build_16k_spheres", |b| b.iter(|| list.build(&grid, &w.config.domain, &inp, &hist)));

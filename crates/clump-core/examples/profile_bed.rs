@@ -65,6 +65,12 @@ fn main() {
     let (nx, settle, steps) = (a.first().copied().unwrap_or(12), a.get(1).copied().unwrap_or(20000), a.get(2).copied().unwrap_or(2000));
     let mut w = bed(nx as usize, settle);
     let r0 = w.rebuilds;
+    println!("SETTLED");
+    use std::io::Write;
+    std::io::stdout().flush().unwrap();
+    if std::env::var_os("PROFILE_WAIT").is_some() {
+        std::thread::sleep(std::time::Duration::from_secs(3));
+    }
     let t = Instant::now();
     profiled(&mut w, steps);
     let s = t.elapsed().as_secs_f64();

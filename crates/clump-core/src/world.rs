@@ -11,7 +11,6 @@ use crate::sphere::Spheres;
 use crate::wall::{TriMesh, Wall, WallLoad, WallShape};
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
-use std::collections::HashMap;
 use thiserror::Error;
 
 /// Added-mass model (seed 000): the body's inertia in the kicks is scaled by
@@ -153,7 +152,7 @@ pub struct World {
     pub(crate) template_radius: Vec<f64>,
     pub(crate) reference_position: Vec<DVec3>,
     pub(crate) reference_pose: Vec<(DVec3, DQuat)>,
-    pub(crate) history_map: HashMap<(u64, u64), ContactHistory>,
+    pub(crate) history_map: crate::neighbor::pairs::HistoryMap,
     pub(crate) grid: CellGrid,
     pub(crate) topology_dirty: bool,
     pub(crate) forces_ready: bool,
@@ -191,7 +190,7 @@ impl World {
             template_radius: Vec::new(),
             reference_position: Vec::new(),
             reference_pose: Vec::new(),
-            history_map: HashMap::new(),
+            history_map: Default::default(),
             grid: CellGrid::default(),
             topology_dirty: true,
             forces_ready: false,

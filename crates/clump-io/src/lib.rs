@@ -2,6 +2,7 @@
 pub mod atomic;
 pub mod bodies_csv;
 pub mod checkpoint;
+pub mod mesh_file;
 pub mod run;
 pub mod scenario;
 pub mod template_file;

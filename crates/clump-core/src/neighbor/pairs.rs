@@ -7,6 +7,9 @@ use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
 
+/// Contact histories keyed by (lower, higher) global sphere id.
+pub type HistoryMap = HashMap<(u64, u64), ContactHistory, rustc_hash::FxBuildHasher>;
+
 /// Spheres per parallel work block while building the list.
 const BLOCK: usize = 512;
 
@@ -22,11 +25,10 @@ pub struct PairTopo {
     pub shift: [i8; 3],
 }
 
-/// Contact state of one pair, rewritten by every force evaluation.
+/// Result of the last force evaluation of one pair (kept apart from the
+/// history so that the kernel touches little memory for non-touching pairs).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct PairState {
-    /// History (tangential and rolling springs), world frame.
-    pub history: ContactHistory,
     /// Force on sphere `i`, world frame, N (sphere `j` gets the opposite).
     pub force: DVec3,
     /// Torque on body of `i` about its centre of mass, world frame, N m.
@@ -35,16 +37,23 @@ pub struct PairState {
     pub torque_j: DVec3,
     /// Elastic energy stored in the contact, J.
     pub energy: f64,
-    /// Overlap, m (0 when not touching).
+    /// Overlap, m: > 0 touching, 0 not touching, [`HISTORY_ONLY`] when the
+    /// pair holds a restored history that the next evaluation must check.
     pub overlap: f64,
 }
+
+/// Marker overlap of a pair whose history was restored (checkpoint or
+/// rebuild) but which has not been evaluated since.
+pub const HISTORY_ONLY: f64 = -1.0;
 
 /// The half pair list with per-sphere incidence, reused between builds.
 #[derive(Debug, Clone, Default)]
 pub struct PairList {
     /// Pair topology.
     pub topo: Vec<PairTopo>,
-    /// Pair state (parallel to `topo`).
+    /// Contact history per pair (parallel to `topo`), world frame.
+    pub history: Vec<ContactHistory>,
+    /// Last evaluation per pair (parallel to `topo`).
     pub state: Vec<PairState>,
     /// Incidence: pairs touching sphere `s` are
     /// `incidence[incidence_start[s]..incidence_start[s+1]]`; each entry is a
@@ -110,18 +119,18 @@ impl PairList {
     }
 
     /// Collects the history of touching pairs keyed by (gid_i, gid_j).
-    pub fn save_history(&self, gid: &[u64], out: &mut HashMap<(u64, u64), crate::contact::ContactHistory>) {
+    pub fn save_history(&self, gid: &[u64], out: &mut HistoryMap) {
         out.clear();
-        for (t, s) in self.topo.iter().zip(&self.state) {
-            if s.history != ContactHistory::default() {
-                out.insert((gid[t.i as usize], gid[t.j as usize]), s.history);
+        for (t, h) in self.topo.iter().zip(&self.history) {
+            if *h != ContactHistory::default() {
+                out.insert((gid[t.i as usize], gid[t.j as usize]), *h);
             }
         }
     }
 
     /// Rebuilds the list for spheres `inp` on `grid`, keeping the history of
     /// pairs found in `history` (keyed by global sphere ids, lower first).
-    pub fn build(&mut self, grid: &CellGrid, domain: &Domain, inp: &BuildInput, history: &HashMap<(u64, u64), ContactHistory>) {
+    pub fn build(&mut self, grid: &CellGrid, domain: &Domain, inp: &BuildInput, history: &HistoryMap) {
         let n = inp.position.len();
         // 1. bin spheres into cells (counting sort)
         self.sphere_cell.clear();
@@ -146,7 +155,7 @@ impl PairList {
         }
 
         // 2. count candidates per sphere (j > i, other body)
-        let ctx = Search { grid, domain, inp, cell_start: &self.cell_start, cell_items: &self.cell_items, sphere_cell: &self.sphere_cell };
+        let ctx = Search { grid, domain, inp, cell_start: &self.cell_start, cell_items: &self.cell_items, sphere_cell: &self.sphere_cell, length: domain.size(), half: 0.5 * domain.size() };
         (0..n).into_par_iter().with_min_len(BLOCK).map(|i| ctx.visit(i, |_, _| {})).collect_into_vec(&mut self.counts);
 
         // 3. offsets
@@ -188,14 +197,17 @@ impl PairList {
         let gid = inp.gid;
         self.state.clear();
         self.state.resize(acc, PairState::default());
-        self.topo.par_iter_mut().zip(self.state.par_iter_mut()).with_min_len(4096).for_each(|(t, s)| {
+        self.history.clear();
+        self.history.resize(acc, ContactHistory::default());
+        self.topo.par_iter_mut().zip(self.history.par_iter_mut().zip(self.state.par_iter_mut())).with_min_len(4096).for_each(|(t, (h, s))| {
             if gid[t.i as usize] > gid[t.j as usize] {
                 std::mem::swap(&mut t.i, &mut t.j);
                 t.shift = [-t.shift[0], -t.shift[1], -t.shift[2]];
             }
             if !history.is_empty() {
-                if let Some(h) = history.get(&(gid[t.i as usize], gid[t.j as usize])) {
-                    s.history = *h;
+                if let Some(old) = history.get(&(gid[t.i as usize], gid[t.j as usize])) {
+                    *h = *old;
+                    s.overlap = HISTORY_ONLY;
                 }
             }
         });
@@ -232,6 +244,8 @@ struct Search<'a> {
     cell_start: &'a [u32],
     cell_items: &'a [u32],
     sphere_cell: &'a [[i64; 3]],
+    length: DVec3,
+    half: DVec3,
 }
 
 impl Search<'_> {
@@ -256,8 +270,15 @@ impl Search<'_> {
                 let mut d = xi - inp.position[ju];
                 let mut shift = [0i8; 3];
                 if any_periodic {
-                    shift = self.domain.minimum_image_shift(d);
-                    d += self.domain.shift_vector(shift);
+                    // minimum image; the division only runs for pairs that
+                    // straddle the boundary
+                    for a in 0..3 {
+                        if self.domain.periodic[a] && d[a].abs() > self.half[a] {
+                            let s = -(d[a] / self.length[a]).round();
+                            shift[a] = s as i8;
+                            d[a] += s * self.length[a];
+                        }
+                    }
                 }
                 let cut = ri + inp.radius[ju] + inp.skin;
                 if d.length_squared() < cut * cut {

@@ -13,38 +13,41 @@
 
 use glam::{DQuat, DVec3};
 
-use crate::math::quat_from_rotation_vector;
+use crate::math::sin_cos;
 
-/// Exact flow of `T_k` over `h` seconds: rotate the body about its principal
-/// axis `k` (body frame) by the angle `L_b,k h / I_k`. A zero moment `I_k`
-/// leaves `q` unchanged.
-fn rotate_about_principal_axis(
-    q: DQuat,
-    l_world: DVec3,
-    inertia: DVec3,
-    k: usize,
-    h: f64,
-) -> DQuat {
-    let i_k = inertia[k];
-    if i_k <= 0.0 {
-        return q;
-    }
-    let l_body = q.conjugate() * l_world;
-    let mut rot = DVec3::ZERO;
-    rot[k] = l_body[k] / i_k * h;
-    // Body-frame rotation: right multiplication.
-    q * quat_from_rotation_vector(rot)
+/// Rotates the body by `phi` (rad) about its principal axis `k`: the
+/// orientation gains the body-frame factor exp(φ/2 e_k) on the right, and
+/// the body-frame angular momentum turns by −φ about `k` (the world-frame
+/// angular momentum is unchanged).
+#[inline(always)]
+fn rotate_about_principal_axis(q: &mut DQuat, l_body: &mut DVec3, k: usize, phi: f64) {
+    let (s2, c2) = sin_cos(0.5 * phi);
+    let mut v = DVec3::ZERO;
+    v[k] = s2;
+    *q = *q * DQuat::from_xyzw(v.x, v.y, v.z, c2);
+    let (s, c) = (2.0 * s2 * c2, c2 * c2 - s2 * s2);
+    let (a, b) = ((k + 1) % 3, (k + 2) % 3);
+    let (la, lb) = (l_body[a], l_body[b]);
+    l_body[a] = c * la + s * lb;
+    l_body[b] = -s * la + c * lb;
 }
 
-/// Torque-free drift over `dt` (s): new body → world orientation from `q`, the
-/// constant WORLD-frame angular momentum `l_world` (kg m²/s) and principal
-/// moments `inertia` (body frame, kg m²). Time-reversible:
-/// `drift(drift(q, L, I, dt), L, I, −dt) = q` to round-off.
+/// NO_SQUISH free-rotation drift over `dt` (s): the symmetric splitting
+/// 3(dt/2), 2(dt/2), 1(dt), 2(dt/2), 3(dt/2) of the free rotor into exact
+/// rotations about the principal axes (Miller et al. 2002). `l_world` is the
+/// angular momentum (world frame, kg m²/s), constant during the drift;
+/// `inertia` the principal moments (body frame, kg m²). A zero moment means
+/// no rotation about that axis.
 pub fn drift(q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
     let half = 0.5 * dt;
     let mut q = q;
+    let mut lb = q.conjugate() * l_world;
     for (k, h) in [(2, half), (1, half), (0, dt), (1, half), (2, half)] {
-        q = rotate_about_principal_axis(q, l_world, inertia, k, h);
+        let i_k = inertia[k];
+        if i_k > 0.0 {
+            let phi = lb[k] / i_k * h;
+            rotate_about_principal_axis(&mut q, &mut lb, k, phi);
+        }
     }
     q.normalize()
 }

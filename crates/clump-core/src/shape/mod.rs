@@ -31,6 +31,7 @@
 pub mod builtin;
 pub mod disc_union;
 pub mod eigen;
+pub mod from_mesh;
 pub mod error;
 pub mod mass_properties;
 pub mod sphere;

@@ -31,7 +31,8 @@ fn pair_forces(w: &mut World) {
     let sp = &w.spheres;
     let b = &w.bodies;
     let table = &w.contact_table;
-    w.pairs.topo.par_iter().zip(w.pairs.state.par_iter_mut()).with_min_len(512).for_each(|(t, st)| {
+    let pairs = &mut w.pairs;
+    pairs.topo.par_iter().zip(pairs.history.par_iter_mut().zip(pairs.state.par_iter_mut())).with_min_len(512).for_each(|(t, (hist, st))| {
         let (i, j) = (t.i as usize, t.j as usize);
         let shift = if any_periodic { domain.shift_vector(t.shift) } else { DVec3::ZERO };
         let xi = sp.position[i];
@@ -41,10 +42,10 @@ fn pair_forces(w: &mut World) {
         let rsum = ri + rj;
         let dist2 = d.length_squared();
         if dist2 >= rsum * rsum {
-            // not touching: clear what a previous contact left (rarely needed,
-            // so test before writing to keep memory traffic low)
-            if st.overlap != 0.0 || st.history != ContactHistory::default() {
+            // not touching: clear what a previous contact left
+            if st.overlap != 0.0 {
                 *st = PairState::default();
+                *hist = ContactHistory::default();
             }
             return;
         }
@@ -68,7 +69,7 @@ fn pair_forces(w: &mut World) {
             dt,
         };
         let model = table.get(sp.material[i], sp.material[j]);
-        let out = model.evaluate(&input, &mut st.history);
+        let out = model.evaluate(&input, hist);
         st.force = out.force;
         st.torque_i = (xc - ci).cross(out.force) + out.torque;
         st.torque_j = (xc - cj).cross(-out.force) - out.torque;
@@ -208,8 +209,11 @@ fn gather(w: &mut World) {
                                 }
                             }
                         }
-                        *key = new_key;
-                        *hist = new_hist;
+                        // most spheres touch no wall: skip the write then
+                        if n_new > 0 || key[0] != 0 {
+                            *key = new_key;
+                            *hist = new_hist;
+                        }
                     }
                 }
                 // SAFETY: body bi is handled by this chunk only.

@@ -23,6 +23,7 @@
 //! refers to. Resuming rebuilds the world from that text, restores both
 //! states and re-enters the loop at the checkpoint point, so the resumed run
 //! repeats the uninterrupted one bit for bit.
+#![allow(clippy::manual_is_multiple_of, clippy::result_large_err)]
 
 use crate::checkpoint::{read_checkpoint, write_checkpoint};
 use crate::scenario::{self, Files, InsertSpec, Scenario, ScenarioError};

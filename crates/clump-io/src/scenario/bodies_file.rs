@@ -7,6 +7,7 @@
 //! `x, y, z` (centre of mass, world frame, m), `qw, qx, qy, qz` (orientation
 //! body → world, normalised on reading), `vx, vy, vz` (m/s, world),
 //! `wx, wy, wz` (angular velocity, rad/s, world). `#` starts a comment line.
+#![allow(clippy::needless_range_loop)]
 
 use clump_core::body::BodyInit;
 use glam::{DQuat, DVec3};

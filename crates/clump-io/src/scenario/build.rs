@@ -1,6 +1,7 @@
 //! Validation and resolution of a parsed scenario: names become indices,
 //! defaults are filled in, physical ranges are checked and every error points
 //! at the offending key.
+#![allow(clippy::result_large_err, clippy::neg_cmp_op_on_partial_ord, clippy::unnecessary_map_or)]
 
 use super::diag::{did_you_mean, list, Diagnostic};
 use super::model::*;

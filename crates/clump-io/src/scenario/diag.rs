@@ -163,7 +163,8 @@ impl fmt::Display for ScenarioError {
 
 impl std::error::Error for ScenarioError {}
 
-/// The closest of `candidates` to `word` (Jaro–Winkler ≥ 0.75 or a small edit
+#[allow(clippy::unnecessary_map_or)] // `is_none_or` needs Rust 1.82; the MSRV is 1.80
+/// The closest of `candidates` to `word` (Jaro–Winkler ≥ 0.8 or a small edit
 /// distance), for "did you mean".
 pub fn did_you_mean<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
     let mut best: Option<(&str, f64)> = None;

@@ -7,6 +7,7 @@
 //! column, the key and what is allowed. [`Scenario::build_world`] creates the
 //! engine's [`World`] (materials, contact table, templates, walls; no bodies —
 //! insertion is done by the run driver, [`crate::run`]).
+#![allow(clippy::result_large_err)]
 
 mod bodies_file;
 mod build;
