@@ -39,9 +39,9 @@ pub struct BenchArgs {
     /// Threads for Clump (rayon).
     #[arg(long, default_value_t = 1)]
     pub threads: usize,
-    /// Verlet skin, m.
-    #[arg(long, default_value_t = 0.5e-3)]
-    pub skin: f64,
+    /// Verlet skin, m (default: the engine's, 20 % of the smallest radius).
+    #[arg(long)]
+    pub skin: Option<f64>,
     /// Also run LIGGGHTS (if installed), alternating Clump and LIGGGHTS this many rounds.
     #[arg(long, default_value_t = 0)]
     pub liggghts_rounds: usize,
@@ -62,7 +62,11 @@ struct Figures {
 /// Runs the benchmark.
 pub fn run(args: &BenchArgs) -> Result<()> {
     let rounds = args.liggghts_rounds.max(1);
-    let lig = if args.liggghts_rounds > 0 { which("liggghts") } else { None };
+    let lig = if args.liggghts_rounds > 0 {
+        which("liggghts")
+    } else {
+        None
+    };
     if args.liggghts_rounds > 0 && lig.is_none() {
         eprintln!("liggghts is not installed (apt-get install liggghts): running Clump only");
     }
@@ -85,12 +89,22 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     };
     let tput = |s: f64, steps: u64, n: usize| n as f64 * steps as f64 / s;
     let ns = clump[0].spheres;
-    let (ca, cb) = (tput(med(&clump, |f| f.a_seconds), args.na, ns), tput(med(&clump, |f| f.b_seconds), args.nb, ns));
+    let (ca, cb) = (
+        tput(med(&clump, |f| f.a_seconds), args.na, ns),
+        tput(med(&clump, |f| f.b_seconds), args.nb, ns),
+    );
     println!("clump    (threads {}): phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s, peak RSS {:.0} MB", args.threads, ca / 1e6, cb / 1e6, med(&clump, |f| f.peak_rss_mb));
     if !peer.is_empty() {
-        let (la, lb) = (tput(med(&peer, |f| f.a_seconds), args.na, ns), tput(med(&peer, |f| f.b_seconds), args.nb, ns));
+        let (la, lb) = (
+            tput(med(&peer, |f| f.a_seconds), args.na, ns),
+            tput(med(&peer, |f| f.b_seconds), args.nb, ns),
+        );
         println!("liggghts (serial):    phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s, peak RSS {:.0} MB", la / 1e6, lb / 1e6, med(&peer, |f| f.peak_rss_mb));
-        println!("ratio clump/liggghts: phase A {:.2}x, phase B {:.2}x", ca / la, cb / lb);
+        println!(
+            "ratio clump/liggghts: phase A {:.2}x, phase B {:.2}x",
+            ca / la,
+            cb / lb
+        );
     }
     Ok(())
 }
@@ -108,24 +122,42 @@ fn report(code: &str, round: usize, args: &BenchArgs, f: &Figures) {
 }
 
 fn which(name: &str) -> Option<PathBuf> {
-    std::env::var_os("PATH").and_then(|p| std::env::split_paths(&p).map(|d| d.join(name)).find(|f| f.is_file()))
+    std::env::var_os("PATH").and_then(|p| {
+        std::env::split_paths(&p)
+            .map(|d| d.join(name))
+            .find(|f| f.is_file())
+    })
 }
 
 /// Builds the tetra-bed world from the shared files.
-pub fn build_world(dir: &Path, n: usize, skin: f64) -> Result<World> {
+pub fn build_world(dir: &Path, n: usize, skin: Option<f64>) -> Result<World> {
     let ztop = if n <= 2000 { 0.2 } else { 0.31 };
-    let spheres = clump_io::template_file::read_template_file(&dir.join("tetra.xyzr")).map_err(|e| anyhow::anyhow!("{e}"))?;
-    let mat = Material { youngs_modulus: 5e6, poisson_ratio: 0.3, density: 2500.0 };
-    let props = PairProperties { restitution: 0.5, friction: 0.5, damping: DampingLaw::Liggghts, ..PairProperties::default() };
+    let spheres = clump_io::template_file::read_template_file(&dir.join("tetra.xyzr"))
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    let mat = Material {
+        youngs_modulus: 5e6,
+        poisson_ratio: 0.3,
+        density: 2500.0,
+    };
+    let props = PairProperties {
+        restitution: 0.5,
+        friction: 0.5,
+        damping: DampingLaw::Liggghts,
+        ..PairProperties::default()
+    };
     let mats = vec![mat];
     let table = ContactTable::new(&mats, |_, _| props.clone())?;
     let config = WorldConfig {
-        domain: Domain { lo: DVec3::new(-0.021, -0.021, -0.001), hi: DVec3::new(0.021, 0.021, ztop + 0.001), periodic: [false; 3] },
+        domain: Domain {
+            lo: DVec3::new(-0.021, -0.021, -0.001),
+            hi: DVec3::new(0.021, 0.021, ztop + 0.001),
+            periodic: [false; 3],
+        },
         gravity: DVec3::new(0.0, 0.0, -9.81),
         dt: 1e-5,
         rotation: Default::default(),
         added_mass: AddedMass::default(),
-        skin: Some(skin),
+        skin,
         multi_contact: MultiContact::Sum,
     };
     let mut w = World::new(config, mats, table);
@@ -142,7 +174,17 @@ pub fn build_world(dir: &Path, n: usize, skin: f64) -> Result<World> {
         (DVec3::new(0.0, -0.02, 0.0), DVec3::Y),
         (DVec3::new(0.0, 0.02, 0.0), -DVec3::Y),
     ] {
-        w.add_wall(Wall { name: format!("wall{}", w.walls.len()), shape: WallShape::Plane { point: p, normal: nrm }, material: 0, motion: WallMotion::default(), multi_contact: MultiContact::Sum, active: true })?;
+        w.add_wall(Wall {
+            name: format!("wall{}", w.walls.len()),
+            shape: WallShape::Plane {
+                point: p,
+                normal: nrm,
+            },
+            material: 0,
+            motion: WallMotion::default(),
+            multi_contact: MultiContact::Sum,
+            active: true,
+        })?;
     }
     let icp = dir.join(format!("ic_{n}.txt"));
     let ic = std::fs::read_to_string(&icp).with_context(|| format!("reading {}", icp.display()))?;
@@ -152,9 +194,18 @@ pub fn build_world(dir: &Path, n: usize, skin: f64) -> Result<World> {
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
-        let v: Vec<f64> = line.split_whitespace().map(|x| x.parse::<f64>()).collect::<Result<_, _>>().with_context(|| format!("{}:{}: expected 8 numbers", icp.display(), ln + 1))?;
+        let v: Vec<f64> = line
+            .split_whitespace()
+            .map(|x| x.parse::<f64>())
+            .collect::<Result<_, _>>()
+            .with_context(|| format!("{}:{}: expected 8 numbers", icp.display(), ln + 1))?;
         if v.len() != 8 {
-            bail!("{}:{}: expected 8 numbers `id xc yc zc qw qx qy qz`, found {}", icp.display(), ln + 1, v.len());
+            bail!(
+                "{}:{}: expected 8 numbers `id xc yc zc qw qx qy qz`, found {}",
+                icp.display(),
+                ln + 1,
+                v.len()
+            );
         }
         // q_ic maps the file frame to world; body → world = q_ic · (input→body)⁻¹
         let q_ic = DQuat::from_xyzw(v[5], v[6], v[7], v[4]).normalize();
@@ -169,7 +220,9 @@ pub fn build_world(dir: &Path, n: usize, skin: f64) -> Result<World> {
 }
 
 fn run_clump(args: &BenchArgs) -> Result<Figures> {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads).build()?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build()?;
     pool.install(|| {
         let mut w = build_world(&args.dir, args.n, args.skin)?;
         w.prepare()?;
@@ -180,11 +233,23 @@ fn run_clump(args: &BenchArgs) -> Result<Figures> {
         w.run(args.nb)?;
         let b = t1.elapsed().as_secs_f64();
         let th = w.thermo();
-        eprintln!("clump: {} bodies, {} contacts, lost {}, KE {:.3e} J, rebuilds {}", th.bodies, th.pair_contacts + th.wall_contacts, th.lost_bodies, th.kinetic_translational + th.kinetic_rotational, w.rebuilds);
+        eprintln!(
+            "clump: {} bodies, {} contacts, lost {}, KE {:.3e} J, rebuilds {}",
+            th.bodies,
+            th.pair_contacts + th.wall_contacts,
+            th.lost_bodies,
+            th.kinetic_translational + th.kinetic_rotational,
+            w.rebuilds
+        );
         if let Some(p) = &args.dump {
             write_dump(&w, p)?;
         }
-        Ok(Figures { a_seconds: a, b_seconds: b, spheres: w.spheres().len(), peak_rss_mb: peak_rss_mb() })
+        Ok(Figures {
+            a_seconds: a,
+            b_seconds: b,
+            spheres: w.spheres().len(),
+            peak_rss_mb: peak_rss_mb(),
+        })
     })
 }
 
@@ -195,15 +260,28 @@ fn write_dump(w: &World, path: &Path) -> Result<()> {
     let mut order: Vec<usize> = (0..w.bodies.len()).collect();
     order.sort_by_key(|&b| w.bodies.id[b]);
     let mut s = String::new();
-    writeln!(s, "ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{}", w.step, sp.len())?;
+    writeln!(
+        s,
+        "ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{}",
+        w.step,
+        sp.len()
+    )?;
     let d = w.config.domain;
-    writeln!(s, "ITEM: BOX BOUNDS ff ff ff\n{} {}\n{} {}\n{} {}", d.lo.x, d.hi.x, d.lo.y, d.hi.y, d.lo.z, d.hi.z)?;
+    writeln!(
+        s,
+        "ITEM: BOX BOUNDS ff ff ff\n{} {}\n{} {}\n{} {}",
+        d.lo.x, d.hi.x, d.lo.y, d.hi.y, d.lo.z, d.hi.z
+    )?;
     writeln!(s, "ITEM: ATOMS id mol x y z radius")?;
     let mut id = 1;
     for b in order {
         for k in sp.of_body(b) {
             let x = sp.position[k];
-            writeln!(s, "{id} {} {:.9e} {:.9e} {:.9e} {:.6e}", w.bodies.id[b], x.x, x.y, x.z, sp.radius[k])?;
+            writeln!(
+                s,
+                "{id} {} {:.9e} {:.9e} {:.9e} {:.6e}",
+                w.bodies.id[b], x.x, x.y, x.z, sp.radius[k]
+            )?;
             id += 1;
         }
     }
@@ -215,7 +293,11 @@ fn write_dump(w: &World, path: &Path) -> Result<()> {
 fn peak_rss_mb() -> f64 {
     std::fs::read_to_string("/proc/self/status")
         .ok()
-        .and_then(|s| s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok()))
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
@@ -224,7 +306,8 @@ fn run_liggghts(args: &BenchArgs, bin: &Path) -> Result<Figures> {
     std::fs::create_dir_all(&work)?;
     let src = args.dir.join("liggghts");
     for f in ["in.bench", "tetra.multisphere", "gen_liggghts.py"] {
-        std::fs::copy(src.join(f), work.join(f)).with_context(|| format!("copying {}", src.join(f).display()))?;
+        std::fs::copy(src.join(f), work.join(f))
+            .with_context(|| format!("copying {}", src.join(f).display()))?;
     }
     for f in std::fs::read_dir(&args.dir)? {
         let p = f?.path();
@@ -233,26 +316,70 @@ fn run_liggghts(args: &BenchArgs, bin: &Path) -> Result<Figures> {
         }
     }
     let ztop = if args.n <= 2000 { "0.2" } else { "0.31" };
-    let ok = std::process::Command::new("python3").arg("gen_liggghts.py").arg(args.n.to_string()).current_dir(&work).status()?;
+    let ok = std::process::Command::new("python3")
+        .arg("gen_liggghts.py")
+        .arg(args.n.to_string())
+        .current_dir(&work)
+        .status()?;
     if !ok.success() {
         bail!("gen_liggghts.py failed");
     }
     let out = std::process::Command::new("/usr/bin/time")
         .args(["-f", "MAXRSS_KB %M"])
         .arg(bin)
-        .args(["-in", "in.bench", "-var", "N", &args.n.to_string(), "-var", "ZTOP", ztop, "-var", "NA", &args.na.to_string(), "-var", "NB", &args.nb.to_string()])
+        .args([
+            "-in",
+            "in.bench",
+            "-var",
+            "N",
+            &args.n.to_string(),
+            "-var",
+            "ZTOP",
+            ztop,
+            "-var",
+            "NA",
+            &args.na.to_string(),
+            "-var",
+            "NB",
+            &args.nb.to_string(),
+        ])
         .current_dir(&work)
         .output()?;
-    let text = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
-    let loops: Vec<f64> = text.lines().filter(|l| l.starts_with("Loop time of")).filter_map(|l| l.split_whitespace().nth(3)?.parse().ok()).collect();
-    let rss = text.lines().find(|l| l.starts_with("MAXRSS_KB")).and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok()).unwrap_or(f64::NAN) / 1024.0;
+    let text =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    let loops: Vec<f64> = text
+        .lines()
+        .filter(|l| l.starts_with("Loop time of"))
+        .filter_map(|l| l.split_whitespace().nth(3)?.parse().ok())
+        .collect();
+    let rss = text
+        .lines()
+        .find(|l| l.starts_with("MAXRSS_KB"))
+        .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        .unwrap_or(f64::NAN)
+        / 1024.0;
     if loops.len() < 2 {
-        bail!("could not read LIGGGHTS' loop times; its output ends with:\n{}", text.lines().rev().take(20).collect::<Vec<_>>().into_iter().rev().collect::<Vec<_>>().join("\n"));
+        bail!(
+            "could not read LIGGGHTS' loop times; its output ends with:\n{}",
+            text.lines()
+                .rev()
+                .take(20)
+                .collect::<Vec<_>>()
+                .into_iter()
+                .rev()
+                .collect::<Vec<_>>()
+                .join("\n")
+        );
     }
     if let Some(p) = &args.dump {
         let f = work.join(format!("final_{}.dump", args.n));
         let _ = std::fs::copy(f, p.with_extension("liggghts.dump"));
     }
     let _ = std::fs::remove_dir_all(&work);
-    Ok(Figures { a_seconds: loops[0], b_seconds: loops[1], spheres: 4 * args.n, peak_rss_mb: rss })
+    Ok(Figures {
+        a_seconds: loops[0],
+        b_seconds: loops[1],
+        spheres: 4 * args.n,
+        peak_rss_mb: rss,
+    })
 }

@@ -62,7 +62,10 @@ fn report(sc: &Scenario) {
     println!("scenario {}", sc.path.display());
     println!("\nmaterials:");
     for (n, m) in sc.material_names.iter().zip(&sc.materials) {
-        println!("  {n:<16} E = {:.3e} Pa  nu = {}  rho = {} kg/m^3", m.youngs_modulus, m.poisson_ratio, m.density);
+        println!(
+            "  {n:<16} E = {:.3e} Pa  nu = {}  rho = {} kg/m^3",
+            m.youngs_modulus, m.poisson_ratio, m.density
+        );
     }
     println!("\ntemplates (body frame = principal axes, origin at the centre of mass):");
     for t in &sc.templates {
@@ -91,7 +94,11 @@ fn report(sc: &Scenario) {
             println!(
                 "  dt = {:.4e} s ({}) = {:.3} t_R",
                 ts.dt,
-                if ts.auto { format!("auto, dt_fraction = {}", ts.fraction) } else { "explicit".into() },
+                if ts.auto {
+                    format!("auto, dt_fraction = {}", ts.fraction)
+                } else {
+                    "explicit".into()
+                },
                 ts.dt / tr
             );
         }
@@ -108,7 +115,11 @@ fn report(sc: &Scenario) {
             (s.first_step + s.steps) as f64 * ts.dt
         );
     }
-    println!("  total: {} steps, {:.4} s simulated", sc.total_steps(), sc.duration());
+    println!(
+        "  total: {} steps, {:.4} s simulated",
+        sc.total_steps(),
+        sc.duration()
+    );
     println!("\ninsertion:");
     for (k, ins) in sc.inserts.iter().enumerate() {
         let stage = &sc.stages[ins.stage].name;
@@ -130,12 +141,28 @@ fn report(sc: &Scenario) {
     println!("  expected in total: {nb:.0} bodies, {ns:.0} spheres");
     println!("\nwalls:");
     for w in &sc.walls {
-        println!("  {:<16} {:?}{}", w.name, w.shape, if w.active { "" } else { " (inactive at start)" });
+        println!(
+            "  {:<16} {:?}{}",
+            w.name,
+            w.shape,
+            if w.active { "" } else { " (inactive at start)" }
+        );
     }
     let mem = ns * BYTES_PER_SPHERE + nb * BYTES_PER_BODY;
-    println!("\nestimated memory: {} (about {:.1} kB per sphere and {:.1} kB per body)", human_bytes(mem), BYTES_PER_SPHERE / 1e3, BYTES_PER_BODY / 1e3);
+    println!(
+        "\nestimated memory: {} (about {:.1} kB per sphere and {:.1} kB per body)",
+        human_bytes(mem),
+        BYTES_PER_SPHERE / 1e3,
+        BYTES_PER_BODY / 1e3
+    );
     let o = &sc.output;
-    println!("\noutput every (steps): vtk {:?}, thermo {:?}, checkpoint {:?}, trajectory {:?}", o.vtk, o.thermo, o.checkpoint, o.trajectory.as_ref().map(|t| (&t.bodies, t.every)));
+    println!(
+        "\noutput every (steps): vtk {:?}, thermo {:?}, checkpoint {:?}, trajectory {:?}",
+        o.vtk,
+        o.thermo,
+        o.checkpoint,
+        o.trajectory.as_ref().map(|t| (&t.bodies, t.every))
+    );
 }
 
 /// Tries every file and pack insertion in a scratch world, stage by stage.
@@ -154,12 +181,15 @@ fn trial_pack(sc: &Scenario) -> Result<(), scenario::ScenarioError> {
         match &ins.kind {
             InsertSpec::File { bodies } => {
                 for b in bodies {
-                    world.add_body(b).map_err(|e| sc.insert_error(k, e.to_string()))?;
+                    world
+                        .add_body(b)
+                        .map_err(|e| sc.insert_error(k, e.to_string()))?;
                 }
             }
             InsertSpec::Pack { spec, seed, .. } => {
                 let t = std::time::Instant::now();
-                let rep = pack(&mut world, spec, *seed).map_err(|e| sc.insert_error(k, e.to_string()))?;
+                let rep =
+                    pack(&mut world, spec, *seed).map_err(|e| sc.insert_error(k, e.to_string()))?;
                 println!(
                     "trial packing #{}: {} bodies placed, solid fraction {:.3} ({:.2} s)",
                     k + 1,

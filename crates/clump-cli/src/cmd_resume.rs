@@ -1,7 +1,7 @@
 //! `clump resume CHECKPOINT [-o OUTDIR] [--threads N] [--steps N]`.
 
-use crate::cmd_run::{drive, error_exit};
 use crate::cmd_run::progress::init_logging;
+use crate::cmd_run::{drive, error_exit};
 use clap::Args;
 use clump_io::run::Runner;
 use std::path::PathBuf;

@@ -1,9 +1,9 @@
 //! `clump run SCENARIO [-o OUTDIR] [--threads N] [--steps N]`.
 
-use progress::{init_logging, Display};
 use clap::Args;
 use clump_io::run::{RunError, RunOptions, RunStatus, Runner};
 use clump_io::scenario;
+use progress::{init_logging, Display};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, AtomicUsize};
@@ -117,7 +117,11 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
     println!("output: {}", runner.outdir().display());
     if let Some(c) = &s.checkpoint {
         if s.status != RunStatus::Completed {
-            println!("checkpoint: {} (continue with `clump resume {}`)", c.display(), c.display());
+            println!(
+                "checkpoint: {} (continue with `clump resume {}`)",
+                c.display(),
+                c.display()
+            );
         }
     }
     match s.status {
@@ -148,7 +152,10 @@ pub fn run(args: &RunArgs) -> ExitCode {
     for w in &sc.warnings {
         eprint!("{w}");
     }
-    let outdir = args.outdir.clone().unwrap_or_else(|| default_outdir(&sc, &args.scenario));
+    let outdir = args
+        .outdir
+        .clone()
+        .unwrap_or_else(|| default_outdir(&sc, &args.scenario));
     let runner = match Runner::new(sc, &outdir) {
         Ok(r) => r,
         Err(e) => return error_exit(&e),
@@ -186,7 +193,8 @@ pub mod progress {
     /// `info` level for Clump's own messages).
     pub fn init_logging() {
         use tracing_subscriber::EnvFilter;
-        let filter = EnvFilter::try_from_default_env().unwrap_or_else(|_| EnvFilter::new("warn,clump_io=info,clump=info"));
+        let filter = EnvFilter::try_from_default_env()
+            .unwrap_or_else(|_| EnvFilter::new("warn,clump_io=info,clump=info"));
         let _ = tracing_subscriber::fmt()
             .with_env_filter(filter)
             .with_target(false)
@@ -206,18 +214,31 @@ pub mod progress {
         /// A display for a run ending at `end_step`.
         pub fn new(end_step: u64, start_step: u64) -> Self {
             if std::io::stderr().is_terminal() {
-                let pb = ProgressBar::with_draw_target(Some(end_step), ProgressDrawTarget::stderr_with_hz(4));
+                let pb = ProgressBar::with_draw_target(
+                    Some(end_step),
+                    ProgressDrawTarget::stderr_with_hz(4),
+                );
                 pb.set_style(
-                    ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:30.cyan/blue} {msg} ETA {eta}")
-                        .unwrap_or_else(|_| ProgressStyle::default_bar())
-                        .progress_chars("=> "),
+                    ProgressStyle::with_template(
+                        "{spinner} [{elapsed_precise}] {bar:30.cyan/blue} {msg} ETA {eta}",
+                    )
+                    .unwrap_or_else(|_| ProgressStyle::default_bar())
+                    .progress_chars("=> "),
                 );
                 pb.set_position(start_step);
                 pb.reset_eta();
                 let _ = BAR.set(pb.clone());
-                Display { bar: Some(pb), last_line: Instant::now(), line_every: Duration::from_secs(5) }
+                Display {
+                    bar: Some(pb),
+                    last_line: Instant::now(),
+                    line_every: Duration::from_secs(5),
+                }
             } else {
-                Display { bar: None, last_line: Instant::now(), line_every: Duration::from_secs(5) }
+                Display {
+                    bar: None,
+                    last_line: Instant::now(),
+                    line_every: Duration::from_secs(5),
+                }
             }
         }
 
@@ -234,7 +255,14 @@ pub mod progress {
         pub fn update(&mut self, p: &clump_io::run::Progress) {
             let msg = format!(
                 "t = {:.4}/{:.4} s  step {}/{}  {:.0} steps/s  {} bodies  {} contacts  [{}]",
-                p.time, p.end_time, p.step, p.end_step, p.steps_per_second, p.bodies, p.contacts, p.stage
+                p.time,
+                p.end_time,
+                p.step,
+                p.end_step,
+                p.steps_per_second,
+                p.bodies,
+                p.contacts,
+                p.stage
             );
             match &self.bar {
                 Some(pb) => {

@@ -50,6 +50,10 @@ pub struct TemplateArgs {
     /// With `--from-mesh`: smallest sphere radius, m (after scaling).
     #[arg(long, default_value_t = 0.0, value_name = "R")]
     pub min_radius: f64,
+    /// With `--from-mesh`: passes of the least-squares radius refinement
+    /// against the surface (0: pure CLUMP placement, all spheres inscribed).
+    #[arg(long, default_value_t = 20, value_name = "K")]
+    pub refine: usize,
     /// With `--from-mesh`: write the template (`x y z r` lines) here instead of stdout.
     #[arg(long, value_name = "PATH")]
     pub out: Option<PathBuf>,
@@ -130,7 +134,10 @@ pub fn compute(args: &TemplateArgs) -> Result<(Vec<Sphere>, MassProperties), Inp
             args.density
         )));
     }
-    let file = args.file.as_ref().ok_or_else(|| InputError("a template FILE (or --from-mesh MESH) is required".into()))?;
+    let file = args
+        .file
+        .as_ref()
+        .ok_or_else(|| InputError("a template FILE (or --from-mesh MESH) is required".into()))?;
     let spheres: Vec<Sphere> = read_template_file(file)
         .map_err(|e| InputError(e.to_string()))?
         .into_iter()
@@ -180,7 +187,10 @@ fn write_table(
     p: &MassProperties,
 ) -> std::io::Result<()> {
     let kept = union_sphere_indices(spheres).len();
-    let name = args.file.as_ref().map_or(String::new(), |f| f.display().to_string());
+    let name = args
+        .file
+        .as_ref()
+        .map_or(String::new(), |f| f.display().to_string());
     writeln!(out, "template           {name}")?;
     writeln!(
         out,
@@ -244,20 +254,34 @@ fn write_table(
 /// `--from-mesh`: generate, write the spheres, report the fidelity.
 fn from_mesh(args: &TemplateArgs, path: &std::path::Path) -> anyhow::Result<()> {
     if !args.scale.is_finite() || args.scale <= 0.0 {
-        return Err(InputError(format!("--scale must be finite and > 0, found {}", args.scale)).into());
+        return Err(InputError(format!(
+            "--scale must be finite and > 0, found {}",
+            args.scale
+        ))
+        .into());
     }
-    let tr = MeshTransform { scale: args.scale, ..Default::default() };
+    let tr = MeshTransform {
+        scale: args.scale,
+        ..Default::default()
+    };
     let mesh = read_mesh_file(path, &tr).map_err(|e| InputError(e.to_string()))?;
     let opt = FromMeshOptions {
-        max_spheres: args.spheres.unwrap_or(if args.tolerance.is_some() { 1000 } else { 50 }),
+        max_spheres: args
+            .spheres
+            .unwrap_or(if args.tolerance.is_some() { 1000 } else { 50 }),
         tolerance: args.tolerance,
         resolution: args.resolution,
         overlap: args.overlap,
         min_radius: args.min_radius,
+        refine_iterations: args.refine,
     };
     let dropped = mesh.dropped_triangles();
     let bad_mesh = |e: &dyn std::fmt::Display| {
-        let note = if dropped > 0 { format!(" ({dropped} zero-area triangles were dropped on reading)") } else { String::new() };
+        let note = if dropped > 0 {
+            format!(" ({dropped} zero-area triangles were dropped on reading)")
+        } else {
+            String::new()
+        };
         InputError(format!("{}: {e}{note}", path.display()))
     };
     let t0 = std::time::Instant::now();
@@ -266,15 +290,19 @@ fn from_mesh(args: &TemplateArgs, path: &std::path::Path) -> anyhow::Result<()> 
     let fid = fidelity(&mesh, &spheres, 20_000).map_err(|e| bad_mesh(&e))?;
     let mut text = format!(
         "# clump template generated from {} (CLUMP Euclidean-map method, Angelidakis et al. 2021)\n\
-         # spheres {}, resolution {}, overlap {}, scale {}; x y z r in m, mesh frame\n",
+         # spheres {}, resolution {}, overlap {}, refinement passes {}, scale {}; x y z r in m, mesh frame\n",
         path.display(),
         spheres.len(),
         opt.resolution,
         opt.overlap,
+        opt.refine_iterations,
         args.scale
     );
     for s in &spheres {
-        text.push_str(&format!("{:.9e} {:.9e} {:.9e} {:.9e}\n", s.center.x, s.center.y, s.center.z, s.radius));
+        text.push_str(&format!(
+            "{:.9e} {:.9e} {:.9e} {:.9e}\n",
+            s.center.x, s.center.y, s.center.z, s.radius
+        ));
     }
     let report = if args.json {
         serde_json::to_string_pretty(&fidelity_json(&fid, spheres.len(), elapsed))? + "\n"
@@ -283,7 +311,8 @@ fn from_mesh(args: &TemplateArgs, path: &std::path::Path) -> anyhow::Result<()> 
     };
     match &args.out {
         Some(out) => {
-            std::fs::write(out, text).map_err(|e| anyhow::anyhow!("{}: cannot write template: {e}", out.display()))?;
+            std::fs::write(out, text)
+                .map_err(|e| anyhow::anyhow!("{}: cannot write template: {e}", out.display()))?;
             std::io::stdout().lock().write_all(report.as_bytes())?;
         }
         None => {
@@ -322,9 +351,20 @@ fn fidelity_table(path: &std::path::Path, f: &Fidelity, n: usize, seconds: f64) 
         s.push('\n');
     };
     line(format!("mesh               {}", path.display()));
-    line(format!("spheres            {n} (generated in {seconds:.2} s)"));
-    line(format!("{:<34}{:>16}{:>16}{:>12}", "(unit density, mesh frame)", "mesh (exact)", "clump", "error"));
-    line(format!("{:<34}{:>16.6e}{:>16.6e}{:>12}", "volume [m^3]", f.mesh.volume, f.clump.volume, pct(f.clump.volume, f.mesh.volume)));
+    line(format!(
+        "spheres            {n} (generated in {seconds:.2} s)"
+    ));
+    line(format!(
+        "{:<34}{:>16}{:>16}{:>12}",
+        "(unit density, mesh frame)", "mesh (exact)", "clump", "error"
+    ));
+    line(format!(
+        "{:<34}{:>16.6e}{:>16.6e}{:>12}",
+        "volume [m^3]",
+        f.mesh.volume,
+        f.clump.volume,
+        pct(f.clump.volume, f.mesh.volume)
+    ));
     for k in 0..3 {
         line(format!(
             "{:<34}{:>16.6e}{:>16.6e}{:>12}",
@@ -334,7 +374,10 @@ fn fidelity_table(path: &std::path::Path, f: &Fidelity, n: usize, seconds: f64) 
             pct(f.clump.principal_moments[k], f.mesh.principal_moments[k])
         ));
     }
-    line(format!("centroid offset / V^(1/3)         {:.3e}", f.centroid_error));
+    line(format!(
+        "centroid offset / V^(1/3)         {:.3e}",
+        f.centroid_error
+    ));
     line(format!(
         "principal axis errors [deg]       {:.3} {:.3} {:.3}",
         f.axis_errors_deg.x, f.axis_errors_deg.y, f.axis_errors_deg.z

@@ -141,7 +141,12 @@ fn write_scenario(dir: &Path, stage2_steps: u64) -> PathBuf {
 fn run_ok(cmd: &mut Command) -> String {
     let o = cmd.output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert!(o.status.success(), "{cmd:?} failed ({:?}):\n{err}\n{}", o.status, String::from_utf8_lossy(&o.stdout));
+    assert!(
+        o.status.success(),
+        "{cmd:?} failed ({:?}):\n{err}\n{}",
+        o.status,
+        String::from_utf8_lossy(&o.stdout)
+    );
     err
 }
 
@@ -150,7 +155,13 @@ fn read(p: &Path) -> String {
 }
 
 fn last_thermo(dir: &Path) -> Vec<String> {
-    read(&dir.join("thermo.csv")).lines().last().unwrap().split(',').map(str::to_string).collect()
+    read(&dir.join("thermo.csv"))
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect()
 }
 
 #[test]
@@ -159,9 +170,21 @@ fn split_run_is_bit_identical_to_uninterrupted_run() {
     let sc = write_scenario(&d, 600);
     let (a, b, c) = (d.join("a"), d.join("b"), d.join("c"));
     // uninterrupted, 2 threads
-    run_ok(clump().arg("run").arg(&sc).arg("-o").arg(&a).args(["--threads", "2"]));
+    run_ok(
+        clump()
+            .arg("run")
+            .arg(&sc)
+            .arg("-o")
+            .arg(&a)
+            .args(["--threads", "2"]),
+    );
     // first half on 1 thread, stopped at step 900 (inside the streaming stage)
-    run_ok(clump().arg("run").arg(&sc).arg("-o").arg(&b).args(["--threads", "1", "--steps", "900"]));
+    run_ok(clump().arg("run").arg(&sc).arg("-o").arg(&b).args([
+        "--threads",
+        "1",
+        "--steps",
+        "900",
+    ]));
     let ck = b.join("checkpoint_000000900.ckpt");
     assert!(ck.is_file());
     let m: serde_json::Value = serde_json::from_str(&read(&b.join("manifest.json"))).unwrap();
@@ -171,22 +194,45 @@ fn split_run_is_bit_identical_to_uninterrupted_run() {
     run_ok(clump().arg("resume").arg(&ck).args(["--threads", "2"]));
     let fa = read(&a.join("final_state.json"));
     let fb = read(&b.join("final_state.json"));
-    assert!(fa == fb, "final states differ between the uninterrupted and the split run");
-    assert_eq!(read(&a.join("thermo.csv")), read(&b.join("thermo.csv")), "thermo.csv differs");
+    assert!(
+        fa == fb,
+        "final states differ between the uninterrupted and the split run"
+    );
+    assert_eq!(
+        read(&a.join("thermo.csv")),
+        read(&b.join("thermo.csv")),
+        "thermo.csv differs"
+    );
     for id in [1, 2] {
         let f = format!("traj_{id}.csv");
         assert_eq!(read(&a.join(&f)), read(&b.join(&f)), "{f} differs");
     }
     // resuming from a periodic checkpoint of the uninterrupted run, into a new folder
-    run_ok(clump().arg("resume").arg(a.join("checkpoint_000000500.ckpt")).arg("-o").arg(&c).args(["--threads", "2"]));
-    assert!(read(&c.join("final_state.json")) == fa, "resume from the periodic checkpoint differs");
+    run_ok(
+        clump()
+            .arg("resume")
+            .arg(a.join("checkpoint_000000500.ckpt"))
+            .arg("-o")
+            .arg(&c)
+            .args(["--threads", "2"]),
+    );
+    assert!(
+        read(&c.join("final_state.json")) == fa,
+        "resume from the periodic checkpoint differs"
+    );
     // the run was not trivial: bodies were streamed in and touch each other and the walls
     let fs: serde_json::Value = serde_json::from_str(&fa).unwrap();
-    assert!(fs["bodies"].as_array().unwrap().len() > 65, "the stream inserted nothing");
+    assert!(
+        fs["bodies"].as_array().unwrap().len() > 65,
+        "the stream inserted nothing"
+    );
     let last = last_thermo(&a);
     let pair: u64 = last[4].parse().unwrap();
     let wall: u64 = last[5].parse().unwrap();
-    assert!(pair > 20 && wall > 20, "too few contacts for a meaningful test: {last:?}");
+    assert!(
+        pair > 20 && wall > 20,
+        "too few contacts for a meaningful test: {last:?}"
+    );
     let _ = std::fs::remove_dir_all(&d);
 }
 
@@ -195,16 +241,30 @@ fn vtk_series_lists_every_frame() {
     let d = tmp("vtk");
     let sc = write_scenario(&d, 200);
     let out = d.join("out");
-    run_ok(clump().arg("run").arg(&sc).arg("-o").arg(&out).args(["--threads", "2"]));
+    run_ok(
+        clump()
+            .arg("run")
+            .arg(&sc)
+            .arg("-o")
+            .arg(&out)
+            .args(["--threads", "2"]),
+    );
     for kind in ["spheres", "bodies", "walls"] {
         let pvd = read(&out.join(format!("{kind}.pvd")));
-        let files: Vec<&str> = pvd.split("file=\"").skip(1).map(|s| s.split('"').next().unwrap()).collect();
+        let files: Vec<&str> = pvd
+            .split("file=\"")
+            .skip(1)
+            .map(|s| s.split('"').next().unwrap())
+            .collect();
         // every 200 steps over 800 steps: steps 0, 200, ..., 800
         assert_eq!(files.len(), 5, "{kind}.pvd: {pvd}");
         for (k, f) in files.iter().enumerate() {
             assert_eq!(*f, format!("{kind}_{:06}.vtp", 200 * k));
             let body = std::fs::read(out.join(f)).unwrap();
-            assert!(body.starts_with(b"<?xml") || body.starts_with(b"<VTKFile"), "{f} is not VTK XML");
+            assert!(
+                body.starts_with(b"<?xml") || body.starts_with(b"<VTKFile"),
+                "{f} is not VTK XML"
+            );
         }
     }
     let m: serde_json::Value = serde_json::from_str(&read(&out.join("manifest.json"))).unwrap();
@@ -213,8 +273,15 @@ fn vtk_series_lists_every_frame() {
     assert!(m["sphere_steps_per_s"].as_f64().unwrap() > 0.0);
     assert!(m["threads"].as_u64().unwrap() == 2);
     assert!(read(&out.join("scenario.toml")).contains("[[stage]]"));
-    let header = read(&out.join("thermo.csv")).lines().next().unwrap().to_string();
-    assert!(header.contains("floor_fz") && header.contains("box_fz"), "{header}");
+    let header = read(&out.join("thermo.csv"))
+        .lines()
+        .next()
+        .unwrap()
+        .to_string();
+    assert!(
+        header.contains("floor_fz") && header.contains("box_fz"),
+        "{header}"
+    );
     let _ = std::fs::remove_dir_all(&d);
 }
 
@@ -224,15 +291,26 @@ fn wait_for_rows(child: &mut std::process::Child, path: &Path, rows: usize, time
         if let Some(st) = child.try_wait().unwrap() {
             let mut err = String::new();
             use std::io::Read;
-            child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
+            child
+                .stderr
+                .take()
+                .unwrap()
+                .read_to_string(&mut err)
+                .unwrap();
             panic!("the run ended early ({st:?}):\n{err}");
         }
-        if std::fs::read_to_string(path).map(|s| s.lines().count() > rows).unwrap_or(false) {
+        if std::fs::read_to_string(path)
+            .map(|s| s.lines().count() > rows)
+            .unwrap_or(false)
+        {
             return;
         }
         std::thread::sleep(Duration::from_millis(50));
     }
-    panic!("{} did not reach {rows} rows in {timeout:?}", path.display());
+    panic!(
+        "{} did not reach {rows} rows in {timeout:?}",
+        path.display()
+    );
 }
 
 fn interrupt_and_resume(signal: &str, code: i32) {
@@ -250,22 +328,49 @@ fn interrupt_and_resume(signal: &str, code: i32) {
         .spawn()
         .unwrap();
     // the signal handlers are installed before the first thermo row
-    wait_for_rows(&mut child, &out.join("thermo.csv"), 20, Duration::from_secs(120));
-    let st = Command::new("kill").arg(format!("-{signal}")).arg(child.id().to_string()).status().unwrap();
+    wait_for_rows(
+        &mut child,
+        &out.join("thermo.csv"),
+        20,
+        Duration::from_secs(120),
+    );
+    let st = Command::new("kill")
+        .arg(format!("-{signal}"))
+        .arg(child.id().to_string())
+        .status()
+        .unwrap();
     assert!(st.success());
     let o = child.wait_with_output().unwrap();
-    assert_eq!(o.status.code(), Some(code), "stderr:\n{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(code),
+        "stderr:\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let m: serde_json::Value = serde_json::from_str(&read(&out.join("manifest.json"))).unwrap();
-    assert!(m["status"].as_str().unwrap().starts_with("interrupted"), "{m}");
+    assert!(
+        m["status"].as_str().unwrap().starts_with("interrupted"),
+        "{m}"
+    );
     let step = m["final_step"].as_u64().unwrap();
     let ck = out.join(format!("checkpoint_{step:09}.ckpt"));
     assert!(ck.is_file(), "no checkpoint at the interrupt step {step}");
     assert_eq!(m["checkpoint"].as_str().unwrap(), ck.display().to_string());
     // resume a little further and compare with an uninterrupted run to the same step
     let target = (step + 300).to_string();
-    run_ok(clump().arg("resume").arg(&ck).args(["--threads", "1", "--steps", &target]));
+    run_ok(
+        clump()
+            .arg("resume")
+            .arg(&ck)
+            .args(["--threads", "1", "--steps", &target]),
+    );
     let straight = d.join("straight");
-    run_ok(clump().arg("run").arg(&sc).arg("-o").arg(&straight).args(["--threads", "2", "--steps", &target]));
+    run_ok(clump().arg("run").arg(&sc).arg("-o").arg(&straight).args([
+        "--threads",
+        "2",
+        "--steps",
+        &target,
+    ]));
     assert!(
         read(&out.join("final_state.json")) == read(&straight.join("final_state.json")),
         "interrupted + resumed run differs from the uninterrupted one"
@@ -287,7 +392,11 @@ fn sigint_checkpoints_and_exits_130() {
 fn bad_input_exits_with_status_2() {
     let d = tmp("bad");
     let p = d.join("bad.toml");
-    std::fs::write(&p, scenario(10).replace("restitution = 0.3", "restitutoin = 0.3")).unwrap();
+    std::fs::write(
+        &p,
+        scenario(10).replace("restitution = 0.3", "restitutoin = 0.3"),
+    )
+    .unwrap();
     for sub in ["run", "check"] {
         let o = clump().arg(sub).arg(&p).arg("-o").arg(d.join("o")).output();
         let o = match sub {
@@ -296,18 +405,36 @@ fn bad_input_exits_with_status_2() {
         };
         assert_eq!(o.status.code(), Some(2), "{sub}");
         let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains("unknown key 'restitutoin' in [contact]") && err.contains("bad.toml:23:"), "{err}");
+        assert!(
+            err.contains("unknown key 'restitutoin' in [contact]") && err.contains("bad.toml:23:"),
+            "{err}"
+        );
         assert!(err.contains("did you mean 'restitution'?"), "{err}");
     }
     // a missing scenario, a missing and a corrupt checkpoint
-    let o = clump().args(["run", "/nonexistent/x.toml"]).output().unwrap();
+    let o = clump()
+        .args(["run", "/nonexistent/x.toml"])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2));
-    let o = clump().args(["resume", "/nonexistent/c.ckpt"]).output().unwrap();
+    let o = clump()
+        .args(["resume", "/nonexistent/c.ckpt"])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2));
     let junk = d.join("junk.ckpt");
-    std::fs::write(&junk, b"not a checkpoint at all, but long enough to have a header").unwrap();
+    std::fs::write(
+        &junk,
+        b"not a checkpoint at all, but long enough to have a header",
+    )
+    .unwrap();
     let o = clump().arg("resume").arg(&junk).output().unwrap();
-    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     // unknown command-line option
     let o = clump().args(["run", "--bogus"]).output().unwrap();
     assert_eq!(o.status.code(), Some(2));

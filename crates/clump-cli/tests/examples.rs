@@ -27,9 +27,15 @@ fn out_dir(name: &str) -> PathBuf {
 
 #[test]
 fn the_four_examples_exist() {
-    let names: Vec<String> = examples().iter().map(|p| p.file_stem().unwrap().to_string_lossy().into_owned()).collect();
+    let names: Vec<String> = examples()
+        .iter()
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
     for want in ["stones", "hopper", "drum", "t_handle"] {
-        assert!(names.iter().any(|n| n == want), "examples/{want}.toml is missing (found {names:?})");
+        assert!(
+            names.iter().any(|n| n == want),
+            "examples/{want}.toml is missing (found {names:?})"
+        );
     }
 }
 
@@ -39,11 +45,19 @@ fn every_example_passes_check() {
         let o = clump().arg("check").arg(&ex).output().unwrap();
         let stdout = String::from_utf8_lossy(&o.stdout);
         let stderr = String::from_utf8_lossy(&o.stderr);
-        assert!(o.status.success(), "clump check {} failed:\n{stdout}\n{stderr}", ex.display());
+        assert!(
+            o.status.success(),
+            "clump check {} failed:\n{stdout}\n{stderr}",
+            ex.display()
+        );
         assert!(stdout.contains("Rayleigh time"), "{stdout}");
         assert!(stdout.contains("estimated memory"), "{stdout}");
         assert!(stdout.contains("ok: "), "{stdout}");
-        assert!(!stderr.contains("warning"), "{} gives warnings:\n{stderr}", ex.display());
+        assert!(
+            !stderr.contains("warning"),
+            "{} gives warnings:\n{stderr}",
+            ex.display()
+        );
     }
 }
 
@@ -52,20 +66,44 @@ fn every_example_runs_a_short_horizon() {
     for ex in examples() {
         let name = ex.file_stem().unwrap().to_string_lossy().into_owned();
         let out = out_dir(&name);
-        let o = clump().arg("run").arg(&ex).arg("-o").arg(&out).args(["--steps", "200", "--threads", "2"]).output().unwrap();
+        let o = clump()
+            .arg("run")
+            .arg(&ex)
+            .arg("-o")
+            .arg(&out)
+            .args(["--steps", "200", "--threads", "2"])
+            .output()
+            .unwrap();
         let stderr = String::from_utf8_lossy(&o.stderr);
-        assert!(o.status.success(), "clump run {name} --steps 200 failed ({:?}):\n{stderr}", o.status);
-        let manifest: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("manifest.json")).unwrap()).unwrap();
+        assert!(
+            o.status.success(),
+            "clump run {name} --steps 200 failed ({:?}):\n{stderr}",
+            o.status
+        );
+        let manifest: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("manifest.json")).unwrap()).unwrap();
         assert_eq!(manifest["final_step"], 200, "{manifest}");
         assert_eq!(manifest["status"], "step_limit");
-        for f in ["scenario.toml", "final_state.json", "thermo.csv", "spheres.pvd", "bodies.pvd", "walls.pvd", "checkpoint_000000200.ckpt"] {
+        for f in [
+            "scenario.toml",
+            "final_state.json",
+            "thermo.csv",
+            "spheres.pvd",
+            "bodies.pvd",
+            "walls.pvd",
+            "checkpoint_000000200.ckpt",
+        ] {
             assert!(out.join(f).is_file(), "{name}: {f} was not written");
         }
         // every body is finite and inside the domain
-        let fs: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("final_state.json")).unwrap()).unwrap();
+        let fs: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("final_state.json")).unwrap()).unwrap();
         for b in fs["bodies"].as_array().unwrap() {
             for x in b["position"].as_array().unwrap() {
-                assert!(x.as_f64().unwrap().is_finite(), "{name}: non-finite position {b}");
+                assert!(
+                    x.as_f64().unwrap().is_finite(),
+                    "{name}: non-finite position {b}"
+                );
             }
         }
         let _ = std::fs::remove_dir_all(&out);

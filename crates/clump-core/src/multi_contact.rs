@@ -41,7 +41,12 @@ pub struct PartnerCounts {
 
 impl Default for PartnerCounts {
     fn default() -> Self {
-        Self { keys: [0; 32], counts: [0; 32], len: 0, overflow: Vec::new() }
+        Self {
+            keys: [0; 32],
+            counts: [0; 32],
+            len: 0,
+            overflow: Vec::new(),
+        }
     }
 }
 
@@ -79,6 +84,9 @@ impl PartnerCounts {
                 return self.counts[k];
             }
         }
-        self.overflow.iter().find(|e| e.0 == partner).map_or(0, |e| e.1)
+        self.overflow
+            .iter()
+            .find(|e| e.0 == partner)
+            .map_or(0, |e| e.1)
     }
 }

@@ -81,13 +81,30 @@ impl World {
     /// from the same scenario (same templates, materials and walls).
     pub fn restore_state(&mut self, s: WorldState) -> Result<(), String> {
         if s.walls.len() != self.walls.len() {
-            return Err(format!("checkpoint has {} walls, the scenario {}", s.walls.len(), self.walls.len()));
+            return Err(format!(
+                "checkpoint has {} walls, the scenario {}",
+                s.walls.len(),
+                self.walls.len()
+            ));
         }
-        if let Some(&t) = s.bodies.template.iter().find(|&&t| t as usize >= self.templates.len()) {
-            return Err(format!("checkpoint refers to template {t}, the scenario has {}", self.templates.len()));
+        if let Some(&t) = s
+            .bodies
+            .template
+            .iter()
+            .find(|&&t| t as usize >= self.templates.len())
+        {
+            return Err(format!(
+                "checkpoint refers to template {t}, the scenario has {}",
+                self.templates.len()
+            ));
         }
         let nb = s.bodies.len();
-        let ns: usize = s.bodies.template.iter().map(|&t| self.templates[t as usize].spheres.len()).sum();
+        let ns: usize = s
+            .bodies
+            .template
+            .iter()
+            .map(|&t| self.templates[t as usize].spheres.len())
+            .sum();
         if s.reference_pose.len() != nb || s.wall_key.len() != ns || s.wall_hist.len() != ns {
             return Err("checkpoint arrays have inconsistent lengths".into());
         }

@@ -1,6 +1,6 @@
 //! Everything one simulation owns, and how to set it up.
 
-use crate::body::{BodyInit, Bodies};
+use crate::body::{Bodies, BodyInit};
 use crate::boundary::Domain;
 use crate::contact::{ContactHistory, ContactModel, Material, PairProperties};
 use crate::multi_contact::MultiContact;
@@ -53,7 +53,10 @@ pub struct ContactTable {
 
 impl ContactTable {
     /// Builds the table; `props(a, b)` gives the pair properties of materials `a`, `b`.
-    pub fn new(materials: &[Material], mut props: impl FnMut(usize, usize) -> PairProperties) -> Result<Self, WorldError> {
+    pub fn new(
+        materials: &[Material],
+        mut props: impl FnMut(usize, usize) -> PairProperties,
+    ) -> Result<Self, WorldError> {
         let n = materials.len();
         let mut models = Vec::with_capacity(n * n);
         for a in 0..n {
@@ -202,9 +205,16 @@ impl World {
     }
 
     /// Adds a template whose spheres are of material `material`; returns its index.
-    pub fn add_template(&mut self, template: ClumpTemplate, material: u16) -> Result<u32, WorldError> {
+    pub fn add_template(
+        &mut self,
+        template: ClumpTemplate,
+        material: u16,
+    ) -> Result<u32, WorldError> {
         if material as usize >= self.materials.len() {
-            return Err(WorldError::BadReference(format!("template '{}' uses material {material}, which does not exist", template.name)));
+            return Err(WorldError::BadReference(format!(
+                "template '{}' uses material {material}, which does not exist",
+                template.name
+            )));
         }
         for s in &template.spheres {
             self.template_offset.push(s.center);
@@ -219,15 +229,24 @@ impl World {
     /// Adds a wall; returns its index.
     pub fn add_wall(&mut self, wall: Wall) -> Result<usize, WorldError> {
         if wall.material as usize >= self.materials.len() {
-            return Err(WorldError::BadReference(format!("wall '{}' uses material {}, which does not exist", wall.name, wall.material)));
+            return Err(WorldError::BadReference(format!(
+                "wall '{}' uses material {}, which does not exist",
+                wall.name, wall.material
+            )));
         }
         if let WallShape::Mesh { mesh, .. } = wall.shape {
             if mesh as usize >= self.meshes.len() {
-                return Err(WorldError::BadReference(format!("wall '{}' uses mesh {mesh}, which does not exist", wall.name)));
+                return Err(WorldError::BadReference(format!(
+                    "wall '{}' uses mesh {mesh}, which does not exist",
+                    wall.name
+                )));
             }
         }
         if self.walls.len() >= crate::step::force::MAX_WALLS {
-            return Err(WorldError::BadReference(format!("too many walls (at most {})", crate::step::force::MAX_WALLS)));
+            return Err(WorldError::BadReference(format!(
+                "too many walls (at most {})",
+                crate::step::force::MAX_WALLS
+            )));
         }
         self.walls.push(wall);
         self.wall_loads.push(WallLoad::default());
@@ -243,10 +262,12 @@ impl World {
 
     /// Adds a body; returns its global id.
     pub fn add_body(&mut self, init: &BodyInit) -> Result<u64, WorldError> {
-        let t = self
-            .templates
-            .get(init.template as usize)
-            .ok_or_else(|| WorldError::BadReference(format!("body uses template {}, which does not exist", init.template)))?;
+        let t = self.templates.get(init.template as usize).ok_or_else(|| {
+            WorldError::BadReference(format!(
+                "body uses template {}, which does not exist",
+                init.template
+            ))
+        })?;
         let id = self.next_id;
         self.next_id += 1;
         self.bodies.push(id, init, t.mass, t.principal_inertia);
@@ -259,8 +280,16 @@ impl World {
     /// the smallest sphere radius... of any template (never zero).
     pub fn skin(&self) -> f64 {
         self.config.skin.unwrap_or_else(|| {
-            let rmin = self.template_radius.iter().cloned().fold(f64::INFINITY, f64::min);
-            if rmin.is_finite() { 0.2 * rmin } else { 1e-3 }
+            let rmin = self
+                .template_radius
+                .iter()
+                .cloned()
+                .fold(f64::INFINITY, f64::min);
+            if rmin.is_finite() {
+                0.2 * rmin
+            } else {
+                1e-3
+            }
         })
     }
 
@@ -283,5 +312,4 @@ impl World {
     pub fn body_index(&self, id: u64) -> Option<usize> {
         self.bodies.id.iter().position(|&x| x == id)
     }
-
 }

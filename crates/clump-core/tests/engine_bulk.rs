@@ -3,8 +3,8 @@
 //! treatments on a dimer dropped flat.
 
 mod common;
-use clump_core::boundary::Domain;
 use clump_core::body::BodyInit;
+use clump_core::boundary::Domain;
 use clump_core::contact::{Material, NormalLaw, PairProperties};
 use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::RotationScheme;
@@ -17,14 +17,23 @@ use glam::{DQuat, DVec3};
 struct Lcg(u64);
 impl Lcg {
     fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
     fn quat(&mut self) -> DQuat {
         let (u1, u2, u3) = (self.next(), self.next(), self.next());
         let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
         let tau = std::f64::consts::TAU;
-        DQuat::from_xyzw(a * (tau * u2).sin(), a * (tau * u2).cos(), b * (tau * u3).sin(), b * (tau * u3).cos()).normalize()
+        DQuat::from_xyzw(
+            a * (tau * u2).sin(),
+            a * (tau * u2).cos(),
+            b * (tau * u3).sin(),
+            b * (tau * u3).cos(),
+        )
+        .normalize()
     }
 }
 
@@ -32,17 +41,33 @@ fn tetra(r: f64, edge: f64, density: f64) -> ClumpTemplate {
     let h = edge / (2.0 * 2f64.sqrt());
     let s: Vec<Sphere> = [[1., 1., 1.], [1., -1., -1.], [-1., 1., -1.], [-1., -1., 1.]]
         .iter()
-        .map(|c| Sphere { center: DVec3::from_array(*c) * h, radius: r })
+        .map(|c| Sphere {
+            center: DVec3::from_array(*c) * h,
+            radius: r,
+        })
         .collect();
     ClumpTemplate::from_spheres("tetra", &s, density).unwrap()
 }
 
 fn bench_material() -> Material {
-    Material { youngs_modulus: 5e6, poisson_ratio: 0.3, density: 2500.0 }
+    Material {
+        youngs_modulus: 5e6,
+        poisson_ratio: 0.3,
+        density: 2500.0,
+    }
 }
 
 /// Bodies on a jittered lattice in `[lo, hi]` with spacing `a`.
-fn lattice(w: &mut World, t: u32, lo: DVec3, hi: DVec3, a: f64, max: usize, vel: f64, rng: &mut Lcg) {
+fn lattice(
+    w: &mut World,
+    t: u32,
+    lo: DVec3,
+    hi: DVec3,
+    a: f64,
+    max: usize,
+    vel: f64,
+    rng: &mut Lcg,
+) {
     let n = ((hi - lo) / a).floor();
     let mut count = 0;
     for k in 0..n.z as usize {
@@ -52,9 +77,16 @@ fn lattice(w: &mut World, t: u32, lo: DVec3, hi: DVec3, a: f64, max: usize, vel:
                     return;
                 }
                 let x = lo + DVec3::new(i as f64 + 0.5, j as f64 + 0.5, k as f64 + 0.5) * a;
-                let v = DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 2.0 * vel;
-                let om = DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 2.0 * vel / a;
-                let init = BodyInit { velocity: v, angular_velocity: om, ..BodyInit::at_rest(t, x, rng.quat()) };
+                let v =
+                    DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 2.0 * vel;
+                let om =
+                    DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 2.0 * vel
+                        / a;
+                let init = BodyInit {
+                    velocity: v,
+                    angular_velocity: om,
+                    ..BodyInit::at_rest(t, x, rng.quat())
+                };
                 w.add_body(&init).unwrap();
                 count += 1;
             }
@@ -71,9 +103,18 @@ fn total_energy(w: &World) -> f64 {
 /// kinetic plus elastic energy to 1e-3 over 10⁴ steps at dt = t_c/50.
 #[test]
 fn elastic_gas_conserves_energy() {
-    for scheme in [RotationScheme::default(), RotationScheme::Richardson, RotationScheme::NoSquish, RotationScheme::ZhaoVanWachem] {
+    for scheme in [
+        RotationScheme::default(),
+        RotationScheme::Richardson,
+        RotationScheme::NoSquish,
+        RotationScheme::ZhaoVanWachem,
+    ] {
         let mat = bench_material();
-        let props = PairProperties { restitution: 1.0, friction: 0.0, ..PairProperties::default() };
+        let props = PairProperties {
+            restitution: 1.0,
+            friction: 0.0,
+            ..PairProperties::default()
+        };
         let r = 1e-3;
         let tmpl = tetra(r, 1.2e-3, mat.density);
         let vel = 0.5;
@@ -86,12 +127,25 @@ fn elastic_gas_conserves_energy() {
         let tc = 2.9432 * dmax / v;
         let dt = tc / 50.0;
         let l = 0.02;
-        let dom = Domain { lo: DVec3::ZERO, hi: DVec3::splat(l), periodic: [true; 3] };
+        let dom = Domain {
+            lo: DVec3::ZERO,
+            hi: DVec3::splat(l),
+            periodic: [true; 3],
+        };
         let mut w = world(mat, props, dt, dom, DVec3::ZERO);
         w.config.rotation = scheme;
         let t = w.add_template(tmpl, 0).unwrap();
         let mut rng = Lcg(7);
-        lattice(&mut w, t, DVec3::ZERO, DVec3::splat(l), 3.5e-3, 200, vel, &mut rng);
+        lattice(
+            &mut w,
+            t,
+            DVec3::ZERO,
+            DVec3::splat(l),
+            3.5e-3,
+            200,
+            vel,
+            &mut rng,
+        );
         w.prepare().unwrap();
         let e0 = total_energy(&w);
         let mut max_dev: f64 = 0.0;
@@ -111,8 +165,16 @@ fn elastic_gas_conserves_energy() {
 
 fn settle_world(n: usize, seed: u64) -> World {
     let mat = bench_material();
-    let props = PairProperties { restitution: 0.5, friction: 0.5, ..PairProperties::default() };
-    let dom = Domain { lo: DVec3::new(-0.01, -0.01, -0.001), hi: DVec3::new(0.01, 0.01, 0.1), periodic: [false; 3] };
+    let props = PairProperties {
+        restitution: 0.5,
+        friction: 0.5,
+        ..PairProperties::default()
+    };
+    let dom = Domain {
+        lo: DVec3::new(-0.01, -0.01, -0.001),
+        hi: DVec3::new(0.01, 0.01, 0.1),
+        periodic: [false; 3],
+    };
     let mut w = world(mat, props, 1e-5, dom, DVec3::new(0.0, 0.0, -9.81));
     let t = w.add_template(tetra(1e-3, 1.2e-3, mat.density), 0).unwrap();
     for (p, nrm) in [
@@ -125,7 +187,16 @@ fn settle_world(n: usize, seed: u64) -> World {
         w.add_wall(plane(p, nrm, MultiContact::Sum)).unwrap();
     }
     let mut rng = Lcg(seed);
-    lattice(&mut w, t, DVec3::new(-0.008, -0.008, 0.001), DVec3::new(0.008, 0.008, 0.08), 3.3e-3, n, 0.0, &mut rng);
+    lattice(
+        &mut w,
+        t,
+        DVec3::new(-0.008, -0.008, 0.001),
+        DVec3::new(0.008, 0.008, 0.08),
+        3.3e-3,
+        n,
+        0.0,
+        &mut rng,
+    );
     w
 }
 
@@ -150,7 +221,10 @@ fn settled_bed_comes_to_rest() {
 }
 
 fn bed_state(threads: usize) -> Vec<u64> {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
     pool.install(|| {
         let mut w = settle_world(400, 11);
         w.run(1000).unwrap();
@@ -158,7 +232,13 @@ fn bed_state(threads: usize) -> Vec<u64> {
         let mut bits = Vec::new();
         for i in 0..b.len() {
             bits.push(b.id[i]);
-            for v in [b.position[i], b.velocity[i], b.angular_momentum[i], b.force[i], b.torque[i]] {
+            for v in [
+                b.position[i],
+                b.velocity[i],
+                b.angular_momentum[i],
+                b.force[i],
+                b.torque[i],
+            ] {
                 bits.extend(v.to_array().map(f64::to_bits));
             }
             bits.extend(b.orientation[i].to_array().map(f64::to_bits));
@@ -179,15 +259,40 @@ fn one_and_two_threads_are_bit_identical() {
 /// Restitution of a dimer (two overlapping spheres) dropped flat onto a
 /// plane, so both spheres hit at once.
 fn dimer_drop(normal: NormalLaw, e: f64, multi: MultiContact) -> f64 {
-    let mat = Material { youngs_modulus: 1e8, poisson_ratio: 0.3, density: 2500.0 };
-    let props = PairProperties { restitution: e, friction: 0.0, normal, ..PairProperties::default() };
+    let mat = Material {
+        youngs_modulus: 1e8,
+        poisson_ratio: 0.3,
+        density: 2500.0,
+    };
+    let props = PairProperties {
+        restitution: e,
+        friction: 0.0,
+        normal,
+        ..PairProperties::default()
+    };
     let r = 1e-3;
-    let s = [Sphere { center: DVec3::new(-0.6e-3, 0.0, 0.0), radius: r }, Sphere { center: DVec3::new(0.6e-3, 0.0, 0.0), radius: r }];
+    let s = [
+        Sphere {
+            center: DVec3::new(-0.6e-3, 0.0, 0.0),
+            radius: r,
+        },
+        Sphere {
+            center: DVec3::new(0.6e-3, 0.0, 0.0),
+            radius: r,
+        },
+    ];
     let tmpl = ClumpTemplate::from_spheres("dimer", &s, mat.density).unwrap();
     let mut w = world(mat, props, 2e-8, open_domain(1.0), DVec3::ZERO);
     let t = w.add_template(tmpl, 0).unwrap();
     // template principal frame: long axis is the smallest moment → body x; keep it along world x
-    let id = w.add_body(&moving(t, DVec3::new(0.0, 0.0, r + 1e-7), DVec3::new(0.0, 0.0, -1.0), DVec3::ZERO)).unwrap();
+    let id = w
+        .add_body(&moving(
+            t,
+            DVec3::new(0.0, 0.0, r + 1e-7),
+            DVec3::new(0.0, 0.0, -1.0),
+            DVec3::ZERO,
+        ))
+        .unwrap();
     w.add_wall(plane(DVec3::ZERO, DVec3::Z, multi)).unwrap();
     run_impact(&mut w, id, r, 10_000_000);
     let b = w.body_index(id).unwrap();
@@ -229,7 +334,11 @@ fn hertz_tsuji_restitution(c: f64) -> f64 {
 #[test]
 fn dimer_dropped_flat_sum_and_average() {
     for e in [0.3, 0.5, 0.8] {
-        let avg_lin = dimer_drop(NormalLaw::Linear { kn: 2e4, kt: 0.0 }, e, MultiContact::Average);
+        let avg_lin = dimer_drop(
+            NormalLaw::Linear { kn: 2e4, kt: 0.0 },
+            e,
+            MultiContact::Average,
+        );
         let sum_lin = dimer_drop(NormalLaw::Linear { kn: 2e4, kt: 0.0 }, e, MultiContact::Sum);
         let zeta = -e.ln() / (e.ln().powi(2) + std::f64::consts::PI.powi(2)).sqrt();
         let z2 = 2f64.sqrt() * zeta;
@@ -240,7 +349,11 @@ fn dimer_dropped_flat_sum_and_average() {
         let (mut lo, mut hi) = (0.0, 5.0);
         for _ in 0..40 {
             let mid = 0.5 * (lo + hi);
-            if hertz_tsuji_restitution(mid) > e { lo = mid } else { hi = mid }
+            if hertz_tsuji_restitution(mid) > e {
+                lo = mid
+            } else {
+                hi = mid
+            }
         }
         let sum_h_theory = hertz_tsuji_restitution(0.5 * (lo + hi) * 2f64.sqrt());
         eprintln!("dimer e={e}: linear avg {avg_lin:.4} sum {sum_lin:.4} (theory {sum_lin_theory:.4}); hertz avg {avg_h:.4} sum {sum_h:.4} (theory {sum_h_theory:.4})");

@@ -1,7 +1,9 @@
 //! Templates generated from a closed mesh (CLUMP Euclidean-map method), the
 //! polyhedron mass properties, and the closed-mesh checks.
 
-use clump_core::shape::from_mesh::{fidelity, generate, polyhedron_properties, FromMeshError, FromMeshOptions};
+use clump_core::shape::from_mesh::{
+    fidelity, generate, polyhedron_properties, FromMeshError, FromMeshOptions,
+};
 use clump_core::wall::{MeshError, TriMesh};
 use glam::{DQuat, DVec3};
 use std::collections::HashMap;
@@ -10,16 +12,43 @@ use std::collections::HashMap;
 fn icosphere(level: usize) -> (Vec<DVec3>, Vec<[u32; 3]>) {
     let p = (1.0 + 5f64.sqrt()) / 2.0;
     let mut v: Vec<DVec3> = [
-        (-1.0, p, 0.0), (1.0, p, 0.0), (-1.0, -p, 0.0), (1.0, -p, 0.0),
-        (0.0, -1.0, p), (0.0, 1.0, p), (0.0, -1.0, -p), (0.0, 1.0, -p),
-        (p, 0.0, -1.0), (p, 0.0, 1.0), (-p, 0.0, -1.0), (-p, 0.0, 1.0),
+        (-1.0, p, 0.0),
+        (1.0, p, 0.0),
+        (-1.0, -p, 0.0),
+        (1.0, -p, 0.0),
+        (0.0, -1.0, p),
+        (0.0, 1.0, p),
+        (0.0, -1.0, -p),
+        (0.0, 1.0, -p),
+        (p, 0.0, -1.0),
+        (p, 0.0, 1.0),
+        (-p, 0.0, -1.0),
+        (-p, 0.0, 1.0),
     ]
     .iter()
     .map(|&(x, y, z)| DVec3::new(x, y, z).normalize())
     .collect();
     let mut t: Vec<[u32; 3]> = vec![
-        [0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
-        [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1],
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
     ];
     for _ in 0..level {
         let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
@@ -47,9 +76,31 @@ fn icosphere(level: usize) -> (Vec<DVec3>, Vec<[u32; 3]>) {
 fn polyhedron_properties_of_a_box() {
     // a 2 × 1 × 0.5 box, with the winding of half its triangles flipped
     let s = DVec3::new(2.0, 1.0, 0.5);
-    let v: Vec<DVec3> = (0..8).map(|k| DVec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, ((k >> 2) & 1) as f64) * s + DVec3::new(5.0, -3.0, 1.0)).collect();
-    let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
-    let t: Vec<[u32; 3]> = quads.iter().enumerate().flat_map(|(i, q)| if i % 2 == 0 { [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] } else { [[q[0], q[2], q[1]], [q[0], q[3], q[2]]] }).collect();
+    let v: Vec<DVec3> = (0..8)
+        .map(|k| {
+            DVec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, ((k >> 2) & 1) as f64) * s
+                + DVec3::new(5.0, -3.0, 1.0)
+        })
+        .collect();
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let t: Vec<[u32; 3]> = quads
+        .iter()
+        .enumerate()
+        .flat_map(|(i, q)| {
+            if i % 2 == 0 {
+                [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
+            } else {
+                [[q[0], q[2], q[1]], [q[0], q[3], q[2]]]
+            }
+        })
+        .collect();
     let m = TriMesh::new(v, t).unwrap();
     let p = polyhedron_properties(&m).unwrap();
     assert!((p.volume - 1.0).abs() < 1e-12);
@@ -58,7 +109,11 @@ fn polyhedron_properties_of_a_box() {
     let exact = DVec3::new(i(1.0, 2.0), i(0.5, 2.0), i(0.5, 1.0));
     let mut sorted = exact.to_array();
     sorted.sort_by(f64::total_cmp);
-    assert!((p.principal_moments - DVec3::from_array(sorted)).length() < 1e-12, "{:?}", p.principal_moments);
+    assert!(
+        (p.principal_moments - DVec3::from_array(sorted)).length() < 1e-12,
+        "{:?}",
+        p.principal_moments
+    );
 }
 
 #[test]
@@ -68,7 +123,11 @@ fn ellipsoid_template() {
     let q = DQuat::from_euler(glam::EulerRot::ZYX, 0.4, -0.3, 0.7);
     let shift = DVec3::new(0.3, -1.0, 2.0);
     let m = TriMesh::new(v.iter().map(|&p| shift + q * (p * axes)).collect(), t).unwrap();
-    let opt = FromMeshOptions { max_spheres: 50, resolution: 40, ..Default::default() };
+    let opt = FromMeshOptions {
+        max_spheres: 50,
+        resolution: 40,
+        ..Default::default()
+    };
     let t0 = std::time::Instant::now();
     let spheres = generate(&m, &opt).unwrap();
     let f = fidelity(&m, &spheres, 20_000).unwrap();
@@ -83,11 +142,28 @@ fn ellipsoid_template() {
         f.max_surface_deviation
     );
     assert!(spheres.len() <= 50);
+    assert!(
+        f.moment_errors.abs().max_element() < 0.03,
+        "{:?}",
+        f.moment_errors
+    );
+    assert!(f.mean_surface_deviation < 0.1);
     let v_exact = 4.0 / 3.0 * std::f64::consts::PI * 6.0;
-    assert!(((f.clump.volume - v_exact) / v_exact).abs() < 0.02, "volume {} vs {v_exact}", f.clump.volume);
+    assert!(
+        ((f.clump.volume - v_exact) / v_exact).abs() < 0.02,
+        "volume {} vs {v_exact}",
+        f.clump.volume
+    );
     // principal axes of the ellipsoid: the rotated x (smallest moment), y, z
     for (k, e) in [DVec3::X, DVec3::Y, DVec3::Z].into_iter().enumerate() {
-        let angle = f.clump.principal_axis(k).dot(q * e).abs().min(1.0).acos().to_degrees();
+        let angle = f
+            .clump
+            .principal_axis(k)
+            .dot(q * e)
+            .abs()
+            .min(1.0)
+            .acos()
+            .to_degrees();
         assert!(angle < 2.0, "axis {k}: {angle}°");
     }
     assert!(f.axis_errors_deg.max_element() < 2.0);
@@ -99,12 +175,45 @@ fn ellipsoid_template() {
 #[test]
 fn tolerance_stops_early() {
     let (v, t) = icosphere(3);
-    let m = TriMesh::new(v.iter().map(|&p| p * DVec3::new(2.0, 1.0, 1.0)).collect(), t).unwrap();
-    let few = generate(&m, &FromMeshOptions { max_spheres: 200, tolerance: Some(0.2), resolution: 20, ..Default::default() }).unwrap();
-    let many = generate(&m, &FromMeshOptions { max_spheres: 200, tolerance: Some(0.02), resolution: 20, ..Default::default() }).unwrap();
+    let m = TriMesh::new(
+        v.iter().map(|&p| p * DVec3::new(2.0, 1.0, 1.0)).collect(),
+        t,
+    )
+    .unwrap();
+    let few = generate(
+        &m,
+        &FromMeshOptions {
+            max_spheres: 200,
+            tolerance: Some(0.2),
+            resolution: 20,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let many = generate(
+        &m,
+        &FromMeshOptions {
+            max_spheres: 200,
+            tolerance: Some(0.02),
+            resolution: 20,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     assert!(few.len() < many.len(), "{} vs {}", few.len(), many.len());
-    // every sphere lies inside the mesh (inscribed)
-    for s in &many {
+    // without refinement every sphere lies inside the mesh (inscribed)
+    let inscribed = generate(
+        &m,
+        &FromMeshOptions {
+            max_spheres: 200,
+            tolerance: Some(0.02),
+            resolution: 20,
+            refine_iterations: 0,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    for s in &inscribed {
         assert!(m.contains(s.center));
         assert!(m.closest_point(s.center).2 >= s.radius * (1.0 - 1e-12));
     }
@@ -116,7 +225,10 @@ fn open_or_non_manifold_mesh_is_an_error() {
     let removed = t.pop().unwrap();
     let m = TriMesh::new(v.clone(), t.clone()).unwrap();
     let e = generate(&m, &FromMeshOptions::default()).unwrap_err();
-    assert!(matches!(e, FromMeshError::Mesh(MeshError::OpenEdge { .. })), "{e}");
+    assert!(
+        matches!(e, FromMeshError::Mesh(MeshError::OpenEdge { .. })),
+        "{e}"
+    );
     let msg = e.to_string();
     assert!(msg.contains("open boundary edge between vertices"), "{msg}");
     // a fin: a third triangle on an existing edge
@@ -127,11 +239,32 @@ fn open_or_non_manifold_mesh_is_an_error() {
     let m = TriMesh::new(v2, t).unwrap();
     let e = generate(&m, &FromMeshOptions::default()).unwrap_err();
     let msg = e.to_string();
-    assert!(msg.starts_with("non-manifold edge between vertices"), "{msg}");
+    assert!(
+        msg.starts_with("non-manifold edge between vertices"),
+        "{msg}"
+    );
     assert!(polyhedron_properties(&m).is_err());
     // bad options
     let (v, t) = icosphere(1);
     let m = TriMesh::new(v, t).unwrap();
-    assert!(matches!(generate(&m, &FromMeshOptions { overlap: 1.0, ..Default::default() }), Err(FromMeshError::Option(_))));
-    assert!(matches!(generate(&m, &FromMeshOptions { max_spheres: 0, ..Default::default() }), Err(FromMeshError::Option(_))));
+    assert!(matches!(
+        generate(
+            &m,
+            &FromMeshOptions {
+                overlap: 1.0,
+                ..Default::default()
+            }
+        ),
+        Err(FromMeshError::Option(_))
+    ));
+    assert!(matches!(
+        generate(
+            &m,
+            &FromMeshOptions {
+                max_spheres: 0,
+                ..Default::default()
+            }
+        ),
+        Err(FromMeshError::Option(_))
+    ));
 }

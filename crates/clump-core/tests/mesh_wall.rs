@@ -16,7 +16,11 @@ use glam::{DQuat, DVec3};
 fn mesh_wall(mesh: u32) -> Wall {
     Wall {
         name: "mesh".into(),
-        shape: WallShape::Mesh { mesh, position: DVec3::ZERO, orientation: DQuat::IDENTITY },
+        shape: WallShape::Mesh {
+            mesh,
+            position: DVec3::ZERO,
+            orientation: DQuat::IDENTITY,
+        },
         material: 1,
         motion: WallMotion::default(),
         multi_contact: MultiContact::Sum,
@@ -26,7 +30,11 @@ fn mesh_wall(mesh: u32) -> Wall {
 
 /// Touches of a sphere with a single mesh at the identity pose.
 fn touches(m: &TriMesh, x: DVec3, r: f64) -> Vec<WallTouch> {
-    let shape = WallShape::Mesh { mesh: 0, position: DVec3::ZERO, orientation: DQuat::IDENTITY };
+    let shape = WallShape::Mesh {
+        mesh: 0,
+        position: DVec3::ZERO,
+        orientation: DQuat::IDENTITY,
+    };
     let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
     let k = shape.contacts(std::slice::from_ref(m), x, r, 0.0, &mut buf);
     buf[..k].to_vec()
@@ -62,9 +70,19 @@ fn grid(x0: f64, y0: f64, z: f64, n: usize, h: f64, bump: impl Fn(f64, f64) -> f
 #[test]
 fn coplanar_shared_edge_gives_one_contact() {
     // two triangles sharing the diagonal (−1,−1)–(1,1)
-    let v = vec![DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, -1.0, 0.0), DVec3::new(1.0, 1.0, 0.0), DVec3::new(-1.0, 1.0, 0.0)];
+    let v = vec![
+        DVec3::new(-1.0, -1.0, 0.0),
+        DVec3::new(1.0, -1.0, 0.0),
+        DVec3::new(1.0, 1.0, 0.0),
+        DVec3::new(-1.0, 1.0, 0.0),
+    ];
     let m = TriMesh::new(v, vec![[0, 1, 2], [0, 2, 3]]).unwrap();
-    for x in [DVec3::new(0.0, 0.0, 0.9), DVec3::new(0.3, 0.3, 0.95), DVec3::new(0.3, 0.3 + 1e-15, 0.95), DVec3::new(-0.5, -0.5, -0.8)] {
+    for x in [
+        DVec3::new(0.0, 0.0, 0.9),
+        DVec3::new(0.3, 0.3, 0.95),
+        DVec3::new(0.3, 0.3 + 1e-15, 0.95),
+        DVec3::new(-0.5, -0.5, -0.8),
+    ] {
         let t = touches(&m, x, 1.0);
         assert_eq!(t.len(), 1, "sphere at {x}: {t:?}");
         let sign = x.z.signum();
@@ -91,13 +109,20 @@ fn shared_vertex_gives_one_contact() {
         let x = DVec3::new(0.0, 0.0, apex + 0.9);
         let t = touches(&m, x, 1.0);
         assert_eq!(t.len(), 1, "apex {apex}: {t:?}");
-        assert!((t[0].normal - DVec3::Z).length() < 1e-12 && (t[0].overlap - 0.1).abs() < 1e-12, "{t:?}");
+        assert!(
+            (t[0].normal - DVec3::Z).length() < 1e-12 && (t[0].overlap - 0.1).abs() < 1e-12,
+            "{t:?}"
+        );
         // slightly off the apex, still in the vertex region of the pyramid
         if apex > 0.0 {
             let x = DVec3::new(0.01, 0.02, apex + 0.9);
             let t = touches(&m, x, 1.0);
             assert_eq!(t.len(), 1, "{t:?}");
-            assert!((t[0].normal - x.normalize_or_zero()).length() < 1.0 && (t[0].overlap - (1.0 - (x - DVec3::new(0.0, 0.0, apex)).length())).abs() < 1e-12);
+            assert!(
+                (t[0].normal - x.normalize_or_zero()).length() < 1.0
+                    && (t[0].overlap - (1.0 - (x - DVec3::new(0.0, 0.0, apex)).length())).abs()
+                        < 1e-12
+            );
         }
     }
 }
@@ -124,7 +149,10 @@ fn convex_ridge_gives_one_contact() {
     let x = foot + n * 0.95;
     let t = touches(&m, x, 1.0);
     assert_eq!(t.len(), 1, "{t:?}");
-    assert!((t[0].normal - n).length() < 1e-12 && (t[0].overlap - 0.05).abs() < 1e-12, "{t:?}");
+    assert!(
+        (t[0].normal - n).length() < 1e-12 && (t[0].overlap - 0.05).abs() < 1e-12,
+        "{t:?}"
+    );
     // sweeping across the ridge: always exactly one contact, normal and overlap continuous
     let mut prev: Option<WallTouch> = None;
     for i in 0..=400 {
@@ -132,7 +160,10 @@ fn convex_ridge_gives_one_contact() {
         let t = touches(&m, DVec3::new(0.0, y, 1.05), 1.0);
         assert_eq!(t.len(), 1, "y = {y}: {t:?}");
         if let Some(p) = prev {
-            assert!((t[0].normal - p.normal).length() < 0.02 && (t[0].overlap - p.overlap).abs() < 0.01, "jump at y = {y}");
+            assert!(
+                (t[0].normal - p.normal).length() < 0.02 && (t[0].overlap - p.overlap).abs() < 0.01,
+                "jump at y = {y}"
+            );
         }
         prev = Some(t[0]);
     }
@@ -172,22 +203,61 @@ fn concave_corner_gives_one_contact_per_face() {
 
 /// A closed axis-aligned cube `[-h, h]³`, 12 triangles.
 fn cube_mesh(h: f64) -> TriMesh {
-    let v: Vec<DVec3> = (0..8).map(|k| DVec3::new(if k & 1 == 0 { -h } else { h }, if k & 2 == 0 { -h } else { h }, if k & 4 == 0 { -h } else { h })).collect();
-    let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
-    let t = quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
+    let v: Vec<DVec3> = (0..8)
+        .map(|k| {
+            DVec3::new(
+                if k & 1 == 0 { -h } else { h },
+                if k & 2 == 0 { -h } else { h },
+                if k & 4 == 0 { -h } else { h },
+            )
+        })
+        .collect();
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let t = quads
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect();
     TriMesh::new(v, t).unwrap()
 }
 
 fn material() -> Material {
-    Material { youngs_modulus: 1e7, poisson_ratio: 0.3, density: 2500.0 }
+    Material {
+        youngs_modulus: 1e7,
+        poisson_ratio: 0.3,
+        density: 2500.0,
+    }
 }
 
 fn sphere_world(walls: impl FnOnce(&mut World)) -> (World, u64) {
-    let props = PairProperties { restitution: 0.5, friction: 0.4, ..Default::default() };
-    let mut w = world(material(), props, 5e-6, open_domain(1.0), DVec3::new(0.0, 0.0, -9.81));
+    let props = PairProperties {
+        restitution: 0.5,
+        friction: 0.4,
+        ..Default::default()
+    };
+    let mut w = world(
+        material(),
+        props,
+        5e-6,
+        open_domain(1.0),
+        DVec3::new(0.0, 0.0, -9.81),
+    );
     let t = w.add_template(coincident(1, 0.01, 2500.0), 0).unwrap();
     walls(&mut w);
-    let id = w.add_body(&moving(t, DVec3::new(0.0013, -0.0211, 0.0099), DVec3::new(0.35, 0.12, -0.05), DVec3::new(3.0, -20.0, 5.0))).unwrap();
+    let id = w
+        .add_body(&moving(
+            t,
+            DVec3::new(0.0013, -0.0211, 0.0099),
+            DVec3::new(0.35, 0.12, -0.05),
+            DVec3::new(3.0, -20.0, 5.0),
+        ))
+        .unwrap();
     (w, id)
 }
 
@@ -198,7 +268,8 @@ fn rel_vec(a: DVec3, b: DVec3, scale: f64) -> f64 {
 #[test]
 fn rolling_on_triangulated_floor_matches_analytic_plane() {
     let (mut a, ida) = sphere_world(|w| {
-        w.add_wall(plane(DVec3::ZERO, DVec3::Z, MultiContact::Sum)).unwrap();
+        w.add_wall(plane(DVec3::ZERO, DVec3::Z, MultiContact::Sum))
+            .unwrap();
     });
     let (mut b, idb) = sphere_world(|w| {
         // 3 mm cells (the sphere radius is 10 mm): the contact crosses many
@@ -215,15 +286,30 @@ fn rolling_on_triangulated_floor_matches_analytic_plane() {
         if step % 500 == 499 {
             let (ia, ib) = (a.body_index(ida).unwrap(), b.body_index(idb).unwrap());
             let (pa, pb) = (a.bodies.position[ia], b.bodies.position[ib]);
-            assert!(rel_vec(pa, pb, pa.length()) < 1e-9, "step {step}: {pa} vs {pb}");
+            assert!(
+                rel_vec(pa, pb, pa.length()) < 1e-9,
+                "step {step}: {pa} vs {pb}"
+            );
             let (va, vb) = (a.bodies.velocity[ia], b.bodies.velocity[ib]);
-            assert!(rel_vec(va, vb, va.length()) < 1e-9, "step {step}: {va} vs {vb}");
+            assert!(
+                rel_vec(va, vb, va.length()) < 1e-9,
+                "step {step}: {va} vs {vb}"
+            );
             let (wa, wb) = (a.bodies.angular_velocity[ia], b.bodies.angular_velocity[ib]);
-            assert!(rel_vec(wa, wb, wa.length()) < 1e-9, "step {step}: {wa} vs {wb}");
+            assert!(
+                rel_vec(wa, wb, wa.length()) < 1e-9,
+                "step {step}: {wa} vs {wb}"
+            );
             let (fa, fb) = (a.wall_loads[0].force, b.wall_loads[0].force);
-            assert!(rel_vec(fa, fb, fa.length().max(1e-3)) < 1e-9, "step {step}: wall force {fa} vs {fb}");
+            assert!(
+                rel_vec(fa, fb, fa.length().max(1e-3)) < 1e-9,
+                "step {step}: wall force {fa} vs {fb}"
+            );
             let (ta, tb) = (a.wall_loads[0].torque, b.wall_loads[0].torque);
-            assert!(rel_vec(ta, tb, ta.length().max(1e-6)) < 1e-9, "step {step}: wall torque {ta} vs {tb}");
+            assert!(
+                rel_vec(ta, tb, ta.length().max(1e-6)) < 1e-9,
+                "step {step}: wall torque {ta} vs {tb}"
+            );
         }
     }
     // it touched most of the time and travelled over many triangles
@@ -240,13 +326,25 @@ fn history_carries_across_triangles() {
     for kink in [0.0, 1.0] {
         let mu = 0.4;
         // no dashpots (e = 1), so that the tangential force is the spring's alone
-        let props = PairProperties { restitution: 1.0, friction: mu, ..Default::default() };
-        let mut w = world(material(), props, 5e-6, open_domain(1.0), DVec3::new(0.0, 0.0, -9.81));
+        let props = PairProperties {
+            restitution: 1.0,
+            friction: mu,
+            ..Default::default()
+        };
+        let mut w = world(
+            material(),
+            props,
+            5e-6,
+            open_domain(1.0),
+            DVec3::new(0.0, 0.0, -9.81),
+        );
         let t = w.add_template(coincident(1, 0.01, 2500.0), 0).unwrap();
         // 1 mm cells, with a gentle convex fold along x = −6 mm (kink
         // degrees) so that the normal also rotates through an edge contact
         let slope = (kink as f64).to_radians().tan();
-        let m = w.add_mesh(grid(-0.015, -0.015, 0.0, 30, 0.001, |x, _| -slope * (x + 0.006).max(0.0)));
+        let m = w.add_mesh(grid(-0.015, -0.015, 0.0, 30, 0.001, |x, _| {
+            -slope * (x + 0.006).max(0.0)
+        }));
         w.add_wall(mesh_wall(m)).unwrap();
         let body = BodyInit {
             force_flag: [false, false, true],
@@ -271,7 +369,10 @@ fn history_carries_across_triangles() {
             let ft = (f_contact - fn_ * n).length();
             worst = worst.min(ft / (mu * fn_.abs()));
         }
-        assert!(worst > 0.999, "kink {kink}: tangential force dropped to {worst} of the Coulomb limit");
+        assert!(
+            worst > 0.999,
+            "kink {kink}: tangential force dropped to {worst} of the Coulomb limit"
+        );
         let x = w.bodies.position[0];
         assert!(x.x > -0.004, "{x}");
     }
@@ -285,14 +386,28 @@ fn moving_and_rotated_mesh_matches_analytic_plane() {
     let m = grid(-1.0, -1.0, 0.0, 10, 0.2, |_, _| 0.0);
     let meshes = vec![m];
     let mut wm = mesh_wall(0);
-    wm.shape = WallShape::Mesh { mesh: 0, position: DVec3::new(0.1, 0.0, 0.0), orientation: q };
-    wm.motion = WallMotion { velocity: DVec3::new(0.0, 0.0, 0.3), angular_velocity: DVec3::new(0.0, 0.5, 0.0), center: DVec3::new(0.1, 0.0, 0.0), ..Default::default() };
+    wm.shape = WallShape::Mesh {
+        mesh: 0,
+        position: DVec3::new(0.1, 0.0, 0.0),
+        orientation: q,
+    };
+    wm.motion = WallMotion {
+        velocity: DVec3::new(0.0, 0.0, 0.3),
+        angular_velocity: DVec3::new(0.0, 0.5, 0.0),
+        center: DVec3::new(0.1, 0.0, 0.0),
+        ..Default::default()
+    };
     let mut wp = plane(DVec3::new(0.1, 0.0, 0.0), q * DVec3::Z, MultiContact::Sum);
     wp.motion = wm.motion;
     for step in 0..100 {
-        let WallShape::Plane { point, normal } = wp.shape else { unreachable!() };
+        let WallShape::Plane { point, normal } = wp.shape else {
+            unreachable!()
+        };
         let (e1, e2) = normal.any_orthonormal_pair();
-        let x = point + normal * (0.15 + 0.01 * (step as f64 * 0.3).cos()) + e1 * (0.3 * (step as f64 * 0.1).sin()) + e2 * (0.01 * step as f64);
+        let x = point
+            + normal * (0.15 + 0.01 * (step as f64 * 0.3).cos())
+            + e1 * (0.3 * (step as f64 * 0.1).sin())
+            + e2 * (0.01 * step as f64);
         let mut bm = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
         let mut bp = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
         let km = wm.shape.contacts(&meshes, x, 0.2, 0.0, &mut bm);
@@ -322,7 +437,9 @@ fn moving_and_rotated_mesh_matches_analytic_plane() {
 fn bvh_on_a_large_mesh() {
     // a bumpy 224 × 224 height field: 100 352 triangles
     let n = 224;
-    let m = grid(-1.0, -1.0, 0.0, n, 2.0 / n as f64, |x, y| 0.05 * (7.0 * x).sin() * (5.0 * y).cos());
+    let m = grid(-1.0, -1.0, 0.0, n, 2.0 / n as f64, |x, y| {
+        0.05 * (7.0 * x).sin() * (5.0 * y).cos()
+    });
     assert!(m.triangles().len() > 100_000);
     let t0 = std::time::Instant::now();
     let mut rng = 0x2545F4914F6CDD1Du64;
@@ -351,7 +468,10 @@ fn bvh_on_a_large_mesh() {
                 })
                 .fold(f64::INFINITY, f64::min);
             if dmin < r - 1e-12 {
-                assert!(!t.is_empty(), "query {q} missed a contact at distance {dmin}");
+                assert!(
+                    !t.is_empty(),
+                    "query {q} missed a contact at distance {dmin}"
+                );
                 assert!((t[0].overlap - (r - dmin)).abs() < 1e-12);
             } else if dmin > r + 1e-12 {
                 assert!(t.is_empty());
@@ -359,6 +479,11 @@ fn bvh_on_a_large_mesh() {
         }
     }
     let dt = t0.elapsed();
-    eprintln!("{queries} sphere queries on {} triangles: {:.3} s ({} contacts)", m.triangles().len(), dt.as_secs_f64(), found);
+    eprintln!(
+        "{queries} sphere queries on {} triangles: {:.3} s ({} contacts)",
+        m.triangles().len(),
+        dt.as_secs_f64(),
+        found
+    );
     assert!(found > 0);
 }

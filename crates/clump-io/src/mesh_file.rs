@@ -55,7 +55,11 @@ pub struct MeshTransform {
 
 impl Default for MeshTransform {
     fn default() -> Self {
-        MeshTransform { scale: 1.0, rotation: DQuat::IDENTITY, offset: DVec3::ZERO }
+        MeshTransform {
+            scale: 1.0,
+            rotation: DQuat::IDENTITY,
+            offset: DVec3::ZERO,
+        }
     }
 }
 
@@ -123,11 +127,21 @@ pub fn read_mesh_file(path: impl AsRef<Path>, t: &MeshTransform) -> Result<TriMe
     let path = path.as_ref();
     let pb = || path.to_path_buf();
     if !(t.scale.is_finite() && t.scale > 0.0) {
-        return Err(MeshFileError::BadScale { path: pb(), scale: t.scale });
+        return Err(MeshFileError::BadScale {
+            path: pb(),
+            scale: t.scale,
+        });
     }
-    let ext = path.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase());
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
     let bytes = std::fs::read(path).map_err(|source| MeshFileError::Io { path: pb(), source })?;
-    let syntax = |(line, message): (usize, String)| MeshFileError::Syntax { path: pb(), line, message };
+    let syntax = |(line, message): (usize, String)| MeshFileError::Syntax {
+        path: pb(),
+        line,
+        message,
+    };
     let (v, tri) = match ext.as_deref() {
         Some("stl") => parse_stl(&bytes).map_err(syntax)?,
         Some("obj") => parse_obj(&bytes).map_err(syntax)?,
@@ -185,7 +199,10 @@ fn parse_stl_binary(body: &[u8], n: usize) -> RawMesh {
 
 fn parse_stl_ascii(bytes: &[u8]) -> Result<RawMesh, (usize, String)> {
     let text = std::str::from_utf8(bytes).map_err(|e| {
-        let line = 1 + bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count();
+        let line = 1 + bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count();
         (line, "not valid UTF-8 text (ASCII STL)".to_string())
     })?;
     let mut weld: HashMap<[u64; 3], u32> = HashMap::new();
@@ -212,8 +229,12 @@ fn parse_stl_ascii(bytes: &[u8]) -> Result<RawMesh, (usize, String)> {
                 }
                 let mut p = [0.0f64; 3];
                 for c in &mut p {
-                    let s = w.next().ok_or((ln, "'vertex' needs three coordinates".to_string()))?;
-                    *c = s.parse().map_err(|_| (ln, format!("'{s}' is not a number")))?;
+                    let s = w
+                        .next()
+                        .ok_or((ln, "'vertex' needs three coordinates".to_string()))?;
+                    *c = s
+                        .parse()
+                        .map_err(|_| (ln, format!("'{s}' is not a number")))?;
                 }
                 if !p.iter().all(|x| x.is_finite()) {
                     return Err((ln, "vertex coordinates must be finite".into()));
@@ -229,7 +250,13 @@ fn parse_stl_ascii(bytes: &[u8]) -> Result<RawMesh, (usize, String)> {
             }
             Some("endfacet") => {
                 if corners.len() != 3 {
-                    return Err((ln, format!("the facet starting on line {facet_line} has {} vertices, expected 3", corners.len())));
+                    return Err((
+                        ln,
+                        format!(
+                            "the facet starting on line {facet_line} has {} vertices, expected 3",
+                            corners.len()
+                        ),
+                    ));
                 }
                 t.push([corners[0], corners[1], corners[2]]);
                 in_facet = false;
@@ -249,7 +276,10 @@ fn parse_stl_ascii(bytes: &[u8]) -> Result<RawMesh, (usize, String)> {
 /// Parses OBJ text (see the [module docs](self)); errors are `(line, message)`.
 pub fn parse_obj(bytes: &[u8]) -> Result<RawMesh, (usize, String)> {
     let text = std::str::from_utf8(bytes).map_err(|e| {
-        let line = 1 + bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count();
+        let line = 1 + bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count();
         (line, "not valid UTF-8 text (OBJ)".to_string())
     })?;
     let mut v = Vec::new();
@@ -263,8 +293,12 @@ pub fn parse_obj(bytes: &[u8]) -> Result<RawMesh, (usize, String)> {
             Some("v") => {
                 let mut p = [0.0f64; 3];
                 for c in &mut p {
-                    let s = w.next().ok_or((ln, "'v' needs three coordinates".to_string()))?;
-                    *c = s.parse().map_err(|_| (ln, format!("'{s}' is not a number")))?;
+                    let s = w
+                        .next()
+                        .ok_or((ln, "'v' needs three coordinates".to_string()))?;
+                    *c = s
+                        .parse()
+                        .map_err(|_| (ln, format!("'{s}' is not a number")))?;
                 }
                 if !p.iter().all(|x| x.is_finite()) {
                     return Err((ln, "vertex coordinates must be finite".into()));
@@ -275,16 +309,30 @@ pub fn parse_obj(bytes: &[u8]) -> Result<RawMesh, (usize, String)> {
                 face.clear();
                 for s in w {
                     let idx = s.split('/').next().unwrap_or("");
-                    let k: i64 = idx.parse().map_err(|_| (ln, format!("'{s}' is not a vertex index")))?;
+                    let k: i64 = idx
+                        .parse()
+                        .map_err(|_| (ln, format!("'{s}' is not a vertex index")))?;
                     let n = v.len() as i64;
-                    let abs = if k > 0 { k - 1 } else if k < 0 { n + k } else { -1 };
+                    let abs = if k > 0 {
+                        k - 1
+                    } else if k < 0 {
+                        n + k
+                    } else {
+                        -1
+                    };
                     if abs < 0 || abs >= n {
-                        return Err((ln, format!("vertex index {k} out of range (1..={n} defined so far)")));
+                        return Err((
+                            ln,
+                            format!("vertex index {k} out of range (1..={n} defined so far)"),
+                        ));
                     }
                     face.push(abs as u32);
                 }
                 if face.len() < 3 {
-                    return Err((ln, format!("a face needs at least 3 vertices, found {}", face.len())));
+                    return Err((
+                        ln,
+                        format!("a face needs at least 3 vertices, found {}", face.len()),
+                    ));
                 }
                 for k in 1..face.len() - 1 {
                     t.push([face[0], face[k], face[k + 1]]);
@@ -328,7 +376,11 @@ pub fn stl_ascii(name: &str, vertices: &[DVec3], triangles: &[[u32; 3]]) -> Stri
     for t in triangles {
         let [a, b, c] = t.map(|i| vertices[i as usize]);
         let n = (b - a).cross(c - a).normalize_or_zero();
-        let _ = writeln!(s, "  facet normal {:e} {:e} {:e}\n    outer loop", n.x, n.y, n.z);
+        let _ = writeln!(
+            s,
+            "  facet normal {:e} {:e} {:e}\n    outer loop",
+            n.x, n.y, n.z
+        );
         for p in [a, b, c] {
             let _ = writeln!(s, "      vertex {:.16e} {:.16e} {:.16e}", p.x, p.y, p.z);
         }

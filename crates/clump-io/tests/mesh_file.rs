@@ -12,9 +12,24 @@ fn tmp(name: &str) -> PathBuf {
 
 /// A closed unit cube `[0, 1]³`, 12 triangles, outward winding.
 fn cube() -> (Vec<DVec3>, Vec<[u32; 3]>) {
-    let v: Vec<DVec3> = (0..8).map(|k| DVec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, ((k >> 2) & 1) as f64)).collect();
-    let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
-    (v, quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect())
+    let v: Vec<DVec3> = (0..8)
+        .map(|k| DVec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, ((k >> 2) & 1) as f64))
+        .collect();
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    (
+        v,
+        quads
+            .iter()
+            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+            .collect(),
+    )
 }
 
 fn check_cube(m: &clump_core::wall::TriMesh, scale: f64, offset: DVec3) {
@@ -23,7 +38,10 @@ fn check_cube(m: &clump_core::wall::TriMesh, scale: f64, offset: DVec3) {
     m.check_closed().expect("closed");
     let (lo, hi) = m.bounds();
     assert!((lo - offset).length() < 1e-6 * scale, "{lo}");
-    assert!((hi - (offset + DVec3::splat(scale))).length() < 1e-6 * scale, "{hi}");
+    assert!(
+        (hi - (offset + DVec3::splat(scale))).length() < 1e-6 * scale,
+        "{hi}"
+    );
 }
 
 #[test]
@@ -36,7 +54,11 @@ fn binary_stl() {
     std::fs::write(&p, &bytes).unwrap();
     let m = read_mesh_file(&p, &MeshTransform::default()).unwrap();
     check_cube(&m, 1.0, DVec3::ZERO);
-    let tr = MeshTransform { scale: 0.001, rotation: DQuat::IDENTITY, offset: DVec3::new(1.0, 2.0, 3.0) };
+    let tr = MeshTransform {
+        scale: 0.001,
+        rotation: DQuat::IDENTITY,
+        offset: DVec3::new(1.0, 2.0, 3.0),
+    };
     let m = read_mesh_file(&p, &tr).unwrap();
     check_cube(&m, 0.001, DVec3::new(1.0, 2.0, 3.0));
     // truncated binary, not ASCII either
@@ -51,7 +73,11 @@ fn ascii_stl() {
     let p = tmp("cube_ascii.STL");
     std::fs::write(&p, stl_ascii("cube", &v, &t)).unwrap();
     // rotated 90° about z, then shifted
-    let tr = MeshTransform { scale: 2.0, rotation: DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2), offset: DVec3::new(2.0, 0.0, 0.0) };
+    let tr = MeshTransform {
+        scale: 2.0,
+        rotation: DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2),
+        offset: DVec3::new(2.0, 0.0, 0.0),
+    };
     let m = read_mesh_file(&p, &tr).unwrap();
     assert_eq!((m.vertices().len(), m.triangles().len()), (8, 12));
     let (lo, hi) = m.bounds();
@@ -64,7 +90,11 @@ fn ascii_stl() {
     assert!(matches!(e, MeshFileError::Syntax { line: 7, .. }), "{e}");
     assert!(e.to_string().contains("2 vertices"), "{e}");
     // a non-number
-    std::fs::write(&p, "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 zero 0\n").unwrap();
+    std::fs::write(
+        &p,
+        "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 zero 0\n",
+    )
+    .unwrap();
     let e = read_mesh_file(&p, &MeshTransform::default()).unwrap_err();
     assert!(e.to_string().contains(":4:"), "{e}");
 }
@@ -76,24 +106,44 @@ fn obj() {
                 f 1 3 4 2\nf 5/1 6/1 8/1 7/1\nf 1//1 2//1 6//1 5//1\nf 3/1/1 7/1/1 8/1/1 4/1/1\nf 1 5 7 3\nf -7 -5 -1 -3\n";
     let p = tmp("cube.obj");
     std::fs::write(&p, text).unwrap();
-    let m = read_mesh_file(&p, &MeshTransform { scale: 3.0, ..Default::default() }).unwrap();
+    let m = read_mesh_file(
+        &p,
+        &MeshTransform {
+            scale: 3.0,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     check_cube(&m, 3.0, DVec3::ZERO);
     std::fs::write(&p, "v 0 0 0\nv 1 0 0\nf 1 2 3\n").unwrap();
     let e = read_mesh_file(&p, &MeshTransform::default()).unwrap_err();
-    assert!(e.to_string().contains(":3:") && e.to_string().contains("out of range"), "{e}");
+    assert!(
+        e.to_string().contains(":3:") && e.to_string().contains("out of range"),
+        "{e}"
+    );
 }
 
 #[test]
 fn errors() {
     let p = tmp("mesh.ply");
     std::fs::write(&p, "ply").unwrap();
-    assert!(matches!(read_mesh_file(&p, &MeshTransform::default()), Err(MeshFileError::UnknownFormat { .. })));
+    assert!(matches!(
+        read_mesh_file(&p, &MeshTransform::default()),
+        Err(MeshFileError::UnknownFormat { .. })
+    ));
     let e = read_mesh_file(tmp("missing.stl"), &MeshTransform::default()).unwrap_err();
     assert!(matches!(e, MeshFileError::Io { .. }));
     let (v, t) = cube();
     let q = tmp("c.stl");
     std::fs::write(&q, stl_binary(&v, &t)).unwrap();
-    let e = read_mesh_file(&q, &MeshTransform { scale: 0.0, ..Default::default() }).unwrap_err();
+    let e = read_mesh_file(
+        &q,
+        &MeshTransform {
+            scale: 0.0,
+            ..Default::default()
+        },
+    )
+    .unwrap_err();
     assert!(matches!(e, MeshFileError::BadScale { .. }));
     // arbitrary bytes never panic
     std::fs::write(&q, [0xffu8, 0x00, 0x13, 0x37]).unwrap();

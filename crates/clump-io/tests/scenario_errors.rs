@@ -23,11 +23,16 @@ fn every_bad_scenario_is_rejected_with_its_message() {
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| {
-            p.extension().is_some_and(|e| e == "toml") && p.file_name().unwrap().to_string_lossy().as_bytes()[0].is_ascii_digit()
+            p.extension().is_some_and(|e| e == "toml")
+                && p.file_name().unwrap().to_string_lossy().as_bytes()[0].is_ascii_digit()
         })
         .collect();
     cases.sort();
-    assert!(cases.len() >= 30, "the corpus has only {} cases", cases.len());
+    assert!(
+        cases.len() >= 30,
+        "the corpus has only {} cases",
+        cases.len()
+    );
     let mut failures = Vec::new();
     for case in &cases {
         let expected = std::fs::read_to_string(case.with_extension("expected"))
@@ -38,25 +43,43 @@ fn every_bad_scenario_is_rejected_with_its_message() {
                 let msg = e.to_string();
                 for want in expected.lines().map(str::trim).filter(|l| !l.is_empty()) {
                     if !msg.contains(want) {
-                        failures.push(format!("{}: message lacks {want:?}; got:\n{msg}", case.display()));
+                        failures.push(format!(
+                            "{}: message lacks {want:?}; got:\n{msg}",
+                            case.display()
+                        ));
                     }
                 }
                 // every message names the file
                 if !msg.contains(&*case.file_name().unwrap().to_string_lossy()) {
-                    failures.push(format!("{}: message does not name the file:\n{msg}", case.display()));
+                    failures.push(format!(
+                        "{}: message does not name the file:\n{msg}",
+                        case.display()
+                    ));
                 }
             }
         }
     }
-    assert!(failures.is_empty(), "{} of {} cases failed:\n\n{}", failures.len(), cases.len(), failures.join("\n\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {} cases failed:\n\n{}",
+        failures.len(),
+        cases.len(),
+        failures.join("\n\n")
+    );
 }
 
 #[test]
 fn unknown_key_message_has_the_documented_layout() {
-    let e = scenario::load(&corpus().join("01_unknown_key_pair.toml")).unwrap_err().to_string();
+    let e = scenario::load(&corpus().join("01_unknown_key_pair.toml"))
+        .unwrap_err()
+        .to_string();
     let lines: Vec<&str> = e.lines().collect();
     assert_eq!(lines[0], "error: unknown key 'restitutoin' in [[pair]]");
-    assert!(lines[1].trim_start().starts_with("--> ") && lines[1].ends_with("01_unknown_key_pair.toml:28:1"), "{e}");
+    assert!(
+        lines[1].trim_start().starts_with("--> ")
+            && lines[1].ends_with("01_unknown_key_pair.toml:28:1"),
+        "{e}"
+    );
     assert_eq!(lines[3], "28 | restitutoin = 0.4");
     assert_eq!(lines[4], "   | ^^^^^^^^^^^ did you mean 'restitution'?");
 }
@@ -67,7 +90,12 @@ fn base_scenario_resolves_to_the_expected_values() {
     let sc = scenario::load(&corpus().join("base_valid.toml")).unwrap();
     // dt = 0.2 t_R of the smallest sphere (tetrahedron spheres, r = 2 mm, rock)
     let tr = rayleigh_time(&sc.materials[0], 0.002);
-    assert!((sc.config.dt - 0.2 * tr).abs() < 1e-18, "{} vs {}", sc.config.dt, 0.2 * tr);
+    assert!(
+        (sc.config.dt - 0.2 * tr).abs() < 1e-18,
+        "{} vs {}",
+        sc.config.dt,
+        0.2 * tr
+    );
     assert!(sc.time_step.auto);
     // [contact] for rock–rock, [[pair]] for rock–steel (symmetric), unlisted keys from [contact]
     let n = sc.materials.len();
@@ -100,5 +128,8 @@ fn large_time_step_is_a_warning_below_the_limit() {
     let sc = scenario::load(&p).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(sc.warnings.len(), 1, "{:?}", sc.warnings);
     let w = sc.warnings[0].to_string();
-    assert!(w.starts_with("warning: dt = ") && w.contains("warn.toml:3:"), "{w}");
+    assert!(
+        w.starts_with("warning: dt = ") && w.contains("warn.toml:3:"),
+        "{w}"
+    );
 }

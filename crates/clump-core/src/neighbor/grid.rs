@@ -38,7 +38,10 @@ impl CellGrid {
             lo = domain.lo;
             hi = domain.hi;
         }
-        let mut g = CellGrid { periodic: domain.periodic, ..Default::default() };
+        let mut g = CellGrid {
+            periodic: domain.periodic,
+            ..Default::default()
+        };
         let max_cells = (positions.len().max(1) * MAX_CELLS_PER_SPHERE) as f64;
         let mut min_cell = min_cell;
         loop {

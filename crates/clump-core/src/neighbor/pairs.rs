@@ -130,11 +130,18 @@ impl PairList {
 
     /// Rebuilds the list for spheres `inp` on `grid`, keeping the history of
     /// pairs found in `history` (keyed by global sphere ids, lower first).
-    pub fn build(&mut self, grid: &CellGrid, domain: &Domain, inp: &BuildInput, history: &HistoryMap) {
+    pub fn build(
+        &mut self,
+        grid: &CellGrid,
+        domain: &Domain,
+        inp: &BuildInput,
+        history: &HistoryMap,
+    ) {
         let n = inp.position.len();
         // 1. bin spheres into cells (counting sort)
         self.sphere_cell.clear();
-        self.sphere_cell.extend(inp.position.iter().map(|&x| grid.coords(domain.wrap(x))));
+        self.sphere_cell
+            .extend(inp.position.iter().map(|&x| grid.coords(domain.wrap(x))));
         let ncell = grid.len();
         self.cell_start.clear();
         self.cell_start.resize(ncell + 1, 0);
@@ -155,8 +162,21 @@ impl PairList {
         }
 
         // 2. count candidates per sphere (j > i, other body)
-        let ctx = Search { grid, domain, inp, cell_start: &self.cell_start, cell_items: &self.cell_items, sphere_cell: &self.sphere_cell, length: domain.size(), half: 0.5 * domain.size() };
-        (0..n).into_par_iter().with_min_len(BLOCK).map(|i| ctx.visit(i, |_, _| {})).collect_into_vec(&mut self.counts);
+        let ctx = Search {
+            grid,
+            domain,
+            inp,
+            cell_start: &self.cell_start,
+            cell_items: &self.cell_items,
+            sphere_cell: &self.sphere_cell,
+            length: domain.size(),
+            half: 0.5 * domain.size(),
+        };
+        (0..n)
+            .into_par_iter()
+            .with_min_len(BLOCK)
+            .map(|i| ctx.visit(i, |_, _| {}))
+            .collect_into_vec(&mut self.counts);
 
         // 3. offsets
         self.offsets.clear();
@@ -186,7 +206,11 @@ impl PairList {
                 let mut k = 0;
                 for i in s0..s1 {
                     ctx.visit(i, |j, shift| {
-                        out[k] = PairTopo { i: i as u32, j, shift };
+                        out[k] = PairTopo {
+                            i: i as u32,
+                            j,
+                            shift,
+                        };
                         k += 1;
                     });
                 }
@@ -199,18 +223,22 @@ impl PairList {
         self.state.resize(acc, PairState::default());
         self.history.clear();
         self.history.resize(acc, ContactHistory::default());
-        self.topo.par_iter_mut().zip(self.history.par_iter_mut().zip(self.state.par_iter_mut())).with_min_len(4096).for_each(|(t, (h, s))| {
-            if gid[t.i as usize] > gid[t.j as usize] {
-                std::mem::swap(&mut t.i, &mut t.j);
-                t.shift = [-t.shift[0], -t.shift[1], -t.shift[2]];
-            }
-            if !history.is_empty() {
-                if let Some(old) = history.get(&(gid[t.i as usize], gid[t.j as usize])) {
-                    *h = *old;
-                    s.overlap = HISTORY_ONLY;
+        self.topo
+            .par_iter_mut()
+            .zip(self.history.par_iter_mut().zip(self.state.par_iter_mut()))
+            .with_min_len(4096)
+            .for_each(|(t, (h, s))| {
+                if gid[t.i as usize] > gid[t.j as usize] {
+                    std::mem::swap(&mut t.i, &mut t.j);
+                    t.shift = [-t.shift[0], -t.shift[1], -t.shift[2]];
                 }
-            }
-        });
+                if !history.is_empty() {
+                    if let Some(old) = history.get(&(gid[t.i as usize], gid[t.j as usize])) {
+                        *h = *old;
+                        s.overlap = HISTORY_ONLY;
+                    }
+                }
+            });
 
         // 6. per-sphere incidence, in pair order (deterministic)
         self.incidence_start.clear();
@@ -260,9 +288,12 @@ impl Search<'_> {
         let any_periodic = self.domain.periodic.iter().any(|&p| p);
         let mut count = 0;
         for o in STENCIL {
-            let Some(nc) = self.grid.neighbor(self.sphere_cell[i], o) else { continue };
+            let Some(nc) = self.grid.neighbor(self.sphere_cell[i], o) else {
+                continue;
+            };
             let k = self.grid.index(nc);
-            for &j in &self.cell_items[self.cell_start[k] as usize..self.cell_start[k + 1] as usize] {
+            for &j in &self.cell_items[self.cell_start[k] as usize..self.cell_start[k + 1] as usize]
+            {
                 let ju = j as usize;
                 if ju <= i || inp.body[ju] == bi {
                     continue;

@@ -23,7 +23,14 @@ pub fn morton(c: [i64; 3]) -> u64 {
 /// Writes into `perm` the order of bodies (by storage index) sorted by the
 /// Morton code of the cell of their (wrapped) centre of mass, ties broken by
 /// global id, so the order is deterministic. `keep[b] = false` drops body `b`.
-pub fn morton_order(grid: &CellGrid, wrapped: &[DVec3], ids: &[u64], keep: &[bool], perm: &mut Vec<u32>, keys: &mut Vec<(u64, u64, u32)>) {
+pub fn morton_order(
+    grid: &CellGrid,
+    wrapped: &[DVec3],
+    ids: &[u64],
+    keep: &[bool],
+    perm: &mut Vec<u32>,
+    keys: &mut Vec<(u64, u64, u32)>,
+) {
     keys.clear();
     for (b, &x) in wrapped.iter().enumerate() {
         if keep[b] {

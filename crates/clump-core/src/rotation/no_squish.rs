@@ -15,18 +15,32 @@ use glam::{DQuat, DVec3};
 
 use crate::math::sin_cos;
 
-/// Rotates the body by `phi` (rad) about its principal axis `k`: the
-/// orientation gains the body-frame factor exp(φ/2 e_k) on the right, and
-/// the body-frame angular momentum turns by −φ about `k` (the world-frame
-/// angular momentum is unchanged).
+/// Rotates the body by `phi` (rad) about its principal axis `K`: the
+/// orientation gains the body-frame factor exp(φ/2 e_K) on the right, and
+/// the body-frame angular momentum turns by −φ about `K` (the world-frame
+/// angular momentum is unchanged). `K` is a constant so that the indexing
+/// compiles away.
 #[inline(always)]
-fn rotate_about_principal_axis(q: &mut DQuat, l_body: &mut DVec3, k: usize, phi: f64) {
+fn rotate_about_principal_axis<const K: usize>(
+    q: &mut DQuat,
+    l_body: &mut DVec3,
+    inertia: DVec3,
+    h: f64,
+) {
+    let i_k = inertia[K];
+    if i_k <= 0.0 {
+        return;
+    }
+    let phi = l_body[K] / i_k * h;
     let (s2, c2) = sin_cos(0.5 * phi);
-    let mut v = DVec3::ZERO;
-    v[k] = s2;
-    *q = *q * DQuat::from_xyzw(v.x, v.y, v.z, c2);
+    let r = match K {
+        0 => DQuat::from_xyzw(s2, 0.0, 0.0, c2),
+        1 => DQuat::from_xyzw(0.0, s2, 0.0, c2),
+        _ => DQuat::from_xyzw(0.0, 0.0, s2, c2),
+    };
+    *q = *q * r;
     let (s, c) = (2.0 * s2 * c2, c2 * c2 - s2 * s2);
-    let (a, b) = ((k + 1) % 3, (k + 2) % 3);
+    let (a, b) = ((K + 1) % 3, (K + 2) % 3);
     let (la, lb) = (l_body[a], l_body[b]);
     l_body[a] = c * la + s * lb;
     l_body[b] = -s * la + c * lb;
@@ -42,12 +56,10 @@ pub fn drift(q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
     let half = 0.5 * dt;
     let mut q = q;
     let mut lb = q.conjugate() * l_world;
-    for (k, h) in [(2, half), (1, half), (0, dt), (1, half), (2, half)] {
-        let i_k = inertia[k];
-        if i_k > 0.0 {
-            let phi = lb[k] / i_k * h;
-            rotate_about_principal_axis(&mut q, &mut lb, k, phi);
-        }
-    }
+    rotate_about_principal_axis::<2>(&mut q, &mut lb, inertia, half);
+    rotate_about_principal_axis::<1>(&mut q, &mut lb, inertia, half);
+    rotate_about_principal_axis::<0>(&mut q, &mut lb, inertia, dt);
+    rotate_about_principal_axis::<1>(&mut q, &mut lb, inertia, half);
+    rotate_about_principal_axis::<2>(&mut q, &mut lb, inertia, half);
     q.normalize()
 }

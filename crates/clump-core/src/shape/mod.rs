@@ -31,8 +31,8 @@
 pub mod builtin;
 pub mod disc_union;
 pub mod eigen;
-pub mod from_mesh;
 pub mod error;
+pub mod from_mesh;
 pub mod mass_properties;
 pub mod sphere;
 pub mod template;

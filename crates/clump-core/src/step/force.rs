@@ -32,50 +32,59 @@ fn pair_forces(w: &mut World) {
     let b = &w.bodies;
     let table = &w.contact_table;
     let pairs = &mut w.pairs;
-    pairs.topo.par_iter().zip(pairs.history.par_iter_mut().zip(pairs.state.par_iter_mut())).with_min_len(512).for_each(|(t, (hist, st))| {
-        let (i, j) = (t.i as usize, t.j as usize);
-        let shift = if any_periodic { domain.shift_vector(t.shift) } else { DVec3::ZERO };
-        let xi = sp.position[i];
-        let xj = sp.position[j] - shift;
-        let d = xi - xj;
-        let (ri, rj) = (sp.radius[i], sp.radius[j]);
-        let rsum = ri + rj;
-        let dist2 = d.length_squared();
-        if dist2 >= rsum * rsum {
-            // not touching: clear what a previous contact left
-            if st.overlap != 0.0 {
-                *st = PairState::default();
-                *hist = ContactHistory::default();
+    pairs
+        .topo
+        .par_iter()
+        .zip(pairs.history.par_iter_mut().zip(pairs.state.par_iter_mut()))
+        .with_min_len(512)
+        .for_each(|(t, (hist, st))| {
+            let (i, j) = (t.i as usize, t.j as usize);
+            let shift = if any_periodic && t.shift != [0; 3] {
+                domain.shift_vector(t.shift)
+            } else {
+                DVec3::ZERO
+            };
+            let xi = sp.position[i];
+            let xj = sp.position[j] - shift;
+            let d = xi - xj;
+            let (ri, rj) = (sp.radius[i], sp.radius[j]);
+            let rsum = ri + rj;
+            let dist2 = d.length_squared();
+            if dist2 >= rsum * rsum {
+                // not touching: clear what a previous contact left
+                if st.overlap != 0.0 {
+                    *st = PairState::default();
+                    *hist = ContactHistory::default();
+                }
+                return;
             }
-            return;
-        }
-        let dist = dist2.sqrt();
-        let n = d / dist;
-        let overlap = rsum - dist;
-        let (bi, bj) = (sp.body[i] as usize, sp.body[j] as usize);
-        let xc = xi - n * (ri - 0.5 * overlap);
-        let (ci, cj) = (b.position[bi], b.position[bj] - shift);
-        let (wi, wj) = (b.angular_velocity[bi], b.angular_velocity[bj]);
-        let vi = point_velocity(ci, b.velocity[bi], wi, xc);
-        let vj = point_velocity(cj, b.velocity[bj], wj, xc);
-        let (mi, mj) = (b.mass[bi], b.mass[bj]);
-        let input = ContactInput {
-            normal: n,
-            overlap,
-            rel_velocity: vi - vj,
-            rel_omega: wi - wj,
-            radius: ri * rj / rsum,
-            mass: mi * mj / (mi + mj),
-            dt,
-        };
-        let model = table.get(sp.material[i], sp.material[j]);
-        let out = model.evaluate(&input, hist);
-        st.force = out.force;
-        st.torque_i = (xc - ci).cross(out.force) + out.torque;
-        st.torque_j = (xc - cj).cross(-out.force) - out.torque;
-        st.energy = out.elastic_energy;
-        st.overlap = overlap;
-    });
+            let dist = dist2.sqrt();
+            let n = d / dist;
+            let overlap = rsum - dist;
+            let (bi, bj) = (sp.body[i] as usize, sp.body[j] as usize);
+            let xc = xi - n * (ri - 0.5 * overlap);
+            let (ci, cj) = (b.position[bi], b.position[bj] - shift);
+            let (wi, wj) = (b.angular_velocity[bi], b.angular_velocity[bj]);
+            let vi = point_velocity(ci, b.velocity[bi], wi, xc);
+            let vj = point_velocity(cj, b.velocity[bj], wj, xc);
+            let (mi, mj) = (b.mass[bi], b.mass[bj]);
+            let input = ContactInput {
+                normal: n,
+                overlap,
+                rel_velocity: vi - vj,
+                rel_omega: wi - wj,
+                radius: ri * rj / rsum,
+                mass: mi * mj / (mi + mj),
+                dt,
+            };
+            let model = table.get(sp.material[i], sp.material[j]);
+            let out = model.evaluate(&input, hist);
+            st.force = out.force;
+            st.torque_i = (xc - ci).cross(out.force) + out.torque;
+            st.torque_j = (xc - cj).cross(-out.force) - out.torque;
+            st.energy = out.elastic_energy;
+            st.overlap = overlap;
+        });
 }
 
 /// Per body: sum the pair forces of its spheres (scaled by 1/NCP under
@@ -83,7 +92,22 @@ fn pair_forces(w: &mut World) {
 /// processed in fixed chunks; wall loads and statistics are summed per chunk
 /// and then over chunks in order.
 fn gather(w: &mut World) {
-    let World { bodies, spheres: sp, pairs, walls, meshes, contact_table: table, wall_key, wall_hist, chunk_stats, chunk_wall_loads, config, wall_loads, stats, .. } = w;
+    let World {
+        bodies,
+        spheres: sp,
+        pairs,
+        walls,
+        meshes,
+        contact_table: table,
+        wall_key,
+        wall_hist,
+        chunk_stats,
+        chunk_wall_loads,
+        config,
+        wall_loads,
+        stats,
+        ..
+    } = w;
     let nb = bodies.len();
     let nw = walls.len();
     let nchunks = nb.div_ceil(BODY_CHUNK);
@@ -94,7 +118,9 @@ fn gather(w: &mut World) {
     let dt = config.dt;
     let gravity = config.gravity;
     let average = config.multi_contact == MultiContact::Average;
-    let walls_average = walls.iter().any(|x| x.multi_contact == MultiContact::Average);
+    let walls_average = walls
+        .iter()
+        .any(|x| x.multi_contact == MultiContact::Average);
     let force = SharedMut::new(&mut bodies.force);
     let torque = SharedMut::new(&mut bodies.torque);
     let keys = SharedMut::new(wall_key);
@@ -130,7 +156,11 @@ fn gather(w: &mut World) {
                         if st.overlap <= 0.0 {
                             continue;
                         }
-                        let scale = if average { 1.0 / counts.get(partner_body(sp, pairs, p, e)) as f64 } else { 1.0 };
+                        let scale = if average {
+                            1.0 / counts.get(partner_body(sp, pairs, p, e)) as f64
+                        } else {
+                            1.0
+                        };
                         if e & SIDE_J == 0 {
                             f += st.force * scale;
                             m += st.torque_i * scale;
@@ -153,7 +183,13 @@ fn gather(w: &mut World) {
                         for s in spheres.clone() {
                             for (wi, wall) in walls.iter().enumerate() {
                                 if wall.active {
-                                    let k = wall.shape.contacts(meshes, sp.position[s], sp.radius[s], 0.0, &mut buf);
+                                    let k = wall.shape.contacts(
+                                        meshes,
+                                        sp.position[s],
+                                        sp.radius[s],
+                                        0.0,
+                                        &mut buf,
+                                    );
                                     for _ in 0..k {
                                         wcounts.add(wi as u64);
                                     }
@@ -161,7 +197,15 @@ fn gather(w: &mut World) {
                             }
                         }
                     }
-                    let ctx = WallCtx { sp, b, table, walls, dt, bi, com };
+                    let ctx = WallCtx {
+                        sp,
+                        b,
+                        table,
+                        walls,
+                        dt,
+                        bi,
+                        com,
+                    };
                     for s in spheres {
                         // SAFETY: sphere s belongs to body bi, handled by this chunk only.
                         let (key, hist) = unsafe { (keys.get(s), hists.get(s)) };
@@ -174,7 +218,13 @@ fn gather(w: &mut World) {
                             if !wall.active {
                                 continue;
                             }
-                            let k = wall.shape.contacts(meshes, sp.position[s], sp.radius[s], 0.0, &mut buf);
+                            let k = wall.shape.contacts(
+                                meshes,
+                                sp.position[s],
+                                sp.radius[s],
+                                0.0,
+                                &mut buf,
+                            );
                             let is_mesh = matches!(wall.shape, WallShape::Mesh { .. });
                             for touch in &buf[..k] {
                                 let (slot_key, old) = if is_mesh {
@@ -191,7 +241,11 @@ fn gather(w: &mut World) {
                                     }
                                     None => ContactHistory::default(),
                                 };
-                                let scale = if wall.multi_contact == MultiContact::Average { 1.0 / wcounts.get(wi as u64) as f64 } else { 1.0 };
+                                let scale = if wall.multi_contact == MultiContact::Average {
+                                    1.0 / wcounts.get(wi as u64) as f64
+                                } else {
+                                    1.0
+                                };
                                 let (fw, mw, tw, energy) = ctx.evaluate(s, wi, touch, &mut h);
                                 f += fw * scale;
                                 m += mw * scale;
@@ -201,7 +255,8 @@ fn gather(w: &mut World) {
                                 load.torque -= tw * scale;
                                 stat.wall_contacts += 1;
                                 stat.elastic_energy += energy * scale;
-                                stat.max_overlap_ratio = stat.max_overlap_ratio.max(touch.overlap / sp.radius[s]);
+                                stat.max_overlap_ratio =
+                                    stat.max_overlap_ratio.max(touch.overlap / sp.radius[s]);
                                 if n_new < WALL_SLOTS {
                                     new_key[n_new] = slot_key;
                                     new_hist[n_new] = h;
@@ -267,7 +322,12 @@ fn slot_key(wi: usize, sub: u16) -> u32 {
 /// slides from one triangle onto the next; the contact law rotates it into
 /// the new tangent plane.
 #[inline]
-fn match_mesh_slot(key: &[u32; WALL_SLOTS], used: &[bool; WALL_SLOTS], wi: usize, n: glam::DVec3) -> Option<usize> {
+fn match_mesh_slot(
+    key: &[u32; WALL_SLOTS],
+    used: &[bool; WALL_SLOTS],
+    wi: usize,
+    n: glam::DVec3,
+) -> Option<usize> {
     let cos_min = MESH_MATCH_ANGLE.cos();
     let mut best: Option<(usize, f64)> = None;
     for (k, &x) in key.iter().enumerate() {
@@ -306,7 +366,11 @@ pub fn oct_decode(k: u16) -> glam::DVec3 {
     let u = (k >> 8) as f64 / 255.0 * 2.0 - 1.0;
     let v = (k & 0xFF) as f64 / 255.0 * 2.0 - 1.0;
     let z = 1.0 - u.abs() - v.abs();
-    let (x, y) = if z < 0.0 { ((1.0 - v.abs()) * u.signum(), (1.0 - u.abs()) * v.signum()) } else { (u, v) };
+    let (x, y) = if z < 0.0 {
+        ((1.0 - v.abs()) * u.signum(), (1.0 - u.abs()) * v.signum())
+    } else {
+        (u, v)
+    };
     glam::DVec3::new(x, y, z).normalize()
 }
 
@@ -318,7 +382,12 @@ fn incident(pairs: &crate::neighbor::PairList, s: usize) -> &[u32] {
 
 /// Global id of the body on the other side of pair `p` from incidence entry `e`.
 #[inline(always)]
-fn partner_body(sp: &crate::sphere::Spheres, pairs: &crate::neighbor::PairList, p: usize, e: u32) -> u64 {
+fn partner_body(
+    sp: &crate::sphere::Spheres,
+    pairs: &crate::neighbor::PairList,
+    p: usize,
+    e: u32,
+) -> u64 {
     let t = pairs.topo[p];
     let other = if e & SIDE_J == 0 { t.j } else { t.i };
     sp.gid[other as usize] >> SPHERE_ID_BITS
@@ -339,7 +408,13 @@ impl WallCtx<'_> {
     /// about its centre of mass, torque on the wall about its motion centre
     /// *from the body's side* i.e. of the force on the body, elastic energy).
     #[inline]
-    fn evaluate(&self, s: usize, wi: usize, touch: &WallTouch, h: &mut ContactHistory) -> (DVec3, DVec3, DVec3, f64) {
+    fn evaluate(
+        &self,
+        s: usize,
+        wi: usize,
+        touch: &WallTouch,
+        h: &mut ContactHistory,
+    ) -> (DVec3, DVec3, DVec3, f64) {
         let wall = &self.walls[wi];
         let r = self.sp.radius[s];
         let n = touch.normal;

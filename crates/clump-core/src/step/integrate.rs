@@ -29,7 +29,15 @@ pub fn initial(w: &mut World) {
     let (ff, tf, start, tmpl) = (&b.force_flag, &b.torque_flag, &b.start_step, &b.template);
     (0..n).into_par_iter().with_min_len(256).for_each(|i| {
         // SAFETY: each body index is handled by exactly one iteration.
-        let (x, v, q, l, om) = unsafe { (pos.get(i), vel.get(i), quat.get(i), angm.get(i), omega.get(i)) };
+        let (x, v, q, l, om) = unsafe {
+            (
+                pos.get(i),
+                vel.get(i),
+                quat.get(i),
+                angm.get(i),
+                omega.get(i),
+            )
+        };
         if step < start[i] {
             *x += *v * dt;
             return;
@@ -64,7 +72,8 @@ pub fn final_kick(w: &mut World) {
     let vel = SharedMut::new(&mut b.velocity);
     let angm = SharedMut::new(&mut b.angular_momentum);
     let omega = SharedMut::new(&mut b.angular_velocity);
-    let (force, torque, mass, inertia, quat) = (&b.force, &b.torque, &b.mass, &b.inertia, &b.orientation);
+    let (force, torque, mass, inertia, quat) =
+        (&b.force, &b.torque, &b.mass, &b.inertia, &b.orientation);
     let (ff, tf, start, tmpl) = (&b.force_flag, &b.torque_flag, &b.start_step, &b.template);
     (0..n).into_par_iter().with_min_len(256).for_each(|i| {
         if step < start[i] {

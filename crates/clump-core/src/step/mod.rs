@@ -57,7 +57,11 @@ impl World {
         }
         kinematics::update_spheres(self);
         if self.topology_dirty
-            || crate::neighbor::skin::needs_rebuild(&self.spheres.position, &self.reference_position, self.skin())
+            || crate::neighbor::skin::needs_rebuild(
+                &self.spheres.position,
+                &self.reference_position,
+                self.skin(),
+            )
         {
             rebuild::rebuild(self, true)?;
         }

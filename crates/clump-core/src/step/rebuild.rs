@@ -29,8 +29,16 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
                 w.bodies.position[b] = domain.wrap(x);
             }
         }
-        let grid = CellGrid::new(&domain, &w.bodies.position, min_cell).map_err(StepError::Neighbor)?;
-        sort::morton_order(&grid, &w.bodies.position, &w.bodies.id, &keep, &mut w.scratch_perm, &mut w.scratch_keys);
+        let grid =
+            CellGrid::new(&domain, &w.bodies.position, min_cell).map_err(StepError::Neighbor)?;
+        sort::morton_order(
+            &grid,
+            &w.bodies.position,
+            &w.bodies.id,
+            &keep,
+            &mut w.scratch_perm,
+            &mut w.scratch_keys,
+        );
         w.lost_bodies += (n - w.scratch_perm.len()) as u64;
         // carry wall-contact slots along with their spheres; bodies added
         // since the last build (indices ≥ old count) start with empty slots
@@ -46,8 +54,10 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
             } else {
                 let t = w.bodies.template[ob] as usize;
                 let ns = (w.template_first[t + 1] - w.template_first[t]) as usize;
-                w.wall_key.extend(std::iter::repeat([0; WALL_SLOTS]).take(ns));
-                w.wall_hist.extend(std::iter::repeat([ContactHistory::default(); WALL_SLOTS]).take(ns));
+                w.wall_key
+                    .extend(std::iter::repeat([0; WALL_SLOTS]).take(ns));
+                w.wall_hist
+                    .extend(std::iter::repeat([ContactHistory::default(); WALL_SLOTS]).take(ns));
             }
         }
         let perm = std::mem::take(&mut w.scratch_perm);
@@ -56,14 +66,26 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         rebuild_sphere_topology(w);
         update_spheres(w);
         w.reference_pose.clear();
-        w.reference_pose.extend(w.bodies.position.iter().zip(&w.bodies.orientation).map(|(&x, &q)| (x, q)));
+        w.reference_pose.extend(
+            w.bodies
+                .position
+                .iter()
+                .zip(&w.bodies.orientation)
+                .map(|(&x, &q)| (x, q)),
+        );
         w.reference_position.clear();
         w.reference_position.extend_from_slice(&w.spheres.position);
         w.topology_dirty = false;
     } else {
         // positions at the last build, recomputed from the stored poses
         rebuild_sphere_topology(w);
-        let current: Vec<_> = w.bodies.position.iter().zip(&w.bodies.orientation).map(|(&x, &q)| (x, q)).collect();
+        let current: Vec<_> = w
+            .bodies
+            .position
+            .iter()
+            .zip(&w.bodies.orientation)
+            .map(|(&x, &q)| (x, q))
+            .collect();
         for (b, &(x, q)) in w.reference_pose.iter().enumerate() {
             w.bodies.position[b] = x;
             w.bodies.orientation[b] = q;
@@ -78,10 +100,18 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         update_spheres(w);
         w.topology_dirty = false;
     }
-    w.grid = CellGrid::new(&w.config.domain, &w.reference_position, min_cell).map_err(StepError::Neighbor)?;
+    w.grid = CellGrid::new(&w.config.domain, &w.reference_position, min_cell)
+        .map_err(StepError::Neighbor)?;
     let sp = &w.spheres;
-    let inp = BuildInput { position: &w.reference_position, radius: &sp.radius, body: &sp.body, gid: &sp.gid, skin: w.skin() };
-    w.pairs.build(&w.grid, &w.config.domain, &inp, &w.history_map);
+    let inp = BuildInput {
+        position: &w.reference_position,
+        radius: &sp.radius,
+        body: &sp.body,
+        gid: &sp.gid,
+        skin: w.skin(),
+    };
+    w.pairs
+        .build(&w.grid, &w.config.domain, &inp, &w.history_map);
     w.history_map.clear();
     w.rebuilds += 1;
     Ok(())
@@ -98,7 +128,10 @@ pub(crate) fn rebuild_sphere_topology(w: &mut World) {
     sp.body_first.clear();
     for (b, (&t, &id)) in w.bodies.template.iter().zip(&w.bodies.id).enumerate() {
         sp.body_first.push(sp.body.len() as u32);
-        let (s0, s1) = (w.template_first[t as usize], w.template_first[t as usize + 1]);
+        let (s0, s1) = (
+            w.template_first[t as usize],
+            w.template_first[t as usize + 1],
+        );
         for k in 0..(s1 - s0) {
             sp.body.push(b as u32);
             sp.index_in_template.push(k);
@@ -112,5 +145,6 @@ pub(crate) fn rebuild_sphere_topology(w: &mut World) {
     sp.position.resize(n, Default::default());
     sp.velocity.resize(n, Default::default());
     w.wall_key.resize(n, [0; WALL_SLOTS]);
-    w.wall_hist.resize(n, [ContactHistory::default(); WALL_SLOTS]);
+    w.wall_hist
+        .resize(n, [ContactHistory::default(); WALL_SLOTS]);
 }

@@ -73,7 +73,13 @@ impl WallShape {
     /// Like [`WallShape::contacts`] without the mesh table: a
     /// [`WallShape::Mesh`] reports no touch here. Use `contacts` with
     /// `&world.meshes` wherever mesh walls may occur.
-    pub fn touches(&self, x: DVec3, r: f64, margin: f64, out: &mut [WallTouch; MAX_TOUCHES_PER_WALL]) -> usize {
+    pub fn touches(
+        &self,
+        x: DVec3,
+        r: f64,
+        margin: f64,
+        out: &mut [WallTouch; MAX_TOUCHES_PER_WALL],
+    ) -> usize {
         self.contacts(&[], x, r, margin, out)
     }
 
@@ -85,17 +91,42 @@ impl WallShape {
     /// touch with `overlap ≤ 0` is only reported when `margin > 0` (it is
     /// then a near miss within the margin). A mesh wall gives one touch per
     /// contact patch, deepest first, with `face = 0`.
-    pub fn contacts(&self, meshes: &[TriMesh], x: DVec3, r: f64, margin: f64, out: &mut [WallTouch; MAX_TOUCHES_PER_WALL]) -> usize {
+    pub fn contacts(
+        &self,
+        meshes: &[TriMesh],
+        x: DVec3,
+        r: f64,
+        margin: f64,
+        out: &mut [WallTouch; MAX_TOUCHES_PER_WALL],
+    ) -> usize {
         match *self {
-            WallShape::Mesh { mesh, position, orientation } => {
-                let Some(m) = meshes.get(mesh as usize) else { return 0 };
+            WallShape::Mesh {
+                mesh,
+                position,
+                orientation,
+            } => {
+                let Some(m) = meshes.get(mesh as usize) else {
+                    return 0;
+                };
                 let identity = orientation == DQuat::IDENTITY;
-                let xl = if identity { x - position } else { orientation.inverse() * (x - position) };
+                let xl = if identity {
+                    x - position
+                } else {
+                    orientation.inverse() * (x - position)
+                };
                 let mut buf = [MeshContact::default(); MAX_MESH_CONTACTS];
                 let k = m.sphere_contacts(xl, r, margin, &mut buf);
                 for (o, c) in out.iter_mut().zip(&buf[..k]) {
-                    let normal = if identity { c.normal } else { orientation * c.normal };
-                    *o = WallTouch { face: 0, normal, overlap: c.overlap };
+                    let normal = if identity {
+                        c.normal
+                    } else {
+                        orientation * c.normal
+                    };
+                    *o = WallTouch {
+                        face: 0,
+                        normal,
+                        overlap: c.overlap,
+                    };
                 }
                 k
             }
@@ -103,13 +134,22 @@ impl WallShape {
                 let dist = (x - point).dot(normal);
                 let overlap = r - dist;
                 if overlap + margin > 0.0 {
-                    out[0] = WallTouch { face: 0, normal, overlap };
+                    out[0] = WallTouch {
+                        face: 0,
+                        normal,
+                        overlap,
+                    };
                     1
                 } else {
                     0
                 }
             }
-            WallShape::Cylinder { point, axis, radius, inside } => {
+            WallShape::Cylinder {
+                point,
+                axis,
+                radius,
+                inside,
+            } => {
                 let rel = x - point;
                 let rho = rel - axis * rel.dot(axis);
                 let d = rho.length();
@@ -119,7 +159,11 @@ impl WallShape {
                     (radius + r - d, if d > 0.0 { rho / d } else { DVec3::ZERO })
                 };
                 if overlap + margin > 0.0 && normal != DVec3::ZERO {
-                    out[0] = WallTouch { face: 0, normal, overlap };
+                    out[0] = WallTouch {
+                        face: 0,
+                        normal,
+                        overlap,
+                    };
                     1
                 } else {
                     0
@@ -130,12 +174,20 @@ impl WallShape {
                     let mut n = 0;
                     for a in 0..3 {
                         for (side, face) in [(0usize, 2 * a), (1, 2 * a + 1)] {
-                            let (dist, sign) = if side == 0 { (x[a] - lo[a], 1.0) } else { (hi[a] - x[a], -1.0) };
+                            let (dist, sign) = if side == 0 {
+                                (x[a] - lo[a], 1.0)
+                            } else {
+                                (hi[a] - x[a], -1.0)
+                            };
                             let overlap = r - dist;
                             if overlap + margin > 0.0 && n < MAX_TOUCHES_PER_WALL {
                                 let mut normal = DVec3::ZERO;
                                 normal[a] = sign;
-                                out[n] = WallTouch { face: face as u8, normal, overlap };
+                                out[n] = WallTouch {
+                                    face: face as u8,
+                                    normal,
+                                    overlap,
+                                };
                                 n += 1;
                             }
                         }
@@ -148,7 +200,11 @@ impl WallShape {
                     if dl > 0.0 {
                         let overlap = r - dl;
                         if overlap + margin > 0.0 {
-                            out[0] = WallTouch { face: 0, normal: d / dl, overlap };
+                            out[0] = WallTouch {
+                                face: 0,
+                                normal: d / dl,
+                                overlap,
+                            };
                             return 1;
                         }
                         0
@@ -167,7 +223,11 @@ impl WallShape {
                         }
                         let mut normal = DVec3::ZERO;
                         normal[best.1] = best.2;
-                        out[0] = WallTouch { face: 0, normal, overlap: r + best.0 };
+                        out[0] = WallTouch {
+                            face: 0,
+                            normal,
+                            overlap: r + best.0,
+                        };
                         1
                     }
                 }
@@ -200,7 +260,11 @@ impl WallShape {
                 *lo += shift;
                 *hi += shift;
             }
-            WallShape::Mesh { position, orientation, .. } => {
+            WallShape::Mesh {
+                position,
+                orientation,
+                ..
+            } => {
                 *position += shift;
                 if let Some(q) = rot {
                     *position = c_new + q * (*position - c_new);
@@ -214,7 +278,11 @@ impl WallShape {
     /// orientation mesh → world)`; `None` for analytic shapes.
     pub fn mesh_pose(&self) -> Option<(u32, DVec3, DQuat)> {
         match *self {
-            WallShape::Mesh { mesh, position, orientation } => Some((mesh, position, orientation)),
+            WallShape::Mesh {
+                mesh,
+                position,
+                orientation,
+            } => Some((mesh, position, orientation)),
             _ => None,
         }
     }

@@ -13,8 +13,18 @@ use glam::{DQuat, DVec3};
 
 /// A world with one particle material (index 0) and a rigid wall material
 /// (index 1), the same pair properties everywhere.
-pub fn world(particle: Material, props: PairProperties, dt: f64, domain: Domain, gravity: DVec3) -> World {
-    let rigid = Material { youngs_modulus: f64::INFINITY, poisson_ratio: particle.poisson_ratio, density: 1.0 };
+pub fn world(
+    particle: Material,
+    props: PairProperties,
+    dt: f64,
+    domain: Domain,
+    gravity: DVec3,
+) -> World {
+    let rigid = Material {
+        youngs_modulus: f64::INFINITY,
+        poisson_ratio: particle.poisson_ratio,
+        density: 1.0,
+    };
     let mats = vec![particle, rigid];
     let table = ContactTable::new(&mats, |_, _| props.clone()).expect("contact table");
     let config = WorldConfig {
@@ -31,18 +41,31 @@ pub fn world(particle: Material, props: PairProperties, dt: f64, domain: Domain,
 
 /// A large open domain (no periodic axes).
 pub fn open_domain(half: f64) -> Domain {
-    Domain { lo: DVec3::splat(-half), hi: DVec3::splat(half), periodic: [false; 3] }
+    Domain {
+        lo: DVec3::splat(-half),
+        hi: DVec3::splat(half),
+        periodic: [false; 3],
+    }
 }
 
 /// A template of `n` coincident spheres of radius `r` at the origin.
 pub fn coincident(n: usize, r: f64, density: f64) -> ClumpTemplate {
-    let s: Vec<Sphere> = (0..n).map(|_| Sphere { center: DVec3::ZERO, radius: r }).collect();
+    let s: Vec<Sphere> = (0..n)
+        .map(|_| Sphere {
+            center: DVec3::ZERO,
+            radius: r,
+        })
+        .collect();
     ClumpTemplate::from_spheres("coincident", &s, density).expect("template")
 }
 
 /// A body moving at `v` with angular velocity `w` (world).
 pub fn moving(template: u32, x: DVec3, v: DVec3, w: DVec3) -> BodyInit {
-    BodyInit { velocity: v, angular_velocity: w, ..BodyInit::at_rest(template, x, DQuat::IDENTITY) }
+    BodyInit {
+        velocity: v,
+        angular_velocity: w,
+        ..BodyInit::at_rest(template, x, DQuat::IDENTITY)
+    }
 }
 
 /// A fixed plane wall of material 1.
@@ -81,7 +104,9 @@ pub fn run_impact(w: &mut World, body_id: u64, radius: f64, max_steps: usize) ->
             touching_steps += 1;
             imp.max_overlap = imp.max_overlap.max(t.max_overlap_ratio * radius);
             let b = w.body_index(body_id).unwrap();
-            imp.max_force = imp.max_force.max((w.bodies.force[b] - w.bodies.mass[b] * w.config.gravity).length());
+            imp.max_force = imp
+                .max_force
+                .max((w.bodies.force[b] - w.bodies.mass[b] * w.config.gravity).length());
         } else if started {
             break;
         }

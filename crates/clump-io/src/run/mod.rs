@@ -181,7 +181,13 @@ pub struct RunOptions<'a> {
 
 impl Default for RunOptions<'_> {
     fn default() -> Self {
-        RunOptions { max_steps: None, interrupt: None, progress: None, progress_interval: Duration::from_millis(500), threads: 1 }
+        RunOptions {
+            max_steps: None,
+            interrupt: None,
+            progress: None,
+            progress_interval: Duration::from_millis(500),
+            threads: 1,
+        }
     }
 }
 
@@ -244,9 +250,15 @@ pub struct Runner {
 impl Runner {
     /// A fresh run of `scenario` writing into `outdir` (created if missing).
     pub fn new(scenario: Scenario, outdir: &Path) -> Result<Self, RunError> {
-        let world = scenario.build_world().map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
-        std::fs::create_dir_all(outdir).map_err(rt(&format!("cannot create output directory {}", outdir.display())))?;
-        crate::atomic::write_atomic(outdir.join("scenario.toml"), scenario.text.as_bytes()).map_err(rt("cannot copy the scenario"))?;
+        let world = scenario
+            .build_world()
+            .map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
+        std::fs::create_dir_all(outdir).map_err(rt(&format!(
+            "cannot create output directory {}",
+            outdir.display()
+        )))?;
+        crate::atomic::write_atomic(outdir.join("scenario.toml"), scenario.text.as_bytes())
+            .map_err(rt("cannot copy the scenario"))?;
         let o = &scenario.output;
         let wall_names: Vec<String> = scenario.walls.iter().map(|w| w.name.clone()).collect();
         let out = Outputs {
@@ -256,11 +268,17 @@ impl Runner {
                 None => None,
             },
             thermo: match o.thermo {
-                Some(_) => Some(ThermoWriter::create(outdir.join("thermo.csv"), &wall_names).map_err(rt("cannot create thermo.csv"))?),
+                Some(_) => Some(
+                    ThermoWriter::create(outdir.join("thermo.csv"), &wall_names)
+                        .map_err(rt("cannot create thermo.csv"))?,
+                ),
                 None => None,
             },
             trajectory: match &o.trajectory {
-                Some(t) if !t.bodies.is_empty() => Some(TrajectoryWriter::create(outdir, &t.bodies).map_err(rt("cannot create trajectory files"))?),
+                Some(t) if !t.bodies.is_empty() => Some(
+                    TrajectoryWriter::create(outdir, &t.bodies)
+                        .map_err(rt("cannot create trajectory files"))?,
+                ),
                 _ => None,
             },
             last_checkpoint: None,
@@ -280,17 +298,32 @@ impl Runner {
             inserted: vec![0; scenario.inserts.len()],
         };
         let n = scenario.templates.len();
-        Ok(Runner { scenario, world, st, out, n_scenario_templates: n })
+        Ok(Runner {
+            scenario,
+            world,
+            st,
+            out,
+            n_scenario_templates: n,
+        })
     }
 
     /// Resumes from a checkpoint file. Outputs go to `outdir`, by default the
     /// directory of the checkpoint.
     pub fn resume(checkpoint: &Path, outdir: Option<&Path>) -> Result<Self, RunError> {
-        let (json, fingerprint): (String, u64) = read_checkpoint(checkpoint).map_err(|e| RunError::InputMessage(e.to_string()))?;
-        let ck: Checkpoint = serde_json::from_str(&json)
-            .map_err(|e| RunError::InputMessage(format!("checkpoint {}: cannot decode the state: {e}", checkpoint.display())))?;
-        let scenario = scenario::parse(Path::new(&ck.scenario_path), ck.scenario_text.clone(), Files::embedded(ck.files.clone()))
-            .map_err(RunError::Input)?;
+        let (json, fingerprint): (String, u64) =
+            read_checkpoint(checkpoint).map_err(|e| RunError::InputMessage(e.to_string()))?;
+        let ck: Checkpoint = serde_json::from_str(&json).map_err(|e| {
+            RunError::InputMessage(format!(
+                "checkpoint {}: cannot decode the state: {e}",
+                checkpoint.display()
+            ))
+        })?;
+        let scenario = scenario::parse(
+            Path::new(&ck.scenario_path),
+            ck.scenario_text.clone(),
+            Files::embedded(ck.files.clone()),
+        )
+        .map_err(RunError::Input)?;
         if scenario.fingerprint() != fingerprint {
             return Err(RunError::InputMessage(format!(
                 "checkpoint {}: its scenario fingerprint {fingerprint:016x} does not match the stored scenario ({:016x})",
@@ -298,43 +331,70 @@ impl Runner {
                 scenario.fingerprint()
             )));
         }
-        let mut world = scenario.build_world().map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
+        let mut world = scenario
+            .build_world()
+            .map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
         for (t, m) in &ck.extra_templates {
-            world.add_template(t.clone(), *m).map_err(|e| RunError::InputMessage(e.to_string()))?;
+            world
+                .add_template(t.clone(), *m)
+                .map_err(|e| RunError::InputMessage(e.to_string()))?;
         }
-        world
-            .restore_state(ck.world)
-            .map_err(|e| RunError::InputMessage(format!("checkpoint {} does not fit its scenario: {e}", checkpoint.display())))?;
+        world.restore_state(ck.world).map_err(|e| {
+            RunError::InputMessage(format!(
+                "checkpoint {} does not fit its scenario: {e}",
+                checkpoint.display()
+            ))
+        })?;
         let outdir = match outdir {
             Some(d) => d.to_path_buf(),
-            None => checkpoint.parent().map(Path::to_path_buf).filter(|p| !p.as_os_str().is_empty()).unwrap_or_else(|| PathBuf::from(".")),
+            None => checkpoint
+                .parent()
+                .map(Path::to_path_buf)
+                .filter(|p| !p.as_os_str().is_empty())
+                .unwrap_or_else(|| PathBuf::from(".")),
         };
-        std::fs::create_dir_all(&outdir).map_err(rt(&format!("cannot create output directory {}", outdir.display())))?;
-        crate::atomic::write_atomic(outdir.join("scenario.toml"), scenario.text.as_bytes()).map_err(rt("cannot copy the scenario"))?;
+        std::fs::create_dir_all(&outdir).map_err(rt(&format!(
+            "cannot create output directory {}",
+            outdir.display()
+        )))?;
+        crate::atomic::write_atomic(outdir.join("scenario.toml"), scenario.text.as_bytes())
+            .map_err(rt("cannot copy the scenario"))?;
         let o = &scenario.output;
         let wall_names: Vec<String> = scenario.walls.iter().map(|w| w.name.clone()).collect();
         let (step, time) = (world.step, world.time);
         let out = Outputs {
             dir: outdir.clone(),
             vtk: match o.vtk {
-                Some(_) => Some(VtkSeries::resume(&outdir, time).map_err(rt("cannot resume VTK output"))?),
+                Some(_) => {
+                    Some(VtkSeries::resume(&outdir, time).map_err(rt("cannot resume VTK output"))?)
+                }
                 None => None,
             },
             thermo: match o.thermo {
-                Some(_) => Some(ThermoWriter::resume(outdir.join("thermo.csv"), &wall_names, step).map_err(rt("cannot resume thermo.csv"))?),
+                Some(_) => Some(
+                    ThermoWriter::resume(outdir.join("thermo.csv"), &wall_names, step)
+                        .map_err(rt("cannot resume thermo.csv"))?,
+                ),
                 None => None,
             },
             trajectory: match &o.trajectory {
-                Some(t) if !t.bodies.is_empty() => {
-                    Some(TrajectoryWriter::resume(&outdir, &t.bodies, time).map_err(rt("cannot resume trajectory files"))?)
-                }
+                Some(t) if !t.bodies.is_empty() => Some(
+                    TrajectoryWriter::resume(&outdir, &t.bodies, time)
+                        .map_err(rt("cannot resume trajectory files"))?,
+                ),
                 _ => None,
             },
             last_checkpoint: Some(checkpoint.to_path_buf()),
         };
         let n = scenario.templates.len();
         tracing::info!(step, time, "resumed from {}", checkpoint.display());
-        Ok(Runner { scenario, world, st: ck.driver, out, n_scenario_templates: n })
+        Ok(Runner {
+            scenario,
+            world,
+            st: ck.driver,
+            out,
+            n_scenario_templates: n,
+        })
     }
 
     /// The scenario.
@@ -374,7 +434,11 @@ impl Runner {
             if let Some(flag) = &opts.interrupt {
                 let sig = flag.load(Ordering::Relaxed);
                 if sig != 0 {
-                    tracing::warn!(signal = sig, step = self.world.step, "interrupted; writing a checkpoint");
+                    tracing::warn!(
+                        signal = sig,
+                        step = self.world.step,
+                        "interrupted; writing a checkpoint"
+                    );
                     self.write_checkpoint()?;
                     break RunStatus::Interrupted(sig as i32);
                 }
@@ -388,7 +452,9 @@ impl Runner {
                 self.st.next_checkpoint = self.world.step.saturating_add(every);
                 self.write_checkpoint()?;
             }
-            self.world.step().map_err(rt(&format!("step {}", self.world.step)))?;
+            self.world
+                .step()
+                .map_err(rt(&format!("step {}", self.world.step)))?;
             sphere_steps += self.world.spheres().len() as f64;
             self.st.step_in_stage += 1;
             self.st.pre_step_done = false;
@@ -397,7 +463,8 @@ impl Runner {
                     let now = Instant::now();
                     let el = now.duration_since(last_report);
                     if el >= opts.progress_interval || self.world.step == end_step {
-                        let sps = (self.world.step - last_report_step) as f64 / el.as_secs_f64().max(1e-9);
+                        let sps = (self.world.step - last_report_step) as f64
+                            / el.as_secs_f64().max(1e-9);
                         last_report = now;
                         last_report_step = self.world.step;
                         let p = self.progress(end_step, sps, dt);
@@ -407,7 +474,8 @@ impl Runner {
             }
         };
         let wall_time = t_start.elapsed().as_secs_f64();
-        self.write_final_state().map_err(rt("cannot write final_state.json"))?;
+        self.write_final_state()
+            .map_err(rt("cannot write final_state.json"))?;
         let summary = RunSummary {
             status,
             first_step,
@@ -419,7 +487,8 @@ impl Runner {
             spheres: self.world.spheres().len(),
             checkpoint: self.out.last_checkpoint.clone(),
         };
-        self.write_manifest(&summary, opts.threads).map_err(rt("cannot write manifest.json"))?;
+        self.write_manifest(&summary, opts.threads)
+            .map_err(rt("cannot write manifest.json"))?;
         Ok(summary)
     }
 
@@ -433,7 +502,11 @@ impl Runner {
             bodies: self.world.bodies.len(),
             spheres: self.world.spheres().len(),
             contacts: self.world.stats.pair_contacts + self.world.stats.wall_contacts,
-            stage: self.scenario.stages.get(self.st.stage).map_or_else(String::new, |s| s.name.clone()),
+            stage: self
+                .scenario
+                .stages
+                .get(self.st.stage)
+                .map_or_else(String::new, |s| s.name.clone()),
         }
     }
 
@@ -454,7 +527,9 @@ impl Runner {
             }
             for (k, s) in self.st.streams.iter_mut().enumerate() {
                 if let Some(s) = s {
-                    let n = s.insert_due(&mut self.world).map_err(|e| RunError::Input(self.scenario.insert_error(k, e.to_string())))?;
+                    let n = s.insert_due(&mut self.world).map_err(|e| {
+                        RunError::Input(self.scenario.insert_error(k, e.to_string()))
+                    })?;
                     self.st.inserted[k] += n as u64;
                 }
             }
@@ -496,19 +571,28 @@ impl Runner {
             match &ins.kind {
                 InsertSpec::File { bodies } => {
                     for b in bodies {
-                        self.world.add_body(b).map_err(|e| RunError::Input(self.scenario.insert_error(k, e.to_string())))?;
+                        self.world.add_body(b).map_err(|e| {
+                            RunError::Input(self.scenario.insert_error(k, e.to_string()))
+                        })?;
                     }
                     self.st.inserted[k] += bodies.len() as u64;
                     tracing::info!(bodies = bodies.len(), "inserted bodies from file");
                 }
                 InsertSpec::Pack { spec, seed, .. } => {
-                    let rep = pack(&mut self.world, spec, *seed).map_err(|e| RunError::Input(self.scenario.insert_error(k, e.to_string())))?;
+                    let rep = pack(&mut self.world, spec, *seed).map_err(|e| {
+                        RunError::Input(self.scenario.insert_error(k, e.to_string()))
+                    })?;
                     self.st.inserted[k] += rep.placed as u64;
-                    tracing::info!(bodies = rep.placed, volume_fraction = rep.volume_fraction, "packed region");
+                    tracing::info!(
+                        bodies = rep.placed,
+                        volume_fraction = rep.volume_fraction,
+                        "packed region"
+                    );
                 }
                 InsertSpec::Stream { spec, seed, .. } => {
-                    let s = StreamInserter::new(spec.clone(), &self.world, *seed)
-                        .map_err(|e| RunError::Input(self.scenario.insert_error(k, e.to_string())))?;
+                    let s = StreamInserter::new(spec.clone(), &self.world, *seed).map_err(|e| {
+                        RunError::Input(self.scenario.insert_error(k, e.to_string()))
+                    })?;
                     self.st.streams[k] = Some(s);
                 }
             }
@@ -521,21 +605,24 @@ impl Runner {
         let o = self.scenario.output.clone();
         if let (Some(every), Some(vtk)) = (o.vtk, self.out.vtk.as_mut()) {
             if step >= self.st.next_vtk || (finished && self.st.last_vtk != Some(step)) {
-                vtk.write_frame(&self.world, step).map_err(rt("cannot write VTK output"))?;
+                vtk.write_frame(&self.world, step)
+                    .map_err(rt("cannot write VTK output"))?;
                 self.st.last_vtk = Some(step);
                 self.st.next_vtk = step + every;
             }
         }
         if let (Some(every), Some(th)) = (o.thermo, self.out.thermo.as_mut()) {
             if step >= self.st.next_thermo || (finished && self.st.last_thermo != Some(step)) {
-                th.write(&self.world.thermo()).map_err(rt("cannot write thermo.csv"))?;
+                th.write(&self.world.thermo())
+                    .map_err(rt("cannot write thermo.csv"))?;
                 self.st.last_thermo = Some(step);
                 self.st.next_thermo = step + every;
             }
         }
         if let (Some(t), Some(tw)) = (&o.trajectory, self.out.trajectory.as_mut()) {
             if step >= self.st.next_trajectory {
-                tw.write(&self.world).map_err(rt("cannot write trajectories"))?;
+                tw.write(&self.world)
+                    .map_err(rt("cannot write trajectories"))?;
                 self.st.next_trajectory = step + t.every;
             }
         }
@@ -545,9 +632,18 @@ impl Runner {
     /// Writes a checkpoint of the current state into the output directory
     /// (`checkpoint_<step>.ckpt`); returns its path.
     pub fn write_checkpoint(&mut self) -> Result<PathBuf, RunError> {
-        let world = self.world.save_state().map_err(rt("cannot capture the state"))?;
-        let extra: Vec<(ClumpTemplate, u16)> = (self.n_scenario_templates..self.world.templates.len())
-            .map(|i| (self.world.templates[i].clone(), self.world.template_material[i]))
+        let world = self
+            .world
+            .save_state()
+            .map_err(rt("cannot capture the state"))?;
+        let extra: Vec<(ClumpTemplate, u16)> = (self.n_scenario_templates
+            ..self.world.templates.len())
+            .map(|i| {
+                (
+                    self.world.templates[i].clone(),
+                    self.world.template_material[i],
+                )
+            })
             .collect();
         let ck = Checkpoint {
             version: VERSION.to_string(),
@@ -560,9 +656,17 @@ impl Runner {
             world,
         };
         let json = serde_json::to_string(&ck).map_err(rt("cannot encode the checkpoint"))?;
-        let path = self.out.dir.join(format!("checkpoint_{:09}.ckpt", self.world.step));
-        write_checkpoint(&path, &json, self.scenario.fingerprint()).map_err(rt("cannot write the checkpoint"))?;
-        tracing::info!(step = self.world.step, "checkpoint written to {}", path.display());
+        let path = self
+            .out
+            .dir
+            .join(format!("checkpoint_{:09}.ckpt", self.world.step));
+        write_checkpoint(&path, &json, self.scenario.fingerprint())
+            .map_err(rt("cannot write the checkpoint"))?;
+        tracing::info!(
+            step = self.world.step,
+            "checkpoint written to {}",
+            path.display()
+        );
         self.out.last_checkpoint = Some(path.clone());
         Ok(path)
     }
@@ -606,7 +710,11 @@ impl Runner {
 }
 
 fn hex3(v: glam::DVec3) -> [String; 3] {
-    [format!("{:016x}", v.x.to_bits()), format!("{:016x}", v.y.to_bits()), format!("{:016x}", v.z.to_bits())]
+    [
+        format!("{:016x}", v.x.to_bits()),
+        format!("{:016x}", v.y.to_bits()),
+        format!("{:016x}", v.z.to_bits()),
+    ]
 }
 
 /// Every body's state (sorted by global id) with the exact bit patterns of

@@ -1,7 +1,11 @@
 //! Validation and resolution of a parsed scenario: names become indices,
 //! defaults are filled in, physical ranges are checked and every error points
 //! at the offending key.
-#![allow(clippy::result_large_err, clippy::neg_cmp_op_on_partial_ord, clippy::unnecessary_map_or)]
+#![allow(
+    clippy::result_large_err,
+    clippy::neg_cmp_op_on_partial_ord,
+    clippy::unnecessary_map_or
+)]
 
 use super::diag::{did_you_mean, list, Diagnostic};
 use super::model::*;
@@ -12,7 +16,8 @@ use clump_core::boundary::Domain;
 use clump_core::contact::time_scale::rayleigh_time;
 use clump_core::contact::{Material, NormalLaw, PairProperties, RollingLaw};
 use clump_core::insert::{
-    Mix, MixEntry, Orientation, PackSpec, PackTarget, Region, SizeDistribution, StreamRate, StreamSpec, RSA_LIMIT,
+    Mix, MixEntry, Orientation, PackSpec, PackTarget, Region, SizeDistribution, StreamRate,
+    StreamSpec, RSA_LIMIT,
 };
 use clump_core::multi_contact::MultiContact;
 use clump_core::shape::{self, ClumpTemplate, ShapeError, Sphere};
@@ -55,7 +60,9 @@ impl Cx<'_> {
     }
 
     fn missing(&self, table: &[Seg], what: &str, key: &str, help: &str) -> Diagnostic {
-        let mut d = self.src.error_at(table, format!("missing key '{key}' in {what}"));
+        let mut d = self
+            .src
+            .error_at(table, format!("missing key '{key}' in {what}"));
         if !help.is_empty() {
             d = d.note(format!("help: {help}"));
         }
@@ -66,7 +73,9 @@ impl Cx<'_> {
         if x.is_finite() && x > 0.0 {
             Ok(x)
         } else {
-            Err(self.err(path, format!("'{key}' must be > 0{}, found {x}", sp(unit))).label("must be positive"))
+            Err(self
+                .err(path, format!("'{key}' must be > 0{}, found {x}", sp(unit)))
+                .label("must be positive"))
         }
     }
 
@@ -74,7 +83,9 @@ impl Cx<'_> {
         if x.is_finite() && x >= 0.0 {
             Ok(x)
         } else {
-            Err(self.err(path, format!("'{key}' must be >= 0{}, found {x}", sp(unit))).label("must not be negative"))
+            Err(self
+                .err(path, format!("'{key}' must be >= 0{}, found {x}", sp(unit)))
+                .label("must not be negative"))
         }
     }
 
@@ -83,7 +94,10 @@ impl Cx<'_> {
         if v.is_finite() {
             Ok(v)
         } else {
-            Err(self.err(path, format!("'{key}' must have finite components, found {v}")))
+            Err(self.err(
+                path,
+                format!("'{key}' must have finite components, found {v}"),
+            ))
         }
     }
 
@@ -91,10 +105,19 @@ impl Cx<'_> {
         let v = self.vec3(path, a, key)?;
         let l = v.length();
         if l < 1e-12 {
-            return Err(self.err(path, format!("'{key}' must be a non-zero direction vector, found {v}")));
+            return Err(self.err(
+                path,
+                format!("'{key}' must be a non-zero direction vector, found {v}"),
+            ));
         }
         if (l - 1.0).abs() > 1e-6 {
-            self.warn_later(path, format!("'{key}' = {v} is not a unit vector; it is normalised to {}", v / l));
+            self.warn_later(
+                path,
+                format!(
+                    "'{key}' = {v} is not a unit vector; it is normalised to {}",
+                    v / l
+                ),
+            );
         }
         Ok(v / l)
     }
@@ -114,7 +137,11 @@ fn lookup(cx: &Cx, path: &[Seg], kind: &str, name: &str, names: &[String]) -> R<
         Some(s) => d.label(format!("did you mean '{s}'?")),
         None => d.label(format!("no {kind} of this name")),
     };
-    let plural = if kind.ends_with('x') { format!("{kind}es") } else { format!("{kind}s") };
+    let plural = if kind.ends_with('x') {
+        format!("{kind}es")
+    } else {
+        format!("{kind}s")
+    };
     Err(d.note(format!("defined {plural}: {}", list(names))))
 }
 
@@ -123,16 +150,29 @@ fn unique_name(cx: &Cx, path: &[Seg], kind: &str, name: &str, seen: &[String]) -
         return Err(cx.err(path, format!("{kind} name must not be empty")));
     }
     if seen.iter().any(|s| s == name) {
-        return Err(cx.err(path, format!("duplicate {kind} name '{name}'")).label("already defined above"));
+        return Err(cx
+            .err(path, format!("duplicate {kind} name '{name}'"))
+            .label("already defined above"));
     }
     Ok(())
 }
 
 /// Resolves a parsed scenario.
-pub(super) fn build(src: &Source, raw: RawScenario, files: &mut Files) -> Result<Scenario, Diagnostic> {
-    let mut cx = Cx { src, files, warnings: Vec::new() };
+pub(super) fn build(
+    src: &Source,
+    raw: RawScenario,
+    files: &mut Files,
+) -> Result<Scenario, Diagnostic> {
+    let mut cx = Cx {
+        src,
+        files,
+        warnings: Vec::new(),
+    };
     let sc = build_inner(&mut cx, raw)?;
-    Ok(Scenario { warnings: cx.warnings, ..sc })
+    Ok(Scenario {
+        warnings: cx.warnings,
+        ..sc
+    })
 }
 
 fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
@@ -146,13 +186,44 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     for (i, m) in raw.material.iter().enumerate() {
         let p = |k: &'static str| [K("material"), I(i), K(k)];
         let t = [K("material"), I(i)];
-        let name = m.name.clone().ok_or_else(|| cx.missing(&t, "[[material]]", "name", "name = \"glass\""))?;
+        let name = m
+            .name
+            .clone()
+            .ok_or_else(|| cx.missing(&t, "[[material]]", "name", "name = \"glass\""))?;
         unique_name(cx, &p("name"), "material", &name, &material_names)?;
-        let e = m.youngs_modulus.ok_or_else(|| cx.missing(&t, "[[material]]", "youngs_modulus", "Young's modulus in Pa, e.g. youngs_modulus = 5e6"))?;
-        let nu = m.poisson_ratio.ok_or_else(|| cx.missing(&t, "[[material]]", "poisson_ratio", "e.g. poisson_ratio = 0.3"))?;
-        let rho = m.density.ok_or_else(|| cx.missing(&t, "[[material]]", "density", "density in kg/m^3, e.g. density = 2500"))?;
+        let e = m.youngs_modulus.ok_or_else(|| {
+            cx.missing(
+                &t,
+                "[[material]]",
+                "youngs_modulus",
+                "Young's modulus in Pa, e.g. youngs_modulus = 5e6",
+            )
+        })?;
+        let nu = m.poisson_ratio.ok_or_else(|| {
+            cx.missing(
+                &t,
+                "[[material]]",
+                "poisson_ratio",
+                "e.g. poisson_ratio = 0.3",
+            )
+        })?;
+        let rho = m.density.ok_or_else(|| {
+            cx.missing(
+                &t,
+                "[[material]]",
+                "density",
+                "density in kg/m^3, e.g. density = 2500",
+            )
+        })?;
         if !(e > 0.0) || e.is_nan() {
-            return Err(cx.err(&p("youngs_modulus"), format!("youngs_modulus must be > 0 Pa (inf for a rigid wall material), found {e}")).label("must be positive"));
+            return Err(cx
+                .err(
+                    &p("youngs_modulus"),
+                    format!(
+                        "youngs_modulus must be > 0 Pa (inf for a rigid wall material), found {e}"
+                    ),
+                )
+                .label("must be positive"));
         }
         if !(nu < 0.5) {
             return Err(cx
@@ -161,14 +232,28 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
                 .note("note: ν = 0.5 is an incompressible solid, for which the Hertz–Mindlin shear modulus terms break down"));
         }
         if !(nu > -1.0) {
-            return Err(cx.err(&p("poisson_ratio"), format!("poisson_ratio must be > -1, found {nu}")).label("must lie in (-1, 0.5)"));
+            return Err(cx
+                .err(
+                    &p("poisson_ratio"),
+                    format!("poisson_ratio must be > -1, found {nu}"),
+                )
+                .label("must lie in (-1, 0.5)"));
         }
         let rigid = e == f64::INFINITY;
         if !(rho.is_finite() && (rho > 0.0 || (rigid && rho >= 0.0))) {
-            return Err(cx.err(&p("density"), format!("density must be > 0 kg/m^3, found {rho}")).label("must be positive"));
+            return Err(cx
+                .err(
+                    &p("density"),
+                    format!("density must be > 0 kg/m^3, found {rho}"),
+                )
+                .label("must be positive"));
         }
         material_names.push(name);
-        materials.push(Material { youngs_modulus: e, poisson_ratio: nu, density: rho });
+        materials.push(Material {
+            youngs_modulus: e,
+            poisson_ratio: nu,
+            density: rho,
+        });
     }
     let nmat = materials.len();
 
@@ -185,19 +270,49 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     for (i, pr) in raw.pair.iter().enumerate() {
         let t = [K("pair"), I(i)];
         let mp = [K("pair"), I(i), K("materials")];
-        let ms = pr.materials.as_ref().ok_or_else(|| cx.missing(&t, "[[pair]]", "materials", "materials = [\"a\", \"b\"]"))?;
+        let ms = pr
+            .materials
+            .as_ref()
+            .ok_or_else(|| cx.missing(&t, "[[pair]]", "materials", "materials = [\"a\", \"b\"]"))?;
         if ms.len() != 2 {
-            return Err(cx.err(&mp, format!("'materials' must name exactly 2 materials, found {}", ms.len())));
+            return Err(cx.err(
+                &mp,
+                format!(
+                    "'materials' must name exactly 2 materials, found {}",
+                    ms.len()
+                ),
+            ));
         }
-        let a = lookup(cx, &[K("pair"), I(i), K("materials"), I(0)], "material", &ms[0], &material_names)?;
-        let b = lookup(cx, &[K("pair"), I(i), K("materials"), I(1)], "material", &ms[1], &material_names)?;
+        let a = lookup(
+            cx,
+            &[K("pair"), I(i), K("materials"), I(0)],
+            "material",
+            &ms[0],
+            &material_names,
+        )?;
+        let b = lookup(
+            cx,
+            &[K("pair"), I(i), K("materials"), I(1)],
+            "material",
+            &ms[1],
+            &material_names,
+        )?;
         let key = (a.min(b), a.max(b));
         if let Some(prev) = pair_set.insert(key, i) {
             return Err(cx
                 .err(&mp, format!("pair {} – {} is defined twice", ms[0], ms[1]))
-                .note(format!("note: first defined in [[pair]] number {}", prev + 1)));
+                .note(format!(
+                    "note: first defined in [[pair]] number {}",
+                    prev + 1
+                )));
         }
-        let props = contact_props(cx, &t, "[[pair]]", &ContactFields::from_pair(pr), &default_props)?;
+        let props = contact_props(
+            cx,
+            &t,
+            "[[pair]]",
+            &ContactFields::from_pair(pr),
+            &default_props,
+        )?;
         pair_table[a * nmat + b] = props;
         pair_table[b * nmat + a] = props;
     }
@@ -216,7 +331,10 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     let mut mixes: Vec<MixDef> = Vec::new();
     for (i, m) in raw.mix.iter().enumerate() {
         let t = [K("mix"), I(i)];
-        let name = m.name.clone().ok_or_else(|| cx.missing(&t, "[[mix]]", "name", "name = \"rocks\""))?;
+        let name = m
+            .name
+            .clone()
+            .ok_or_else(|| cx.missing(&t, "[[mix]]", "name", "name = \"rocks\""))?;
         unique_name(cx, &[K("mix"), I(i), K("name")], "mix", &name, &mix_names)?;
         if m.component.is_empty() {
             return Err(cx.err(&t, format!("mix '{name}' has no [[mix.component]]")).note(
@@ -227,18 +345,32 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         for (j, c) in m.component.iter().enumerate() {
             let cp = |k: &'static str| [K("mix"), I(i), K("component"), I(j), K(k)];
             let ct = [K("mix"), I(i), K("component"), I(j)];
-            let tn = c.template.as_ref().ok_or_else(|| cx.missing(&ct, "[[mix.component]]", "template", "template = \"name\""))?;
+            let tn = c.template.as_ref().ok_or_else(|| {
+                cx.missing(&ct, "[[mix.component]]", "template", "template = \"name\"")
+            })?;
             let ti = lookup(cx, &cp("template"), "template", tn, &template_names)?;
             let fraction = c.fraction.unwrap_or(1.0);
             cx.positive(&cp("fraction"), fraction, "fraction", "")?;
             let size = match &c.size {
                 None => SizeDistribution::default(),
-                Some(s) => size_distribution(cx, &[K("mix"), I(i), K("component"), I(j), K("size")], s)?,
+                Some(s) => {
+                    size_distribution(cx, &[K("mix"), I(i), K("component"), I(j), K("size")], s)?
+                }
             };
-            entries.push(MixEntry { template: ti as u32, fraction, size });
+            entries.push(MixEntry {
+                template: ti as u32,
+                fraction,
+                size,
+            });
         }
         mix_names.push(name.clone());
-        mixes.push(MixDef { name, mix: Mix { basis: m.basis.unwrap_or_default(), entries } });
+        mixes.push(MixDef {
+            name,
+            mix: Mix {
+                basis: m.basis.unwrap_or_default(),
+                entries,
+            },
+        });
     }
 
     // ---------------- simulation, domain, integrator
@@ -252,12 +384,29 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             "help: every scenario needs a simulation box, e.g.\n[domain]\nlo = [-0.1, -0.1, 0.0]   # m\nhi = [0.1, 0.1, 0.3]\nperiodic = []           # e.g. [\"x\", \"y\"]",
         )
     })?;
-    let lo = dom.lo.ok_or_else(|| cx.missing(&[K("domain")], "[domain]", "lo", "lower corner in m, lo = [x, y, z]"))?;
-    let hi = dom.hi.ok_or_else(|| cx.missing(&[K("domain")], "[domain]", "hi", "upper corner in m, hi = [x, y, z]"))?;
+    let lo = dom.lo.ok_or_else(|| {
+        cx.missing(
+            &[K("domain")],
+            "[domain]",
+            "lo",
+            "lower corner in m, lo = [x, y, z]",
+        )
+    })?;
+    let hi = dom.hi.ok_or_else(|| {
+        cx.missing(
+            &[K("domain")],
+            "[domain]",
+            "hi",
+            "upper corner in m, hi = [x, y, z]",
+        )
+    })?;
     let lo = cx.vec3(&[K("domain"), K("lo")], lo, "lo")?;
     let hi = cx.vec3(&[K("domain"), K("hi")], hi, "hi")?;
     if hi.cmple(lo).any() {
-        return Err(cx.err(&[K("domain"), K("hi")], format!("domain 'hi' {hi} must be above 'lo' {lo} on every axis")));
+        return Err(cx.err(
+            &[K("domain"), K("hi")],
+            format!("domain 'hi' {hi} must be above 'lo' {lo} on every axis"),
+        ));
     }
     let mut periodic = [false; 3];
     for a in &dom.periodic {
@@ -269,12 +418,25 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         None => AddedMass::default(),
         Some(a) => {
             let p = |k: &'static str| [K("integrator"), K("added_mass"), K(k)];
-            let c = cx.nonneg(&p("coefficient"), a.coefficient.unwrap_or(0.5), "coefficient", "")?;
+            let c = cx.nonneg(
+                &p("coefficient"),
+                a.coefficient.unwrap_or(0.5),
+                "coefficient",
+                "",
+            )?;
             let rho = a.fluid_density.ok_or_else(|| {
-                cx.missing(&[K("integrator"), K("added_mass")], "[integrator.added_mass]", "fluid_density", "fluid density in kg/m^3, e.g. fluid_density = 1000")
+                cx.missing(
+                    &[K("integrator"), K("added_mass")],
+                    "[integrator.added_mass]",
+                    "fluid_density",
+                    "fluid density in kg/m^3, e.g. fluid_density = 1000",
+                )
             })?;
             let rho = cx.nonneg(&p("fluid_density"), rho, "fluid_density", "kg/m^3")?;
-            AddedMass { coefficient: c, fluid_density: rho }
+            AddedMass {
+                coefficient: c,
+                fluid_density: rho,
+            }
         }
     };
     let skin = match sim.skin {
@@ -371,30 +533,56 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
 
     // ---------------- stages
     let mut stages: Vec<StageDef> = Vec::new();
-    let steps_of = |cx: &Cx, base: &[Seg], what: &str, duration: Option<f64>, steps: Option<u64>| -> R<u64> {
-        let mut pd = base.to_vec();
-        pd.push(K("duration"));
-        match (duration, steps) {
-            (Some(_), Some(_)) => {
-                Err(cx.err(&pd, format!("give either 'duration' (s) or 'steps' in {what}, not both")))
+    let steps_of =
+        |cx: &Cx, base: &[Seg], what: &str, duration: Option<f64>, steps: Option<u64>| -> R<u64> {
+            let mut pd = base.to_vec();
+            pd.push(K("duration"));
+            match (duration, steps) {
+                (Some(_), Some(_)) => Err(cx.err(
+                    &pd,
+                    format!("give either 'duration' (s) or 'steps' in {what}, not both"),
+                )),
+                (Some(d), None) => {
+                    let d = cx.positive(&pd, d, "duration", "s")?;
+                    Ok(((d / dt) - 1e-9).ceil().max(1.0) as u64)
+                }
+                (None, Some(n)) => Ok(n),
+                (None, None) => Err(cx.missing(
+                    base,
+                    what,
+                    "duration",
+                    "duration in s, e.g. duration = 0.5 (or steps = 10000)",
+                )),
             }
-            (Some(d), None) => {
-                let d = cx.positive(&pd, d, "duration", "s")?;
-                Ok(((d / dt) - 1e-9).ceil().max(1.0) as u64)
-            }
-            (None, Some(n)) => Ok(n),
-            (None, None) => Err(cx.missing(base, what, "duration", "duration in s, e.g. duration = 0.5 (or steps = 10000)")),
-        }
-    };
+        };
     if raw.stage.is_empty() {
-        let steps = steps_of(cx, &[K("simulation")], "[simulation]", sim.duration, sim.steps)?;
-        stages.push(StageDef { name: "main".into(), steps, first_step: 0, gravity: None, walls: Vec::new() });
+        let steps = steps_of(
+            cx,
+            &[K("simulation")],
+            "[simulation]",
+            sim.duration,
+            sim.steps,
+        )?;
+        stages.push(StageDef {
+            name: "main".into(),
+            steps,
+            first_step: 0,
+            gravity: None,
+            walls: Vec::new(),
+        });
     } else {
         if sim.duration.is_some() || sim.steps.is_some() {
-            let k = if sim.duration.is_some() { "duration" } else { "steps" };
+            let k = if sim.duration.is_some() {
+                "duration"
+            } else {
+                "steps"
+            };
             return Err(cx
                 .src
-                .error_at_key(&[K("simulation"), K(k)], format!("'{k}' in [simulation] conflicts with the [[stage]] list"))
+                .error_at_key(
+                    &[K("simulation"), K(k)],
+                    format!("'{k}' in [simulation] conflicts with the [[stage]] list"),
+                )
                 .note("help: with [[stage]] entries, give each stage its own duration"));
         }
         let mut first = 0u64;
@@ -412,7 +600,9 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             for (j, c) in s.wall.iter().enumerate() {
                 let cp = |k: &'static str| [K("stage"), I(i), K("wall"), I(j), K(k)];
                 let ct = [K("stage"), I(i), K("wall"), I(j)];
-                let wn = c.name.as_ref().ok_or_else(|| cx.missing(&ct, "[[stage.wall]]", "name", "the name of a [[wall]]"))?;
+                let wn = c.name.as_ref().ok_or_else(|| {
+                    cx.missing(&ct, "[[stage.wall]]", "name", "the name of a [[wall]]")
+                })?;
                 let wall = lookup(cx, &cp("name"), "wall", wn, &wall_names)?;
                 let opt = |cx: &Cx, k: &'static str, v: Option<[f64; 3]>| -> R<Option<DVec3>> {
                     v.map(|a| cx.vec3(&cp(k), a, k)).transpose()
@@ -427,7 +617,13 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
                 });
             }
             names.push(name.clone());
-            stages.push(StageDef { name, steps, first_step: first, gravity, walls: changes });
+            stages.push(StageDef {
+                name,
+                steps,
+                first_step: first,
+                gravity,
+                walls: changes,
+            });
             first += steps;
         }
     }
@@ -436,23 +632,41 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     // ---------------- inserts
     let mut inserts = Vec::new();
     for (i, ins) in raw.insert.iter().enumerate() {
-        inserts.push(build_insert(cx, i, ins, &stages, &stage_names, &templates, &template_names, &mixes, &mix_names, dt)?);
+        inserts.push(build_insert(
+            cx,
+            i,
+            ins,
+            &stages,
+            &stage_names,
+            &templates,
+            &template_names,
+            &mixes,
+            &mix_names,
+            dt,
+        )?);
     }
 
     // ---------------- output
-    let to_steps = |cx: &Cx, base: [Seg<'static>; 2], e: Option<f64>, s: Option<u64>| -> R<Option<u64>> {
-        let [a, b] = base;
-        match (e, s) {
-            (Some(_), Some(_)) => Err(cx.err(&[a, b, K("every")], "give either 'every' (s) or 'every_steps', not both")),
-            (Some(x), None) => {
-                let x = cx.positive(&[a, b, K("every")], x, "every", "s")?;
-                Ok(Some(((x / dt).round() as u64).max(1)))
+    let to_steps =
+        |cx: &Cx, base: [Seg<'static>; 2], e: Option<f64>, s: Option<u64>| -> R<Option<u64>> {
+            let [a, b] = base;
+            match (e, s) {
+                (Some(_), Some(_)) => Err(cx.err(
+                    &[a, b, K("every")],
+                    "give either 'every' (s) or 'every_steps', not both",
+                )),
+                (Some(x), None) => {
+                    let x = cx.positive(&[a, b, K("every")], x, "every", "s")?;
+                    Ok(Some(((x / dt).round() as u64).max(1)))
+                }
+                (None, Some(0)) => Err(cx.err(
+                    &[a, b, K("every_steps")],
+                    "'every_steps' must be at least 1",
+                )),
+                (None, Some(n)) => Ok(Some(n)),
+                (None, None) => Ok(None),
             }
-            (None, Some(0)) => Err(cx.err(&[a, b, K("every_steps")], "'every_steps' must be at least 1")),
-            (None, Some(n)) => Ok(Some(n)),
-            (None, None) => Ok(None),
-        }
-    };
+        };
     let o = &raw.output;
     let vtk = match &o.vtk {
         Some(e) => to_steps(cx, [K("output"), K("vtk")], e.every, e.every_steps)?,
@@ -468,13 +682,20 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     };
     let trajectory = match &o.trajectory {
         Some(t) => {
-            let every = to_steps(cx, [K("output"), K("trajectory")], t.every, t.every_steps)?.unwrap_or(1);
+            let every =
+                to_steps(cx, [K("output"), K("trajectory")], t.every, t.every_steps)?.unwrap_or(1);
             for (j, &b) in t.bodies.iter().enumerate() {
                 if b == 0 {
-                    return Err(cx.err(&[K("output"), K("trajectory"), K("bodies"), I(j)], "body ids start at 1 (the first inserted body)"));
+                    return Err(cx.err(
+                        &[K("output"), K("trajectory"), K("bodies"), I(j)],
+                        "body ids start at 1 (the first inserted body)",
+                    ));
                 }
             }
-            Some(TrajectoryDef { bodies: t.bodies.clone(), every })
+            Some(TrajectoryDef {
+                bodies: t.bodies.clone(),
+                every,
+            })
         }
         None => None,
     };
@@ -554,7 +775,13 @@ impl ContactFields {
     }
 }
 
-fn contact_props(cx: &mut Cx, base: &[Seg], what: &str, f: &ContactFields, dflt: &PairProperties) -> R<PairProperties> {
+fn contact_props(
+    cx: &mut Cx,
+    base: &[Seg],
+    what: &str,
+    f: &ContactFields,
+    dflt: &PairProperties,
+) -> R<PairProperties> {
     let p = |k: &'static str| {
         let mut v = base.to_vec();
         v.push(K(k));
@@ -564,7 +791,10 @@ fn contact_props(cx: &mut Cx, base: &[Seg], what: &str, f: &ContactFields, dflt:
     if let Some(e) = f.restitution {
         if !(0.0..=1.0).contains(&e) {
             return Err(cx
-                .err(&p("restitution"), format!("restitution must lie in [0, 1], found {e}"))
+                .err(
+                    &p("restitution"),
+                    format!("restitution must lie in [0, 1], found {e}"),
+                )
                 .label("outside [0, 1]")
                 .note("note: e = 1 is perfectly elastic, e = 0 perfectly plastic"));
         }
@@ -603,7 +833,14 @@ fn contact_props(cx: &mut Cx, base: &[Seg], what: &str, f: &ContactFields, dflt:
                 NormalLaw::Linear { kn, kt } => (Some(kn), Some(kt)),
                 NormalLaw::Hertz => (None, None),
             };
-            let kn = f.kn.or(dkn).ok_or_else(|| cx.missing(base, what, "kn", "law = \"linear\" needs the normal stiffness in N/m, e.g. kn = 1e5"))?;
+            let kn = f.kn.or(dkn).ok_or_else(|| {
+                cx.missing(
+                    base,
+                    what,
+                    "kn",
+                    "law = \"linear\" needs the normal stiffness in N/m, e.g. kn = 1e5",
+                )
+            })?;
             let kn = cx.positive(&p("kn"), kn, "kn", "N/m")?;
             let kt = match f.kt {
                 Some(kt) => cx.nonneg(&p("kt"), kt, "kt", "N/m")?,
@@ -613,9 +850,14 @@ fn contact_props(cx: &mut Cx, base: &[Seg], what: &str, f: &ContactFields, dflt:
         }
     }
     if out.rolling != RollingLaw::None && out.rolling_friction == 0.0 && f.rolling.is_some() {
-        let w = cx
-            .src
-            .warning_at(&p("rolling"), format!("rolling = {:?} with rolling_friction = 0 has no effect", out.rolling).to_lowercase());
+        let w = cx.src.warning_at(
+            &p("rolling"),
+            format!(
+                "rolling = {:?} with rolling_friction = 0 has no effect",
+                out.rolling
+            )
+            .to_lowercase(),
+        );
         cx.warnings.push(w);
     }
     Ok(out)
@@ -625,15 +867,23 @@ fn shape_error(cx: &Cx, i: usize, e: ShapeError, inline: bool) -> Diagnostic {
     let t = [K("template"), I(i)];
     match e {
         ShapeError::NonPositiveRadius { index, radius } if inline => cx
-            .err(&[K("template"), I(i), K("spheres"), I(index)], format!("sphere {index} of template has radius {radius} m; radii must be > 0"))
+            .err(
+                &[K("template"), I(i), K("spheres"), I(index)],
+                format!("sphere {index} of template has radius {radius} m; radii must be > 0"),
+            )
             .label("radius must be positive"),
-        ShapeError::NonFiniteSphere { index, .. } if inline => {
-            cx.err(&[K("template"), I(i), K("spheres"), I(index)], format!("sphere {index} has a non-finite centre or radius"))
-        }
-        ShapeError::InvalidMass { mass } => cx.err(&[K("template"), I(i), K("mass")], format!("mass must be > 0 kg, found {mass}")),
-        ShapeError::InvalidInertia { reason } => {
-            cx.err(&[K("template"), I(i), K("inertia")], format!("invalid inertia tensor (kg m^2, about the centre of mass): {reason}"))
-        }
+        ShapeError::NonFiniteSphere { index, .. } if inline => cx.err(
+            &[K("template"), I(i), K("spheres"), I(index)],
+            format!("sphere {index} has a non-finite centre or radius"),
+        ),
+        ShapeError::InvalidMass { mass } => cx.err(
+            &[K("template"), I(i), K("mass")],
+            format!("mass must be > 0 kg, found {mass}"),
+        ),
+        ShapeError::InvalidInertia { reason } => cx.err(
+            &[K("template"), I(i), K("inertia")],
+            format!("invalid inertia tensor (kg m^2, about the centre of mass): {reason}"),
+        ),
         other => cx.err(&t, format!("invalid template: {other}")),
     }
 }
@@ -648,9 +898,19 @@ fn build_template(
 ) -> R<TemplateDef> {
     let tp = [K("template"), I(i)];
     let p = |k: &'static str| [K("template"), I(i), K(k)];
-    let name = t.name.clone().ok_or_else(|| cx.missing(&tp, "[[template]]", "name", "name = \"stone\""))?;
+    let name = t
+        .name
+        .clone()
+        .ok_or_else(|| cx.missing(&tp, "[[template]]", "name", "name = \"stone\""))?;
     unique_name(cx, &p("name"), "template", &name, seen)?;
-    let mname = t.material.as_ref().ok_or_else(|| cx.missing(&tp, "[[template]]", "material", "the name of a [[material]]"))?;
+    let mname = t.material.as_ref().ok_or_else(|| {
+        cx.missing(
+            &tp,
+            "[[template]]",
+            "material",
+            "the name of a [[material]]",
+        )
+    })?;
     let mi = lookup(cx, &p("material"), "material", mname, material_names)?;
     let density = materials[mi].density;
     if !(density > 0.0 && density.is_finite()) {
@@ -660,7 +920,10 @@ fn build_template(
     let nsrc = sources.iter().filter(|&&b| b).count();
     if nsrc != 1 {
         let d = if nsrc == 0 {
-            cx.err(&tp, format!("template '{name}' needs its spheres: one of 'spheres', 'file' or 'shape'"))
+            cx.err(
+                &tp,
+                format!("template '{name}' needs its spheres: one of 'spheres', 'file' or 'shape'"),
+            )
         } else {
             // point at the source key given last
             let k = ["spheres", "file", "shape"]
@@ -670,15 +933,26 @@ fn build_template(
                 .map(|(k, _)| k)
                 .max_by_key(|k| cx.src.key_span(&p(k)).map_or(0, |s| s.start))
                 .unwrap_or("shape");
-            cx.src.error_at_key(&p(k), format!("template '{name}' gives more than one of 'spheres', 'file', 'shape'"))
+            cx.src.error_at_key(
+                &p(k),
+                format!("template '{name}' gives more than one of 'spheres', 'file', 'shape'"),
+            )
         };
         return Err(d.note("help: spheres = [[x, y, z, r], ...] (m), file = \"stone.txt\" (LIGGGHTS x y z r), or shape = \"sphere\"|\"rod\"|\"tetrahedron\"|\"cube_octet\""));
     }
     // keys that belong to built-in shapes only
     if t.shape.is_none() {
-        for (k, v) in [("radius", t.radius.is_some()), ("n", t.n.is_some()), ("spacing", t.spacing.is_some()), ("edge", t.edge.is_some())] {
+        for (k, v) in [
+            ("radius", t.radius.is_some()),
+            ("n", t.n.is_some()),
+            ("spacing", t.spacing.is_some()),
+            ("edge", t.edge.is_some()),
+        ] {
             if v {
-                return Err(cx.src.error_at_key(&p(k), format!("'{k}' only applies to templates with a built-in 'shape'")));
+                return Err(cx.src.error_at_key(
+                    &p(k),
+                    format!("'{k}' only applies to templates with a built-in 'shape'"),
+                ));
             }
         }
     }
@@ -686,20 +960,35 @@ fn build_template(
     let spheres: Vec<Sphere> = if let Some(sp) = &t.spheres {
         inline = true;
         if sp.is_empty() {
-            return Err(cx.err(&p("spheres"), "'spheres' is empty; give at least one [x, y, z, r] (m)"));
+            return Err(cx.err(
+                &p("spheres"),
+                "'spheres' is empty; give at least one [x, y, z, r] (m)",
+            ));
         }
-        sp.iter().map(|s| Sphere::new(DVec3::new(s[0], s[1], s[2]), s[3])).collect()
+        sp.iter()
+            .map(|s| Sphere::new(DVec3::new(s[0], s[1], s[2]), s[3]))
+            .collect()
     } else if let Some(f) = &t.file {
         let bytes = cx.files.read(f).map_err(|e| {
             cx.err(&p("file"), format!("cannot read template file '{f}': {e}"))
                 .label("file not readable")
-                .note(format!("note: paths are relative to the scenario file's folder ({})", cx.files.base_display()))
+                .note(format!(
+                    "note: paths are relative to the scenario file's folder ({})",
+                    cx.files.base_display()
+                ))
         })?;
         crate::template_file::parse_template_bytes(&bytes, std::path::Path::new(f))
             .map_err(|e| cx.err(&p("file"), format!("template file '{f}' is invalid: {e}")))?
     } else {
         let shape = t.shape.expect("one source");
-        let radius = t.radius.ok_or_else(|| cx.missing(&tp, "[[template]]", "radius", "sphere radius in m, e.g. radius = 0.001"))?;
+        let radius = t.radius.ok_or_else(|| {
+            cx.missing(
+                &tp,
+                "[[template]]",
+                "radius",
+                "sphere radius in m, e.g. radius = 0.001",
+            )
+        })?;
         let radius = cx.positive(&p("radius"), radius, "radius", "m")?;
         let need = |cx: &Cx, k: &'static str, v: Option<f64>, what: &str| -> R<f64> {
             let x = v.ok_or_else(|| cx.missing(&tp, "[[template]]", k, what))?;
@@ -707,7 +996,9 @@ fn build_template(
         };
         let forbid = |cx: &Cx, k: &'static str, present: bool, s: &str| -> R<()> {
             if present {
-                Err(cx.src.error_at_key(&p(k), format!("'{k}' does not apply to shape = \"{s}\"")))
+                Err(cx
+                    .src
+                    .error_at_key(&p(k), format!("'{k}' does not apply to shape = \"{s}\"")))
             } else {
                 Ok(())
             }
@@ -721,15 +1012,26 @@ fn build_template(
             }
             ShapeName::Rod => {
                 forbid(cx, "edge", t.edge.is_some(), "rod")?;
-                let n = t.n.ok_or_else(|| cx.missing(&tp, "[[template]]", "n", "number of spheres, e.g. n = 4"))?;
+                let n = t.n.ok_or_else(|| {
+                    cx.missing(&tp, "[[template]]", "n", "number of spheres, e.g. n = 4")
+                })?;
                 if n == 0 {
                     return Err(cx.err(&p("n"), "a rod needs n >= 1 spheres"));
                 }
-                let spacing = need(cx, "spacing", t.spacing, "centre spacing in m, e.g. spacing = 0.001")?;
+                let spacing = need(
+                    cx,
+                    "spacing",
+                    t.spacing,
+                    "centre spacing in m, e.g. spacing = 0.001",
+                )?;
                 shape::rod(n as usize, radius, spacing)
             }
             ShapeName::Tetrahedron | ShapeName::CubeOctet => {
-                let s = if shape == ShapeName::Tetrahedron { "tetrahedron" } else { "cube_octet" };
+                let s = if shape == ShapeName::Tetrahedron {
+                    "tetrahedron"
+                } else {
+                    "cube_octet"
+                };
                 forbid(cx, "n", t.n.is_some(), s)?;
                 forbid(cx, "spacing", t.spacing.is_some(), s)?;
                 let edge = need(cx, "edge", t.edge, "edge length in m, e.g. edge = 0.0012")?;
@@ -743,24 +1045,37 @@ fn build_template(
     };
     let scale = t.scale.unwrap_or(1.0);
     let scale = cx.positive(&p("scale"), scale, "scale", "")?;
-    let spheres: Vec<Sphere> = spheres.iter().map(|s| Sphere::new(s.center * scale, s.radius * scale)).collect();
-    let template = match (t.mass, t.inertia) {
-        (None, None) => ClumpTemplate::from_spheres(&name, &spheres, density),
-        (Some(m), Some(inertia)) => {
-            cx.positive(&p("mass"), m, "mass", "kg")?;
-            let mat = DMat3::from_cols_array_2d(&inertia).transpose();
-            ClumpTemplate::with_override(&name, &spheres, density, m, mat)
-        }
-        (Some(_), None) => {
-            return Err(cx
+    let spheres: Vec<Sphere> = spheres
+        .iter()
+        .map(|s| Sphere::new(s.center * scale, s.radius * scale))
+        .collect();
+    let template =
+        match (t.mass, t.inertia) {
+            (None, None) => ClumpTemplate::from_spheres(&name, &spheres, density),
+            (Some(m), Some(inertia)) => {
+                cx.positive(&p("mass"), m, "mass", "kg")?;
+                let mat = DMat3::from_cols_array_2d(&inertia).transpose();
+                ClumpTemplate::with_override(&name, &spheres, density, m, mat)
+            }
+            (Some(_), None) => return Err(cx
                 .src
-                .error_at_key(&p("mass"), "'mass' needs 'inertia' too (3×3 tensor in kg m^2 about the centre of mass)")
-                .note("help: inertia = [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz], [Ixz, Iyz, Izz]]"))
+                .error_at_key(
+                    &p("mass"),
+                    "'mass' needs 'inertia' too (3×3 tensor in kg m^2 about the centre of mass)",
+                )
+                .note("help: inertia = [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz], [Ixz, Iyz, Izz]]")),
+            (None, Some(_)) => {
+                return Err(cx
+                    .src
+                    .error_at_key(&p("inertia"), "'inertia' needs 'mass' too (kg)"))
+            }
         }
-        (None, Some(_)) => return Err(cx.src.error_at_key(&p("inertia"), "'inertia' needs 'mass' too (kg)")),
-    }
-    .map_err(|e| shape_error(cx, i, e, inline))?;
-    Ok(TemplateDef { name, material: mi as u16, template })
+        .map_err(|e| shape_error(cx, i, e, inline))?;
+    Ok(TemplateDef {
+        name,
+        material: mi as u16,
+        template,
+    })
 }
 
 fn size_distribution(cx: &Cx, base: &[Seg], s: &RawSize) -> R<SizeDistribution> {
@@ -769,14 +1084,31 @@ fn size_distribution(cx: &Cx, base: &[Seg], s: &RawSize) -> R<SizeDistribution> 
         v.push(K(k));
         v
     };
-    let kind = s.distribution.ok_or_else(|| cx.missing(base, "size", "distribution", "distribution = \"uniform\" (or \"normal\", \"fixed\")"))?;
+    let kind = s.distribution.ok_or_else(|| {
+        cx.missing(
+            base,
+            "size",
+            "distribution",
+            "distribution = \"uniform\" (or \"normal\", \"fixed\")",
+        )
+    })?;
     let req = |k: &'static str, v: Option<f64>| -> R<f64> {
-        let x = v.ok_or_else(|| cx.missing(base, "size", k, &format!("the {k} scale factor (dimensionless)")))?;
+        let x = v.ok_or_else(|| {
+            cx.missing(
+                base,
+                "size",
+                k,
+                &format!("the {k} scale factor (dimensionless)"),
+            )
+        })?;
         cx.positive(&p(k), x, k, "")
     };
     let forbid = |k: &'static str, present: bool, d: &str| -> R<()> {
         if present {
-            Err(cx.src.error_at_key(&p(k), format!("'{k}' does not apply to distribution = \"{d}\"")))
+            Err(cx.src.error_at_key(
+                &p(k),
+                format!("'{k}' does not apply to distribution = \"{d}\""),
+            ))
         } else {
             Ok(())
         }
@@ -787,40 +1119,89 @@ fn size_distribution(cx: &Cx, base: &[Seg], s: &RawSize) -> R<SizeDistribution> 
             forbid("max", s.max.is_some(), "fixed")?;
             forbid("mean", s.mean.is_some(), "fixed")?;
             forbid("std", s.std.is_some(), "fixed")?;
-            SizeDistribution::Fixed { scale: req("scale", s.scale)? }
+            SizeDistribution::Fixed {
+                scale: req("scale", s.scale)?,
+            }
         }
         SizeKind::Uniform => {
             forbid("scale", s.scale.is_some(), "uniform")?;
             forbid("mean", s.mean.is_some(), "uniform")?;
             forbid("std", s.std.is_some(), "uniform")?;
-            SizeDistribution::Uniform { min: req("min", s.min)?, max: req("max", s.max)? }
+            SizeDistribution::Uniform {
+                min: req("min", s.min)?,
+                max: req("max", s.max)?,
+            }
         }
         SizeKind::Normal => {
             forbid("scale", s.scale.is_some(), "normal")?;
             let mean = req("mean", s.mean)?;
-            let std = s.std.ok_or_else(|| cx.missing(base, "size", "std", "standard deviation of the scale factor"))?;
+            let std = s.std.ok_or_else(|| {
+                cx.missing(
+                    base,
+                    "size",
+                    "std",
+                    "standard deviation of the scale factor",
+                )
+            })?;
             let std = cx.nonneg(&p("std"), std, "std", "")?;
-            let min = s.min.map(|m| cx.positive(&p("min"), m, "min", "")).transpose()?.unwrap_or((mean - 3.0 * std).max(0.1 * mean));
-            let max = s.max.map(|m| cx.positive(&p("max"), m, "max", "")).transpose()?.unwrap_or(mean + 3.0 * std);
-            SizeDistribution::Normal { mean, std, min, max }
+            let min = s
+                .min
+                .map(|m| cx.positive(&p("min"), m, "min", ""))
+                .transpose()?
+                .unwrap_or((mean - 3.0 * std).max(0.1 * mean));
+            let max = s
+                .max
+                .map(|m| cx.positive(&p("max"), m, "max", ""))
+                .transpose()?
+                .unwrap_or(mean + 3.0 * std);
+            SizeDistribution::Normal {
+                mean,
+                std,
+                min,
+                max,
+            }
         }
     };
     match d {
-        SizeDistribution::Uniform { min, max } | SizeDistribution::Normal { min, max, .. } if max < min => {
-            Err(cx.err(&p("max"), format!("size 'max' ({max}) is below 'min' ({min})")))
+        SizeDistribution::Uniform { min, max } | SizeDistribution::Normal { min, max, .. }
+            if max < min =>
+        {
+            Err(cx.err(
+                &p("max"),
+                format!("size 'max' ({max}) is below 'min' ({min})"),
+            ))
         }
         _ => Ok(d),
     }
 }
 
-fn build_wall(cx: &mut Cx, i: usize, w: &RawWall, material_names: &[String], seen: &[String]) -> R<Wall> {
+fn build_wall(
+    cx: &mut Cx,
+    i: usize,
+    w: &RawWall,
+    material_names: &[String],
+    seen: &[String],
+) -> R<Wall> {
     let tp = [K("wall"), I(i)];
     let p = |k: &'static str| [K("wall"), I(i), K(k)];
-    let name = w.name.clone().ok_or_else(|| cx.missing(&tp, "[[wall]]", "name", "name = \"floor\""))?;
+    let name = w
+        .name
+        .clone()
+        .ok_or_else(|| cx.missing(&tp, "[[wall]]", "name", "name = \"floor\""))?;
     unique_name(cx, &p("name"), "wall", &name, seen)?;
-    let mname = w.material.as_ref().ok_or_else(|| cx.missing(&tp, "[[wall]]", "material", "the name of a [[material]]"))?;
+    let mname = w
+        .material
+        .as_ref()
+        .ok_or_else(|| cx.missing(&tp, "[[wall]]", "material", "the name of a [[material]]"))?;
     let material = lookup(cx, &p("material"), "material", mname, material_names)? as u16;
-    let kind = w.kind.ok_or_else(|| cx.missing(&tp, "[[wall]]", "type", "type = \"plane\" (or \"cylinder\", \"box\")"))?;
+    let kind = w.kind.ok_or_else(|| {
+        cx.missing(
+            &tp,
+            "[[wall]]",
+            "type",
+            "type = \"plane\" (or \"cylinder\", \"box\")",
+        )
+    })?;
     let allowed: &[&str] = match kind {
         WallKind::Plane => &["point", "normal"],
         WallKind::Cylinder => &["point", "axis", "radius", "inside"],
@@ -843,7 +1224,10 @@ fn build_wall(cx: &mut Cx, i: usize, w: &RawWall, material_names: &[String], see
         if present && !allowed.contains(&k) {
             return Err(cx
                 .src
-                .error_at_key(&p(k), format!("'{k}' does not apply to a wall of type \"{kname}\""))
+                .error_at_key(
+                    &p(k),
+                    format!("'{k}' does not apply to a wall of type \"{kname}\""),
+                )
                 .label(format!("a {kname} uses {}", allowed.join(", "))));
         }
     }
@@ -852,24 +1236,69 @@ fn build_wall(cx: &mut Cx, i: usize, w: &RawWall, material_names: &[String], see
     };
     let shape = match kind {
         WallKind::Plane => {
-            let point = cx.vec3(&p("point"), req3(cx, "point", w.point, "a point on the plane in m, point = [0, 0, 0]")?, "point")?;
-            let normal = cx.unit(&p("normal"), req3(cx, "normal", w.normal, "unit normal towards the particles, normal = [0, 0, 1]")?, "normal")?;
+            let point = cx.vec3(
+                &p("point"),
+                req3(
+                    cx,
+                    "point",
+                    w.point,
+                    "a point on the plane in m, point = [0, 0, 0]",
+                )?,
+                "point",
+            )?;
+            let normal = cx.unit(
+                &p("normal"),
+                req3(
+                    cx,
+                    "normal",
+                    w.normal,
+                    "unit normal towards the particles, normal = [0, 0, 1]",
+                )?,
+                "normal",
+            )?;
             WallShape::Plane { point, normal }
         }
         WallKind::Cylinder => {
-            let point = cx.vec3(&p("point"), req3(cx, "point", w.point, "a point on the axis in m")?, "point")?;
-            let axis = cx.unit(&p("axis"), req3(cx, "axis", w.axis, "axis direction, e.g. axis = [0, 1, 0]")?, "axis")?;
-            let radius = w.radius.ok_or_else(|| cx.missing(&tp, "[[wall]] of type \"cylinder\"", "radius", "radius in m"))?;
+            let point = cx.vec3(
+                &p("point"),
+                req3(cx, "point", w.point, "a point on the axis in m")?,
+                "point",
+            )?;
+            let axis = cx.unit(
+                &p("axis"),
+                req3(cx, "axis", w.axis, "axis direction, e.g. axis = [0, 1, 0]")?,
+                "axis",
+            )?;
+            let radius = w.radius.ok_or_else(|| {
+                cx.missing(
+                    &tp,
+                    "[[wall]] of type \"cylinder\"",
+                    "radius",
+                    "radius in m",
+                )
+            })?;
             let radius = cx.positive(&p("radius"), radius, "radius", "m")?;
-            WallShape::Cylinder { point, axis, radius, inside: w.inside.unwrap_or(true) }
+            WallShape::Cylinder {
+                point,
+                axis,
+                radius,
+                inside: w.inside.unwrap_or(true),
+            }
         }
         WallKind::Box => {
             let lo = cx.vec3(&p("lo"), req3(cx, "lo", w.lo, "lower corner in m")?, "lo")?;
             let hi = cx.vec3(&p("hi"), req3(cx, "hi", w.hi, "upper corner in m")?, "hi")?;
             if hi.cmple(lo).any() {
-                return Err(cx.err(&p("hi"), format!("box 'hi' {hi} must be above 'lo' {lo} on every axis")));
+                return Err(cx.err(
+                    &p("hi"),
+                    format!("box 'hi' {hi} must be above 'lo' {lo} on every axis"),
+                ));
             }
-            WallShape::Box { lo, hi, inside: w.inside.unwrap_or(true) }
+            WallShape::Box {
+                lo,
+                hi,
+                inside: w.inside.unwrap_or(true),
+            }
         }
     };
     let default_center = match shape {
@@ -878,7 +1307,11 @@ fn build_wall(cx: &mut Cx, i: usize, w: &RawWall, material_names: &[String], see
         #[allow(unreachable_patterns)]
         _ => DVec3::ZERO,
     };
-    let o3 = |cx: &Cx, k: &'static str, v: Option<[f64; 3]>| -> R<DVec3> { v.map(|a| cx.vec3(&p(k), a, k)).transpose().map(|x| x.unwrap_or_default()) };
+    let o3 = |cx: &Cx, k: &'static str, v: Option<[f64; 3]>| -> R<DVec3> {
+        v.map(|a| cx.vec3(&p(k), a, k))
+            .transpose()
+            .map(|x| x.unwrap_or_default())
+    };
     let motion = WallMotion {
         velocity: o3(cx, "velocity", w.velocity)?,
         angular_velocity: o3(cx, "angular_velocity", w.angular_velocity)?,
@@ -888,7 +1321,14 @@ fn build_wall(cx: &mut Cx, i: usize, w: &RawWall, material_names: &[String], see
         },
         surface_velocity: o3(cx, "surface_velocity", w.surface_velocity)?,
     };
-    Ok(Wall { name, shape, material, motion, multi_contact: w.multi_contact.unwrap_or_default(), active: w.active.unwrap_or(true) })
+    Ok(Wall {
+        name,
+        shape,
+        material,
+        motion,
+        multi_contact: w.multi_contact.unwrap_or_default(),
+        active: w.active.unwrap_or(true),
+    })
 }
 
 fn build_region(cx: &Cx, base: &[Seg], r: &RawRegion) -> R<Region> {
@@ -897,7 +1337,14 @@ fn build_region(cx: &Cx, base: &[Seg], r: &RawRegion) -> R<Region> {
         v.push(K(k));
         v
     };
-    let kind = r.kind.ok_or_else(|| cx.missing(base, "region", "type", "type = \"box\" (lo, hi) or \"cylinder\" (base, axis, radius, height)"))?;
+    let kind = r.kind.ok_or_else(|| {
+        cx.missing(
+            base,
+            "region",
+            "type",
+            "type = \"box\" (lo, hi) or \"cylinder\" (base, axis, radius, height)",
+        )
+    })?;
     let (allowed, kname): (&[&str], &str) = match kind {
         RegionKind::Box => (&["lo", "hi"], "box"),
         RegionKind::Cylinder => (&["base", "axis", "radius", "height"], "cylinder"),
@@ -911,28 +1358,50 @@ fn build_region(cx: &Cx, base: &[Seg], r: &RawRegion) -> R<Region> {
         ("height", r.height.is_some()),
     ] {
         if present && !allowed.contains(&k) {
-            return Err(cx.src.error_at_key(&p(k), format!("'{k}' does not apply to a region of type \"{kname}\" (it uses {})", allowed.join(", "))));
+            return Err(cx.src.error_at_key(
+                &p(k),
+                format!(
+                    "'{k}' does not apply to a region of type \"{kname}\" (it uses {})",
+                    allowed.join(", ")
+                ),
+            ));
         }
     }
     match kind {
         RegionKind::Box => {
-            let lo = r.lo.ok_or_else(|| cx.missing(base, "region", "lo", "lower corner in m"))?;
-            let hi = r.hi.ok_or_else(|| cx.missing(base, "region", "hi", "upper corner in m"))?;
+            let lo =
+                r.lo.ok_or_else(|| cx.missing(base, "region", "lo", "lower corner in m"))?;
+            let hi =
+                r.hi.ok_or_else(|| cx.missing(base, "region", "hi", "upper corner in m"))?;
             let (lo, hi) = (cx.vec3(&p("lo"), lo, "lo")?, cx.vec3(&p("hi"), hi, "hi")?);
             if hi.cmple(lo).any() {
-                return Err(cx.err(&p("hi"), format!("region 'hi' {hi} must be above 'lo' {lo} on every axis")));
+                return Err(cx.err(
+                    &p("hi"),
+                    format!("region 'hi' {hi} must be above 'lo' {lo} on every axis"),
+                ));
             }
             Ok(Region::Box { lo, hi })
         }
         RegionKind::Cylinder => {
-            let b = r.base.ok_or_else(|| cx.missing(base, "region", "base", "centre of the bottom disc in m"))?;
+            let b = r.base.ok_or_else(|| {
+                cx.missing(base, "region", "base", "centre of the bottom disc in m")
+            })?;
             let b = cx.vec3(&p("base"), b, "base")?;
             let axis = cx.unit(&p("axis"), r.axis.unwrap_or([0.0, 0.0, 1.0]), "axis")?;
-            let radius = r.radius.ok_or_else(|| cx.missing(base, "region", "radius", "radius in m"))?;
-            let height = r.height.ok_or_else(|| cx.missing(base, "region", "height", "height in m"))?;
+            let radius = r
+                .radius
+                .ok_or_else(|| cx.missing(base, "region", "radius", "radius in m"))?;
+            let height = r
+                .height
+                .ok_or_else(|| cx.missing(base, "region", "height", "height in m"))?;
             let radius = cx.positive(&p("radius"), radius, "radius", "m")?;
             let height = cx.positive(&p("height"), height, "height", "m")?;
-            Ok(Region::Cylinder { base: b, axis, radius, height })
+            Ok(Region::Cylinder {
+                base: b,
+                axis,
+                radius,
+                height,
+            })
         }
     }
 }
@@ -952,7 +1421,14 @@ fn build_insert(
 ) -> R<InsertDef> {
     let tp = [K("insert"), I(i)];
     let p = |k: &'static str| [K("insert"), I(i), K(k)];
-    let kind = ins.kind.ok_or_else(|| cx.missing(&tp, "[[insert]]", "kind", "kind = \"pack\" (or \"stream\", \"file\")"))?;
+    let kind = ins.kind.ok_or_else(|| {
+        cx.missing(
+            &tp,
+            "[[insert]]",
+            "kind",
+            "kind = \"pack\" (or \"stream\", \"file\")",
+        )
+    })?;
     let kname = match kind {
         InsertKind::File => "file",
         InsertKind::Pack => "pack",
@@ -964,9 +1440,29 @@ fn build_insert(
     };
     let allowed: &[&str] = match kind {
         InsertKind::File => &["file"],
-        InsertKind::Pack => &["mix", "template", "count", "volume_fraction", "region", "seed", "velocity", "orientation", "max_attempts"],
+        InsertKind::Pack => &[
+            "mix",
+            "template",
+            "count",
+            "volume_fraction",
+            "region",
+            "seed",
+            "velocity",
+            "orientation",
+            "max_attempts",
+        ],
         InsertKind::Stream => &[
-            "mix", "template", "count", "region", "seed", "velocity", "orientation", "bodies_per_second", "kg_per_second", "start", "end",
+            "mix",
+            "template",
+            "count",
+            "region",
+            "seed",
+            "velocity",
+            "orientation",
+            "bodies_per_second",
+            "kg_per_second",
+            "start",
+            "end",
             "max_attempts",
         ],
     };
@@ -990,28 +1486,68 @@ fn build_insert(
             return Err(cx
                 .src
                 .error_at_key(&p(k), format!("'{k}' does not apply to kind = \"{kname}\""))
-                .note(format!("note: kind = \"{kname}\" uses: stage, {}", allowed.join(", "))));
+                .note(format!(
+                    "note: kind = \"{kname}\" uses: stage, {}",
+                    allowed.join(", ")
+                )));
         }
     }
     if kind == InsertKind::File {
-        let f = ins.file.as_ref().ok_or_else(|| cx.missing(&tp, "[[insert]] of kind \"file\"", "file", "a CSV file of bodies, relative to the scenario"))?;
+        let f = ins.file.as_ref().ok_or_else(|| {
+            cx.missing(
+                &tp,
+                "[[insert]] of kind \"file\"",
+                "file",
+                "a CSV file of bodies, relative to the scenario",
+            )
+        })?;
         let bytes = cx.files.read(f).map_err(|e| {
             cx.err(&p("file"), format!("cannot read body file '{f}': {e}"))
                 .label("file not readable")
-                .note(format!("note: paths are relative to the scenario file's folder ({})", cx.files.base_display()))
+                .note(format!(
+                    "note: paths are relative to the scenario file's folder ({})",
+                    cx.files.base_display()
+                ))
         })?;
-        let bodies = super::bodies_file::parse(&bytes, template_names)
-            .map_err(|(line, msg)| cx.err(&p("file"), format!("{f}:{line}: {msg}")).label("in this file"))?;
-        return Ok(InsertDef { stage, kind: InsertSpec::File { bodies } });
+        let bodies = super::bodies_file::parse(&bytes, template_names).map_err(|(line, msg)| {
+            cx.err(&p("file"), format!("{f}:{line}: {msg}"))
+                .label("in this file")
+        })?;
+        return Ok(InsertDef {
+            stage,
+            kind: InsertSpec::File { bodies },
+        });
     }
     // mix or template
     let mix = match (&ins.mix, &ins.template) {
-        (Some(_), Some(_)) => return Err(cx.src.error_at_key(&p("template"), "give either 'mix' or 'template', not both")),
-        (Some(m), None) => mixes[lookup(cx, &p("mix"), "mix", m, mix_names)?].mix.clone(),
-        (None, Some(t)) => Mix::single(lookup(cx, &p("template"), "template", t, template_names)? as u32),
-        (None, None) => return Err(cx.missing(&tp, &format!("[[insert]] of kind \"{kname}\""), "mix", "mix = \"name\" or template = \"name\"")),
+        (Some(_), Some(_)) => {
+            return Err(cx
+                .src
+                .error_at_key(&p("template"), "give either 'mix' or 'template', not both"))
+        }
+        (Some(m), None) => mixes[lookup(cx, &p("mix"), "mix", m, mix_names)?]
+            .mix
+            .clone(),
+        (None, Some(t)) => {
+            Mix::single(lookup(cx, &p("template"), "template", t, template_names)? as u32)
+        }
+        (None, None) => {
+            return Err(cx.missing(
+                &tp,
+                &format!("[[insert]] of kind \"{kname}\""),
+                "mix",
+                "mix = \"name\" or template = \"name\"",
+            ))
+        }
     };
-    let region_raw = ins.region.as_ref().ok_or_else(|| cx.missing(&tp, &format!("[[insert]] of kind \"{kname}\""), "region", "region = { type = \"box\", lo = [..], hi = [..] }"))?;
+    let region_raw = ins.region.as_ref().ok_or_else(|| {
+        cx.missing(
+            &tp,
+            &format!("[[insert]] of kind \"{kname}\""),
+            "region",
+            "region = { type = \"box\", lo = [..], hi = [..] }",
+        )
+    })?;
     let region = build_region(cx, &p("region"), region_raw)?;
     let velocity = match ins.velocity {
         Some(v) => cx.vec3(&p("velocity"), v, "velocity")?,
@@ -1022,9 +1558,14 @@ fn build_insert(
         Some(q) => {
             let q = DQuat::from_xyzw(q[1], q[2], q[3], q[0]);
             if !q.is_finite() || q.length() < 1e-12 {
-                return Err(cx.err(&p("orientation"), "orientation must be a non-zero quaternion [w, x, y, z]"));
+                return Err(cx.err(
+                    &p("orientation"),
+                    "orientation must be a non-zero quaternion [w, x, y, z]",
+                ));
             }
-            Orientation::Fixed { quaternion: q.normalize() }
+            Orientation::Fixed {
+                quaternion: q.normalize(),
+            }
         }
     };
     let seed = ins.seed.unwrap_or(1 + i as u64);
@@ -1050,7 +1591,12 @@ fn build_insert(
     match kind {
         InsertKind::Pack => {
             let target = match (ins.count, ins.volume_fraction) {
-                (Some(_), Some(_)) => return Err(cx.src.error_at_key(&p("volume_fraction"), "give either 'count' or 'volume_fraction', not both")),
+                (Some(_), Some(_)) => {
+                    return Err(cx.src.error_at_key(
+                        &p("volume_fraction"),
+                        "give either 'count' or 'volume_fraction', not both",
+                    ))
+                }
                 (Some(n), None) => {
                     let phi = n as f64 * mean_volume / region_volume;
                     if phi > PACK_ERROR_FRACTION {
@@ -1077,7 +1623,14 @@ fn build_insert(
                     }
                     PackTarget::VolumeFraction(f)
                 }
-                (None, None) => return Err(cx.missing(&tp, "[[insert]] of kind \"pack\"", "count", "count = 500 (or volume_fraction = 0.3)")),
+                (None, None) => {
+                    return Err(cx.missing(
+                        &tp,
+                        "[[insert]] of kind \"pack\"",
+                        "count",
+                        "count = 500 (or volume_fraction = 0.3)",
+                    ))
+                }
             };
             let expected = match target {
                 PackTarget::Count(n) => n as f64,
@@ -1091,15 +1644,42 @@ fn build_insert(
                 orientation,
                 max_attempts_per_body: ins.max_attempts.unwrap_or(1000),
             };
-            Ok(InsertDef { stage, kind: InsertSpec::Pack { spec, seed, expected_bodies: expected } })
+            Ok(InsertDef {
+                stage,
+                kind: InsertSpec::Pack {
+                    spec,
+                    seed,
+                    expected_bodies: expected,
+                },
+            })
         }
         InsertKind::Stream => {
             let rate = match (ins.bodies_per_second, ins.kg_per_second) {
-                (Some(_), Some(_)) => return Err(cx.src.error_at_key(&p("kg_per_second"), "give either 'bodies_per_second' or 'kg_per_second', not both")),
-                (Some(r), None) => StreamRate::BodiesPerSecond(cx.positive(&p("bodies_per_second"), r, "bodies_per_second", "1/s")?),
-                (None, Some(r)) => StreamRate::MassPerSecond(cx.positive(&p("kg_per_second"), r, "kg_per_second", "kg/s")?),
+                (Some(_), Some(_)) => {
+                    return Err(cx.src.error_at_key(
+                        &p("kg_per_second"),
+                        "give either 'bodies_per_second' or 'kg_per_second', not both",
+                    ))
+                }
+                (Some(r), None) => StreamRate::BodiesPerSecond(cx.positive(
+                    &p("bodies_per_second"),
+                    r,
+                    "bodies_per_second",
+                    "1/s",
+                )?),
+                (None, Some(r)) => StreamRate::MassPerSecond(cx.positive(
+                    &p("kg_per_second"),
+                    r,
+                    "kg_per_second",
+                    "kg/s",
+                )?),
                 (None, None) => {
-                    return Err(cx.missing(&tp, "[[insert]] of kind \"stream\"", "bodies_per_second", "bodies_per_second = 1000 (or kg_per_second = 0.5)"))
+                    return Err(cx.missing(
+                        &tp,
+                        "[[insert]] of kind \"stream\"",
+                        "bodies_per_second",
+                        "bodies_per_second = 1000 (or kg_per_second = 0.5)",
+                    ))
                 }
             };
             let body_rate = match rate {
@@ -1114,7 +1694,10 @@ fn build_insert(
                 Some(e) => {
                     let e = cx.nonneg(&p("end"), e, "end", "s")?;
                     if e < start {
-                        return Err(cx.err(&p("end"), format!("stream 'end' ({e} s) is before its 'start' ({start} s)")));
+                        return Err(cx.err(
+                            &p("end"),
+                            format!("stream 'end' ({e} s) is before its 'start' ({start} s)"),
+                        ));
                     }
                     t0 + e
                 }
@@ -1125,16 +1708,31 @@ fn build_insert(
             }
             let vol_rate = body_rate * mean_volume;
             // the region must be able to take the stream: bodies leave at |v|
-            let exit_normal = if velocity.length() > 0.0 { Some(velocity.normalize()) } else { None };
+            let exit_normal = if velocity.length() > 0.0 {
+                Some(velocity.normalize())
+            } else {
+                None
+            };
             let flux_cap = match (exit_normal, region) {
                 (Some(n), Region::Box { lo, hi }) => {
                     let d = hi - lo;
-                    let area = (d.y * d.z * n.x.abs() + d.x * d.z * n.y.abs() + d.x * d.y * n.z.abs()).max(1e-300);
+                    let area =
+                        (d.y * d.z * n.x.abs() + d.x * d.z * n.y.abs() + d.x * d.y * n.z.abs())
+                            .max(1e-300);
                     Some(RSA_LIMIT * area * velocity.length())
                 }
-                (Some(n), Region::Cylinder { axis, radius, height, .. }) => {
+                (
+                    Some(n),
+                    Region::Cylinder {
+                        axis,
+                        radius,
+                        height,
+                        ..
+                    },
+                ) => {
                     let c = n.dot(axis).abs();
-                    let area = std::f64::consts::PI * radius * radius * c + 2.0 * radius * height * (1.0 - c * c).sqrt();
+                    let area = std::f64::consts::PI * radius * radius * c
+                        + 2.0 * radius * height * (1.0 - c * c).sqrt();
                     Some(RSA_LIMIT * area * velocity.length())
                 }
                 (None, _) => None,
@@ -1161,9 +1759,15 @@ fn build_insert(
                 max_attempts_per_body: ins.max_attempts.unwrap_or(20),
             };
             let expected = (body_rate * (end - t0 - start)).max(0.0).floor();
-            Ok(InsertDef { stage, kind: InsertSpec::Stream { spec, seed, expected_bodies: expected } })
+            Ok(InsertDef {
+                stage,
+                kind: InsertSpec::Stream {
+                    spec,
+                    seed,
+                    expected_bodies: expected,
+                },
+            })
         }
         InsertKind::File => unreachable!(),
     }
 }
-

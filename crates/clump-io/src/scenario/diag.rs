@@ -55,7 +55,14 @@ pub struct Diagnostic {
 impl Diagnostic {
     /// A diagnostic without a location.
     pub fn new(severity: Severity, file: &Path, message: impl Into<String>) -> Self {
-        Diagnostic { severity, message: message.into(), file: file.to_path_buf(), location: None, label: None, notes: Vec::new() }
+        Diagnostic {
+            severity,
+            message: message.into(),
+            file: file.to_path_buf(),
+            location: None,
+            label: None,
+            notes: Vec::new(),
+        }
     }
 
     /// Adds a note line.
@@ -79,16 +86,28 @@ impl Diagnostic {
 /// Location of the byte range `span` in `text`.
 pub fn locate(text: &str, span: Range<usize>) -> Location {
     let start = span.start.min(text.len());
-    let start = (0..=start).rev().find(|&i| text.is_char_boundary(i)).unwrap_or(0);
+    let start = (0..=start)
+        .rev()
+        .find(|&i| text.is_char_boundary(i))
+        .unwrap_or(0);
     let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
     let line = text[..line_start].matches('\n').count() + 1;
     let column = text[line_start..start].chars().count() + 1;
-    let line_text = text[line_start..line_end].trim_end_matches('\r').to_string();
+    let line_text = text[line_start..line_end]
+        .trim_end_matches('\r')
+        .to_string();
     let end = span.end.min(line_end).max(start);
-    let end = (end..=text.len()).find(|&i| text.is_char_boundary(i)).unwrap_or(text.len());
+    let end = (end..=text.len())
+        .find(|&i| text.is_char_boundary(i))
+        .unwrap_or(text.len());
     let width = text[start..end].chars().count().max(1);
-    Location { line, column, line_text, width }
+    Location {
+        line,
+        column,
+        line_text,
+        width,
+    }
 }
 
 impl fmt::Display for Diagnostic {
@@ -106,7 +125,12 @@ impl fmt::Display for Diagnostic {
                 writeln!(f, "{pad}--> {file}:{}:{}", loc.line, loc.column)?;
                 writeln!(f, "{pad} |")?;
                 writeln!(f, "{num} | {}", loc.line_text)?;
-                let lead: String = loc.line_text.chars().take(loc.column - 1).map(|c| if c == '\t' { '\t' } else { ' ' }).collect();
+                let lead: String = loc
+                    .line_text
+                    .chars()
+                    .take(loc.column - 1)
+                    .map(|c| if c == '\t' { '\t' } else { ' ' })
+                    .collect();
                 let carets = "^".repeat(loc.width);
                 match &self.label {
                     Some(l) => writeln!(f, "{pad} | {lead}{carets} {l}")?,
@@ -140,7 +164,9 @@ pub struct ScenarioError {
 impl ScenarioError {
     /// A single-diagnostic error.
     pub fn one(d: Diagnostic) -> Self {
-        ScenarioError { diagnostics: vec![d] }
+        ScenarioError {
+            diagnostics: vec![d],
+        }
     }
 
     /// The first diagnostic.
@@ -166,7 +192,10 @@ impl std::error::Error for ScenarioError {}
 #[allow(clippy::unnecessary_map_or)] // `is_none_or` needs Rust 1.82; the MSRV is 1.80
 /// The closest of `candidates` to `word` (Jaro–Winkler ≥ 0.8 or a small edit
 /// distance), for "did you mean".
-pub fn did_you_mean<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+pub fn did_you_mean<'a>(
+    word: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<&'a str> {
     let mut best: Option<(&str, f64)> = None;
     for c in candidates {
         let jw = strsim::jaro_winkler(word, c);

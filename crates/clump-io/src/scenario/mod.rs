@@ -37,21 +37,28 @@ pub struct Files {
 impl Files {
     /// Files on disk, relative to `base`.
     pub fn disk(base: &Path) -> Self {
-        Files { base: base.to_path_buf(), embedded: None, loaded: BTreeMap::new() }
+        Files {
+            base: base.to_path_buf(),
+            embedded: None,
+            loaded: BTreeMap::new(),
+        }
     }
 
     /// Files stored in a checkpoint.
     pub fn embedded(files: BTreeMap<String, Vec<u8>>) -> Self {
-        Files { base: PathBuf::from("<checkpoint>"), embedded: Some(files), loaded: BTreeMap::new() }
+        Files {
+            base: PathBuf::from("<checkpoint>"),
+            embedded: Some(files),
+            loaded: BTreeMap::new(),
+        }
     }
 
     /// Reads `rel` (as written in the scenario).
     pub fn read(&mut self, rel: &str) -> std::io::Result<Vec<u8>> {
         let bytes = match &self.embedded {
-            Some(m) => m
-                .get(rel)
-                .cloned()
-                .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "not stored in the checkpoint"))?,
+            Some(m) => m.get(rel).cloned().ok_or_else(|| {
+                std::io::Error::new(std::io::ErrorKind::NotFound, "not stored in the checkpoint")
+            })?,
             None => std::fs::read(self.base.join(rel))?,
         };
         self.loaded.insert(rel.to_string(), bytes.clone());
@@ -71,7 +78,11 @@ impl Files {
 /// Reads, parses and validates the scenario file at `path`.
 pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
     let text = std::fs::read_to_string(path).map_err(|e| {
-        ScenarioError::one(Diagnostic::new(Severity::Error, path, format!("cannot read scenario file '{}': {e}", path.display())))
+        ScenarioError::one(Diagnostic::new(
+            Severity::Error,
+            path,
+            format!("cannot read scenario file '{}': {e}", path.display()),
+        ))
     })?;
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
     parse(path, text, Files::disk(&base))
@@ -81,7 +92,8 @@ pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
 /// referenced files from `files`.
 pub fn parse(path: &Path, text: String, mut files: Files) -> Result<Scenario, ScenarioError> {
     let src = Source::new(path, text);
-    let raw: raw::RawScenario = toml::from_str(&src.text).map_err(|e| ScenarioError::one(src.from_toml_error(&e)))?;
+    let raw: raw::RawScenario =
+        toml::from_str(&src.text).map_err(|e| ScenarioError::one(src.from_toml_error(&e)))?;
     build::build(&src, raw, &mut files).map_err(ScenarioError::one)
 }
 
@@ -110,10 +122,13 @@ impl Scenario {
     /// walls (no bodies).
     pub fn build_world(&self) -> Result<World, String> {
         let n = self.materials.len();
-        let table = ContactTable::new(&self.materials, |a, b| self.pair_table[a * n + b]).map_err(|e| e.to_string())?;
+        let table = ContactTable::new(&self.materials, |a, b| self.pair_table[a * n + b])
+            .map_err(|e| e.to_string())?;
         let mut world = World::new(self.config, self.materials.clone(), table);
         for t in &self.templates {
-            world.add_template(t.template.clone(), t.material).map_err(|e| e.to_string())?;
+            world
+                .add_template(t.template.clone(), t.material)
+                .map_err(|e| e.to_string())?;
         }
         for w in &self.walls {
             world.add_wall(w.clone()).map_err(|e| e.to_string())?;

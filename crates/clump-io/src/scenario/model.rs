@@ -195,7 +195,12 @@ impl Scenario {
             .iter()
             .map(|i| match &i.kind {
                 InsertSpec::File { bodies } => bodies.len() as f64,
-                InsertSpec::Pack { expected_bodies, .. } | InsertSpec::Stream { expected_bodies, .. } => *expected_bodies,
+                InsertSpec::Pack {
+                    expected_bodies, ..
+                }
+                | InsertSpec::Stream {
+                    expected_bodies, ..
+                } => *expected_bodies,
             })
             .sum()
     }
@@ -209,7 +214,9 @@ impl Scenario {
                 let t = &self.templates[e.template as usize].template;
                 let wt = match mix.basis {
                     clump_core::insert::FractionBasis::Number => e.fraction,
-                    clump_core::insert::FractionBasis::Mass => e.fraction / (t.mass * e.size.mean_cube()),
+                    clump_core::insert::FractionBasis::Mass => {
+                        e.fraction / (t.mass * e.size.mean_cube())
+                    }
                 };
                 w += wt;
                 s += wt * t.spheres.len() as f64;
@@ -219,9 +226,20 @@ impl Scenario {
         self.inserts
             .iter()
             .map(|i| match &i.kind {
-                InsertSpec::File { bodies } => bodies.iter().map(|b| self.templates[b.template as usize].template.spheres.len() as f64).sum(),
-                InsertSpec::Pack { spec, expected_bodies, .. } => expected_bodies * mean_spheres(&spec.mix),
-                InsertSpec::Stream { spec, expected_bodies, .. } => expected_bodies * mean_spheres(&spec.mix),
+                InsertSpec::File { bodies } => bodies
+                    .iter()
+                    .map(|b| self.templates[b.template as usize].template.spheres.len() as f64)
+                    .sum(),
+                InsertSpec::Pack {
+                    spec,
+                    expected_bodies,
+                    ..
+                } => expected_bodies * mean_spheres(&spec.mix),
+                InsertSpec::Stream {
+                    spec,
+                    expected_bodies,
+                    ..
+                } => expected_bodies * mean_spheres(&spec.mix),
             })
             .sum()
     }

@@ -58,7 +58,9 @@ impl<'a> Node<'a> {
     fn index(&self, i: usize) -> Option<Node<'a>> {
         match self {
             Node::Item(Item::ArrayOfTables(a)) => a.get(i).map(Node::Table),
-            Node::Item(Item::Value(Value::Array(a))) | Node::Value(Value::Array(a)) => a.get(i).map(Node::Value),
+            Node::Item(Item::Value(Value::Array(a))) | Node::Value(Value::Array(a)) => {
+                a.get(i).map(Node::Value)
+            }
             _ => None,
         }
     }
@@ -68,7 +70,11 @@ impl Source {
     /// Wraps `text` read from `path`.
     pub fn new(path: &Path, text: String) -> Self {
         let doc = ImDocument::parse(text.clone()).ok();
-        Source { path: path.to_path_buf(), text, doc }
+        Source {
+            path: path.to_path_buf(),
+            text,
+            doc,
+        }
     }
 
     fn node(&self, path: &[Seg]) -> Option<(Option<Range<usize>>, Node<'_>)> {
@@ -98,7 +104,11 @@ impl Source {
             if let Some((ks, node)) = self.node(&path[..n]) {
                 if let Some(s) = node.span().filter(|s| s.end > s.start) {
                     // a table's span covers its header; for a value, the value
-                    return Some(if n < path.len() { self.header_span(s) } else { s });
+                    return Some(if n < path.len() {
+                        self.header_span(s)
+                    } else {
+                        s
+                    });
                 }
                 if let Some(s) = ks {
                     return Some(s);
@@ -119,8 +129,14 @@ impl Source {
     /// The first line of a span (for tables: the header).
     fn header_span(&self, s: Range<usize>) -> Range<usize> {
         let start = s.start.min(self.text.len());
-        let end = self.text[start..].find('\n').map_or(self.text.len(), |i| start + i);
-        start..end.min(s.end).max(start + 1).min(self.text.len().max(start))
+        let end = self.text[start..]
+            .find('\n')
+            .map_or(self.text.len(), |i| start + i);
+        start
+            ..end
+                .min(s.end)
+                .max(start + 1)
+                .min(self.text.len().max(start))
     }
 
     /// Whether `path` exists in the file.
@@ -144,7 +160,12 @@ impl Source {
     }
 
     /// A diagnostic at a byte span.
-    pub fn diag_at(&self, severity: Severity, span: Option<Range<usize>>, message: impl Into<String>) -> Diagnostic {
+    pub fn diag_at(
+        &self,
+        severity: Severity,
+        span: Option<Range<usize>>,
+        message: impl Into<String>,
+    ) -> Diagnostic {
         let mut d = Diagnostic::new(severity, &self.path, message);
         d.location = span.map(|s| locate(&self.text, s));
         d
@@ -155,7 +176,9 @@ impl Source {
     pub fn table_at(&self, pos: usize) -> Option<String> {
         let pos = pos.min(self.text.len());
         let line_start = self.text[..pos].rfind('\n').map_or(0, |i| i + 1);
-        let line_end = self.text[pos..].find('\n').map_or(self.text.len(), |i| pos + i);
+        let line_end = self.text[pos..]
+            .find('\n')
+            .map_or(self.text.len(), |i| pos + i);
         let current = self.text[line_start..line_end].trim_start();
         if current.starts_with('[') && !current.contains('=') {
             // the key is (part of) a table header: report the parent table
@@ -205,12 +228,18 @@ impl Source {
         let span = e.span();
         let pos = span.as_ref().map_or(0, |s| s.start);
         let table = self.table_at(pos);
-        let in_table = table.as_ref().map_or("at the top level".to_string(), |t| format!("in {t}"));
+        let in_table = table
+            .as_ref()
+            .map_or("at the top level".to_string(), |t| format!("in {t}"));
         // unknown key
         if let Some(rest) = msg.strip_prefix("unknown field `") {
             let (name, tail) = rest.split_once('`').unwrap_or((rest, ""));
             let allowed = backticked(tail);
-            let mut d = self.diag_at(Severity::Error, span.clone(), format!("unknown key '{name}' {in_table}"));
+            let mut d = self.diag_at(
+                Severity::Error,
+                span.clone(),
+                format!("unknown key '{name}' {in_table}"),
+            );
             if let Some(s) = did_you_mean(name, allowed.iter().map(|s| s.as_str())) {
                 d = d.label(format!("did you mean '{s}'?"));
             } else {
@@ -227,7 +256,11 @@ impl Source {
             let allowed = backticked(tail);
             let key = self.key_at(pos).unwrap_or_default();
             let quoted: Vec<String> = allowed.iter().map(|a| format!("\"{a}\"")).collect();
-            let mut d = self.diag_at(Severity::Error, span.clone(), format!("invalid value \"{name}\" for '{key}' {in_table}"));
+            let mut d = self.diag_at(
+                Severity::Error,
+                span.clone(),
+                format!("invalid value \"{name}\" for '{key}' {in_table}"),
+            );
             d = match did_you_mean(name, allowed.iter().map(|s| s.as_str())) {
                 Some(s) => d.label(format!("did you mean \"{s}\"?")),
                 None => d.label(format!("expected one of {}", quoted.join(", "))),
@@ -236,9 +269,16 @@ impl Source {
         }
         if let Some(rest) = msg.strip_prefix("missing field `") {
             let name = rest.split('`').next().unwrap_or(rest);
-            return self.diag_at(Severity::Error, span.clone().map(|s| self.header_span(s)), format!("missing key '{name}' {in_table}"));
+            return self.diag_at(
+                Severity::Error,
+                span.clone().map(|s| self.header_span(s)),
+                format!("missing key '{name}' {in_table}"),
+            );
         }
-        if msg.starts_with("invalid type") || msg.starts_with("invalid length") || msg.starts_with("invalid value") {
+        if msg.starts_with("invalid type")
+            || msg.starts_with("invalid length")
+            || msg.starts_with("invalid value")
+        {
             let key = self.key_at(pos).unwrap_or_default();
             let expected = msg.rsplit_once("expected ").map(|x| x.1).unwrap_or("");
             let what = describe_expected(expected, &key);
@@ -246,11 +286,22 @@ impl Source {
                 .strip_prefix("invalid type: ")
                 .and_then(|r| r.split(", expected").next())
                 .map(|f| format!("found {f}"))
-                .or_else(|| msg.strip_prefix("invalid length ").and_then(|r| r.split(',').next()).map(|n| format!("found {n} elements")))
+                .or_else(|| {
+                    msg.strip_prefix("invalid length ")
+                        .and_then(|r| r.split(',').next())
+                        .map(|n| format!("found {n} elements"))
+                })
                 .unwrap_or_else(|| "invalid value".to_string());
-            let mut d = self.diag_at(Severity::Error, span.clone(), format!("wrong type for '{key}' {in_table}: expected {what}"));
+            let mut d = self.diag_at(
+                Severity::Error,
+                span.clone(),
+                format!("wrong type for '{key}' {in_table}: expected {what}"),
+            );
             d = d.label(found);
-            let value_text = span.as_ref().map(|s| self.text[s.clone()].to_string()).unwrap_or_default();
+            let value_text = span
+                .as_ref()
+                .map(|s| self.text[s.clone()].to_string())
+                .unwrap_or_default();
             if let Some(h) = unit_hint(&key, &value_text) {
                 d = d.note(h);
             }
@@ -258,7 +309,11 @@ impl Source {
         }
         // TOML syntax errors and anything else: keep the parser's message
         let first = msg.lines().next().unwrap_or("").to_string();
-        let mut d = self.diag_at(Severity::Error, span.clone(), format!("invalid TOML: {first}"));
+        let mut d = self.diag_at(
+            Severity::Error,
+            span.clone(),
+            format!("invalid TOML: {first}"),
+        );
         for extra in msg.lines().skip(1).filter(|l| !l.trim().is_empty()) {
             d = d.note(extra.trim().to_string());
         }
@@ -268,7 +323,11 @@ impl Source {
 
 /// The `backticked` words of a serde message tail.
 fn backticked(s: &str) -> Vec<String> {
-    s.split('`').skip(1).step_by(2).map(str::to_string).collect()
+    s.split('`')
+        .skip(1)
+        .step_by(2)
+        .map(str::to_string)
+        .collect()
 }
 
 /// "a number in Pa" etc. from serde's "expected f64" and the key.

@@ -5,10 +5,12 @@ pub fn unit_of(key: &str) -> Option<&'static str> {
     Some(match key {
         "youngs_modulus" => "Pa",
         "density" | "fluid_density" => "kg/m^3",
-        "poisson_ratio" | "restitution" | "friction" | "rolling_friction" | "dt_fraction" | "scale" | "fraction"
-        | "volume_fraction" | "coefficient" | "min" | "max" | "mean" | "std" => "",
+        "poisson_ratio" | "restitution" | "friction" | "rolling_friction" | "dt_fraction"
+        | "scale" | "fraction" | "volume_fraction" | "coefficient" | "min" | "max" | "mean"
+        | "std" => "",
         "kn" | "kt" => "N/m",
-        "radius" | "spacing" | "edge" | "skin" | "height" | "lo" | "hi" | "point" | "center" | "base" | "spheres" => "m",
+        "radius" | "spacing" | "edge" | "skin" | "height" | "lo" | "hi" | "point" | "center"
+        | "base" | "spheres" => "m",
         "mass" => "kg",
         "inertia" => "kg m^2",
         "dt" | "duration" | "every" | "start" | "end" => "s",
@@ -59,8 +61,13 @@ fn unit_factor(u: &str) -> Option<(f64, &'static str)> {
 /// length: `help: Clump reads SI units: write 0.005 (5 mm in m)`.
 pub fn unit_hint(key: &str, value_text: &str) -> Option<String> {
     let unit = unit_of(key)?;
-    let v = value_text.trim().trim_matches(|c| c == '"' || c == '\'').trim();
-    let split = v.find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E'))).unwrap_or(v.len());
+    let v = value_text
+        .trim()
+        .trim_matches(|c| c == '"' || c == '\'')
+        .trim();
+    let split = v
+        .find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E')))
+        .unwrap_or(v.len());
     // "e" may start a unit; back off if the number does not parse
     let (mut num, mut suffix) = (v[..split].trim(), v[split..].trim());
     if num.parse::<f64>().is_err() && num.ends_with(['e', 'E']) {
@@ -69,11 +76,18 @@ pub fn unit_hint(key: &str, value_text: &str) -> Option<String> {
     }
     let x: f64 = num.parse().ok()?;
     if suffix.is_empty() {
-        return Some(format!("help: write the number without quotes: {key} = {num}"));
+        return Some(format!(
+            "help: write the number without quotes: {key} = {num}"
+        ));
     }
     let (f, si) = unit_factor(suffix)?;
     if !unit.is_empty() && si != unit {
-        return Some(format!("help: '{key}' is in {unit}, but the value has unit {suffix} ({si})"));
+        return Some(format!(
+            "help: '{key}' is in {unit}, but the value has unit {suffix} ({si})"
+        ));
     }
-    Some(format!("help: Clump reads SI units only: write {key} = {} ({v} in {si})", x * f))
+    Some(format!(
+        "help: Clump reads SI units only: write {key} = {} ({v} in {si})",
+        x * f
+    ))
 }

@@ -37,7 +37,10 @@ impl Bvh {
     /// Builds the tree for triangles with boxes `[lo[i], hi[i]]` (mesh frame, m).
     pub fn build(lo: &[DVec3], hi: &[DVec3]) -> Self {
         let n = lo.len();
-        let mut bvh = Bvh { nodes: Vec::with_capacity(2 * n / LEAF_SIZE + 1), order: (0..n as u32).collect() };
+        let mut bvh = Bvh {
+            nodes: Vec::with_capacity(2 * n / LEAF_SIZE + 1),
+            order: (0..n as u32).collect(),
+        };
         if n == 0 {
             return bvh;
         }
@@ -46,7 +49,14 @@ impl Bvh {
         bvh
     }
 
-    fn build_node(&mut self, s: usize, e: usize, lo: &[DVec3], hi: &[DVec3], centroid: &[DVec3]) -> usize {
+    fn build_node(
+        &mut self,
+        s: usize,
+        e: usize,
+        lo: &[DVec3],
+        hi: &[DVec3],
+        centroid: &[DVec3],
+    ) -> usize {
         let idx = self.nodes.len();
         let (mut blo, mut bhi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
         let (mut clo, mut chi) = (blo, bhi);
@@ -57,15 +67,28 @@ impl Bvh {
             clo = clo.min(centroid[t]);
             chi = chi.max(centroid[t]);
         }
-        self.nodes.push(Node { lo: blo, hi: bhi, start: s as u32, count: (e - s) as u32 });
+        self.nodes.push(Node {
+            lo: blo,
+            hi: bhi,
+            start: s as u32,
+            count: (e - s) as u32,
+        });
         if e - s <= LEAF_SIZE {
             return idx;
         }
         let ext = chi - clo;
-        let axis = if ext.x >= ext.y && ext.x >= ext.z { 0 } else if ext.y >= ext.z { 1 } else { 2 };
+        let axis = if ext.x >= ext.y && ext.x >= ext.z {
+            0
+        } else if ext.y >= ext.z {
+            1
+        } else {
+            2
+        };
         let mid = (s + e) / 2;
         self.order[s..e].select_nth_unstable_by(mid - s, |&a, &b| {
-            centroid[a as usize][axis].total_cmp(&centroid[b as usize][axis]).then(a.cmp(&b))
+            centroid[a as usize][axis]
+                .total_cmp(&centroid[b as usize][axis])
+                .then(a.cmp(&b))
         });
         self.build_node(s, mid, lo, hi, centroid);
         let right = self.build_node(mid, e, lo, hi, centroid);

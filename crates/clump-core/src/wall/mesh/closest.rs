@@ -82,11 +82,29 @@ mod tests {
         let (a, b, c) = (DVec3::ZERO, DVec3::X, DVec3::Y);
         let (q, f) = closest_point_triangle(DVec3::new(0.2, 0.2, 1.0), a, b, c);
         assert!(f == Feature::Face && (q - DVec3::new(0.2, 0.2, 0.0)).length() < 1e-15);
-        assert_eq!(closest_point_triangle(DVec3::new(-1.0, -1.0, 1.0), a, b, c).1, Feature::Vertex(0));
-        assert_eq!(closest_point_triangle(DVec3::new(2.0, -0.1, 0.0), a, b, c).1, Feature::Vertex(1));
-        assert_eq!(closest_point_triangle(DVec3::new(-0.1, 2.0, 0.0), a, b, c).1, Feature::Vertex(2));
-        assert_eq!(closest_point_triangle(DVec3::new(0.5, -1.0, 0.3), a, b, c), (DVec3::new(0.5, 0.0, 0.0), Feature::Edge(0)));
-        assert_eq!(closest_point_triangle(DVec3::new(1.0, 1.0, 0.0), a, b, c).1, Feature::Edge(1));
-        assert_eq!(closest_point_triangle(DVec3::new(-1.0, 0.5, 0.0), a, b, c), (DVec3::new(0.0, 0.5, 0.0), Feature::Edge(2)));
+        assert_eq!(
+            closest_point_triangle(DVec3::new(-1.0, -1.0, 1.0), a, b, c).1,
+            Feature::Vertex(0)
+        );
+        assert_eq!(
+            closest_point_triangle(DVec3::new(2.0, -0.1, 0.0), a, b, c).1,
+            Feature::Vertex(1)
+        );
+        assert_eq!(
+            closest_point_triangle(DVec3::new(-0.1, 2.0, 0.0), a, b, c).1,
+            Feature::Vertex(2)
+        );
+        assert_eq!(
+            closest_point_triangle(DVec3::new(0.5, -1.0, 0.3), a, b, c),
+            (DVec3::new(0.5, 0.0, 0.0), Feature::Edge(0))
+        );
+        assert_eq!(
+            closest_point_triangle(DVec3::new(1.0, 1.0, 0.0), a, b, c).1,
+            Feature::Edge(1)
+        );
+        assert_eq!(
+            closest_point_triangle(DVec3::new(-1.0, 0.5, 0.0), a, b, c),
+            (DVec3::new(0.0, 0.5, 0.0), Feature::Edge(2))
+        );
     }
 }

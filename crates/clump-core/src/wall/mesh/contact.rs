@@ -30,7 +30,12 @@ pub struct MeshContact {
 
 impl Default for MeshContact {
     fn default() -> Self {
-        MeshContact { normal: DVec3::ZERO, overlap: 0.0, triangle: 0, feature: Feature::Face }
+        MeshContact {
+            normal: DVec3::ZERO,
+            overlap: 0.0,
+            triangle: 0,
+            feature: Feature::Face,
+        }
     }
 }
 
@@ -61,7 +66,13 @@ impl TriMesh {
     /// patch (see the [module docs](super)), deepest first, at most
     /// [`MAX_MESH_CONTACTS`]. Writes into `out`, returns the count. No
     /// allocation.
-    pub fn sphere_contacts(&self, x: DVec3, r: f64, margin: f64, out: &mut [MeshContact; MAX_MESH_CONTACTS]) -> usize {
+    pub fn sphere_contacts(
+        &self,
+        x: DVec3,
+        r: f64,
+        margin: f64,
+        out: &mut [MeshContact; MAX_MESH_CONTACTS],
+    ) -> usize {
         let reach = r + margin;
         if !(reach > 0.0) {
             return 0;
@@ -84,7 +95,12 @@ impl TriMesh {
                     let nrm = self.normals[t as usize];
                     let s = (x - a).dot(nrm);
                     let (normal, dist) = if s >= 0.0 { (nrm, s) } else { (-nrm, -s) };
-                    MeshContact { normal, overlap: r - dist, triangle: t, feature }
+                    MeshContact {
+                        normal,
+                        overlap: r - dist,
+                        triangle: t,
+                        feature,
+                    }
                 }
                 Feature::Edge(k) => {
                     let (va, vb) = (tri[k as usize], tri[(k as usize + 1) % 3]);
@@ -98,7 +114,11 @@ impl TriMesh {
                         if !o.contains(&vb) {
                             continue;
                         }
-                        let w = o.iter().copied().find(|&i| i != va && i != vb).unwrap_or(va);
+                        let w = o
+                            .iter()
+                            .copied()
+                            .find(|&i| i != va && i != vb)
+                            .unwrap_or(va);
                         let e = self.vertices[w as usize] - pa;
                         if d.dot(e) > REGION_TOL * d2.sqrt() * e.length() {
                             return; // the centre is over the neighbouring face
@@ -108,7 +128,12 @@ impl TriMesh {
                     if dist == 0.0 {
                         return;
                     }
-                    MeshContact { normal: d / dist, overlap: r - dist, triangle: t, feature }
+                    MeshContact {
+                        normal: d / dist,
+                        overlap: r - dist,
+                        triangle: t,
+                        feature,
+                    }
                 }
                 Feature::Vertex(k) => {
                     let v = tri[k as usize];
@@ -128,7 +153,12 @@ impl TriMesh {
                     if dist == 0.0 {
                         return;
                     }
-                    MeshContact { normal: d / dist, overlap: r - dist, triangle: t, feature }
+                    MeshContact {
+                        normal: d / dist,
+                        overlap: r - dist,
+                        triangle: t,
+                        feature,
+                    }
                 }
             };
             if n < GATHER {
@@ -136,7 +166,13 @@ impl TriMesh {
                 n += 1;
             } else {
                 // full: replace the shallowest if this one is deeper
-                let (wi, worst) = acc.iter().enumerate().fold((0, acc[0]), |m, (i, c)| if before(&m.1, c) { (i, *c) } else { m });
+                let (wi, worst) = acc.iter().enumerate().fold((0, acc[0]), |m, (i, c)| {
+                    if before(&m.1, c) {
+                        (i, *c)
+                    } else {
+                        m
+                    }
+                });
                 if before(&contact, &worst) {
                     acc[wi] = contact;
                 }

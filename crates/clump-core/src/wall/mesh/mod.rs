@@ -127,7 +127,10 @@ impl TriMesh {
     pub fn new(vertices: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Result<Self, MeshError> {
         for (i, v) in vertices.iter().enumerate() {
             if !v.is_finite() {
-                return Err(MeshError::NonFinite { vertex: i, coords: v.to_array() });
+                return Err(MeshError::NonFinite {
+                    vertex: i,
+                    coords: v.to_array(),
+                });
             }
         }
         let nv = vertices.len();
@@ -136,10 +139,18 @@ impl TriMesh {
         for (ti, t) in triangles.iter().enumerate() {
             for &i in t {
                 if i as usize >= nv {
-                    return Err(MeshError::BadIndex { triangle: ti, index: i, vertices: nv });
+                    return Err(MeshError::BadIndex {
+                        triangle: ti,
+                        index: i,
+                        vertices: nv,
+                    });
                 }
             }
-            let (a, b, c) = (vertices[t[0] as usize], vertices[t[1] as usize], vertices[t[2] as usize]);
+            let (a, b, c) = (
+                vertices[t[0] as usize],
+                vertices[t[1] as usize],
+                vertices[t[2] as usize],
+            );
             let n = (b - a).cross(c - a);
             let len = n.length();
             let scale = (b - a).length_squared().max((c - a).length_squared());
@@ -176,7 +187,11 @@ impl TriMesh {
         let (lo, hi): (Vec<DVec3>, Vec<DVec3>) = kept
             .iter()
             .map(|t| {
-                let (a, b, c) = (vertices[t[0] as usize], vertices[t[1] as usize], vertices[t[2] as usize]);
+                let (a, b, c) = (
+                    vertices[t[0] as usize],
+                    vertices[t[1] as usize],
+                    vertices[t[2] as usize],
+                );
                 (a.min(b).min(c), a.max(b).max(c))
             })
             .unzip();
@@ -226,27 +241,38 @@ impl TriMesh {
     /// Triangles incident to vertex `v` (ascending).
     #[inline]
     pub fn vertex_triangles(&self, v: u32) -> &[u32] {
-        &self.vert_tri[self.vert_tri_start[v as usize] as usize..self.vert_tri_start[v as usize + 1] as usize]
+        &self.vert_tri
+            [self.vert_tri_start[v as usize] as usize..self.vert_tri_start[v as usize + 1] as usize]
     }
 
     /// The corners of triangle `t`, mesh frame, m.
     #[inline(always)]
     pub fn corners(&self, t: u32) -> [DVec3; 3] {
         let tri = self.triangles[t as usize];
-        [self.vertices[tri[0] as usize], self.vertices[tri[1] as usize], self.vertices[tri[2] as usize]]
+        [
+            self.vertices[tri[0] as usize],
+            self.vertices[tri[1] as usize],
+            self.vertices[tri[2] as usize],
+        ]
     }
 
     /// Vertices in the world frame for the pose (`position` m, `orientation`
     /// mesh → world): `position + orientation · v`. Index-aligned with
     /// [`TriMesh::vertices`]; use with [`TriMesh::triangles`] to draw the mesh.
     pub fn vertices_at(&self, position: DVec3, orientation: DQuat) -> Vec<DVec3> {
-        self.vertices.iter().map(|&v| position + orientation * v).collect()
+        self.vertices
+            .iter()
+            .map(|&v| position + orientation * v)
+            .collect()
     }
 
     /// A copy with every vertex mapped by `f` (e.g. a scale, rotation and
     /// offset applied on import); normals and search structures are rebuilt.
     pub fn transformed(&self, f: impl Fn(DVec3) -> DVec3) -> Result<Self, MeshError> {
-        let mut m = TriMesh::new(self.vertices.iter().map(|&v| f(v)).collect(), self.triangles.clone())?;
+        let mut m = TriMesh::new(
+            self.vertices.iter().map(|&v| f(v)).collect(),
+            self.triangles.clone(),
+        )?;
         m.merge_angle = self.merge_angle;
         m.dropped += self.dropped;
         Ok(m)
@@ -256,7 +282,8 @@ impl TriMesh {
     /// exactly two triangles. Reports the first offending edge (by lowest
     /// vertex pair).
     pub fn check_closed(&self) -> Result<(), MeshError> {
-        let mut edges: HashMap<(u32, u32), usize> = HashMap::with_capacity(self.triangles.len() * 3 / 2);
+        let mut edges: HashMap<(u32, u32), usize> =
+            HashMap::with_capacity(self.triangles.len() * 3 / 2);
         for t in &self.triangles {
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
@@ -284,7 +311,9 @@ impl TriMesh {
         for (ti, t) in self.triangles.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
-                let e = edge_tris.entry((a.min(b), a.max(b))).or_insert([u32::MAX; 2]);
+                let e = edge_tris
+                    .entry((a.min(b), a.max(b)))
+                    .or_insert([u32::MAX; 2]);
                 if e[0] == u32::MAX {
                     e[0] = ti as u32;
                 } else {
@@ -292,7 +321,8 @@ impl TriMesh {
                 }
             }
         }
-        let directed = |t: &[u32; 3], a: u32, b: u32| (0..3).any(|k| t[k] == a && t[(k + 1) % 3] == b);
+        let directed =
+            |t: &[u32; 3], a: u32, b: u32| (0..3).any(|k| t[k] == a && t[(k + 1) % 3] == b);
         let mut tris = self.triangles.clone();
         let mut comp = vec![u32::MAX; nt];
         let mut ncomp = 0u32;
@@ -308,7 +338,11 @@ impl TriMesh {
                 for k in 0..3 {
                     let (a, b) = (t[k], t[(k + 1) % 3]);
                     let pair = edge_tris[&(a.min(b), a.max(b))];
-                    let other = if pair[0] as usize == ti { pair[1] } else { pair[0] } as usize;
+                    let other = if pair[0] as usize == ti {
+                        pair[1]
+                    } else {
+                        pair[0]
+                    } as usize;
                     // consistent orientation: the neighbour runs the edge b → a
                     let consistent = directed(&tris[other], b, a);
                     if comp[other] == u32::MAX {
@@ -318,7 +352,10 @@ impl TriMesh {
                         comp[other] = ncomp;
                         queue.push_back(other);
                     } else if !consistent {
-                        return Err(MeshError::NonOrientable { a: a.min(b), b: a.max(b) });
+                        return Err(MeshError::NonOrientable {
+                            a: a.min(b),
+                            b: a.max(b),
+                        });
                     }
                 }
             }
@@ -326,7 +363,11 @@ impl TriMesh {
         }
         let mut vol = vec![0.0f64; ncomp as usize];
         for (ti, t) in tris.iter().enumerate() {
-            let (a, b, c) = (self.vertices[t[0] as usize], self.vertices[t[1] as usize], self.vertices[t[2] as usize]);
+            let (a, b, c) = (
+                self.vertices[t[0] as usize],
+                self.vertices[t[1] as usize],
+                self.vertices[t[2] as usize],
+            );
             vol[comp[ti] as usize] += a.dot(b.cross(c));
         }
         for (ti, t) in tris.iter_mut().enumerate() {
@@ -381,7 +422,8 @@ impl TriMesh {
                 }
                 let [a, b, c] = self.corners(t);
                 // 2D barycentric test in the (y, z) plane
-                let (ay, az, by, bz, cy, cz) = (a.y - y, a.z - z, b.y - y, b.z - z, c.y - y, c.z - z);
+                let (ay, az, by, bz, cy, cz) =
+                    (a.y - y, a.z - z, b.y - y, b.z - z, c.y - y, c.z - z);
                 let w0 = by * cz - bz * cy; // opposite a
                 let w1 = cy * az - cz * ay; // opposite b
                 let w2 = ay * bz - az * by; // opposite c
