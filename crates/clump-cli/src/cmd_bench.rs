@@ -10,14 +10,8 @@
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use clump_core::body::BodyInit;
-use clump_core::boundary::Domain;
-use clump_core::contact::{DampingLaw, Material, PairProperties};
-use clump_core::multi_contact::MultiContact;
-use clump_core::shape::ClumpTemplate;
-use clump_core::wall::{Wall, WallMotion, WallShape};
-use clump_core::world::{AddedMass, ContactTable, World, WorldConfig};
-use glam::{DQuat, DVec3};
+use clump_core::world::World;
+use clump_io::scenario::InsertSpec;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -27,15 +21,20 @@ pub struct BenchArgs {
     /// The benchmark folder (holds tetra.xyzr, ic_N.txt, liggghts/).
     #[arg(long, default_value = "../shared/bench/tetra-bed")]
     pub dir: PathBuf,
-    /// Number of clumps (an ic_N.txt must exist): 2000 or 10000.
+    /// Number of clumps: 2000 or 10000 (selects `benches/tetra_bed_<N>.toml`
+    /// and, for LIGGGHTS, `ic_<N>.txt`).
     #[arg(long, default_value_t = 2000)]
     pub n: usize,
-    /// Steps of phase A (fall and settle).
-    #[arg(long, default_value_t = 40_000)]
-    pub na: u64,
-    /// Steps of phase B (dense bed, timed on its own).
-    #[arg(long, default_value_t = 10_000)]
-    pub nb: u64,
+    /// The Clump scenario (default `benches/tetra_bed_<N>.toml`, relative to
+    /// the current folder: run from the repository root).
+    #[arg(long)]
+    pub scenario: Option<PathBuf>,
+    /// Steps of phase A, fall and settle (default: the scenario's first stage).
+    #[arg(long)]
+    pub na: Option<u64>,
+    /// Steps of phase B, dense bed, timed on its own (default: the second stage).
+    #[arg(long)]
+    pub nb: Option<u64>,
     /// Threads for Clump (rayon).
     #[arg(long, default_value_t = 1)]
     pub threads: usize,
@@ -70,15 +69,21 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if args.liggghts_rounds > 0 && lig.is_none() {
         eprintln!("liggghts is not installed (apt-get install liggghts): running Clump only");
     }
+    let (_, sa, sb) = build_world(&scenario_path(args), args.skin)?;
+    let (na, nb) = (args.na.unwrap_or(sa), args.nb.unwrap_or(sb));
+    println!(
+        "tetra-bed, {} clumps, phase A {na} steps, phase B {nb} steps, clump threads {}",
+        args.n, args.threads
+    );
     let mut clump = Vec::new();
     let mut peer = Vec::new();
     for round in 0..rounds {
-        let f = run_clump(args)?;
-        report("clump", round, args, &f);
+        let f = run_clump(args, na, nb)?;
+        report("clump", round, na, nb, &f);
         clump.push(f);
         if let Some(bin) = &lig {
-            let f = run_liggghts(args, bin)?;
-            report("liggghts", round, args, &f);
+            let f = run_liggghts(args, bin, na, nb)?;
+            report("liggghts", round, na, nb, &f);
             peer.push(f);
         }
     }
@@ -90,14 +95,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let tput = |s: f64, steps: u64, n: usize| n as f64 * steps as f64 / s;
     let ns = clump[0].spheres;
     let (ca, cb) = (
-        tput(med(&clump, |f| f.a_seconds), args.na, ns),
-        tput(med(&clump, |f| f.b_seconds), args.nb, ns),
+        tput(med(&clump, |f| f.a_seconds), na, ns),
+        tput(med(&clump, |f| f.b_seconds), nb, ns),
     );
     println!("clump    (threads {}): phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s, peak RSS {:.0} MB", args.threads, ca / 1e6, cb / 1e6, med(&clump, |f| f.peak_rss_mb));
     if !peer.is_empty() {
         let (la, lb) = (
-            tput(med(&peer, |f| f.a_seconds), args.na, ns),
-            tput(med(&peer, |f| f.b_seconds), args.nb, ns),
+            tput(med(&peer, |f| f.a_seconds), na, ns),
+            tput(med(&peer, |f| f.b_seconds), nb, ns),
         );
         println!("liggghts (serial):    phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s, peak RSS {:.0} MB", la / 1e6, lb / 1e6, med(&peer, |f| f.peak_rss_mb));
         println!(
@@ -109,14 +114,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     Ok(())
 }
 
-fn report(code: &str, round: usize, args: &BenchArgs, f: &Figures) {
+fn report(code: &str, round: usize, na: u64, nb: u64, f: &Figures) {
     let ns = f.spheres as f64;
     println!(
         "round {round} {code}: A {:.2} s ({:.3} M sph-steps/s)  B {:.2} s ({:.3} M sph-steps/s)  peak RSS {:.0} MB",
         f.a_seconds,
-        ns * args.na as f64 / f.a_seconds / 1e6,
+        ns * na as f64 / f.a_seconds / 1e6,
         f.b_seconds,
-        ns * args.nb as f64 / f.b_seconds / 1e6,
+        ns * nb as f64 / f.b_seconds / 1e6,
         f.peak_rss_mb
     );
 }
@@ -129,108 +134,60 @@ fn which(name: &str) -> Option<PathBuf> {
     })
 }
 
-/// Builds the tetra-bed world from the shared files.
-pub fn build_world(dir: &Path, n: usize, skin: Option<f64>) -> Result<World> {
-    let ztop = if n <= 2000 { 0.2 } else { 0.31 };
-    let spheres = clump_io::template_file::read_template_file(&dir.join("tetra.xyzr"))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    let mat = Material {
-        youngs_modulus: 5e6,
-        poisson_ratio: 0.3,
-        density: 2500.0,
-    };
-    let props = PairProperties {
-        restitution: 0.5,
-        friction: 0.5,
-        damping: DampingLaw::Liggghts,
-        ..PairProperties::default()
-    };
-    let mats = vec![mat];
-    let table = ContactTable::new(&mats, |_, _| props.clone())?;
-    let config = WorldConfig {
-        domain: Domain {
-            lo: DVec3::new(-0.021, -0.021, -0.001),
-            hi: DVec3::new(0.021, 0.021, ztop + 0.001),
-            periodic: [false; 3],
-        },
-        gravity: DVec3::new(0.0, 0.0, -9.81),
-        dt: 1e-5,
-        rotation: Default::default(),
-        added_mass: AddedMass::default(),
-        skin,
-        multi_contact: MultiContact::Sum,
-    };
-    let mut w = World::new(config, mats, table);
-    let tmpl = ClumpTemplate::from_spheres("tetra", &spheres, mat.density)?;
-    // The file's frame has the COM at the origin; bodies are given in that
-    // frame's orientation, so compose with the template's input→body rotation.
-    let input_to_body = tmpl.input_to_body;
-    let t = w.add_template(tmpl, 0)?;
-    for (p, nrm) in [
-        (DVec3::ZERO, DVec3::Z),
-        (DVec3::new(0.0, 0.0, ztop), -DVec3::Z),
-        (DVec3::new(-0.02, 0.0, 0.0), DVec3::X),
-        (DVec3::new(0.02, 0.0, 0.0), -DVec3::X),
-        (DVec3::new(0.0, -0.02, 0.0), DVec3::Y),
-        (DVec3::new(0.0, 0.02, 0.0), -DVec3::Y),
-    ] {
-        w.add_wall(Wall {
-            name: format!("wall{}", w.walls.len()),
-            shape: WallShape::Plane {
-                point: p,
-                normal: nrm,
-            },
-            material: 0,
-            motion: WallMotion::default(),
-            multi_contact: MultiContact::Sum,
-            active: true,
-        })?;
-    }
-    let icp = dir.join(format!("ic_{n}.txt"));
-    let ic = std::fs::read_to_string(&icp).with_context(|| format!("reading {}", icp.display()))?;
-    let mut count = 0;
-    for (ln, line) in ic.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let v: Vec<f64> = line
-            .split_whitespace()
-            .map(|x| x.parse::<f64>())
-            .collect::<Result<_, _>>()
-            .with_context(|| format!("{}:{}: expected 8 numbers", icp.display(), ln + 1))?;
-        if v.len() != 8 {
-            bail!(
-                "{}:{}: expected 8 numbers `id xc yc zc qw qx qy qz`, found {}",
-                icp.display(),
-                ln + 1,
-                v.len()
-            );
-        }
-        // q_ic maps the file frame to world; body → world = q_ic · (input→body)⁻¹
-        let q_ic = DQuat::from_xyzw(v[5], v[6], v[7], v[4]).normalize();
-        let q = (q_ic * input_to_body.inverse()).normalize();
-        w.add_body(&BodyInit::at_rest(t, DVec3::new(v[1], v[2], v[3]), q))?;
-        count += 1;
-    }
-    if count != n {
-        bail!("{} holds {count} clumps, expected {n}", icp.display());
-    }
-    Ok(w)
+/// The benchmark scenario for `n` clumps: `benches/tetra_bed_<n>.toml`.
+pub fn scenario_path(args: &BenchArgs) -> PathBuf {
+    args.scenario
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(format!("benches/tetra_bed_{}.toml", args.n)))
 }
 
-fn run_clump(args: &BenchArgs) -> Result<Figures> {
+/// Builds the tetra-bed world from its scenario (which reads the shared
+/// template and initial-condition files): the scenario's materials, walls
+/// and settings, and the bodies of its file insertion. Returns the world and
+/// the step counts of its two stages (phase A, phase B).
+pub fn build_world(path: &Path, skin: Option<f64>) -> Result<(World, u64, u64)> {
+    let sc = clump_io::scenario::load(path).map_err(|e| anyhow::anyhow!("{e}"))?;
+    if sc.stages.len() != 2 {
+        bail!(
+            "{}: the benchmark needs two stages (fall, dense), found {}",
+            path.display(),
+            sc.stages.len()
+        );
+    }
+    let mut w = sc
+        .build_world()
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    if skin.is_some() {
+        w.config.skin = skin;
+    }
+    for ins in &sc.inserts {
+        match &ins.kind {
+            InsertSpec::File { bodies } if ins.stage == 0 => {
+                for b in bodies {
+                    w.add_body(b)?;
+                }
+            }
+            _ => bail!(
+                "{}: the benchmark takes its bodies from one file insertion in the first stage",
+                path.display()
+            ),
+        }
+    }
+    Ok((w, sc.stages[0].steps, sc.stages[1].steps))
+}
+
+fn run_clump(args: &BenchArgs, na: u64, nb: u64) -> Result<Figures> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads)
         .build()?;
     pool.install(|| {
-        let mut w = build_world(&args.dir, args.n, args.skin)?;
+        let (mut w, _, _) = build_world(&scenario_path(args), args.skin)?;
         w.prepare()?;
         let t0 = Instant::now();
-        w.run(args.na)?;
+        w.run(na)?;
         let a = t0.elapsed().as_secs_f64();
         let t1 = Instant::now();
-        w.run(args.nb)?;
+        w.run(nb)?;
         let b = t1.elapsed().as_secs_f64();
         let th = w.thermo();
         eprintln!(
@@ -301,7 +258,7 @@ fn peak_rss_mb() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
-fn run_liggghts(args: &BenchArgs, bin: &Path) -> Result<Figures> {
+fn run_liggghts(args: &BenchArgs, bin: &Path, na: u64, nb: u64) -> Result<Figures> {
     let work = std::env::temp_dir().join(format!("clump-bench-liggghts-{}", std::process::id()));
     std::fs::create_dir_all(&work)?;
     let src = args.dir.join("liggghts");
@@ -338,10 +295,10 @@ fn run_liggghts(args: &BenchArgs, bin: &Path) -> Result<Figures> {
             ztop,
             "-var",
             "NA",
-            &args.na.to_string(),
+            &na.to_string(),
             "-var",
             "NB",
-            &args.nb.to_string(),
+            &nb.to_string(),
         ])
         .current_dir(&work)
         .output()?;

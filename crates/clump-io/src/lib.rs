@@ -1,6 +1,5 @@
 //! io
 pub mod atomic;
-pub mod bodies_csv;
 pub mod checkpoint;
 pub mod mesh_file;
 pub mod run;

@@ -1,12 +1,22 @@
-//! Reader of the body list of `[[insert]] kind = "file"`: a CSV file with a
-//! header row naming the columns.
+//! Reader of the body list of `[[insert]] kind = "file"`, in one of two
+//! formats ([`BodyFileFormat`]):
 //!
-//! Columns (any order; `template`, `x`, `y`, `z` required, the rest default
-//! to the identity orientation and zero velocities):
-//! `template` (name, or 0-based index in the scenario's `[[template]]` list),
-//! `x, y, z` (centre of mass, world frame, m), `qw, qx, qy, qz` (orientation
-//! body → world, normalised on reading), `vx, vy, vz` (m/s, world),
-//! `wx, wy, wz` (angular velocity, rad/s, world). `#` starts a comment line.
+//! - **`csv`**: a header row naming the columns, then one body per row.
+//!   Columns (any order; `x`, `y`, `z` required, and `template` unless the
+//!   insert names a default template; the rest default to the identity
+//!   orientation and zero velocities): `template` (name, or 0-based index in
+//!   the scenario's `[[template]]` list), `x, y, z` (centre of mass, world
+//!   frame, m), `qw, qx, qy, qz` (orientation, normalised on reading),
+//!   `vx, vy, vz` (m/s, world), `wx, wy, wz` (angular velocity, rad/s, world).
+//! - **`xyzq`**: whitespace-separated `id x y z qw qx qy qz` rows without a
+//!   header (the format of the shared tetra-bed initial conditions and of
+//!   many LIGGGHTS/Yade scripts); every body uses the insert's template and
+//!   starts at rest. `id` is read and checked but not used (bodies get ids
+//!   in file order).
+//!
+//! `#` starts a comment line in both. Which frame the quaternion starts from
+//! (the principal body frame, or the template's input frame) is applied by
+//! the caller.
 #![allow(clippy::needless_range_loop)]
 
 use clump_core::body::BodyInit;
@@ -16,10 +26,103 @@ const COLUMNS: [&str; 14] = [
     "template", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz",
 ];
 
-/// Parses the file; errors are `(1-based line, message)`.
-pub fn parse(bytes: &[u8], template_names: &[String]) -> Result<Vec<BodyInit>, (usize, String)> {
-    let text = std::str::from_utf8(bytes)
-        .map_err(|_| (1, "not UTF-8 text (expected a CSV file)".to_string()))?;
+/// Layout of a body file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BodyFileFormat {
+    /// Comma-separated with a header row naming the columns.
+    #[default]
+    Csv,
+    /// Whitespace-separated `id x y z qw qx qy qz`, no header.
+    Xyzq,
+}
+
+/// Parses the file; `default_template` serves rows without a `template`
+/// column (and every row of `xyzq`). Errors are `(1-based line, message)`.
+pub fn parse(
+    bytes: &[u8],
+    format: BodyFileFormat,
+    template_names: &[String],
+    default_template: Option<u32>,
+) -> Result<Vec<BodyInit>, (usize, String)> {
+    let text = std::str::from_utf8(bytes).map_err(|_| {
+        (
+            1,
+            "not UTF-8 text (expected a text file of bodies)".to_string(),
+        )
+    })?;
+    match format {
+        BodyFileFormat::Csv => parse_csv(text, template_names, default_template),
+        BodyFileFormat::Xyzq => {
+            let t = default_template.ok_or_else(|| {
+                (
+                    1,
+                    "format \"xyzq\" has no template column: name the template of the insert"
+                        .to_string(),
+                )
+            })?;
+            parse_xyzq(text, t)
+        }
+    }
+}
+
+fn finite(ln: usize, what: &str, f: &str) -> Result<f64, (usize, String)> {
+    f.parse::<f64>()
+        .ok()
+        .filter(|x| x.is_finite())
+        .ok_or_else(|| {
+            (
+                ln,
+                format!("column '{what}': expected a finite number, found '{f}'"),
+            )
+        })
+}
+
+fn unit_quaternion(ln: usize, w: f64, x: f64, y: f64, z: f64) -> Result<DQuat, (usize, String)> {
+    let q = DQuat::from_xyzw(x, y, z, w);
+    if q.length() < 1e-12 {
+        return Err((ln, "the quaternion (qw, qx, qy, qz) is zero".into()));
+    }
+    Ok(q.normalize())
+}
+
+fn parse_xyzq(text: &str, template: u32) -> Result<Vec<BodyInit>, (usize, String)> {
+    const COLS: [&str; 8] = ["id", "x", "y", "z", "qw", "qx", "qy", "qz"];
+    let mut out = Vec::new();
+    for (ln, line) in text.lines().enumerate() {
+        let ln = ln + 1;
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        if fields.len() != COLS.len() {
+            return Err((
+                ln,
+                format!(
+                    "expected 8 fields `id x y z qw qx qy qz`, found {}",
+                    fields.len()
+                ),
+            ));
+        }
+        let mut v = [0.0; 8];
+        for k in 0..8 {
+            v[k] = finite(ln, COLS[k], fields[k])?;
+        }
+        let q = unit_quaternion(ln, v[4], v[5], v[6], v[7])?;
+        out.push(BodyInit::at_rest(template, DVec3::new(v[1], v[2], v[3]), q));
+    }
+    if out.is_empty() {
+        return Err((1, "no bodies: expected rows `id x y z qw qx qy qz`".into()));
+    }
+    Ok(out)
+}
+
+fn parse_csv(
+    text: &str,
+    template_names: &[String],
+    default_template: Option<u32>,
+) -> Result<Vec<BodyInit>, (usize, String)> {
     let mut header: Option<Vec<usize>> = None; // column index in COLUMNS per field
     let mut out = Vec::new();
     for (ln, line) in text.lines().enumerate() {
@@ -46,7 +149,8 @@ pub fn parse(bytes: &[u8], template_names: &[String]) -> Result<Vec<BodyInit>, (
                 }
                 cols.push(k);
             }
-            for req in 0..4 {
+            let first_required = if default_template.is_some() { 1 } else { 0 };
+            for req in first_required..4 {
                 if !cols.contains(&req) {
                     return Err((
                         ln,
@@ -72,7 +176,7 @@ pub fn parse(bytes: &[u8], template_names: &[String]) -> Result<Vec<BodyInit>, (
         }
         let mut vals = [0.0f64; 14];
         vals[4] = 1.0;
-        let mut template = 0u32;
+        let mut template = default_template.unwrap_or(0);
         for (f, &k) in fields.iter().zip(h) {
             if k == 0 {
                 template = match template_names.iter().position(|n| n == f) {
@@ -91,30 +195,11 @@ pub fn parse(bytes: &[u8], template_names: &[String]) -> Result<Vec<BodyInit>, (
                     },
                 };
             } else {
-                vals[k] = f
-                    .parse::<f64>()
-                    .ok()
-                    .filter(|x| x.is_finite())
-                    .ok_or_else(|| {
-                        (
-                            ln,
-                            format!(
-                                "column '{}': expected a finite number, found '{f}'",
-                                COLUMNS[k]
-                            ),
-                        )
-                    })?;
+                vals[k] = finite(ln, COLUMNS[k], f)?;
             }
         }
-        let q = DQuat::from_xyzw(vals[5], vals[6], vals[7], vals[4]);
-        if q.length() < 1e-12 {
-            return Err((ln, "the quaternion (qw, qx, qy, qz) is zero".into()));
-        }
-        let mut b = BodyInit::at_rest(
-            template,
-            DVec3::new(vals[1], vals[2], vals[3]),
-            q.normalize(),
-        );
+        let q = unit_quaternion(ln, vals[4], vals[5], vals[6], vals[7])?;
+        let mut b = BodyInit::at_rest(template, DVec3::new(vals[1], vals[2], vals[3]), q);
         b.velocity = DVec3::new(vals[8], vals[9], vals[10]);
         b.angular_velocity = DVec3::new(vals[11], vals[12], vals[13]);
         out.push(b);

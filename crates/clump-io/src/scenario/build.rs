@@ -1439,7 +1439,7 @@ fn build_insert(
         None => 0,
     };
     let allowed: &[&str] = match kind {
-        InsertKind::File => &["file"],
+        InsertKind::File => &["file", "template", "format", "orientation_frame"],
         InsertKind::Pack => &[
             "mix",
             "template",
@@ -1468,6 +1468,8 @@ fn build_insert(
     };
     for (k, present) in [
         ("file", ins.file.is_some()),
+        ("format", ins.format.is_some()),
+        ("orientation_frame", ins.orientation_frame.is_some()),
         ("mix", ins.mix.is_some()),
         ("template", ins.template.is_some()),
         ("count", ins.count.is_some()),
@@ -1509,10 +1511,26 @@ fn build_insert(
                     cx.files.base_display()
                 ))
         })?;
-        let bodies = super::bodies_file::parse(&bytes, template_names).map_err(|(line, msg)| {
-            cx.err(&p("file"), format!("{f}:{line}: {msg}"))
-                .label("in this file")
-        })?;
+        let default_template = match &ins.template {
+            Some(t) => Some(lookup(cx, &p("template"), "template", t, template_names)? as u32),
+            None => None,
+        };
+        let format = ins.format.unwrap_or_default();
+        let mut bodies =
+            super::bodies_file::parse(&bytes, format, template_names, default_template).map_err(
+                |(line, msg)| {
+                    cx.err(&p("file"), format!("{f}:{line}: {msg}"))
+                        .label("in this file")
+                },
+            )?;
+        if ins.orientation_frame == Some(super::raw::OrientationFrame::Input) {
+            // q_input maps (x_input − com) to world; x_input − com =
+            // input_to_body⁻¹ x_body, so body → world is q_input · input_to_body⁻¹.
+            for b in &mut bodies {
+                let t = &templates[b.template as usize].template;
+                b.orientation = (b.orientation * t.input_to_body.conjugate()).normalize();
+            }
+        }
         return Ok(InsertDef {
             stage,
             kind: InsertSpec::File { bodies },

@@ -17,6 +17,7 @@ pub mod raw;
 mod source;
 pub mod units;
 
+pub use bodies_file::BodyFileFormat;
 pub use build::{DT_ERROR_FRACTION, DT_WARN_FRACTION, PACK_ERROR_FRACTION};
 pub use diag::{Diagnostic, Location, ScenarioError, Severity};
 pub use model::*;

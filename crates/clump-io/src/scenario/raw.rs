@@ -355,6 +355,19 @@ pub struct RawRegion {
     pub height: Option<f64>,
 }
 
+/// The frame a body file's orientation quaternions map to the world frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OrientationFrame {
+    /// The template's principal body frame (Clump's own convention).
+    Body,
+    /// The frame the template's spheres were given in (a LIGGGHTS template
+    /// file, inline spheres): the quaternion maps those coordinates, relative
+    /// to the centre of mass, to the world frame, as in LIGGGHTS and in the
+    /// shared tetra-bed initial conditions.
+    Input,
+}
+
 /// Insertion kind.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -375,8 +388,12 @@ pub struct RawInsert {
     pub kind: Option<InsertKind>,
     /// Stage in which it happens (default the first).
     pub stage: Option<String>,
-    /// CSV file (kind = "file"), relative to the scenario file.
+    /// Body file (kind = "file"), relative to the scenario file.
     pub file: Option<String>,
+    /// Layout of the body file (kind = "file"; default `csv`).
+    pub format: Option<super::BodyFileFormat>,
+    /// Frame the body file's quaternions start from (kind = "file"; default `body`).
+    pub orientation_frame: Option<OrientationFrame>,
     /// Mix name.
     pub mix: Option<String>,
     /// Template name (instead of a mix).
