@@ -47,6 +47,24 @@ pub struct BenchArgs {
     /// Where to write the final sphere centres (LIGGGHTS dump format, for analyze.py).
     #[arg(long)]
     pub dump: Option<PathBuf>,
+    /// Scaling study instead of the tetra-bed case: comma-separated target
+    /// sphere counts, e.g. `10000,100000,1000000`. Each size is a periodic
+    /// bed of tetra clumps (`--layers` deep) settled for `--settle` steps and
+    /// timed for `--steps` steps, in a child process of its own (clean peak RSS).
+    #[arg(long, value_delimiter = ',', value_name = "SPHERES")]
+    pub scaling: Vec<usize>,
+    /// Scaling study: lattice layers of the bed.
+    #[arg(long, default_value_t = 8)]
+    pub layers: usize,
+    /// Scaling study: settling steps before timing.
+    #[arg(long, default_value_t = 3000)]
+    pub settle: u64,
+    /// Scaling study: timed steps.
+    #[arg(long, default_value_t = 300)]
+    pub steps: u64,
+    /// Scaling study, internal: run one size in this process and print one row.
+    #[arg(long, hide = true)]
+    pub scaling_one: Option<usize>,
 }
 
 /// Figures of one timed run.
@@ -60,6 +78,12 @@ struct Figures {
 
 /// Runs the benchmark.
 pub fn run(args: &BenchArgs) -> Result<()> {
+    if let Some(n) = args.scaling_one {
+        return scaling_one(args, n);
+    }
+    if !args.scaling.is_empty() {
+        return scaling(args);
+    }
     let rounds = args.liggghts_rounds.max(1);
     let lig = if args.liggghts_rounds > 0 {
         which("liggghts")
@@ -338,5 +362,79 @@ fn run_liggghts(args: &BenchArgs, bin: &Path, na: u64, nb: u64) -> Result<Figure
         b_seconds: loops[1],
         spheres: 4 * args.n,
         peak_rss_mb: rss,
+    })
+}
+
+/// The scaling study: one child process per size, a table row each.
+fn scaling(args: &BenchArgs) -> Result<()> {
+    let exe = std::env::current_exe()?;
+    println!(
+        "scaling: periodic tetra beds, {} layers, settle {} steps, timed {} steps, threads {}",
+        args.layers, args.settle, args.steps, args.threads
+    );
+    println!(
+        "{:>9} {:>8} {:>13} {:>14} {:>11} {:>12} {:>12} {:>13}",
+        "spheres",
+        "clumps",
+        "bed",
+        "M sph-steps/s",
+        "ns/sph-step",
+        "contacts/sph",
+        "peak RSS MB",
+        "RSS B/sphere"
+    );
+    for &n in &args.scaling {
+        let out = std::process::Command::new(&exe)
+            .args(["bench", "--scaling-one", &n.to_string()])
+            .args(["--layers", &args.layers.to_string()])
+            .args(["--settle", &args.settle.to_string()])
+            .args(["--steps", &args.steps.to_string()])
+            .args(["--threads", &args.threads.to_string()])
+            .args(
+                args.skin
+                    .map(|s| vec!["--skin".to_string(), s.to_string()])
+                    .unwrap_or_default(),
+            )
+            .output()?;
+        if !out.status.success() {
+            bail!(
+                "scaling run of {n} spheres failed: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        print!("{}", String::from_utf8_lossy(&out.stdout));
+    }
+    Ok(())
+}
+
+/// One size of the scaling study, in this process.
+fn scaling_one(args: &BenchArgs, target_spheres: usize) -> Result<()> {
+    let nz = args.layers.max(1);
+    let nx = ((target_spheres as f64 / (4.0 * nz as f64)).sqrt().round() as usize).max(4);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build()?;
+    pool.install(|| {
+        let mut w = clump_core::testbed::tetra_lattice_bed(nx, nx, nz, args.skin);
+        w.run(args.settle)?;
+        let t0 = Instant::now();
+        w.run(args.steps)?;
+        let s = t0.elapsed().as_secs_f64();
+        let th = w.thermo();
+        let ns = w.spheres().len();
+        let rate = ns as f64 * args.steps as f64 / s;
+        let rss = peak_rss_mb();
+        println!(
+            "{:>9} {:>8} {:>13} {:>14.3} {:>11.1} {:>12.2} {:>12.0} {:>13.0}",
+            ns,
+            w.bodies.len(),
+            format!("{nx}x{nx}x{nz}"),
+            rate / 1e6,
+            1e9 / rate,
+            2.0 * th.pair_contacts as f64 / ns as f64,
+            rss,
+            rss * 1024.0 * 1024.0 / ns as f64
+        );
+        Ok(())
     })
 }

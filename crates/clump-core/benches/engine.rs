@@ -2,99 +2,17 @@
 //! kernel, and a whole step on a dense bed of tetrahedral clumps.
 //! Run with `cargo bench -p clump-core`.
 
-use clump_core::body::BodyInit;
-use clump_core::boundary::Domain;
-use clump_core::contact::{
-    ContactHistory, ContactInput, ContactModel, DampingLaw, Material, PairProperties,
-};
-use clump_core::multi_contact::MultiContact;
+use clump_core::contact::{ContactHistory, ContactInput, ContactModel};
 use clump_core::neighbor::pairs::{BuildInput, HistoryMap};
 use clump_core::neighbor::{CellGrid, PairList};
-use clump_core::shape::{ClumpTemplate, Sphere};
-use clump_core::wall::{Wall, WallMotion, WallShape};
-use clump_core::world::{AddedMass, ContactTable, World, WorldConfig};
+use clump_core::testbed::{tetra_contact, tetra_lattice_bed, tetra_material};
+use clump_core::world::World;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use glam::{DQuat, DVec3};
+use glam::DVec3;
 
-fn material() -> Material {
-    Material {
-        youngs_modulus: 5e6,
-        poisson_ratio: 0.3,
-        density: 2500.0,
-    }
-}
-
-fn props() -> PairProperties {
-    PairProperties {
-        restitution: 0.5,
-        friction: 0.5,
-        damping: DampingLaw::Liggghts,
-        ..PairProperties::default()
-    }
-}
-
-/// A box of tetra clumps on a jittered lattice, allowed to fall for `settle` steps.
+/// A cubic bed of `nx³` tetra clumps, allowed to fall for `settle` steps.
 fn bed(nx: usize, settle: u64) -> World {
-    let m = material();
-    let mats = vec![m];
-    let table = ContactTable::new(&mats, |_, _| props()).unwrap();
-    let l = nx as f64 * 3.6e-3;
-    let config = WorldConfig {
-        domain: Domain {
-            lo: DVec3::new(0.0, 0.0, -0.001),
-            hi: DVec3::new(l, l, 1.0),
-            periodic: [true, true, false],
-        },
-        gravity: DVec3::new(0.0, 0.0, -9.81),
-        dt: 1e-5,
-        rotation: Default::default(),
-        added_mass: AddedMass::default(),
-        skin: Some(0.5e-3),
-        multi_contact: MultiContact::Sum,
-    };
-    let mut w = World::new(config, mats, table);
-    let h = 1.2e-3 / (2.0 * 2f64.sqrt());
-    let s: Vec<Sphere> = [[1., 1., 1.], [1., -1., -1.], [-1., 1., -1.], [-1., -1., 1.]]
-        .iter()
-        .map(|c| Sphere {
-            center: DVec3::from_array(*c) * h,
-            radius: 1e-3,
-        })
-        .collect();
-    let t = w
-        .add_template(
-            ClumpTemplate::from_spheres("tetra", &s, m.density).unwrap(),
-            0,
-        )
-        .unwrap();
-    w.add_wall(Wall {
-        name: "floor".into(),
-        shape: WallShape::Plane {
-            point: DVec3::ZERO,
-            normal: DVec3::Z,
-        },
-        material: 0,
-        motion: WallMotion::default(),
-        multi_contact: MultiContact::Sum,
-        active: true,
-    })
-    .unwrap();
-    let mut k = 0u64;
-    for z in 0..nx {
-        for y in 0..nx {
-            for x in 0..nx {
-                k += 1;
-                let q = DQuat::from_euler(
-                    glam::EulerRot::ZXZ,
-                    k as f64 * 0.7,
-                    k as f64 * 1.3,
-                    k as f64 * 0.4,
-                );
-                let p = DVec3::new(x as f64 + 0.5, y as f64 + 0.5, z as f64 + 0.6) * 3.6e-3;
-                w.add_body(&BodyInit::at_rest(t, p, q)).unwrap();
-            }
-        }
-    }
+    let mut w = tetra_lattice_bed(nx, nx, nx, Some(0.5e-3));
     w.run(settle).unwrap();
     w
 }
@@ -121,8 +39,8 @@ fn neighbor_build(c: &mut Criterion) {
 }
 
 fn contact_kernel(c: &mut Criterion) {
-    let m = material();
-    let model = ContactModel::new(&m, &m, &props()).unwrap();
+    let m = tetra_material();
+    let model = ContactModel::new(&m, &m, &tetra_contact()).unwrap();
     let input = ContactInput {
         normal: DVec3::new(0.0, 0.6, 0.8),
         overlap: 2e-6,

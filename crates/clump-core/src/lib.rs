@@ -28,6 +28,7 @@ pub mod shape;
 pub mod sphere;
 pub mod state;
 pub mod step;
+pub mod testbed;
 pub mod thermo;
 pub mod wall;
 pub mod world;

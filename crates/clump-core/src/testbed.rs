@@ -1,0 +1,115 @@
+//! Ready-made worlds for benchmarks, profiling and scaling studies.
+//!
+//! [`tetra_lattice_bed`] builds the material of the shared tetra-bed
+//! benchmark (4-sphere tetrahedral clumps, r = 1 mm, edge 1.2 mm, ρ = 2500,
+//! Hertz–Mindlin with LIGGGHTS damping, E = 5 MPa, ν = 0.3, e = 0.5, μ = 0.5,
+//! dt = 1e-5 s) as a bed of any size: clumps on a cubic lattice of pitch
+//! [`LATTICE_PITCH`], periodic in x and y, above a floor at z = 0, at rest.
+//! Because the box is periodic sideways, beds of different areas but the
+//! same number of layers have the same local structure, which is what a
+//! cost-per-sphere scaling study needs.
+
+use crate::body::BodyInit;
+use crate::boundary::Domain;
+use crate::contact::{DampingLaw, Material, PairProperties};
+use crate::multi_contact::MultiContact;
+use crate::shape::{ClumpTemplate, Sphere};
+use crate::wall::{Wall, WallMotion, WallShape};
+use crate::world::{AddedMass, ContactTable, World, WorldConfig};
+use glam::{DQuat, DVec3};
+
+/// Lattice pitch, m: just above the clump's bounding diameter (3.47 mm), so
+/// the clumps start apart.
+pub const LATTICE_PITCH: f64 = 3.6e-3;
+
+/// The benchmark's grain material.
+pub fn tetra_material() -> Material {
+    Material {
+        youngs_modulus: 5e6,
+        poisson_ratio: 0.3,
+        density: 2500.0,
+    }
+}
+
+/// The benchmark's contact properties (LIGGGHTS damping, for comparisons).
+pub fn tetra_contact() -> PairProperties {
+    PairProperties {
+        restitution: 0.5,
+        friction: 0.5,
+        damping: DampingLaw::Liggghts,
+        ..PairProperties::default()
+    }
+}
+
+/// The benchmark's template: 4 spheres of radius 1 mm on the vertices of a
+/// regular tetrahedron with edge 1.2 mm.
+pub fn tetra_template() -> ClumpTemplate {
+    let h = 1.2e-3 / (2.0 * 2f64.sqrt());
+    let s: Vec<Sphere> = [[1., 1., 1.], [1., -1., -1.], [-1., 1., -1.], [-1., -1., 1.]]
+        .iter()
+        .map(|c| Sphere {
+            center: DVec3::from_array(*c) * h,
+            radius: 1e-3,
+        })
+        .collect();
+    ClumpTemplate::from_spheres("tetra", &s, tetra_material().density)
+        .expect("the tetra template is valid")
+}
+
+/// `nx × ny × nz` tetra clumps at rest on a lattice (deterministic
+/// orientations), periodic in x and y, with a floor at z = 0 and gravity
+/// −9.81 m/s² along z. `skin`: the Verlet skin (m), `None` for the engine's
+/// default. Run a few thousand steps to let it settle into a dense bed.
+pub fn tetra_lattice_bed(nx: usize, ny: usize, nz: usize, skin: Option<f64>) -> World {
+    let m = tetra_material();
+    let mats = vec![m];
+    let table = ContactTable::new(&mats, |_, _| tetra_contact()).expect("valid contact model");
+    let (lx, ly) = (nx as f64 * LATTICE_PITCH, ny as f64 * LATTICE_PITCH);
+    let config = WorldConfig {
+        domain: Domain {
+            lo: DVec3::new(0.0, 0.0, -0.001),
+            hi: DVec3::new(lx, ly, (nz as f64 + 2.0) * LATTICE_PITCH),
+            periodic: [true, true, false],
+        },
+        gravity: DVec3::new(0.0, 0.0, -9.81),
+        dt: 1e-5,
+        rotation: Default::default(),
+        added_mass: AddedMass::default(),
+        skin,
+        multi_contact: MultiContact::Sum,
+    };
+    let mut w = World::new(config, mats, table);
+    let t = w
+        .add_template(tetra_template(), 0)
+        .expect("material 0 exists");
+    w.add_wall(Wall {
+        name: "floor".into(),
+        shape: WallShape::Plane {
+            point: DVec3::ZERO,
+            normal: DVec3::Z,
+        },
+        material: 0,
+        motion: WallMotion::default(),
+        multi_contact: MultiContact::Sum,
+        active: true,
+    })
+    .expect("one wall");
+    let mut k = 0u64;
+    for z in 0..nz {
+        for y in 0..ny {
+            for x in 0..nx {
+                k += 1;
+                let q = DQuat::from_euler(
+                    glam::EulerRot::ZXZ,
+                    k as f64 * 0.7,
+                    k as f64 * 1.3,
+                    k as f64 * 0.4,
+                );
+                let p = DVec3::new(x as f64 + 0.5, y as f64 + 0.5, z as f64 + 0.6) * LATTICE_PITCH;
+                w.add_body(&BodyInit::at_rest(t, p, q))
+                    .expect("template exists");
+            }
+        }
+    }
+    w
+}
