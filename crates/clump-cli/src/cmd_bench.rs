@@ -207,12 +207,18 @@ fn run_clump(args: &BenchArgs, na: u64, nb: u64) -> Result<Figures> {
     pool.install(|| {
         let (mut w, _, _) = build_world(&scenario_path(args), args.skin)?;
         w.prepare()?;
-        let t0 = Instant::now();
+        let (t0, c0) = (Instant::now(), cpu_seconds());
         w.run(na)?;
-        let a = t0.elapsed().as_secs_f64();
-        let t1 = Instant::now();
+        let (a, ca) = (t0.elapsed().as_secs_f64(), cpu_seconds() - c0);
+        let (t1, c1) = (Instant::now(), cpu_seconds());
         w.run(nb)?;
-        let b = t1.elapsed().as_secs_f64();
+        let (b, cb) = (t1.elapsed().as_secs_f64(), cpu_seconds() - c1);
+        let ns = w.spheres().len() as f64;
+        eprintln!(
+            "clump: CPU time (all threads) phase A {ca:.2} s ({:.3} M sph-steps per CPU s), phase B {cb:.2} s ({:.3} M sph-steps per CPU s)",
+            ns * na as f64 / ca / 1e6,
+            ns * nb as f64 / cb / 1e6
+        );
         let th = w.thermo();
         eprintln!(
             "clump: {} bodies, {} contacts, lost {}, KE {:.3e} J, rebuilds {}",
@@ -268,6 +274,21 @@ fn write_dump(w: &World, path: &Path) -> Result<()> {
     }
     std::fs::write(path, s)?;
     Ok(())
+}
+
+/// CPU time (user + system, all threads) of this process so far, s (Linux
+/// /proc/self/stat, 100 ticks per second): a load-independent companion of
+/// the wall times on a shared machine.
+fn cpu_seconds() -> f64 {
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            // the command name may hold spaces: fields after the last ')'
+            let rest = &s[s.rfind(')')? + 2..];
+            let f: Vec<&str> = rest.split_whitespace().collect();
+            Some((f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?) / 100.0)
+        })
+        .unwrap_or(f64::NAN)
 }
 
 /// Peak resident set size of this process so far, MB (Linux VmHWM).

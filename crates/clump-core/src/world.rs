@@ -149,6 +149,12 @@ pub struct World {
     pub(crate) spheres: Spheres,
     pub(crate) pairs: PairList,
     pub(crate) wall_key: Vec<[u32; WALL_SLOTS]>,
+    /// Per sphere (storage order): bit `w` set when wall `w` (< 64) lay within
+    /// the skin of the sphere at the last neighbour build (the wall Verlet list).
+    pub(crate) wall_near: Vec<u64>,
+    /// Walls (< 64) that have not moved since the last neighbour build: only
+    /// these may be skipped for spheres whose `wall_near` bit is clear.
+    pub(crate) wall_cull: u64,
     pub(crate) wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
     pub(crate) template_first: Vec<u32>,
     pub(crate) template_offset: Vec<DVec3>,
@@ -187,6 +193,8 @@ impl World {
             spheres: Spheres::default(),
             pairs: PairList::default(),
             wall_key: Vec::new(),
+            wall_near: Vec::new(),
+            wall_cull: 0,
             wall_hist: Vec::new(),
             template_first: vec![0],
             template_offset: Vec::new(),

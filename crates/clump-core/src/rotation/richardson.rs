@@ -17,23 +17,27 @@
 
 use glam::{DQuat, DVec3};
 
-use super::body_dynamics::omega_world;
+use super::body_dynamics::inverse_inertia;
 use crate::math::quat_from_rotation_vector;
 
 /// One first-order sub-step: rotate `q` (body → world) by the world-frame
-/// angular velocity computed from `l_world` at `q`, frozen over `h` seconds.
-fn frozen_omega_step(q: DQuat, l_world: DVec3, inertia: DVec3, h: f64) -> DQuat {
-    let w = omega_world(q, l_world, inertia);
-    (quat_from_rotation_vector(w * h) * q).normalize()
+/// angular velocity computed from `l_world` at `q`, frozen over `h` seconds;
+/// `inv_inertia` = inverse principal moments (body frame, 1/(kg m²)). The
+/// result is unit to round-off; [`drift`] normalises once at the end.
+#[inline(always)]
+fn frozen_omega_step(q: DQuat, l_world: DVec3, inv_inertia: DVec3, h: f64) -> DQuat {
+    let w = q * ((q.conjugate() * l_world) * inv_inertia);
+    quat_from_rotation_vector(w * h) * q
 }
 
 /// Torque-free drift over `dt` (s): new body → world orientation from `q`, the
 /// constant WORLD-frame angular momentum `l_world` (kg m²/s) and principal
 /// moments `inertia` (body frame, kg m²).
 pub fn drift(q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
-    let q_full = frozen_omega_step(q, l_world, inertia, dt);
-    let q_half1 = frozen_omega_step(q, l_world, inertia, 0.5 * dt);
-    let q_half2 = frozen_omega_step(q_half1, l_world, inertia, 0.5 * dt);
+    let inv = inverse_inertia(inertia);
+    let q_full = frozen_omega_step(q, l_world, inv, dt);
+    let q_half1 = frozen_omega_step(q, l_world, inv, 0.5 * dt);
+    let q_half2 = frozen_omega_step(q_half1, l_world, inv, 0.5 * dt);
     // Both estimates are O(dt²) apart, hence in the same hemisphere.
     (q_half2 * 2.0 - q_full).normalize()
 }

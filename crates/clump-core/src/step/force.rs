@@ -100,6 +100,8 @@ fn gather(w: &mut World) {
         meshes,
         contact_table: table,
         wall_key,
+        wall_near,
+        wall_cull,
         wall_hist,
         chunk_stats,
         chunk_wall_loads,
@@ -127,6 +129,19 @@ fn gather(w: &mut World) {
     let hists = SharedMut::new(wall_hist);
     let loads = SharedMut::new(chunk_wall_loads);
     let b = &*bodies;
+    // Walls to test for sphere `s`, in ascending order: of the first 64, the
+    // active ones that are near it or have moved since the last rebuild (the
+    // wall Verlet list, see `rebuild::build_wall_lists`); then every active
+    // wall beyond 64.
+    let mut active_lo = 0u64;
+    for (wi, wall) in walls.iter().enumerate().take(64) {
+        active_lo |= (wall.active as u64) << wi;
+    }
+    let moved = !*wall_cull;
+    let candidates = |s: usize| {
+        let lo = BitIter((moved | wall_near[s]) & active_lo);
+        lo.chain((64..nw).filter(|&wi| walls[wi].active))
+    };
     chunk_stats.par_iter_mut().enumerate().for_each_init(
         || (PartnerCounts::default(), PartnerCounts::default()),
         |(counts, wcounts), (c, stat)| {
@@ -181,18 +196,16 @@ fn gather(w: &mut World) {
                         wcounts.clear();
                         let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
                         for s in spheres.clone() {
-                            for (wi, wall) in walls.iter().enumerate() {
-                                if wall.active {
-                                    let k = wall.shape.contacts(
-                                        meshes,
-                                        sp.position[s],
-                                        sp.radius[s],
-                                        0.0,
-                                        &mut buf,
-                                    );
-                                    for _ in 0..k {
-                                        wcounts.add(wi as u64);
-                                    }
+                            for wi in candidates(s) {
+                                let k = walls[wi].shape.contacts(
+                                    meshes,
+                                    sp.position[s],
+                                    sp.radius[s],
+                                    0.0,
+                                    &mut buf,
+                                );
+                                for _ in 0..k {
+                                    wcounts.add(wi as u64);
                                 }
                             }
                         }
@@ -207,17 +220,24 @@ fn gather(w: &mut World) {
                         com,
                     };
                     for s in spheres {
+                        let mut cand = candidates(s).peekable();
                         // SAFETY: sphere s belongs to body bi, handled by this chunk only.
                         let (key, hist) = unsafe { (keys.get(s), hists.get(s)) };
+                        if cand.peek().is_none() {
+                            // no wall to test: only clear what a contact left
+                            if key[0] != 0 {
+                                *key = [0; WALL_SLOTS];
+                                *hist = [ContactHistory::default(); WALL_SLOTS];
+                            }
+                            continue;
+                        }
                         let mut new_key = [0u32; WALL_SLOTS];
                         let mut new_hist = [ContactHistory::default(); WALL_SLOTS];
                         let mut n_new = 0;
                         let mut used = [false; WALL_SLOTS];
                         let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
-                        for (wi, wall) in walls.iter().enumerate() {
-                            if !wall.active {
-                                continue;
-                            }
+                        for wi in cand {
+                            let wall = &walls[wi];
                             let k = wall.shape.contacts(
                                 meshes,
                                 sp.position[s],
@@ -294,6 +314,22 @@ fn gather(w: &mut World) {
             l.torque += chunk_wall_loads[c * nw + wi].torque;
         }
         *load = l;
+    }
+}
+
+/// The indices of the set bits of a mask, ascending.
+struct BitIter(u64);
+
+impl Iterator for BitIter {
+    type Item = usize;
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        if self.0 == 0 {
+            return None;
+        }
+        let i = self.0.trailing_zeros() as usize;
+        self.0 &= self.0 - 1;
+        Some(i)
     }
 }
 

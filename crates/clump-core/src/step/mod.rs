@@ -55,6 +55,7 @@ impl World {
         for w in &mut self.walls {
             w.advance(dt);
         }
+        self.wall_cull &= rebuild::static_walls(&self.walls);
         kinematics::update_spheres(self);
         if self.topology_dirty
             || crate::neighbor::skin::needs_rebuild(

@@ -8,6 +8,7 @@ use crate::contact::ContactHistory;
 use crate::neighbor::pairs::BuildInput;
 use crate::neighbor::{sort, CellGrid};
 use crate::sphere::sphere_gid;
+use crate::wall::{WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::{World, WALL_SLOTS};
 
 /// Rebuilds the neighbour list. With `reorganize`, bodies are first wrapped,
@@ -113,8 +114,52 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     w.pairs
         .build(&w.grid, &w.config.domain, &inp, &w.history_map);
     w.history_map.clear();
+    build_wall_lists(w);
     w.rebuilds += 1;
     Ok(())
+}
+
+/// The wall Verlet list: for every sphere, which of the first 64 walls lie
+/// within its radius plus the skin at its reference position. Until the next
+/// rebuild a sphere moves less than half the skin, so a wall that has not
+/// moved meanwhile and was not near cannot touch it ([`World::wall_cull`]
+/// says which walls stayed put). Skipping such walls is exact: it removes
+/// only tests that would find no contact.
+fn build_wall_lists(w: &mut World) {
+    use rayon::prelude::*;
+    let skin = w.skin();
+    let (walls, meshes) = (&w.walls, &w.meshes);
+    let (pos, rad) = (&w.reference_position, &w.spheres.radius);
+    w.wall_near.resize(pos.len(), 0);
+    w.wall_near
+        .par_iter_mut()
+        .enumerate()
+        .with_min_len(1024)
+        .for_each(|(s, near)| {
+            let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
+            let mut m = 0u64;
+            for (wi, wall) in walls.iter().enumerate().take(64) {
+                if wall.shape.contacts(meshes, pos[s], rad[s], skin, &mut buf) > 0 {
+                    m |= 1 << wi;
+                }
+            }
+            *near = m;
+        });
+    w.wall_cull = static_walls(walls);
+}
+
+/// Bits of the walls (< 64) whose geometry does not move (no translation or
+/// rotation; a surface velocity leaves the geometry in place).
+pub(crate) fn static_walls(walls: &[crate::wall::Wall]) -> u64 {
+    let mut m = 0u64;
+    for (wi, wall) in walls.iter().enumerate().take(64) {
+        if wall.motion.velocity == glam::DVec3::ZERO
+            && wall.motion.angular_velocity == glam::DVec3::ZERO
+        {
+            m |= 1 << wi;
+        }
+    }
+    m
 }
 
 /// Recomputes the per-sphere topology arrays from the bodies (storage order).
