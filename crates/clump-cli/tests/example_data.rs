@@ -152,3 +152,68 @@ fn shipped_rock_template_is_what_from_mesh_gives() {
         }
     }
 }
+
+/// The throughput comparison of the README: writes into `$CLUMP_BENCH_DIR`
+/// (default `target/bench-drum`) `data/drum_1e5.stl` (the drum of
+/// examples/drum_mesh.toml with 910 facets round and edges ≤ 2.5 mm:
+/// 100 100 triangles), `drum_mesh_1e5.toml` (examples/drum_mesh.toml reading
+/// it) and `drum_analytic.toml` (the same drum as an analytic cylinder and
+/// two end planes, all turning with the drum). Run with
+/// `cargo test --release -p clump-cli --test example_data -- --ignored`,
+/// then `clump run` both scenarios and compare the `sphere_steps_per_s` of
+/// their manifest.json.
+#[test]
+#[ignore]
+fn write_drum_benchmark() {
+    let dir = std::env::var_os("CLUMP_BENCH_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../target/bench-drum"));
+    std::fs::create_dir_all(dir.join("data")).unwrap();
+    let (v, t) = cylinder(0.05, 0.04, 910, 0.0025);
+    assert!(t.len() >= 100_000, "{} triangles", t.len());
+    std::fs::write(dir.join("data/drum_1e5.stl"), stl_binary(&v, &t)).unwrap();
+    let example = std::fs::read_to_string(data_dir().join("../drum_mesh.toml")).unwrap();
+    let mesh = example.replace("data/drum.stl", "data/drum_1e5.stl");
+    assert_ne!(mesh, example);
+    std::fs::write(dir.join("drum_mesh_1e5.toml"), mesh).unwrap();
+    // the analytic drum: replace the [[wall]] and the stage's wall change
+    let a = example.find("[[wall]]").unwrap();
+    let b = example.find("[[stage]]").unwrap();
+    let walls = r#"[[wall]]
+name = "drum"
+material = "steel"
+type = "cylinder"
+point = [0.0, 0.0, 0.0]
+axis = [0.0, 1.0, 0.0]
+radius = 0.05
+inside = true
+
+[[wall]]
+name = "end_front"
+material = "steel"
+type = "plane"
+point = [0.0, -0.02, 0.0]
+normal = [0.0, 1.0, 0.0]
+
+[[wall]]
+name = "end_back"
+material = "steel"
+type = "plane"
+point = [0.0, 0.02, 0.0]
+normal = [0.0, -1.0, 0.0]
+
+"#;
+    let mut analytic = format!("{}{walls}{}", &example[..a], &example[b..]);
+    let change = "[[stage.wall]]\nname = \"drum\"\nangular_velocity = [0.0, 3.0, 0.0]";
+    let c = analytic.find(change).unwrap();
+    let ends: String = ["end_front", "end_back"]
+        .iter()
+        .map(|n| {
+            format!(
+                "\n[[stage.wall]]\nname = \"{n}\"\nangular_velocity = [0.0, 3.0, 0.0]\ncenter = [0.0, 0.0, 0.0]"
+            )
+        })
+        .collect();
+    analytic.insert_str(c + change.len(), &ends);
+    std::fs::write(dir.join("drum_analytic.toml"), analytic).unwrap();
+}
