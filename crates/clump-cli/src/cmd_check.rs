@@ -141,10 +141,26 @@ fn report(sc: &Scenario) {
     println!("  expected in total: {nb:.0} bodies, {ns:.0} spheres");
     println!("\nwalls:");
     for w in &sc.walls {
+        let shape = match w.shape.mesh_pose() {
+            Some((m, _, _)) => match sc.meshes.get(m as usize) {
+                Some(mesh) => {
+                    let (lo, hi) = mesh.bounds();
+                    format!(
+                        "mesh: {} triangles ({} of zero area dropped), {} vertices, bounds [{:.4}, {:.4}, {:.4}] .. [{:.4}, {:.4}, {:.4}] m, merge angle {:.1} deg",
+                        mesh.triangles().len(),
+                        mesh.dropped_triangles(),
+                        mesh.vertices().len(),
+                        lo.x, lo.y, lo.z, hi.x, hi.y, hi.z,
+                        mesh.merge_angle.to_degrees()
+                    )
+                }
+                None => format!("{:?}", w.shape),
+            },
+            None => format!("{:?}", w.shape),
+        };
         println!(
-            "  {:<16} {:?}{}",
+            "  {:<16} {shape}{}",
             w.name,
-            w.shape,
             if w.active { "" } else { " (inactive at start)" }
         );
     }

@@ -31,7 +31,15 @@ fn the_four_examples_exist() {
         .iter()
         .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
         .collect();
-    for want in ["stones", "hopper", "drum", "t_handle"] {
+    for want in [
+        "stones",
+        "hopper",
+        "drum",
+        "t_handle",
+        "hopper_mesh",
+        "drum_mesh",
+        "rock_pour",
+    ] {
         assert!(
             names.iter().any(|n| n == want),
             "examples/{want}.toml is missing (found {names:?})"

@@ -6,71 +6,8 @@ use clump_core::shape::from_mesh::{
 };
 use clump_core::wall::{MeshError, TriMesh};
 use glam::{DQuat, DVec3};
-use std::collections::HashMap;
 
-/// Unit icosphere subdivided `level` times (outward winding).
-fn icosphere(level: usize) -> (Vec<DVec3>, Vec<[u32; 3]>) {
-    let p = (1.0 + 5f64.sqrt()) / 2.0;
-    let mut v: Vec<DVec3> = [
-        (-1.0, p, 0.0),
-        (1.0, p, 0.0),
-        (-1.0, -p, 0.0),
-        (1.0, -p, 0.0),
-        (0.0, -1.0, p),
-        (0.0, 1.0, p),
-        (0.0, -1.0, -p),
-        (0.0, 1.0, -p),
-        (p, 0.0, -1.0),
-        (p, 0.0, 1.0),
-        (-p, 0.0, -1.0),
-        (-p, 0.0, 1.0),
-    ]
-    .iter()
-    .map(|&(x, y, z)| DVec3::new(x, y, z).normalize())
-    .collect();
-    let mut t: Vec<[u32; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    for _ in 0..level {
-        let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
-        let mut nt = Vec::with_capacity(t.len() * 4);
-        for tri in &t {
-            let mut m = [0u32; 3];
-            for k in 0..3 {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                m[k] = *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                    v.push(((v[a as usize] + v[b as usize]) * 0.5).normalize());
-                    v.len() as u32 - 1
-                });
-            }
-            nt.push([tri[0], m[0], m[2]]);
-            nt.push([tri[1], m[1], m[0]]);
-            nt.push([tri[2], m[2], m[1]]);
-            nt.push(m);
-        }
-        t = nt;
-    }
-    (v, t)
-}
+use clump_core::wall::mesh::primitives::icosphere;
 
 #[test]
 fn polyhedron_properties_of_a_box() {

@@ -125,6 +125,22 @@ pub type RawMesh = (Vec<DVec3>, Vec<[u32; 3]>);
 /// it with `t`.
 pub fn read_mesh_file(path: impl AsRef<Path>, t: &MeshTransform) -> Result<TriMesh, MeshFileError> {
     let path = path.as_ref();
+    let bytes = std::fs::read(path).map_err(|source| MeshFileError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    read_mesh_bytes(&bytes, path, t)
+}
+
+/// Like [`read_mesh_file`] for the `bytes` of a file named `path` (the
+/// format is taken from the extension of `path`; it is also the name used in
+/// errors). Used for meshes referenced by scenario files, whose bytes are
+/// stored in checkpoints.
+pub fn read_mesh_bytes(
+    bytes: &[u8],
+    path: &Path,
+    t: &MeshTransform,
+) -> Result<TriMesh, MeshFileError> {
     let pb = || path.to_path_buf();
     if !(t.scale.is_finite() && t.scale > 0.0) {
         return Err(MeshFileError::BadScale {
@@ -136,15 +152,14 @@ pub fn read_mesh_file(path: impl AsRef<Path>, t: &MeshTransform) -> Result<TriMe
         .extension()
         .and_then(|e| e.to_str())
         .map(|e| e.to_ascii_lowercase());
-    let bytes = std::fs::read(path).map_err(|source| MeshFileError::Io { path: pb(), source })?;
     let syntax = |(line, message): (usize, String)| MeshFileError::Syntax {
         path: pb(),
         line,
         message,
     };
     let (v, tri) = match ext.as_deref() {
-        Some("stl") => parse_stl(&bytes).map_err(syntax)?,
-        Some("obj") => parse_obj(&bytes).map_err(syntax)?,
+        Some("stl") => parse_stl(bytes).map_err(syntax)?,
+        Some("obj") => parse_obj(bytes).map_err(syntax)?,
         _ => return Err(MeshFileError::UnknownFormat { path: pb() }),
     };
     let v = v.into_iter().map(|p| t.apply(p)).collect();

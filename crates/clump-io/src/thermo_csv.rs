@@ -6,7 +6,13 @@
 //! `ke_rotational` (J), `elastic_energy` (J), `potential_energy` (J),
 //! `max_overlap_ratio`, `lost_bodies`, then per wall
 //! `<name>_fx,<name>_fy,<name>_fz` (N) and `<name>_tx,<name>_ty,<name>_tz`
-//! (N m, about the wall's motion centre): the load the particles exert on it.
+//! (N m, about the wall's `torque_point`, by default its motion centre): the
+//! load the particles exert on it; for a wall that moves (in any stage) also
+//! `<name>_power` (W): the power the wall's rigid motion delivers to the
+//! particles, `−(F·v + T_c·ω)` with the load `F` and the torque `T_c` about
+//! the centre of rotation exerted on the wall by the particles, and the wall's
+//! velocity `v` and angular velocity `ω` (a conveyor's `surface_velocity` is
+//! not included).
 //!
 //! The file is an append-only log: each row is flushed as it is written, so
 //! an interrupted run keeps every row written so far (a row cut by a crash is
@@ -25,8 +31,30 @@ use std::path::{Path, PathBuf};
 pub struct ThermoWriter {
     path: PathBuf,
     header: String,
-    n_walls: usize,
+    power: Vec<bool>,
     out: BufWriter<File>,
+}
+
+/// The columns of one wall.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WallColumns {
+    /// The wall's name.
+    pub name: String,
+    /// Whether it has a `<name>_power` column.
+    pub power: bool,
+}
+
+impl WallColumns {
+    /// Force and torque columns only, for each name.
+    pub fn plain(names: &[String]) -> Vec<WallColumns> {
+        names
+            .iter()
+            .map(|n| WallColumns {
+                name: n.clone(),
+                power: false,
+            })
+            .collect()
+    }
 }
 
 /// Formats a float so that it reads back exactly (shortest round-trip),
@@ -63,13 +91,18 @@ pub fn column_name(name: &str) -> String {
 impl ThermoWriter {
     /// The header line (without newline) for the given wall names.
     pub fn header(wall_names: &[String]) -> String {
+        Self::header_walls(&WallColumns::plain(wall_names))
+    }
+
+    /// The header line (without newline) for the given walls.
+    pub fn header_walls(walls: &[WallColumns]) -> String {
         let mut h = String::from(
             "time,step,bodies,contacts,pair_contacts,wall_contacts,ke_translational,ke_rotational,\
              elastic_energy,potential_energy,max_overlap_ratio,lost_bodies",
         );
         let mut used: Vec<String> = Vec::new();
-        for (i, n) in wall_names.iter().enumerate() {
-            let mut c = column_name(n);
+        for (i, w) in walls.iter().enumerate() {
+            let mut c = column_name(&w.name);
             if used.contains(&c) {
                 c = format!("{c}_{i}");
             }
@@ -77,16 +110,25 @@ impl ThermoWriter {
             for s in ["fx", "fy", "fz", "tx", "ty", "tz"] {
                 h.push_str(&format!(",{c}_{s}"));
             }
+            if w.power {
+                h.push_str(&format!(",{c}_power"));
+            }
         }
         h
     }
 
-    /// Creates (truncates) `path` and writes the header.
+    /// Creates (truncates) `path` and writes the header (force and torque
+    /// columns per wall).
     pub fn create(path: impl AsRef<Path>, wall_names: &[String]) -> io::Result<Self> {
+        Self::create_walls(path, &WallColumns::plain(wall_names))
+    }
+
+    /// Creates (truncates) `path` and writes the header for `walls`.
+    pub fn create_walls(path: impl AsRef<Path>, walls: &[WallColumns]) -> io::Result<Self> {
         let path = path.as_ref().to_path_buf();
-        let header = Self::header(wall_names);
+        let header = Self::header_walls(walls);
         write_atomic(&path, format!("{header}\n").as_bytes())?;
-        Self::open_append(path, header, wall_names.len())
+        Self::open_append(path, header, walls)
     }
 
     /// Reopens `path` for a resumed run: keeps the header and the complete
@@ -98,11 +140,22 @@ impl ThermoWriter {
         wall_names: &[String],
         resume_step: u64,
     ) -> io::Result<Self> {
+        Self::resume_walls(path, &WallColumns::plain(wall_names), resume_step)
+    }
+
+    /// [`ThermoWriter::resume`] for `walls`.
+    pub fn resume_walls(
+        path: impl AsRef<Path>,
+        walls: &[WallColumns],
+        resume_step: u64,
+    ) -> io::Result<Self> {
         let path = path.as_ref().to_path_buf();
-        let header = Self::header(wall_names);
+        let header = Self::header_walls(walls);
         let text = match std::fs::read(&path) {
             Ok(b) => String::from_utf8_lossy(&b).into_owned(),
-            Err(e) if e.kind() == io::ErrorKind::NotFound => return Self::create(path, wall_names),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => {
+                return Self::create_walls(path, walls)
+            }
             Err(e) => {
                 return Err(io::Error::new(
                     e.kind(),
@@ -136,10 +189,10 @@ impl ThermoWriter {
             }
         }
         write_atomic(&path, keep.as_bytes())?;
-        Self::open_append(path, header, wall_names.len())
+        Self::open_append(path, header, walls)
     }
 
-    fn open_append(path: PathBuf, header: String, n_walls: usize) -> io::Result<Self> {
+    fn open_append(path: PathBuf, header: String, walls: &[WallColumns]) -> io::Result<Self> {
         let f = OpenOptions::new().append(true).open(&path).map_err(|e| {
             io::Error::new(
                 e.kind(),
@@ -149,7 +202,7 @@ impl ThermoWriter {
         Ok(ThermoWriter {
             path,
             header,
-            n_walls,
+            power: walls.iter().map(|w| w.power).collect(),
             out: BufWriter::new(f),
         })
     }
@@ -164,8 +217,14 @@ impl ThermoWriter {
         &self.header
     }
 
-    /// Appends one row and flushes it to the file.
+    /// Appends one row and flushes it to the file (power columns, if any, 0).
     pub fn write(&mut self, t: &Thermo) -> io::Result<()> {
+        self.write_row(t, &[])
+    }
+
+    /// Appends one row with `power[i]` (W) in the power column of wall `i`
+    /// (0 where `power` is shorter), and flushes it to the file.
+    pub fn write_row(&mut self, t: &Thermo, power: &[f64]) -> io::Result<()> {
         let mut row = format!(
             "{},{},{},{},{},{},{},{},{},{},{},{}",
             fmt_f64(t.time),
@@ -181,13 +240,17 @@ impl ThermoWriter {
             fmt_f64(t.max_overlap_ratio),
             t.lost_bodies
         );
-        for i in 0..self.n_walls {
+        for (i, &has_power) in self.power.iter().enumerate() {
             let l = t.wall_loads.get(i).copied().unwrap_or_default();
             for v in [
                 l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z,
             ] {
                 row.push(',');
                 row.push_str(&fmt_f64(v));
+            }
+            if has_power {
+                row.push(',');
+                row.push_str(&fmt_f64(power.get(i).copied().unwrap_or(0.0)));
             }
         }
         row.push('\n');

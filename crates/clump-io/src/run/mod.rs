@@ -27,13 +27,15 @@
 
 use crate::checkpoint::{read_checkpoint, write_checkpoint};
 use crate::scenario::{self, Files, InsertSpec, Scenario, ScenarioError};
-use crate::thermo_csv::ThermoWriter;
+use crate::thermo_csv::{ThermoWriter, WallColumns};
 use crate::trajectory::TrajectoryWriter;
 use crate::vtk::VtkSeries;
 use clump_core::insert::{pack, StreamInserter};
 use clump_core::shape::ClumpTemplate;
 use clump_core::state::WorldState;
+use clump_core::thermo::Thermo;
 use clump_core::world::World;
+use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -230,6 +232,43 @@ impl RunSummary {
     }
 }
 
+/// The thermo columns of every wall: a power column for the walls that move
+/// at the start or are set moving by a stage.
+fn wall_columns(scenario: &Scenario) -> Vec<WallColumns> {
+    let moving = |v: DVec3| v != DVec3::ZERO;
+    scenario
+        .walls
+        .iter()
+        .enumerate()
+        .map(|(i, w)| {
+            let staged = scenario.stages.iter().flat_map(|s| &s.walls).any(|c| {
+                c.wall == i
+                    && (c.velocity.is_some_and(moving) || c.angular_velocity.is_some_and(moving))
+            });
+            WallColumns {
+                name: w.name.clone(),
+                power: staged || moving(w.motion.velocity) || moving(w.motion.angular_velocity),
+            }
+        })
+        .collect()
+}
+
+/// The world's thermo row with each wall's torque taken about its torque
+/// point (`T_P = T_c + (c − P) × F`, world frame), and the power each wall's
+/// rigid motion delivers to the particles, `−(F·v + T_c·ω)` (W).
+fn wall_thermo(world: &World, torque_points: &[Option<DVec3>]) -> (Thermo, Vec<f64>) {
+    let mut t = world.thermo();
+    let mut power = Vec::with_capacity(t.wall_loads.len());
+    for (i, (l, w)) in t.wall_loads.iter_mut().zip(&world.walls).enumerate() {
+        let m = &w.motion;
+        power.push(-(l.force.dot(m.velocity) + l.torque.dot(m.angular_velocity)));
+        if let Some(p) = torque_points.get(i).copied().flatten() {
+            l.torque += (m.center - p).cross(l.force);
+        }
+    }
+    (t, power)
+}
+
 struct Outputs {
     dir: PathBuf,
     vtk: Option<VtkSeries>,
@@ -260,7 +299,7 @@ impl Runner {
         crate::atomic::write_atomic(outdir.join("scenario.toml"), scenario.text.as_bytes())
             .map_err(rt("cannot copy the scenario"))?;
         let o = &scenario.output;
-        let wall_names: Vec<String> = scenario.walls.iter().map(|w| w.name.clone()).collect();
+        let wall_columns = wall_columns(&scenario);
         let out = Outputs {
             dir: outdir.to_path_buf(),
             vtk: match o.vtk {
@@ -269,7 +308,7 @@ impl Runner {
             },
             thermo: match o.thermo {
                 Some(_) => Some(
-                    ThermoWriter::create(outdir.join("thermo.csv"), &wall_names)
+                    ThermoWriter::create_walls(outdir.join("thermo.csv"), &wall_columns)
                         .map_err(rt("cannot create thermo.csv"))?,
                 ),
                 None => None,
@@ -360,7 +399,7 @@ impl Runner {
         crate::atomic::write_atomic(outdir.join("scenario.toml"), scenario.text.as_bytes())
             .map_err(rt("cannot copy the scenario"))?;
         let o = &scenario.output;
-        let wall_names: Vec<String> = scenario.walls.iter().map(|w| w.name.clone()).collect();
+        let wall_columns = wall_columns(&scenario);
         let (step, time) = (world.step, world.time);
         let out = Outputs {
             dir: outdir.clone(),
@@ -372,7 +411,7 @@ impl Runner {
             },
             thermo: match o.thermo {
                 Some(_) => Some(
-                    ThermoWriter::resume(outdir.join("thermo.csv"), &wall_names, step)
+                    ThermoWriter::resume_walls(outdir.join("thermo.csv"), &wall_columns, step)
                         .map_err(rt("cannot resume thermo.csv"))?,
                 ),
                 None => None,
@@ -613,7 +652,8 @@ impl Runner {
         }
         if let (Some(every), Some(th)) = (o.thermo, self.out.thermo.as_mut()) {
             if step >= self.st.next_thermo || (finished && self.st.last_thermo != Some(step)) {
-                th.write(&self.world.thermo())
+                let (thermo, power) = wall_thermo(&self.world, &self.scenario.torque_points);
+                th.write_row(&thermo, &power)
                     .map_err(rt("cannot write thermo.csv"))?;
                 self.st.last_thermo = Some(step);
                 self.st.next_thermo = step + every;

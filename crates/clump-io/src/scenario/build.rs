@@ -21,7 +21,7 @@ use clump_core::insert::{
 };
 use clump_core::multi_contact::MultiContact;
 use clump_core::shape::{self, ClumpTemplate, ShapeError, Sphere};
-use clump_core::wall::{Wall, WallMotion, WallShape};
+use clump_core::wall::{TriMesh, Wall, WallMotion, WallShape};
 use clump_core::world::{AddedMass, WorldConfig};
 use glam::{DMat3, DQuat, DVec3};
 use std::collections::HashMap;
@@ -120,6 +120,21 @@ impl Cx<'_> {
             );
         }
         Ok(v / l)
+    }
+
+    /// Reads a file the scenario refers to (`what`: "template", "mesh", …);
+    /// the error points at `path` and says where relative paths start.
+    fn read_file(&mut self, path: &[Seg], what: &str, f: &str) -> R<Vec<u8>> {
+        match self.files.read(f) {
+            Ok(b) => Ok(b),
+            Err(e) => Err(self
+                .err(path, format!("cannot read {what} file '{f}': {e}"))
+                .label("file not readable")
+                .note(format!(
+                    "note: paths are relative to the scenario file's folder ({})",
+                    self.files.base_display()
+                ))),
+        }
     }
 
     fn warn_later(&self, _path: &[Seg], _msg: String) {
@@ -525,8 +540,15 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     // ---------------- walls
     let mut wall_names: Vec<String> = Vec::new();
     let mut walls: Vec<Wall> = Vec::new();
+    let mut meshes: Vec<TriMesh> = Vec::new();
+    let mut torque_points: Vec<Option<DVec3>> = Vec::new();
     for (i, w) in raw.wall.iter().enumerate() {
-        let wall = build_wall(cx, i, w, &material_names, &wall_names)?;
+        let wall = build_wall(cx, i, w, &material_names, &wall_names, &mut meshes)?;
+        torque_points.push(
+            w.torque_point
+                .map(|a| cx.vec3(&[K("wall"), I(i), K("torque_point")], a, "torque_point"))
+                .transpose()?,
+        );
         wall_names.push(wall.name.clone());
         walls.push(wall);
     }
@@ -728,6 +750,8 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         mixes,
         inserts,
         walls,
+        meshes,
+        torque_points,
         config,
         time_step,
         stages,
@@ -969,14 +993,7 @@ fn build_template(
             .map(|s| Sphere::new(DVec3::new(s[0], s[1], s[2]), s[3]))
             .collect()
     } else if let Some(f) = &t.file {
-        let bytes = cx.files.read(f).map_err(|e| {
-            cx.err(&p("file"), format!("cannot read template file '{f}': {e}"))
-                .label("file not readable")
-                .note(format!(
-                    "note: paths are relative to the scenario file's folder ({})",
-                    cx.files.base_display()
-                ))
-        })?;
+        let bytes = cx.read_file(&p("file"), "template", f)?;
         crate::template_file::parse_template_bytes(&bytes, std::path::Path::new(f))
             .map_err(|e| cx.err(&p("file"), format!("template file '{f}' is invalid: {e}")))?
     } else {
@@ -1181,6 +1198,7 @@ fn build_wall(
     w: &RawWall,
     material_names: &[String],
     seen: &[String],
+    meshes: &mut Vec<TriMesh>,
 ) -> R<Wall> {
     let tp = [K("wall"), I(i)];
     let p = |k: &'static str| [K("wall"), I(i), K(k)];
@@ -1199,18 +1217,20 @@ fn build_wall(
             &tp,
             "[[wall]]",
             "type",
-            "type = \"plane\" (or \"cylinder\", \"box\")",
+            "type = \"plane\" (or \"cylinder\", \"box\", \"mesh\")",
         )
     })?;
     let allowed: &[&str] = match kind {
         WallKind::Plane => &["point", "normal"],
         WallKind::Cylinder => &["point", "axis", "radius", "inside"],
         WallKind::Box => &["lo", "hi", "inside"],
+        WallKind::Mesh => &["file", "scale", "rotation", "offset", "merge_angle"],
     };
     let kname = match kind {
         WallKind::Plane => "plane",
         WallKind::Cylinder => "cylinder",
         WallKind::Box => "box",
+        WallKind::Mesh => "mesh",
     };
     for (k, present) in [
         ("point", w.point.is_some()),
@@ -1220,6 +1240,11 @@ fn build_wall(
         ("inside", w.inside.is_some()),
         ("lo", w.lo.is_some()),
         ("hi", w.hi.is_some()),
+        ("file", w.file.is_some()),
+        ("scale", w.scale.is_some()),
+        ("rotation", w.rotation.is_some()),
+        ("offset", w.offset.is_some()),
+        ("merge_angle", w.merge_angle.is_some()),
     ] {
         if present && !allowed.contains(&k) {
             return Err(cx
@@ -1300,12 +1325,21 @@ fn build_wall(
                 inside: w.inside.unwrap_or(true),
             }
         }
+        WallKind::Mesh => {
+            let mesh = build_mesh(cx, i, w)?;
+            meshes.push(mesh);
+            WallShape::Mesh {
+                mesh: meshes.len() as u32 - 1,
+                position: DVec3::ZERO,
+                orientation: DQuat::IDENTITY,
+            }
+        }
     };
     let default_center = match shape {
         WallShape::Plane { point, .. } | WallShape::Cylinder { point, .. } => point,
         WallShape::Box { lo, hi, .. } => 0.5 * (lo + hi),
-        #[allow(unreachable_patterns)]
-        _ => DVec3::ZERO,
+        // the image of the file's origin
+        WallShape::Mesh { .. } => w.offset.map(v3).unwrap_or_default(),
     };
     let o3 = |cx: &Cx, k: &'static str, v: Option<[f64; 3]>| -> R<DVec3> {
         v.map(|a| cx.vec3(&p(k), a, k))
@@ -1329,6 +1363,85 @@ fn build_wall(
         multi_contact: w.multi_contact.unwrap_or_default(),
         active: w.active.unwrap_or(true),
     })
+}
+
+/// Reads and places the mesh of a `type = "mesh"` wall: file point `p`
+/// becomes `offset + R(axis, angle) · (scale · p)` (world frame, m).
+fn build_mesh(cx: &mut Cx, i: usize, w: &RawWall) -> R<TriMesh> {
+    let tp = [K("wall"), I(i)];
+    let p = |k: &'static str| [K("wall"), I(i), K(k)];
+    let f = w.file.as_ref().ok_or_else(|| {
+        cx.missing(
+            &tp,
+            "[[wall]] of type \"mesh\"",
+            "file",
+            "an STL or OBJ file relative to the scenario, file = \"data/hopper.stl\"",
+        )
+    })?;
+    let scale = match w.scale {
+        Some(s) => cx.positive(&p("scale"), s, "scale", "")?,
+        None => 1.0,
+    };
+    let offset = match w.offset {
+        Some(o) => cx.vec3(&p("offset"), o, "offset")?,
+        None => DVec3::ZERO,
+    };
+    let rotation = match &w.rotation {
+        None => DQuat::IDENTITY,
+        Some(r) => {
+            let rp = |k: &'static str| [K("wall"), I(i), K("rotation"), K(k)];
+            let what = "'rotation' of a [[wall]] of type \"mesh\"";
+            let axis = r.axis.ok_or_else(|| {
+                cx.missing(
+                    &p("rotation"),
+                    what,
+                    "axis",
+                    "rotation = { axis = [1, 0, 0], angle = 90 }",
+                )
+            })?;
+            let angle = r.angle.ok_or_else(|| {
+                cx.missing(
+                    &p("rotation"),
+                    what,
+                    "angle",
+                    "the angle in degrees, e.g. angle = 90",
+                )
+            })?;
+            let axis = cx.unit(&rp("axis"), axis, "axis")?;
+            if !angle.is_finite() {
+                return Err(cx.err(
+                    &rp("angle"),
+                    format!("'angle' must be finite (degrees), found {angle}"),
+                ));
+            }
+            DQuat::from_axis_angle(axis, angle.to_radians())
+        }
+    };
+    let merge_angle = match w.merge_angle {
+        None => clump_core::wall::mesh::DEFAULT_MERGE_ANGLE,
+        Some(a) if a.is_finite() && (0.0..90.0).contains(&a) => a.to_radians(),
+        Some(a) => {
+            return Err(cx
+                .err(
+                    &p("merge_angle"),
+                    format!("'merge_angle' must be in [0, 90) degrees, found {a}"),
+                )
+                .label("out of range"))
+        }
+    };
+    let bytes = cx.read_file(&p("file"), "mesh", f)?;
+    let t = crate::mesh_file::MeshTransform {
+        scale,
+        rotation,
+        offset,
+    };
+    let mut mesh = crate::mesh_file::read_mesh_bytes(&bytes, std::path::Path::new(f), &t)
+        .map_err(|e| {
+            cx.err(&p("file"), format!("mesh file '{f}' is invalid: {e}"))
+                .note("help: a mesh wall needs an STL (ASCII or binary) or OBJ file with at least one triangle of non-zero area")
+        })?;
+    mesh.merge_angle = merge_angle;
+    Ok(mesh)
 }
 
 fn build_region(cx: &Cx, base: &[Seg], r: &RawRegion) -> R<Region> {
@@ -1503,14 +1616,7 @@ fn build_insert(
                 "a CSV file of bodies, relative to the scenario",
             )
         })?;
-        let bytes = cx.files.read(f).map_err(|e| {
-            cx.err(&p("file"), format!("cannot read body file '{f}': {e}"))
-                .label("file not readable")
-                .note(format!(
-                    "note: paths are relative to the scenario file's folder ({})",
-                    cx.files.base_display()
-                ))
-        })?;
+        let bytes = cx.read_file(&p("file"), "body", f)?;
         let default_template = match &ins.template {
             Some(t) => Some(lookup(cx, &p("template"), "template", t, template_names)? as u32),
             None => None,

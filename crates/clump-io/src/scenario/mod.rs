@@ -131,6 +131,9 @@ impl Scenario {
                 .add_template(t.template.clone(), t.material)
                 .map_err(|e| e.to_string())?;
         }
+        for m in &self.meshes {
+            world.add_mesh(m.clone());
+        }
         for w in &self.walls {
             world.add_wall(w.clone()).map_err(|e| e.to_string())?;
         }

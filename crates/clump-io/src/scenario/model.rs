@@ -6,7 +6,7 @@ use clump_core::body::BodyInit;
 use clump_core::contact::{Material, PairProperties};
 use clump_core::insert::{Mix, PackSpec, StreamSpec};
 use clump_core::shape::ClumpTemplate;
-use clump_core::wall::Wall;
+use clump_core::wall::{TriMesh, Wall};
 use clump_core::world::WorldConfig;
 use glam::DVec3;
 use std::collections::BTreeMap;
@@ -36,6 +36,14 @@ pub struct Scenario {
     pub inserts: Vec<InsertDef>,
     /// Walls at the start of the run.
     pub walls: Vec<Wall>,
+    /// Triangle meshes of the mesh walls (index = `WallShape::Mesh::mesh`),
+    /// read from their files with scale, rotation and offset applied (world
+    /// frame at the start of the run, m).
+    pub meshes: Vec<TriMesh>,
+    /// Per wall (index-aligned with `walls`): the fixed world point (m) about
+    /// which its torque is reported in `thermo.csv`; `None`: about its
+    /// centre of rotation, which moves with the wall.
+    pub torque_points: Vec<Option<DVec3>>,
     /// Engine settings at the start (gravity of the first stage, dt, …).
     pub config: WorldConfig,
     /// How the time step was chosen.

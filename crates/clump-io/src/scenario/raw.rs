@@ -432,6 +432,18 @@ pub enum WallKind {
     Cylinder,
     /// Axis-aligned box.
     Box,
+    /// Triangle mesh from an STL or OBJ file.
+    Mesh,
+}
+
+/// A rotation given as an axis and an angle (right-hand rule).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRotation {
+    /// Rotation axis, world frame (normalised; need not be unit).
+    pub axis: Option<[f64; 3]>,
+    /// Rotation angle, degrees (positive: counter-clockwise looking down the axis).
+    pub angle: Option<f64>,
 }
 
 /// `[[wall]]`.
@@ -442,9 +454,23 @@ pub struct RawWall {
     pub name: Option<String>,
     /// Material name.
     pub material: Option<String>,
-    /// `"plane"`, `"cylinder"`, `"box"`.
+    /// `"plane"`, `"cylinder"`, `"box"`, `"mesh"`.
     #[serde(rename = "type")]
     pub kind: Option<WallKind>,
+    /// Mesh: STL or OBJ file, relative to the scenario file.
+    pub file: Option<String>,
+    /// Mesh: factor from file units to m (default 1).
+    pub scale: Option<f64>,
+    /// Mesh: rotation applied after scaling (file frame → world frame).
+    pub rotation: Option<RawRotation>,
+    /// Mesh: translation applied last, world frame, m (default 0).
+    pub offset: Option<[f64; 3]>,
+    /// Mesh: contacts whose normals are closer than this angle are one
+    /// contact patch, degrees (default 15).
+    pub merge_angle: Option<f64>,
+    /// Point about which the torque on the wall is reported, world frame, m
+    /// (default: the centre of rotation, moving with the wall).
+    pub torque_point: Option<[f64; 3]>,
     /// Plane: a point; cylinder: a point on the axis, m.
     pub point: Option<[f64; 3]>,
     /// Plane unit normal (towards the particles).

@@ -10,7 +10,8 @@ pub fn unit_of(key: &str) -> Option<&'static str> {
         | "std" => "",
         "kn" | "kt" => "N/m",
         "radius" | "spacing" | "edge" | "skin" | "height" | "lo" | "hi" | "point" | "center"
-        | "base" | "spheres" => "m",
+        | "base" | "spheres" | "offset" | "torque_point" => "m",
+        "angle" | "merge_angle" => "deg",
         "mass" => "kg",
         "inertia" => "kg m^2",
         "dt" | "duration" | "every" | "start" | "end" => "s",

@@ -39,6 +39,16 @@ def line_of(text, marker, nth=1):
     return text[:pos].count("\n") + 1
 
 
+# a mesh wall appended at the end of the base scenario (after [output], so
+# it starts its own [[wall]] table)
+MESH = """
+[[wall]]
+name = "funnel"
+material = "steel"
+type = "mesh"
+%s
+"""
+
 CASES = [
     ("unknown_key_pair", rep("restitution = 0.4", "restitutoin = 0.4"), "restitutoin",
      ["unknown key 'restitutoin' in [[pair]]", "did you mean 'restitution'?"]),
@@ -145,6 +155,30 @@ CASES = [
      ["'dt' must be > 0 s, found -0.00001"]),
     ("dt_bad_string", rep('dt = "auto"', 'dt = "fast"'), '"fast"',
      ["wrong type for 'dt' in [simulation]", "\"auto\""]),
+    ("mesh_file_missing", append(MESH % 'file = "no_such_hopper.stl"'), "no_such_hopper.stl",
+     ["cannot read mesh file 'no_such_hopper.stl'", "relative to the scenario file"]),
+    ("mesh_file_malformed", append(MESH % 'file = "data_bad_mesh.stl"'), "data_bad_mesh.stl",
+     ["mesh file 'data_bad_mesh.stl' is invalid", "data_bad_mesh.stl:5"]),
+    ("mesh_file_unknown_format", append(MESH % 'file = "data_bad_template.txt"'), 'data_bad_template.txt',
+     ["unknown mesh format (expected a .stl or .obj file)"]),
+    ("mesh_without_file", append(MESH % 'scale = 0.001'), "[[wall]]",
+     ["missing key 'file' in [[wall]] of type \"mesh\""], 3),
+    ("mesh_unknown_key", append(MESH % 'file = "data_floor.obj"\nrotaton = { axis = [1, 0, 0], angle = 90 }'), "rotaton",
+     ["unknown key 'rotaton' in [[wall]]", "did you mean 'rotation'?", "torque_point"]),
+    ("mesh_with_radius", append(MESH % 'file = "data_floor.obj"\nradius = 0.1'), "radius = 0.1",
+     ["'radius' does not apply to a wall of type \"mesh\"", "file, scale, rotation, offset, merge_angle"]),
+    ("mesh_rotation_without_angle", append(MESH % 'file = "data_floor.obj"\nrotation = { axis = [1, 0, 0] }'), "rotation =",
+     ["missing key 'angle' in 'rotation' of a [[wall]] of type \"mesh\"", "degrees"]),
+    ("mesh_rotation_unknown_key", append(MESH % 'file = "data_floor.obj"\nrotation = { axis = [1, 0, 0], degrees = 90 }'), "degrees",
+     ["unknown key 'degrees'", "allowed keys: axis, angle"]),
+    ("mesh_rotation_zero_axis", append(MESH % 'file = "data_floor.obj"\nrotation = { axis = [0, 0, 0], angle = 90 }'), "axis = [0, 0, 0]",
+     ["'axis' must be a non-zero direction vector"]),
+    ("mesh_negative_scale", append(MESH % 'file = "data_floor.obj"\nscale = -0.001'), "scale = -0.001",
+     ["'scale' must be > 0, found -0.001"]),
+    ("mesh_merge_angle_out_of_range", append(MESH % 'file = "data_floor.obj"\nmerge_angle = 120'), "merge_angle",
+     ["'merge_angle' must be in [0, 90) degrees, found 120"]),
+    ("plane_with_file", rep('normal = [0.0, 0.0, 1.0]\n', 'normal = [0.0, 0.0, 1.0]\nfile = "data_floor.obj"\n'), 'file = "data_floor.obj"',
+     ["'file' does not apply to a wall of type \"plane\""]),
 ]
 
 

@@ -36,6 +36,7 @@
 pub mod bvh;
 pub mod closest;
 mod contact;
+pub mod primitives;
 
 pub use contact::{MeshContact, MAX_MESH_CONTACTS};
 
