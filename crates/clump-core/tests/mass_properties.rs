@@ -58,6 +58,18 @@ fn reference_table_two_spheres() {
     for (d, v, ia, it, nv, nia, nit) in table {
         let a = d / 2.0;
         let p = mass_properties(&pair(a), 1.0).unwrap();
+        eprintln!(
+            "REFERENCE §2 d={d}: rel. error vs closed form V {:.1e}, I_axis {:.1e}, I_trans {:.1e}/{:.1e}; vs table V {:.1e} I_axis {:.1e} I_trans {:.1e}; reported bound {:.1e}; naive V error {:+.1} %",
+            rel(p.volume, ref_volume(a)),
+            rel(p.principal_moments.x, ref_axis(a)),
+            rel(p.principal_moments.y, ref_trans(a)),
+            rel(p.principal_moments.z, ref_trans(a)),
+            rel(p.volume, v),
+            rel(p.principal_moments.x, ia),
+            rel(p.principal_moments.y, it),
+            p.relative_error_bound,
+            100.0 * (p.naive_volume / p.volume - 1.0)
+        );
         // Closed forms, tight.
         assert!(rel(p.volume, ref_volume(a)) < 1e-9, "d={d}: V {}", p.volume);
         assert!(rel(p.principal_moments.x, ref_axis(a)) < 1e-9, "d={d}");
