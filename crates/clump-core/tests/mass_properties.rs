@@ -537,3 +537,31 @@ proptest! {
         prop_assert!(a.relative_error_bound <= 1e-6 && b.relative_error_bound <= 1e-6);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    /// The asymmetric L-shaped trimer with unequal radii, rotated and
+    /// translated arbitrarily: the same principal moments (compared with the
+    /// unmoved template), and its body-frame tensor is diagonal.
+    #[test]
+    fn l_trimer_rigid_motion_invariance(
+        axis in (-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0),
+        angle in 0.0f64..6.3,
+        shift in (-10.0f64..10.0, -10.0f64..10.0, -10.0f64..10.0),
+    ) {
+        let axis = DVec3::new(axis.0, axis.1, axis.2);
+        prop_assume!(axis.length() > 0.1);
+        let q = DQuat::from_axis_angle(axis.normalize(), angle);
+        let t = DVec3::new(shift.0, shift.1, shift.2);
+        let base = ClumpTemplate::from_spheres("L", &l_trimer(), 1200.0).unwrap();
+        let moved: Vec<Sphere> = l_trimer().iter().map(|s| Sphere::new(q * s.center + t, s.radius)).collect();
+        let m = ClumpTemplate::from_spheres("L moved", &moved, 1200.0).unwrap();
+        let scale = base.principal_inertia.z;
+        for k in 0..3 {
+            prop_assert!((m.principal_inertia[k] - base.principal_inertia[k]).abs() < 1e-9 * scale);
+        }
+        let b = mass_properties(&m.spheres, 1200.0).unwrap();
+        prop_assert!(max_offdiag(&b.inertia) < 1e-9 * scale);
+        prop_assert!(b.center_of_mass.length() < 1e-9 * m.bounding_radius);
+    }
+}
