@@ -273,7 +273,13 @@ pub mod progress {
                     if self.last_line.elapsed() >= self.line_every || p.step == p.end_step {
                         self.last_line = Instant::now();
                         let pct = 100.0 * p.step as f64 / p.end_step.max(1) as f64;
-                        eprintln!("progress {pct:5.1}%  {msg}");
+                        let left = p.end_step.saturating_sub(p.step) as f64;
+                        let eta = if p.steps_per_second > 0.0 {
+                            format!("{:.0} s", left / p.steps_per_second)
+                        } else {
+                            "?".to_string()
+                        };
+                        eprintln!("progress {pct:5.1}%  {msg}  ETA {eta}");
                     }
                 }
             }

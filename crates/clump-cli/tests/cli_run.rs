@@ -126,7 +126,7 @@ seed = 5
 [output]
 vtk = {{ every_steps = 200 }}
 thermo = {{ every_steps = 50 }}
-checkpoint = {{ every_steps = 250 }}
+checkpoint = {{ every_steps = 300 }}
 trajectory = {{ bodies = [1, 2], every_steps = 10 }}
 "#
     )
@@ -207,11 +207,12 @@ fn split_run_is_bit_identical_to_uninterrupted_run() {
         let f = format!("traj_{id}.csv");
         assert_eq!(read(&a.join(&f)), read(&b.join(&f)), "{f} differs");
     }
-    // resuming from a periodic checkpoint of the uninterrupted run, into a new folder
+    // resuming at N/2 = 600 (1200 steps in all) from a periodic checkpoint of
+    // the uninterrupted run, into a new folder
     run_ok(
         clump()
             .arg("resume")
-            .arg(a.join("checkpoint_000000500.ckpt"))
+            .arg(a.join("checkpoint_000000600.ckpt"))
             .arg("-o")
             .arg(&c)
             .args(["--threads", "2"]),
@@ -439,4 +440,48 @@ fn bad_input_exits_with_status_2() {
     let o = clump().args(["run", "--bogus"]).output().unwrap();
     assert_eq!(o.status.code(), Some(2));
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Without a terminal, `clump run` prints plain progress lines (simulated
+/// time, steps/s, bodies, contacts, ETA) instead of a bar, and a summary.
+#[test]
+fn plain_progress_lines_without_a_tty() {
+    let d = tmp("progress");
+    let sc = write_scenario(&d, 100);
+    let err = run_ok(clump().arg("run").arg(&sc).arg("-o").arg(d.join("o")));
+    let line = err
+        .lines()
+        .find(|l| l.starts_with("progress 100.0%"))
+        .unwrap_or_else(|| panic!("no final progress line in:\n{err}"));
+    for want in ["t = ", "steps/s", "bodies", "contacts", "ETA"] {
+        assert!(line.contains(want), "{want:?} missing from {line:?}");
+    }
+    assert!(!err.contains('\r'), "no bar redraws without a terminal");
+}
+
+/// `clump check` prints the derived quantities; the Rayleigh time is checked
+/// against the closed form t_R = πR√(ρ/G)/(0.1631ν + 0.8766) for the smallest
+/// sphere (the rod's, R = 1.5 mm, rock: E = 5e6, ν = 0.3, ρ = 2500).
+#[test]
+fn check_prints_derived_quantities() {
+    let d = tmp("check");
+    let sc = write_scenario(&d, 100);
+    let o = clump().arg("check").arg(&sc).output().unwrap();
+    assert!(o.status.success());
+    let out = String::from_utf8_lossy(&o.stdout);
+    let g: f64 = 5e6 / (2.0 * 1.3);
+    let t_r = std::f64::consts::PI * 0.0015 * (2500.0 / g).sqrt() / (0.1631 * 0.3 + 0.8766);
+    let want_tr = format!("t_R = {t_r:.4e} s");
+    let want_frac = format!("= {:.3} t_R", 4e-5 / t_r);
+    eprintln!("{out}");
+    for want in [
+        want_tr.as_str(),
+        want_frac.as_str(),
+        "total: 700 steps",
+        "expected in total:",
+        "estimated memory:",
+        "mass ",
+    ] {
+        assert!(out.contains(want), "{want:?} missing from:\n{out}");
+    }
 }

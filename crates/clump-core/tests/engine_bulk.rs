@@ -220,13 +220,16 @@ fn settled_bed_comes_to_rest() {
     assert!(ke < 1e-6 * drop, "KE/PE drop = {}", ke / drop);
 }
 
-fn bed_state(threads: usize) -> Vec<u64> {
+/// Body states (bits) after the bed has fallen and packed (11 000 steps),
+/// then 1000 more steps of the dense bed; also the contact counts then.
+fn bed_state(threads: usize) -> (Vec<u64>, u64, u64) {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap();
     pool.install(|| {
         let mut w = settle_world(400, 11);
+        w.run(11_000).unwrap();
         w.run(1000).unwrap();
         let b = &w.bodies;
         let mut bits = Vec::new();
@@ -243,15 +246,20 @@ fn bed_state(threads: usize) -> Vec<u64> {
             }
             bits.extend(b.orientation[i].to_array().map(f64::to_bits));
         }
-        bits
+        (bits, w.stats.pair_contacts, w.stats.wall_contacts)
     })
 }
 
-/// Bit-identical body states after 1000 steps of a bed for 1 and 2 threads.
+/// Bit-identical body states for 1 and 2 threads after 1000 steps of a dense
+/// bed (400 tetrahedral clumps that have fallen and packed for 11 000 steps
+/// first; the contact count shows the bed is dense).
 #[test]
 fn one_and_two_threads_are_bit_identical() {
-    let a = bed_state(1);
-    let b = bed_state(2);
+    let (a, pc, wc) = bed_state(1);
+    let (b, pc2, wc2) = bed_state(2);
+    eprintln!("thread identity: 400 clumps, {pc} sphere-sphere + {wc} sphere-wall contacts at the end; 1 vs 2 threads identical: {}", a == b);
+    assert!(pc > 500, "the bed is not dense: {pc} contacts");
+    assert_eq!((pc, wc), (pc2, wc2));
     assert_eq!(a.len(), b.len());
     assert!(a == b, "states differ between 1 and 2 threads");
 }

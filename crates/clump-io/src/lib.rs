@@ -1,4 +1,8 @@
-//! io
+//! Clump's input and output around the engine (`clump-core`): scenario files
+//! (TOML, with located, did-you-mean error messages), LIGGGHTS template files,
+//! body CSV files, triangle meshes, ParaView VTK XML output, thermo and
+//! trajectory CSV logs, versioned checkpoints, atomic file writes, and the run
+//! driver behind `clump run` / `clump resume`.
 pub mod atomic;
 pub mod checkpoint;
 pub mod mesh_file;

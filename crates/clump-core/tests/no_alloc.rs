@@ -1,0 +1,149 @@
+//! "Nothing allocated per step once warmed up" (issue 3): a counting global
+//! allocator (this test binary only) watches a dense, moving bed of
+//! tetrahedral clumps. Steps without a neighbour-list rebuild must not touch
+//! the heap at all; rebuild steps may only reuse buffers once the bed has
+//! been through a few rebuilds (reported, and bounded).
+//! Memory is O(N): the capacities of the per-pair and per-sphere buffers
+//! are checked to grow linearly with the number of bodies.
+
+mod common;
+use clump_core::body::BodyInit;
+use clump_core::contact::{Material, PairProperties};
+use clump_core::multi_contact::MultiContact;
+use clump_core::shape::{tetrahedron, ClumpTemplate};
+use clump_core::world::World;
+use common::*;
+use glam::{DQuat, DVec3};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+struct Counting;
+static ALLOCS: AtomicU64 = AtomicU64::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::Relaxed);
+        System.alloc(l)
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        System.dealloc(p, l)
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::Relaxed);
+        System.realloc(p, l, n)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn bed(nx: usize) -> World {
+    let mat = Material {
+        youngs_modulus: 5e6,
+        poisson_ratio: 0.3,
+        density: 2500.0,
+    };
+    let props = PairProperties {
+        restitution: 0.5,
+        friction: 0.5,
+        ..PairProperties::default()
+    };
+    let mut w = world(
+        mat,
+        props,
+        1e-5,
+        open_domain(1.0),
+        DVec3::new(0.0, 0.0, -9.81),
+    );
+    let t = w
+        .add_template(
+            ClumpTemplate::from_spheres("tetra", &tetrahedron(1e-3, 1.2e-3), 2500.0).unwrap(),
+            0,
+        )
+        .unwrap();
+    let a = 3.2e-3;
+    let half = nx as f64 * a / 2.0;
+    w.add_wall(plane(DVec3::ZERO, DVec3::Z, MultiContact::Sum))
+        .unwrap();
+    for (p, n) in [
+        (DVec3::new(-half, 0.0, 0.0), DVec3::X),
+        (DVec3::new(half, 0.0, 0.0), -DVec3::X),
+        (DVec3::new(0.0, -half, 0.0), DVec3::Y),
+        (DVec3::new(0.0, half, 0.0), -DVec3::Y),
+    ] {
+        w.add_wall(plane(p, n, MultiContact::Sum)).unwrap();
+    }
+    let mut k = 0u64;
+    for iz in 0..4 {
+        for iy in 0..nx {
+            for ix in 0..nx {
+                k += 1;
+                let x = DVec3::new(
+                    -half + a * (ix as f64 + 0.5),
+                    -half + a * (iy as f64 + 0.5),
+                    a * (iz as f64 + 0.6),
+                );
+                let q = DQuat::from_axis_angle(
+                    DVec3::new(1.0, (k % 7) as f64, (k % 3) as f64).normalize(),
+                    k as f64,
+                );
+                w.add_body(&BodyInit::at_rest(t, x, q)).unwrap();
+            }
+        }
+    }
+    w
+}
+
+#[test]
+fn no_heap_allocation_per_step_after_warm_up() {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let mut w = bed(10); // 400 clumps, 1600 spheres, falling and settling
+        w.run(3000).unwrap(); // warm-up: buffers reach their working size
+        let (mut plain_steps, mut plain_allocs) = (0u64, 0u64);
+        let (mut rebuild_steps, mut rebuild_allocs) = (0u64, 0u64);
+        for _ in 0..3000 {
+            let r0 = w.rebuilds;
+            let a0 = ALLOCS.load(Ordering::Relaxed);
+            w.step().unwrap();
+            let da = ALLOCS.load(Ordering::Relaxed) - a0;
+            if w.rebuilds == r0 {
+                plain_steps += 1;
+                plain_allocs += da;
+            } else {
+                rebuild_steps += 1;
+                rebuild_allocs += da;
+            }
+        }
+        eprintln!(
+            "allocations after warm-up (2 threads, 400 clumps): {plain_allocs} in {plain_steps} steps without rebuild, {rebuild_allocs} in {rebuild_steps} rebuild steps ({:.1} per rebuild)",
+            rebuild_allocs as f64 / rebuild_steps.max(1) as f64
+        );
+        assert!(plain_steps > 100);
+        assert_eq!(plain_allocs, 0, "a step without rebuild allocated");
+    });
+}
+
+#[test]
+fn memory_is_linear_in_the_number_of_bodies() {
+    let measure = |nx: usize| {
+        let mut w = bed(nx);
+        w.run(200).unwrap();
+        let n = w.bodies.len();
+        let pairs = w.pairs().len();
+        let spheres = w.spheres().len();
+        (n, pairs, spheres)
+    };
+    let (n1, p1, s1) = measure(6);
+    let (n2, p2, s2) = measure(12);
+    eprintln!(
+        "memory scaling: {n1} bodies -> {p1} candidate pairs, {s1} spheres; {n2} bodies -> {p2} pairs, {s2} spheres"
+    );
+    assert_eq!(s2 / n2, s1 / n1);
+    // pairs per body stays bounded (same density; walls make small beds sparser)
+    let (r1, r2) = (p1 as f64 / n1 as f64, p2 as f64 / n2 as f64);
+    assert!(r2 < 1.5 * r1, "pairs per body grew from {r1} to {r2}");
+}
