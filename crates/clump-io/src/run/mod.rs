@@ -25,7 +25,7 @@
 //! repeats the uninterrupted one bit for bit.
 #![allow(clippy::manual_is_multiple_of, clippy::result_large_err)]
 
-use crate::checkpoint::{read_checkpoint, write_checkpoint};
+use crate::checkpoint::write_checkpoint;
 use crate::scenario::{self, Files, InsertSpec, Scenario, ScenarioError};
 use crate::thermo_csv::ThermoWriter;
 use crate::trajectory::TrajectoryWriter;
@@ -382,41 +382,13 @@ impl Runner {
     /// Resumes from a checkpoint file. Outputs go to `outdir`, by default the
     /// directory of the checkpoint.
     pub fn resume(checkpoint: &Path, outdir: Option<&Path>) -> Result<Self, RunError> {
-        let (json, fingerprint): (String, u64) =
-            read_checkpoint(checkpoint).map_err(|e| RunError::InputMessage(e.to_string()))?;
-        let ck: Checkpoint = serde_json::from_str(&json).map_err(|e| {
+        let bytes = std::fs::read(checkpoint).map_err(|e| {
             RunError::InputMessage(format!(
-                "checkpoint {}: cannot decode the state: {e}",
+                "cannot read checkpoint {}: {e}",
                 checkpoint.display()
             ))
         })?;
-        let scenario = scenario::parse(
-            Path::new(&ck.scenario_path),
-            ck.scenario_text.clone(),
-            Files::embedded(ck.files.clone()),
-        )
-        .map_err(RunError::Input)?;
-        if scenario.fingerprint() != fingerprint {
-            return Err(RunError::InputMessage(format!(
-                "checkpoint {}: its scenario fingerprint {fingerprint:016x} does not match the stored scenario ({:016x})",
-                checkpoint.display(),
-                scenario.fingerprint()
-            )));
-        }
-        let mut world = scenario
-            .build_world()
-            .map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
-        for (t, m) in &ck.extra_templates {
-            world
-                .add_template(t.clone(), *m)
-                .map_err(|e| RunError::InputMessage(e.to_string()))?;
-        }
-        world.restore_state(ck.world).map_err(|e| {
-            RunError::InputMessage(format!(
-                "checkpoint {} does not fit its scenario: {e}",
-                checkpoint.display()
-            ))
-        })?;
+        let (scenario, world, driver) = load_checkpoint(&bytes, checkpoint)?;
         let outdir = match outdir {
             Some(d) => d.to_path_buf(),
             None => checkpoint
@@ -463,7 +435,7 @@ impl Runner {
         Ok(Runner {
             scenario,
             world,
-            st: ck.driver,
+            st: driver,
             out,
             n_scenario_templates: n,
         })
@@ -863,6 +835,62 @@ impl Runner {
         let text = serde_json::to_string_pretty(&m).map_err(std::io::Error::other)?;
         crate::atomic::write_atomic(self.out.dir.join("manifest.json"), text.as_bytes())
     }
+}
+
+/// Decodes checkpoint file bytes (`path` for messages) and rebuilds the
+/// simulation they hold: the scenario (from the stored text and files), the
+/// world with its restored state, and the driver state. Never panics on
+/// bad bytes: every problem is an input error.
+pub fn load_checkpoint(
+    bytes: &[u8],
+    checkpoint: &Path,
+) -> Result<(Scenario, World, DriverState), RunError> {
+    let (json, fingerprint): (String, u64) =
+        crate::checkpoint::decode_checkpoint(bytes, checkpoint)
+            .map_err(|e| RunError::InputMessage(e.to_string()))?;
+    let ck: Checkpoint = serde_json::from_str(&json).map_err(|e| {
+        RunError::InputMessage(format!(
+            "checkpoint {}: cannot decode the state: {e}",
+            checkpoint.display()
+        ))
+    })?;
+    let scenario = scenario::parse(
+        Path::new(&ck.scenario_path),
+        ck.scenario_text.clone(),
+        Files::embedded(ck.files.clone()),
+    )
+    .map_err(RunError::Input)?;
+    if scenario.fingerprint() != fingerprint {
+        return Err(RunError::InputMessage(format!(
+                "checkpoint {}: its scenario fingerprint {fingerprint:016x} does not match the stored scenario ({:016x})",
+                checkpoint.display(),
+                scenario.fingerprint()
+            )));
+    }
+    let mut world = scenario
+        .build_world()
+        .map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
+    for (t, m) in &ck.extra_templates {
+        world
+            .add_template(t.clone(), *m)
+            .map_err(|e| RunError::InputMessage(e.to_string()))?;
+    }
+    let n_ins = scenario.inserts.len();
+    let d = &ck.driver;
+    if d.streams.len() != n_ins || d.inserted.len() != n_ins || d.stage > scenario.stages.len() {
+        return Err(RunError::InputMessage(format!(
+            "checkpoint {}: its driver state does not fit its scenario ({n_ins} insertions, {} stages)",
+            checkpoint.display(),
+            scenario.stages.len()
+        )));
+    }
+    world.restore_state(ck.world).map_err(|e| {
+        RunError::InputMessage(format!(
+            "checkpoint {} does not fit its scenario: {e}",
+            checkpoint.display()
+        ))
+    })?;
+    Ok((scenario, world, ck.driver))
 }
 
 fn hex3(v: glam::DVec3) -> [String; 3] {

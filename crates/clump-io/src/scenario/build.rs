@@ -34,6 +34,9 @@ type R<T> = Result<T, Diagnostic>;
 pub const DT_ERROR_FRACTION: f64 = 0.5;
 /// `dt / t_Rayleigh` above which a warning is given.
 pub const DT_WARN_FRACTION: f64 = 0.3;
+/// Most spheres of a built-in rod (`n`): bounds memory and the mass
+/// property computation of a mistyped `n`.
+pub const MAX_ROD_SPHERES: u64 = 10_000;
 /// Requested solid fraction of a pack region above which the scenario is refused.
 pub const PACK_ERROR_FRACTION: f64 = 0.45;
 
@@ -1102,6 +1105,11 @@ fn build_template(
                 })?;
                 if n == 0 {
                     return Err(cx.err(&p("n"), "a rod needs n >= 1 spheres"));
+                }
+                if u64::from(n) > MAX_ROD_SPHERES {
+                    return Err(cx
+                        .err(&p("n"), format!("a rod may have at most {MAX_ROD_SPHERES} spheres, found {n}"))
+                        .note("note: a clump's mass properties are computed over the union of its spheres; use a template file for unusual shapes"));
                 }
                 let spacing = need(
                     cx,
