@@ -357,6 +357,7 @@ fn interrupt_and_resume(signal: &str, code: i32) {
     let ck = out.join(format!("checkpoint_{step:09}.ckpt"));
     assert!(ck.is_file(), "no checkpoint at the interrupt step {step}");
     assert_eq!(m["checkpoint"].as_str().unwrap(), ck.display().to_string());
+    check_flushed_at(&out, step);
     // resume a little further and compare with an uninterrupted run to the same step
     let target = (step + 300).to_string();
     run_ok(
@@ -376,7 +377,83 @@ fn interrupt_and_resume(signal: &str, code: i32) {
         read(&out.join("final_state.json")) == read(&straight.join("final_state.json")),
         "interrupted + resumed run differs from the uninterrupted one"
     );
+    // every output of the resumed run repeats the uninterrupted one
+    for f in [
+        "thermo.csv",
+        "traj_1.csv",
+        "traj_2.csv",
+        "spheres.pvd",
+        "bodies.pvd",
+    ] {
+        assert!(
+            read(&out.join(f)) == read(&straight.join(f)),
+            "{f} of the interrupted + resumed run differs"
+        );
+    }
+    let last_frame = format!("spheres_{:06}.vtp", (step + 300) / 200 * 200);
+    assert!(
+        std::fs::read(out.join(&last_frame)).unwrap()
+            == std::fs::read(straight.join(&last_frame)).unwrap(),
+        "{last_frame} differs"
+    );
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// After an interruption at `step` (the checkpoint step), every output is
+/// complete on disk: `thermo.csv` (every 50 steps) and the trajectories
+/// (every 10 steps) hold every row up to `step`, each whole, and each `.pvd`
+/// series is a complete XML file listing every frame (every 200 steps) up
+/// to `step`, each of which exists.
+fn check_flushed_at(out: &Path, step: u64) {
+    let thermo = read(&out.join("thermo.csv"));
+    assert!(thermo.ends_with('\n'), "thermo.csv ends mid-row");
+    let lines: Vec<&str> = thermo.lines().collect();
+    let fields = lines[0].split(',').count();
+    assert_eq!(
+        lines.len() as u64 - 1,
+        step / 50 + 1,
+        "thermo rows at step {step}"
+    );
+    for l in &lines[1..] {
+        assert_eq!(l.split(',').count(), fields, "incomplete thermo row {l}");
+    }
+    let last: u64 = lines
+        .last()
+        .unwrap()
+        .split(',')
+        .nth(1)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(last, step / 50 * 50);
+    for id in [1, 2] {
+        let t = read(&out.join(format!("traj_{id}.csv")));
+        assert!(t.ends_with('\n'), "traj_{id}.csv ends mid-row");
+        assert_eq!(
+            t.lines().count() as u64 - 1,
+            step / 10 + 1,
+            "traj_{id}.csv rows"
+        );
+    }
+    for kind in ["spheres", "bodies", "walls"] {
+        let pvd = read(&out.join(format!("{kind}.pvd")));
+        assert!(
+            pvd.trim_end().ends_with("</VTKFile>"),
+            "{kind}.pvd incomplete"
+        );
+        let files: Vec<&str> = pvd
+            .split("file=\"")
+            .skip(1)
+            .map(|s| s.split('"').next().unwrap())
+            .collect();
+        assert_eq!(files.len() as u64, step / 200 + 1, "{kind}.pvd: {pvd}");
+        for f in files {
+            // frames hold raw appended binary data: compare bytes
+            let x = std::fs::read(out.join(f)).unwrap();
+            let end = x.iter().rposition(|b| !b.is_ascii_whitespace()).unwrap();
+            assert!(x[..=end].ends_with(b"</VTKFile>"), "{f} incomplete");
+        }
+    }
 }
 
 #[test]

@@ -99,6 +99,50 @@ impl World {
             ));
         }
         let nb = s.bodies.len();
+        let b = &s.bodies;
+        let lens = [
+            b.template.len(),
+            b.position.len(),
+            b.velocity.len(),
+            b.orientation.len(),
+            b.angular_momentum.len(),
+            b.angular_velocity.len(),
+            b.force.len(),
+            b.torque.len(),
+            b.mass.len(),
+            b.inertia.len(),
+            b.force_flag.len(),
+            b.torque_flag.len(),
+            b.start_step.len(),
+        ];
+        if lens.iter().any(|&l| l != nb) {
+            return Err(format!(
+                "checkpoint body arrays have inconsistent lengths ({nb} ids, {lens:?})"
+            ));
+        }
+        if s.wall_loads.len() != s.walls.len() {
+            return Err("checkpoint wall loads do not match its walls".into());
+        }
+        for (a, b) in s.walls.iter().zip(&self.walls) {
+            let same_kind = match (&a.shape, &b.shape) {
+                (
+                    crate::wall::WallShape::Mesh { mesh: ma, .. },
+                    crate::wall::WallShape::Mesh { mesh: mb, .. },
+                ) => ma == mb,
+                (x, y) => std::mem::discriminant(x) == std::mem::discriminant(y),
+            };
+            if a.name != b.name || a.material != b.material || !same_kind {
+                return Err(format!(
+                    "checkpoint wall '{}' does not match the scenario's wall '{}'",
+                    a.name, b.name
+                ));
+            }
+        }
+        if s.config.domain != self.config.domain
+            || s.config.dt.to_bits() != self.config.dt.to_bits()
+        {
+            return Err("checkpoint domain or time step differs from the scenario's".into());
+        }
         let ns: usize = s
             .bodies
             .template

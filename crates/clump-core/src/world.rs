@@ -109,6 +109,59 @@ pub struct ContactStats {
     pub elastic_energy: f64,
     /// Largest overlap divided by the smaller radius of the contact.
     pub max_overlap_ratio: f64,
+    /// Global ids of the two bodies of the contact with the largest overlap
+    /// ratio (lower storage chunk first on ties); for a sphere–wall contact
+    /// the second entry is 0 and [`ContactStats::max_overlap_wall`] names the wall.
+    #[serde(default)]
+    pub max_overlap_bodies: [u64; 2],
+    /// Wall index + 1 of the contact with the largest overlap ratio when it is
+    /// a sphere–wall contact, 0 when it is a sphere–sphere contact (or none).
+    #[serde(default)]
+    pub max_overlap_wall: u32,
+    /// Bound of the kinetic energy of all bodies at the end of the step,
+    /// Σ ½ m (|v| + |F| dt/2m)² + ½ ω·L, with the velocities seen by the force
+    /// evaluation (the half-step velocities inside a step; world frame), J.
+    /// Not finite when some body's state is not finite.
+    #[serde(default)]
+    pub kinetic_energy: f64,
+    /// Total mass of the bodies, kg.
+    #[serde(default)]
+    pub total_mass: f64,
+    /// Largest kinetic energy (bound) of a single body, J.
+    #[serde(default)]
+    pub max_body_kinetic_energy: f64,
+    /// Global id of the body with the largest kinetic energy (0 = no bodies).
+    #[serde(default)]
+    pub max_kinetic_body: u64,
+    /// Global id of the first body (storage order) whose position, velocity,
+    /// angular momentum, force or torque is NaN or infinite; 0 when all are finite.
+    #[serde(default)]
+    pub non_finite_body: u64,
+}
+
+impl ContactStats {
+    /// Folds the statistics of the next chunk (in chunk order) into `self`:
+    /// counts and energies add up, maxima keep the earlier chunk on ties and
+    /// the first non-finite body is kept. Deterministic for a fixed chunking.
+    pub fn merge(&mut self, s: &ContactStats) {
+        self.pair_contacts += s.pair_contacts;
+        self.wall_contacts += s.wall_contacts;
+        self.elastic_energy += s.elastic_energy;
+        self.kinetic_energy += s.kinetic_energy;
+        self.total_mass += s.total_mass;
+        if s.max_overlap_ratio > self.max_overlap_ratio {
+            self.max_overlap_ratio = s.max_overlap_ratio;
+            self.max_overlap_bodies = s.max_overlap_bodies;
+            self.max_overlap_wall = s.max_overlap_wall;
+        }
+        if s.max_body_kinetic_energy > self.max_body_kinetic_energy {
+            self.max_body_kinetic_energy = s.max_body_kinetic_energy;
+            self.max_kinetic_body = s.max_kinetic_body;
+        }
+        if self.non_finite_body == 0 {
+            self.non_finite_body = s.non_finite_body;
+        }
+    }
 }
 
 /// Per-sphere wall-contact slots (history carried while a contact persists).

@@ -183,7 +183,15 @@ fn gather(w: &mut World) {
                             stat.pair_contacts += 1;
                             stat.elastic_energy += st.energy * scale;
                             let rmin = sp.radius[t.i as usize].min(sp.radius[t.j as usize]);
-                            stat.max_overlap_ratio = stat.max_overlap_ratio.max(st.overlap / rmin);
+                            let ratio = st.overlap / rmin;
+                            if ratio > stat.max_overlap_ratio {
+                                stat.max_overlap_ratio = ratio;
+                                stat.max_overlap_bodies = [
+                                    sp.gid[t.i as usize] >> SPHERE_ID_BITS,
+                                    sp.gid[t.j as usize] >> SPHERE_ID_BITS,
+                                ];
+                                stat.max_overlap_wall = 0;
+                            }
                         } else {
                             f -= st.force * scale;
                             m += st.torque_j * scale;
@@ -275,8 +283,12 @@ fn gather(w: &mut World) {
                                 load.torque -= tw * scale;
                                 stat.wall_contacts += 1;
                                 stat.elastic_energy += energy * scale;
-                                stat.max_overlap_ratio =
-                                    stat.max_overlap_ratio.max(touch.overlap / sp.radius[s]);
+                                let ratio = touch.overlap / sp.radius[s];
+                                if ratio > stat.max_overlap_ratio {
+                                    stat.max_overlap_ratio = ratio;
+                                    stat.max_overlap_bodies = [b.id[bi], 0];
+                                    stat.max_overlap_wall = wi as u32 + 1;
+                                }
                                 if n_new < WALL_SLOTS {
                                     new_key[n_new] = slot_key;
                                     new_hist[n_new] = h;
@@ -291,6 +303,25 @@ fn gather(w: &mut World) {
                         }
                     }
                 }
+                // --- health statistics (folded into this pass: no extra sweep)
+                // kinetic energy bound at the end of the step: the coming half
+                // kick changes |v| by at most |F| dt / 2m (a force that
+                // would fling a body out of the domain shows here, before
+                // the body is removed)
+                let (v, l) = (b.velocity[bi], b.angular_momentum[bi]);
+                let speed = v.length() + f.length() * (0.5 * dt / b.mass[bi]);
+                let ke = 0.5 * b.mass[bi] * speed * speed + 0.5 * b.angular_velocity[bi].dot(l);
+                stat.kinetic_energy += ke;
+                stat.total_mass += b.mass[bi];
+                if ke > stat.max_body_kinetic_energy {
+                    stat.max_body_kinetic_energy = ke;
+                    stat.max_kinetic_body = b.id[bi];
+                }
+                if stat.non_finite_body == 0
+                    && !(ke.is_finite() && com.is_finite() && f.is_finite() && m.is_finite())
+                {
+                    stat.non_finite_body = b.id[bi];
+                }
                 // SAFETY: body bi is handled by this chunk only.
                 unsafe {
                     *force.get(bi) = f;
@@ -301,10 +332,7 @@ fn gather(w: &mut World) {
     );
     let mut total = ContactStats::default();
     for s in chunk_stats.iter() {
-        total.pair_contacts += s.pair_contacts;
-        total.wall_contacts += s.wall_contacts;
-        total.elastic_energy += s.elastic_energy;
-        total.max_overlap_ratio = total.max_overlap_ratio.max(s.max_overlap_ratio);
+        total.merge(s);
     }
     *stats = total;
     for (wi, load) in wall_loads.iter_mut().enumerate() {

@@ -25,11 +25,12 @@
 //! repeats the uninterrupted one bit for bit.
 #![allow(clippy::manual_is_multiple_of, clippy::result_large_err)]
 
-use crate::checkpoint::{read_checkpoint, write_checkpoint};
+use crate::checkpoint::write_checkpoint;
 use crate::scenario::{self, Files, InsertSpec, Scenario, ScenarioError};
 use crate::thermo_csv::{ThermoWriter, WallColumns};
 use crate::trajectory::TrajectoryWriter;
 use crate::vtk::VtkSeries;
+use clump_core::health::{HealthMonitor, Instability};
 use clump_core::insert::{pack, StreamInserter};
 use clump_core::shape::ClumpTemplate;
 use clump_core::state::WorldState;
@@ -56,6 +57,67 @@ pub enum RunError {
     InputMessage(String),
     /// Failure while running (I/O, engine): exit status 1.
     Runtime(String),
+    /// The simulation became unstable (NaN/Inf state, excessive overlap,
+    /// kinetic-energy blow-up); the message names the step, the bodies, the
+    /// likely cause and the last good checkpoint and output. Exit status 1.
+    Unstable(Box<UnstableRun>),
+}
+
+/// An instability that stopped a run, with what is needed to report it.
+#[derive(Debug, Clone)]
+pub struct UnstableRun {
+    /// What was detected.
+    pub instability: Instability,
+    /// The likely cause, with a remedy.
+    pub cause: String,
+    /// Where the time step is set in the scenario (`file:line`, key).
+    pub dt_location: String,
+    /// The last checkpoint written before the instability (a good state),
+    /// with its step.
+    pub last_checkpoint: Option<(PathBuf, u64)>,
+    /// The output directory.
+    pub outdir: PathBuf,
+    /// Step of the last thermo row written (a good state).
+    pub last_thermo: Option<u64>,
+    /// Step of the last VTK frame written (a good state).
+    pub last_vtk: Option<u64>,
+}
+
+impl fmt::Display for UnstableRun {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let i = &self.instability;
+        writeln!(f, "error: the simulation became unstable {i}")?;
+        let ids: Vec<String> = i.bodies().iter().map(|b| b.to_string()).collect();
+        if !ids.is_empty() {
+            writeln!(f, "  bodies involved: {}", ids.join(", "))?;
+        }
+        writeln!(f, "  likely cause: {}", self.cause)?;
+        writeln!(f, "  time step: {}", self.dt_location)?;
+        match &self.last_checkpoint {
+            Some((p, step)) => writeln!(
+                f,
+                "  last good checkpoint: {} (step {step}; `clump resume {}` continues from it)",
+                p.display(),
+                p.display()
+            )?,
+            None => writeln!(
+                f,
+                "  last good checkpoint: none was written (add [output] checkpoint = {{ every_steps = N }})"
+            )?,
+        }
+        let step = |s: Option<u64>| s.map_or_else(|| "none".to_string(), |s| format!("step {s}"));
+        writeln!(
+            f,
+            "  last good output in {}: thermo.csv up to {}, VTK frames up to {}",
+            self.outdir.display(),
+            step(self.last_thermo),
+            step(self.last_vtk)
+        )?;
+        write!(
+            f,
+            "  = note: the unstable state was not written: no checkpoint or output was overwritten"
+        )
+    }
 }
 
 impl fmt::Display for RunError {
@@ -64,6 +126,7 @@ impl fmt::Display for RunError {
             RunError::Input(e) => write!(f, "{e}"),
             RunError::InputMessage(m) => write!(f, "error: {m}"),
             RunError::Runtime(m) => write!(f, "error: {m}"),
+            RunError::Unstable(u) => write!(f, "{u}"),
         }
     }
 }
@@ -73,7 +136,7 @@ impl std::error::Error for RunError {}
 impl RunError {
     /// True for bad input (exit status 2).
     pub fn is_input(&self) -> bool {
-        !matches!(self, RunError::Runtime(_))
+        !matches!(self, RunError::Runtime(_) | RunError::Unstable(_))
     }
 }
 
@@ -108,6 +171,13 @@ pub struct DriverState {
     pub last_thermo: Option<u64>,
     /// Bodies inserted so far by each `[[insert]]`.
     pub inserted: Vec<u64>,
+    /// The instability check with its kinetic-energy reference (`None`
+    /// until the first step; checkpoints of older versions lack it).
+    #[serde(default)]
+    pub health: Option<HealthMonitor>,
+    /// Step at which bodies were last inserted.
+    #[serde(default)]
+    pub last_insert_step: Option<u64>,
 }
 
 /// Everything in a checkpoint file (stored as JSON inside the binary
@@ -335,6 +405,8 @@ impl Runner {
             last_vtk: None,
             last_thermo: None,
             inserted: vec![0; scenario.inserts.len()],
+            health: None,
+            last_insert_step: None,
         };
         let n = scenario.templates.len();
         Ok(Runner {
@@ -349,41 +421,13 @@ impl Runner {
     /// Resumes from a checkpoint file. Outputs go to `outdir`, by default the
     /// directory of the checkpoint.
     pub fn resume(checkpoint: &Path, outdir: Option<&Path>) -> Result<Self, RunError> {
-        let (json, fingerprint): (String, u64) =
-            read_checkpoint(checkpoint).map_err(|e| RunError::InputMessage(e.to_string()))?;
-        let ck: Checkpoint = serde_json::from_str(&json).map_err(|e| {
+        let bytes = std::fs::read(checkpoint).map_err(|e| {
             RunError::InputMessage(format!(
-                "checkpoint {}: cannot decode the state: {e}",
+                "cannot read checkpoint {}: {e}",
                 checkpoint.display()
             ))
         })?;
-        let scenario = scenario::parse(
-            Path::new(&ck.scenario_path),
-            ck.scenario_text.clone(),
-            Files::embedded(ck.files.clone()),
-        )
-        .map_err(RunError::Input)?;
-        if scenario.fingerprint() != fingerprint {
-            return Err(RunError::InputMessage(format!(
-                "checkpoint {}: its scenario fingerprint {fingerprint:016x} does not match the stored scenario ({:016x})",
-                checkpoint.display(),
-                scenario.fingerprint()
-            )));
-        }
-        let mut world = scenario
-            .build_world()
-            .map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
-        for (t, m) in &ck.extra_templates {
-            world
-                .add_template(t.clone(), *m)
-                .map_err(|e| RunError::InputMessage(e.to_string()))?;
-        }
-        world.restore_state(ck.world).map_err(|e| {
-            RunError::InputMessage(format!(
-                "checkpoint {} does not fit its scenario: {e}",
-                checkpoint.display()
-            ))
-        })?;
+        let (scenario, world, driver) = load_checkpoint(&bytes, checkpoint)?;
         let outdir = match outdir {
             Some(d) => d.to_path_buf(),
             None => checkpoint
@@ -430,7 +474,7 @@ impl Runner {
         Ok(Runner {
             scenario,
             world,
-            st: ck.driver,
+            st: driver,
             out,
             n_scenario_templates: n,
         })
@@ -494,6 +538,25 @@ impl Runner {
             self.world
                 .step()
                 .map_err(rt(&format!("step {}", self.world.step)))?;
+            let limits = self.scenario.stability;
+            let health = self
+                .st
+                .health
+                .get_or_insert_with(|| HealthMonitor::new(limits));
+            if let Err(inst) = health.check(&self.world) {
+                let partial = RunSummary {
+                    status: RunStatus::Completed,
+                    first_step,
+                    final_step: self.world.step,
+                    time: self.world.time,
+                    wall_time: t_start.elapsed().as_secs_f64(),
+                    sphere_steps,
+                    bodies: self.world.bodies.len(),
+                    spheres: self.world.spheres().len(),
+                    checkpoint: self.out.last_checkpoint.clone(),
+                };
+                return Err(self.unstable(inst, &partial, opts.threads));
+            }
             sphere_steps += self.world.spheres().len() as f64;
             self.st.step_in_stage += 1;
             self.st.pre_step_done = false;
@@ -570,6 +633,9 @@ impl Runner {
                         RunError::Input(self.scenario.insert_error(k, e.to_string()))
                     })?;
                     self.st.inserted[k] += n as u64;
+                    if n > 0 {
+                        self.st.last_insert_step = Some(self.world.step);
+                    }
                 }
             }
         }
@@ -615,6 +681,7 @@ impl Runner {
                         })?;
                     }
                     self.st.inserted[k] += bodies.len() as u64;
+                    self.st.last_insert_step = Some(self.world.step);
                     tracing::info!(bodies = bodies.len(), "inserted bodies from file");
                 }
                 InsertSpec::Pack { spec, seed, .. } => {
@@ -622,6 +689,7 @@ impl Runner {
                         RunError::Input(self.scenario.insert_error(k, e.to_string()))
                     })?;
                     self.st.inserted[k] += rep.placed as u64;
+                    self.st.last_insert_step = Some(self.world.step);
                     tracing::info!(
                         bodies = rep.placed,
                         volume_fraction = rep.volume_fraction,
@@ -711,6 +779,57 @@ impl Runner {
         Ok(path)
     }
 
+    /// Stops a run at an instability: keeps every output and checkpoint as
+    /// they are (the thermo and trajectory files are flushed row by row; the
+    /// bad state is not written anywhere), records the status in the
+    /// manifest and returns the report.
+    fn unstable(&mut self, inst: Instability, summary: &RunSummary, threads: usize) -> RunError {
+        use crate::scenario::Seg::K;
+        let since = self
+            .st
+            .last_insert_step
+            .map(|s| self.world.step.saturating_sub(s));
+        let cause = self.world.diagnose(&inst, since);
+        tracing::error!(step = inst.step, "unstable: {inst}");
+        let src = crate::scenario::Source::new(&self.scenario.path, self.scenario.text.clone());
+        let path = self.scenario.path.display();
+        let dt = self.world.config.dt;
+        let at = |k: &str| {
+            let p = [K("simulation"), K(k)];
+            src.has(&p).then(|| src.error_at(&p, "").line()).flatten()
+        };
+        let dt_location = match (at("dt"), at("dt_fraction")) {
+            (Some(l), _) => format!("dt = {dt:e} s is set at {path}:{l} ([simulation] dt)"),
+            (None, Some(l)) => {
+                format!("dt = {dt:e} s follows from {path}:{l} ([simulation] dt_fraction)")
+            }
+            _ => format!("dt = {dt:e} s (dt = \"auto\"; set [simulation] dt in {path})"),
+        };
+        let last_checkpoint = self.out.last_checkpoint.clone().map(|p| {
+            let step = p
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .and_then(|s| s.strip_prefix("checkpoint_"))
+                .and_then(|s| s.parse::<u64>().ok())
+                .unwrap_or(0);
+            (p, step)
+        });
+        let report = UnstableRun {
+            instability: inst,
+            cause,
+            dt_location,
+            last_checkpoint,
+            outdir: self.out.dir.clone(),
+            last_thermo: self.st.last_thermo,
+            last_vtk: self.st.last_vtk,
+        };
+        let status = format!("unstable at step {}", report.instability.step);
+        if let Err(e) = self.write_manifest_status(summary, threads, &status) {
+            tracing::warn!("cannot write manifest.json: {e}");
+        }
+        RunError::Unstable(Box::new(report))
+    }
+
     fn write_final_state(&self) -> std::io::Result<()> {
         let json = final_state_json(&self.world);
         crate::atomic::write_atomic(self.out.dir.join("final_state.json"), json.as_bytes())
@@ -722,6 +841,15 @@ impl Runner {
             RunStatus::StepLimit => "step_limit".to_string(),
             RunStatus::Interrupted(sig) => format!("interrupted (signal {sig})"),
         };
+        self.write_manifest_status(s, threads, &status)
+    }
+
+    fn write_manifest_status(
+        &self,
+        s: &RunSummary,
+        threads: usize,
+        status: &str,
+    ) -> std::io::Result<()> {
         let m = serde_json::json!({
             "program": "clump",
             "version": VERSION,
@@ -747,6 +875,62 @@ impl Runner {
         let text = serde_json::to_string_pretty(&m).map_err(std::io::Error::other)?;
         crate::atomic::write_atomic(self.out.dir.join("manifest.json"), text.as_bytes())
     }
+}
+
+/// Decodes checkpoint file bytes (`path` for messages) and rebuilds the
+/// simulation they hold: the scenario (from the stored text and files), the
+/// world with its restored state, and the driver state. Never panics on
+/// bad bytes: every problem is an input error.
+pub fn load_checkpoint(
+    bytes: &[u8],
+    checkpoint: &Path,
+) -> Result<(Scenario, World, DriverState), RunError> {
+    let (json, fingerprint): (String, u64) =
+        crate::checkpoint::decode_checkpoint(bytes, checkpoint)
+            .map_err(|e| RunError::InputMessage(e.to_string()))?;
+    let ck: Checkpoint = serde_json::from_str(&json).map_err(|e| {
+        RunError::InputMessage(format!(
+            "checkpoint {}: cannot decode the state: {e}",
+            checkpoint.display()
+        ))
+    })?;
+    let scenario = scenario::parse(
+        Path::new(&ck.scenario_path),
+        ck.scenario_text.clone(),
+        Files::embedded(ck.files.clone()),
+    )
+    .map_err(RunError::Input)?;
+    if scenario.fingerprint() != fingerprint {
+        return Err(RunError::InputMessage(format!(
+                "checkpoint {}: its scenario fingerprint {fingerprint:016x} does not match the stored scenario ({:016x})",
+                checkpoint.display(),
+                scenario.fingerprint()
+            )));
+    }
+    let mut world = scenario
+        .build_world()
+        .map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
+    for (t, m) in &ck.extra_templates {
+        world
+            .add_template(t.clone(), *m)
+            .map_err(|e| RunError::InputMessage(e.to_string()))?;
+    }
+    let n_ins = scenario.inserts.len();
+    let d = &ck.driver;
+    if d.streams.len() != n_ins || d.inserted.len() != n_ins || d.stage > scenario.stages.len() {
+        return Err(RunError::InputMessage(format!(
+            "checkpoint {}: its driver state does not fit its scenario ({n_ins} insertions, {} stages)",
+            checkpoint.display(),
+            scenario.stages.len()
+        )));
+    }
+    world.restore_state(ck.world).map_err(|e| {
+        RunError::InputMessage(format!(
+            "checkpoint {} does not fit its scenario: {e}",
+            checkpoint.display()
+        ))
+    })?;
+    Ok((scenario, world, ck.driver))
 }
 
 fn hex3(v: glam::DVec3) -> [String; 3] {

@@ -15,6 +15,7 @@ use super::Files;
 use clump_core::boundary::Domain;
 use clump_core::contact::time_scale::rayleigh_time;
 use clump_core::contact::{Material, NormalLaw, PairProperties, RollingLaw};
+use clump_core::health::{HealthLimits, DEFAULT_KINETIC_JUMP, DEFAULT_MAX_OVERLAP_RATIO};
 use clump_core::insert::{
     Mix, MixEntry, Orientation, PackSpec, PackTarget, Region, SizeDistribution, StreamRate,
     StreamSpec, RSA_LIMIT,
@@ -33,6 +34,9 @@ type R<T> = Result<T, Diagnostic>;
 pub const DT_ERROR_FRACTION: f64 = 0.5;
 /// `dt / t_Rayleigh` above which a warning is given.
 pub const DT_WARN_FRACTION: f64 = 0.3;
+/// Most spheres of a built-in rod (`n`): bounds memory and the mass
+/// property computation of a mistyped `n`.
+pub const MAX_ROD_SPHERES: u64 = 10_000;
 /// Requested solid fraction of a pack region above which the scenario is refused.
 pub const PACK_ERROR_FRACTION: f64 = 0.45;
 
@@ -459,6 +463,38 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         None => None,
     };
 
+    let max_overlap_ratio = match sim.max_overlap_ratio {
+        Some(x) => {
+            if !(x > 0.0 && x <= 1.0) {
+                return Err(cx
+                    .err(
+                        &[K("simulation"), K("max_overlap_ratio")],
+                        format!("max_overlap_ratio must lie in (0, 1], found {x}"),
+                    )
+                    .label("overlap / smaller sphere radius")
+                    .note(
+                        "note: real contacts overlap by 1–5 % of the radius; the default is 0.15",
+                    ));
+            }
+            x
+        }
+        None => DEFAULT_MAX_OVERLAP_RATIO,
+    };
+    let kinetic_jump = match sim.kinetic_energy_jump {
+        Some(x) => {
+            if !(x > 1.0 && x.is_finite()) {
+                return Err(cx
+                    .err(
+                        &[K("simulation"), K("kinetic_energy_jump")],
+                        format!("kinetic_energy_jump must be a finite number > 1, found {x}"),
+                    )
+                    .label("growth factor of the kinetic energy"));
+            }
+            x
+        }
+        None => DEFAULT_KINETIC_JUMP,
+    };
+
     // ---------------- time step from the smallest sphere
     let mut smallest: Option<(f64, f64, String)> = None; // (t_R, radius, template)
     for (ti, t) in templates.iter().enumerate() {
@@ -739,6 +775,11 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         skin,
         multi_contact: sim.multi_contact.unwrap_or(MultiContact::Sum),
     };
+    let stability = HealthLimits {
+        max_overlap_ratio,
+        kinetic_jump,
+        specific_energy_floor: specific_energy_floor(&config, &inserts, &walls, &stages),
+    };
     Ok(Scenario {
         path: cx.src.path.clone(),
         text: cx.src.text.clone(),
@@ -754,10 +795,57 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         torque_points,
         config,
         time_step,
+        stability,
         stages,
         output,
         warnings: Vec::new(),
     })
+}
+
+/// Kinetic energy per kilogram that bodies may legitimately reach, J/kg:
+/// `½ v²` with `v² = 2 |g| D + v_max²`, where `D` is the domain diagonal and
+/// `v_max` the largest insertion speed (translation, or rotation × `D`) or
+/// wall speed (translation + rotation × `D`, also after stage changes).
+fn specific_energy_floor(
+    config: &WorldConfig,
+    inserts: &[InsertDef],
+    walls: &[Wall],
+    stages: &[StageDef],
+) -> f64 {
+    let d = config.domain.size().length();
+    let g = stages
+        .iter()
+        .filter_map(|s| s.gravity)
+        .map(|g| g.length())
+        .fold(config.gravity.length(), f64::max);
+    let mut v: f64 = 0.0;
+    for i in inserts {
+        match &i.kind {
+            InsertSpec::File { bodies } => {
+                for b in bodies {
+                    v = v.max(b.velocity.length() + b.angular_velocity.length() * d);
+                }
+            }
+            InsertSpec::Pack { spec, .. } => v = v.max(spec.velocity.length()),
+            InsertSpec::Stream { spec, .. } => v = v.max(spec.velocity.length()),
+        }
+    }
+    for w in walls {
+        let m = &w.motion;
+        v = v.max(
+            m.velocity.length() + m.angular_velocity.length() * d + m.surface_velocity.length(),
+        );
+    }
+    for c in stages.iter().flat_map(|s| &s.walls) {
+        let len = |x: Option<DVec3>| x.map_or(0.0, |x| x.length());
+        v = v.max(len(c.velocity) + len(c.angular_velocity) * d + len(c.surface_velocity));
+    }
+    let e = 0.5 * (2.0 * g * d + v * v);
+    if e.is_finite() {
+        e
+    } else {
+        0.0
+    }
 }
 
 /// Contact keys shared by `[contact]` and `[[pair]]`.
@@ -1034,6 +1122,11 @@ fn build_template(
                 })?;
                 if n == 0 {
                     return Err(cx.err(&p("n"), "a rod needs n >= 1 spheres"));
+                }
+                if u64::from(n) > MAX_ROD_SPHERES {
+                    return Err(cx
+                        .err(&p("n"), format!("a rod may have at most {MAX_ROD_SPHERES} spheres, found {n}"))
+                        .note("note: a clump's mass properties are computed over the union of its spheres; use a template file for unusual shapes"));
                 }
                 let spacing = need(
                     cx,

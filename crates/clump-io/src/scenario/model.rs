@@ -4,6 +4,7 @@
 use super::diag::Diagnostic;
 use clump_core::body::BodyInit;
 use clump_core::contact::{Material, PairProperties};
+use clump_core::health::HealthLimits;
 use clump_core::insert::{Mix, PackSpec, StreamSpec};
 use clump_core::shape::ClumpTemplate;
 use clump_core::wall::{TriMesh, Wall};
@@ -48,6 +49,10 @@ pub struct Scenario {
     pub config: WorldConfig,
     /// How the time step was chosen.
     pub time_step: TimeStep,
+    /// Thresholds of the per-step instability check (`max_overlap_ratio`,
+    /// `kinetic_energy_jump` of `[simulation]`; the kinetic-energy floor
+    /// follows from gravity, the domain and the insertion and wall speeds).
+    pub stability: HealthLimits,
     /// Stages, in order.
     pub stages: Vec<StageDef>,
     /// Output settings.

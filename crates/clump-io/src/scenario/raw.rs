@@ -108,6 +108,12 @@ pub struct RawSimulation {
     pub skin: Option<f64>,
     /// Several-contact treatment between two bodies (default `"sum"`).
     pub multi_contact: Option<MultiContact>,
+    /// Largest overlap / smaller sphere radius before the run is stopped as
+    /// unstable (default 0.15).
+    pub max_overlap_ratio: Option<f64>,
+    /// Largest growth factor of the kinetic energy within about 100 steps
+    /// before the run is stopped as unstable (default 1000).
+    pub kinetic_energy_jump: Option<f64>,
 }
 
 /// A coordinate axis name.

@@ -5,9 +5,21 @@ pub fn unit_of(key: &str) -> Option<&'static str> {
     Some(match key {
         "youngs_modulus" => "Pa",
         "density" | "fluid_density" => "kg/m^3",
-        "poisson_ratio" | "restitution" | "friction" | "rolling_friction" | "dt_fraction"
-        | "scale" | "fraction" | "volume_fraction" | "coefficient" | "min" | "max" | "mean"
-        | "std" => "",
+        "poisson_ratio"
+        | "restitution"
+        | "friction"
+        | "rolling_friction"
+        | "dt_fraction"
+        | "scale"
+        | "fraction"
+        | "volume_fraction"
+        | "coefficient"
+        | "min"
+        | "max"
+        | "mean"
+        | "std"
+        | "max_overlap_ratio"
+        | "kinetic_energy_jump" => "",
         "kn" | "kt" => "N/m",
         "radius" | "spacing" | "edge" | "skin" | "height" | "lo" | "hi" | "point" | "center"
         | "base" | "spheres" | "offset" | "torque_point" => "m",
