@@ -206,3 +206,29 @@ pub fn fmt(x: f64) -> String {
         format!("{x:.digits$}")
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cases_pass_and_fail_by_their_tolerance() {
+        assert!(Case::relative("a", "s", 2.0, 2.009, 0.005, "m").pass);
+        assert!(!Case::relative("a", "s", 2.0, 2.02, 0.005, "m").pass);
+        assert!(!Case::relative("a", "s", 2.0, f64::NAN, 0.005, "m").pass);
+        assert!(Case::absolute("a", "s", 0.5, 0.505, 0.01, "").pass);
+        assert!(!Case::absolute("a", "s", 0.5, f64::NAN, 0.01, "").pass);
+        assert!(Case::range("a", "s", 0.58, 0.62, 0.6, "").pass);
+        assert!(!Case::range("a", "s", 0.58, 0.62, 0.63, "").pass);
+        assert!(!Case::at_most("a", "s", "0", 2e-6, 1e-6).pass);
+        assert!(!Case::error("a", "s", "boom").pass);
+    }
+
+    #[test]
+    fn numbers_format_with_four_significant_digits() {
+        assert_eq!(fmt(10.7), "10.70");
+        assert_eq!(fmt(0.2127), "0.2127");
+        assert_eq!(fmt(1.5e-7), "1.5000e-7");
+        assert_eq!(fmt(0.0), "0");
+    }
+}

@@ -67,3 +67,21 @@ pub fn damping_for_restitution(p: f64, q: f64, e: f64, h: f64) -> f64 {
     }
     0.5 * (lo + hi)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn undamped_impact_is_elastic_and_damping_inverts() {
+        let (e, _) = impact_restitution(1.5, 0.25, 0.0, 1e-3, usize::MAX);
+        assert!((e - 1.0).abs() < 1e-6, "{e}");
+        // linear spring with a linear dashpot: e = exp(−ζπ/√(1−ζ²)), c = 2ζ
+        let zeta: f64 = 0.2;
+        let (e_lin, _) = impact_restitution(1.0, 0.0, 2.0 * zeta, 1e-4, usize::MAX);
+        let exact = (-zeta * std::f64::consts::PI / (1.0 - zeta * zeta).sqrt()).exp();
+        assert!((e_lin - exact).abs() < 1e-4, "{e_lin} vs {exact}");
+        let c = damping_for_restitution(1.5, 0.25, 0.5, 1e-3);
+        assert!((impact_restitution(1.5, 0.25, c, 1e-3, usize::MAX).0 - 0.5).abs() < 1e-6);
+    }
+}

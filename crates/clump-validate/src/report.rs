@@ -69,3 +69,25 @@ pub fn markdown(suite: &Suite, header: &[String]) -> String {
 pub fn write(dir: &Path, suite: &Suite, header: &[String]) -> std::io::Result<()> {
     std::fs::write(dir.join("report.md"), markdown(suite, header))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::{Case, Group};
+
+    #[test]
+    fn report_has_one_row_per_case_and_marks_failures() {
+        let mut g = Group::default();
+        g.name = "g".into();
+        g.cases
+            .push(Case::absolute("ok | pipe", "s", 1.0, 1.0, 0.1, ""));
+        g.cases.push(Case::absolute("bad", "s", 1.0, 2.0, 0.1, ""));
+        g.plots.push(("p.png".into(), "caption".into()));
+        let s = Suite { groups: vec![g] };
+        let md = markdown(&s, &["h".into()]);
+        assert!(md.contains("**2 cases, 1 passed, 1 failed.**"));
+        assert!(md.contains("ok \\| pipe"));
+        assert!(md.contains("**FAIL**"));
+        assert!(md.contains("![caption](p.png)"));
+    }
+}
