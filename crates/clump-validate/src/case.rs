@@ -41,7 +41,7 @@ impl Case {
                 fmt(measured),
                 100.0 * signed_rel(measured, expected)
             ),
-            tolerance: format!("±{} %", fmt(100.0 * rel_tol)),
+            tolerance: format!("±{} %", tidy(100.0 * rel_tol)),
             pass: err <= rel_tol,
         }
     }
@@ -60,7 +60,7 @@ impl Case {
             source: source.into(),
             expected: format!("{} {unit}", fmt(expected)),
             measured: format!("{} {unit}", fmt(measured)),
-            tolerance: format!("±{} {unit}", fmt(abs_tol)),
+            tolerance: format!("±{} {unit}", tidy(abs_tol)),
             pass: (measured - expected).abs() <= abs_tol && measured.is_finite(),
         }
     }
@@ -97,7 +97,7 @@ impl Case {
             source: source.into(),
             expected: expected.into(),
             measured: fmt(measured),
-            tolerance: format!("≤ {}", fmt(bound)),
+            tolerance: format!("≤ {}", tidy(bound)),
             pass: measured <= bound,
         }
     }
@@ -189,6 +189,17 @@ fn signed_rel(a: f64, b: f64) -> f64 {
     }
 }
 
+/// Formats a tolerance without trailing zeros: `0.5`, `0.01`, `1e-10`.
+pub fn tidy(x: f64) -> String {
+    if x != 0.0 && x.abs() < 1e-3 {
+        let e = x.abs().log10().floor() as i32;
+        let m = (x / 10f64.powi(e) * 1e6).round() / 1e6;
+        format!("{m}e{e}")
+    } else {
+        format!("{}", (x * 1e9).round() / 1e9)
+    }
+}
+
 /// Formats a number with 4 significant digits (scientific outside 1e-3..1e5).
 pub fn fmt(x: f64) -> String {
     if !x.is_finite() {
@@ -230,5 +241,8 @@ mod tests {
         assert_eq!(fmt(0.2127), "0.2127");
         assert_eq!(fmt(1.5e-7), "1.5000e-7");
         assert_eq!(fmt(0.0), "0");
+        assert_eq!(tidy(100.0 * 0.005), "0.5");
+        assert_eq!(tidy(1e-10), "1e-10");
+        assert_eq!(tidy(0.15), "0.15");
     }
 }

@@ -32,8 +32,11 @@ use std::time::Instant;
 pub enum Selection {
     /// The cheap subset CI runs (seconds).
     Quick,
-    /// Everything, including the bulk cases (minutes).
+    /// Everything but the hopper, including the bulk cases (minutes).
     Full,
+    /// [`Selection::Full`] plus the Beverloo hopper series (not sized to
+    /// the 15-minute budget; see [`bulk::hopper`]).
+    FullWithHopper,
 }
 
 /// Runs the selected groups, writing each group's plots into `dir` (which

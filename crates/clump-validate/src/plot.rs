@@ -103,8 +103,23 @@ fn bounds(series: &[Series]) -> Option<(f64, f64, f64, f64)> {
 }
 
 fn dashed(points: &[(f64, f64)], x_span: f64) -> Vec<Vec<(f64, f64)>> {
-    // break the polyline into dashes of about 1.5 % of the x span
+    // resample long segments, then break the polyline into dashes of about 1.5 % of the x span
     let dash = 0.015 * x_span;
+    let mut fine = Vec::with_capacity(points.len() * 4);
+    for w in points.windows(2) {
+        let k = (((w[1].0 - w[0].0).abs() / (0.5 * dash)).ceil() as usize).clamp(1, 400);
+        for i in 0..k {
+            let s = i as f64 / k as f64;
+            fine.push((
+                w[0].0 + s * (w[1].0 - w[0].0),
+                w[0].1 + s * (w[1].1 - w[0].1),
+            ));
+        }
+    }
+    if let Some(&last) = points.last() {
+        fine.push(last);
+    }
+    let points = &fine[..];
     let mut out = Vec::new();
     let mut cur = Vec::new();
     let mut acc = 0.0;

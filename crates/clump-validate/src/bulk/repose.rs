@@ -29,8 +29,8 @@ fn fit_slope(p: &[(f64, f64)]) -> f64 {
 }
 
 /// Heap angle (deg) for sliding friction `mu` and rolling friction `mu_r`,
-/// with the surface profile `(x mm, height mm)`.
-fn heap(mu: f64, mu_r: f64, n: usize) -> Result<(f64, Vec<(f64, f64)>), String> {
+/// the two flanks' angles (deg) and the surface profile `(x mm, height mm)`.
+fn heap(mu: f64, mu_r: f64, n: usize) -> Result<(f64, (f64, f64), Vec<(f64, f64)>), String> {
     let mat = material(5e6, 0.3, 2500.0);
     let dt = rayleigh_dt(&mat, R, 0.2);
     let dom = Domain {
@@ -124,14 +124,15 @@ fn heap(mu: f64, mu_r: f64, n: usize) -> Result<(f64, Vec<(f64, f64)>), String> 
             (-sign * fit_slope(&pts)).atan().to_degrees()
         }
     };
-    let angle = 0.5 * (slope_of(-1.0) + slope_of(1.0));
-    Ok((angle, profile))
+    let flanks = (slope_of(-1.0), slope_of(1.0));
+    Ok((0.5 * (flanks.0 + flanks.1), flanks, profile))
 }
 
 /// Runs the friction and rolling-friction series.
 pub fn run(g: &mut Group, dir: &Path) -> Result<(), String> {
     let n = 300;
     let mut profiles = Vec::new();
+    let mut flanks = Vec::new();
     let mut trend = |label: &str,
                      runs: &[(f64, f64)],
                      key: fn(&(f64, f64)) -> f64,
@@ -139,8 +140,12 @@ pub fn run(g: &mut Group, dir: &Path) -> Result<(), String> {
      -> Result<Vec<(f64, f64)>, String> {
         let mut out = Vec::new();
         for r in runs {
-            let (a, prof) = heap(r.0, r.1, n)?;
+            let (a, fl, prof) = heap(r.0, r.1, n)?;
             out.push((key(r), a));
+            flanks.push(format!(
+                "μ {} μ_r {}: {:.1}° / {:.1}°",
+                r.0, r.1, fl.0, fl.1
+            ));
             profiles.push(Series::new(
                 format!("μ = {}, μ_r = {}: {a:.1}°", r.0, r.1),
                 prof,
@@ -188,6 +193,10 @@ pub fn run(g: &mut Group, dir: &Path) -> Result<(), String> {
             .map(|p| format!("μ {}: {:.1}°", p.0, p.1))
             .collect::<Vec<_>>()
             .join(", ");
+    }
+    g.notes.push(format!("angle of repose, left / right flank of each heap (their difference shows the scatter of one realisation): {}", flanks.join("; ")));
+    if g.cases.iter().rev().take(2).any(|c| !c.pass) {
+        g.notes.push("angle of repose, investigation of the FAIL: a step of the series smaller than the left/right flank difference of the same heap is within the measurement scatter of one small realisation (a heap about four clumps high, fitted over a few 3-mm bins); the column collapse measures a runout angle, lower than a static angle of repose; and tetra clumps interlock, which already resists rolling, so CDT rolling friction changes the angle far less than for spheres. A resolved trend needs several realisations and a larger heap, beyond this budget. The expected trend is not changed.".into());
     }
     g.notes.push(format!("angle of repose: {n} tetra clumps (4 spheres R = 1 mm, centres 1.2 mm apart), slab 12 mm deep periodic in y, column 16 mm wide between two gates, settled, gates removed, settled again; E = 5e6 Pa, e = 0.3, dt = 0.2 t_R; angle = mean of the two flanks' least-squares slopes of the highest clump top per 3-mm bin, between 20 % and 80 % of the heap height above the floor layer"));
     let c = Chart {
