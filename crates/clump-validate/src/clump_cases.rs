@@ -5,7 +5,7 @@
 
 use crate::case::{Case, Group};
 use crate::mass::dimer_formula;
-use crate::ode::{damping_for_restitution, impact_restitution};
+use crate::ode::{damping_for_restitution, impact_restitution, slope};
 use crate::plot::{draw, Chart, Series, Style};
 use crate::setup::*;
 use crate::Selection;
@@ -52,18 +52,6 @@ fn on_plane(
         .map_err(|e| e.to_string())?;
     w.prepare().map_err(|e| e.to_string())?;
     Ok((w, id))
-}
-
-/// Least-squares slope of `(x, y)` points.
-fn slope(p: &[(f64, f64)]) -> f64 {
-    let n = p.len() as f64;
-    let (mx, my) = (
-        p.iter().map(|a| a.0).sum::<f64>() / n,
-        p.iter().map(|a| a.1).sum::<f64>() / n,
-    );
-    let sxy: f64 = p.iter().map(|a| (a.0 - mx) * (a.1 - my)).sum();
-    let sxx: f64 = p.iter().map(|a| (a.0 - mx).powi(2)).sum();
-    sxy / sxx
 }
 
 fn incline(g: &mut Group, dir: &Path) -> Result<(), String> {

@@ -1,5 +1,6 @@
 //! A classical fourth-order Runge–Kutta integrator for small ODE systems,
-//! used for reference solutions that are independent of the engine.
+//! used for reference solutions that are independent of the engine, and a
+//! least-squares slope.
 
 /// One RK4 step of `y' = f(y)` (autonomous) with step `h`.
 pub fn rk4_step<const N: usize>(
@@ -68,6 +69,16 @@ pub fn damping_for_restitution(p: f64, q: f64, e: f64, h: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
+/// Least-squares slope of `(x, y)` points (NaN for fewer than two distinct x).
+pub fn slope(p: &[(f64, f64)]) -> f64 {
+    let n = p.len() as f64;
+    let mx = p.iter().map(|a| a.0).sum::<f64>() / n;
+    let my = p.iter().map(|a| a.1).sum::<f64>() / n;
+    let sxy: f64 = p.iter().map(|a| (a.0 - mx) * (a.1 - my)).sum();
+    let sxx: f64 = p.iter().map(|a| (a.0 - mx).powi(2)).sum();
+    sxy / sxx
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -81,6 +92,7 @@ mod tests {
         let (e_lin, _) = impact_restitution(1.0, 0.0, 2.0 * zeta, 1e-4, usize::MAX);
         let exact = (-zeta * std::f64::consts::PI / (1.0 - zeta * zeta).sqrt()).exp();
         assert!((e_lin - exact).abs() < 1e-4, "{e_lin} vs {exact}");
+        assert!((slope(&[(0.0, 1.0), (1.0, 3.0), (2.0, 5.0)]) - 2.0).abs() < 1e-12);
         let c = damping_for_restitution(1.5, 0.25, 0.5, 1e-3);
         assert!((impact_restitution(1.5, 0.25, c, 1e-3, usize::MAX).0 - 0.5).abs() < 1e-6);
     }

@@ -6,6 +6,7 @@
 
 use super::{fill, rayleigh_dt, settle};
 use crate::case::{Case, Group};
+use crate::ode::slope;
 use crate::plot::{draw, Chart, Series, Style};
 use crate::setup::*;
 use clump_core::boundary::Domain;
@@ -130,16 +131,6 @@ fn discharge(d0: f64) -> Result<(f64, f64, Vec<(f64, f64)>), String> {
         return Err("too few samples".into());
     }
     Ok((slope(&window), rho_b, hist))
-}
-
-fn slope(p: &[(f64, f64)]) -> f64 {
-    let n = p.len() as f64;
-    let (mx, my) = (
-        p.iter().map(|a| a.0).sum::<f64>() / n,
-        p.iter().map(|a| a.1).sum::<f64>() / n,
-    );
-    p.iter().map(|a| (a.0 - mx) * (a.1 - my)).sum::<f64>()
-        / p.iter().map(|a| (a.0 - mx).powi(2)).sum::<f64>()
 }
 
 /// Fits log W = log A + n log(D0 − k d) over k by least squares; returns (n, k, A).

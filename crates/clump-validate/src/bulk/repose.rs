@@ -6,6 +6,7 @@
 
 use super::{fill, rayleigh_dt, settle};
 use crate::case::{Case, Group};
+use crate::ode::slope;
 use crate::plot::{draw, Chart, Series, Style};
 use crate::setup::*;
 use clump_core::boundary::Domain;
@@ -17,16 +18,6 @@ use std::path::Path;
 const R: f64 = 1e-3;
 const HALF_WIDTH: f64 = 0.008;
 const DEPTH: f64 = 0.012;
-
-/// Least-squares slope of `(x, y)` points.
-fn fit_slope(p: &[(f64, f64)]) -> f64 {
-    let n = p.len() as f64;
-    let mx = p.iter().map(|a| a.0).sum::<f64>() / n;
-    let my = p.iter().map(|a| a.1).sum::<f64>() / n;
-    let sxy: f64 = p.iter().map(|a| (a.0 - mx) * (a.1 - my)).sum();
-    let sxx: f64 = p.iter().map(|a| (a.0 - mx).powi(2)).sum();
-    sxy / sxx
-}
 
 /// Heap angle (deg) for sliding friction `mu` and rolling friction `mu_r`,
 /// the two flanks' angles (deg) and the surface profile `(x mm, height mm)`.
@@ -121,7 +112,7 @@ fn heap(mu: f64, mu_r: f64, n: usize) -> Result<(f64, (f64, f64), Vec<(f64, f64)
         if pts.len() < 3 {
             f64::NAN
         } else {
-            (-sign * fit_slope(&pts)).atan().to_degrees()
+            (-sign * slope(&pts)).atan().to_degrees()
         }
     };
     let flanks = (slope_of(-1.0), slope_of(1.0));
