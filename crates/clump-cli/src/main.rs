@@ -12,6 +12,7 @@ mod cmd_check;
 mod cmd_resume;
 mod cmd_run;
 mod cmd_template;
+mod cmd_validate;
 
 /// Clump: a DEM simulator for rigid clumps of overlapping spheres.
 #[derive(Parser)]
@@ -33,6 +34,8 @@ enum Commands {
     Template(cmd_template::TemplateArgs),
     /// The shared tetra-bed benchmark, optionally side by side with LIGGGHTS.
     Bench(cmd_bench::BenchArgs),
+    /// Run the validation suite and write report.md with PNG plots.
+    Validate(cmd_validate::ValidateArgs),
 }
 
 fn main() -> ExitCode {
@@ -48,6 +51,7 @@ fn main() -> ExitCode {
         Commands::Run(a) => cmd_run::run(&a),
         Commands::Check(a) => cmd_check::run(&a),
         Commands::Resume(a) => cmd_resume::run(&a),
+        Commands::Validate(a) => cmd_validate::run(&a),
         Commands::Bench(a) => match cmd_bench::run(&a) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {

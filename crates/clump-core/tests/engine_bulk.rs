@@ -38,15 +38,7 @@ impl Lcg {
 }
 
 fn tetra(r: f64, edge: f64, density: f64) -> ClumpTemplate {
-    let h = edge / (2.0 * 2f64.sqrt());
-    let s: Vec<Sphere> = [[1., 1., 1.], [1., -1., -1.], [-1., 1., -1.], [-1., -1., 1.]]
-        .iter()
-        .map(|c| Sphere {
-            center: DVec3::from_array(*c) * h,
-            radius: r,
-        })
-        .collect();
-    ClumpTemplate::from_spheres("tetra", &s, density).unwrap()
+    clump_validate::setup::tetra(r, edge, density).unwrap()
 }
 
 fn bench_material() -> Material {

@@ -5,14 +5,14 @@ use clump_core::body::BodyInit;
 use clump_core::boundary::Domain;
 use clump_core::contact::{Material, PairProperties};
 use clump_core::multi_contact::MultiContact;
-use clump_core::rotation::RotationScheme;
 use clump_core::shape::{ClumpTemplate, Sphere};
 use clump_core::wall::{Wall, WallMotion, WallShape};
-use clump_core::world::{AddedMass, ContactTable, World, WorldConfig};
+use clump_core::world::World;
 use glam::{DQuat, DVec3};
 
 /// A world with one particle material (index 0) and a rigid wall material
-/// (index 1), the same pair properties everywhere.
+/// (index 1), the same pair properties everywhere (shared with the
+/// validation suite).
 pub fn world(
     particle: Material,
     props: PairProperties,
@@ -20,23 +20,7 @@ pub fn world(
     domain: Domain,
     gravity: DVec3,
 ) -> World {
-    let rigid = Material {
-        youngs_modulus: f64::INFINITY,
-        poisson_ratio: particle.poisson_ratio,
-        density: 1.0,
-    };
-    let mats = vec![particle, rigid];
-    let table = ContactTable::new(&mats, |_, _| props.clone()).expect("contact table");
-    let config = WorldConfig {
-        domain,
-        gravity,
-        dt,
-        rotation: RotationScheme::default(),
-        added_mass: AddedMass::default(),
-        skin: None,
-        multi_contact: MultiContact::Sum,
-    };
-    World::new(config, mats, table)
+    clump_validate::setup::world(particle, props, dt, domain, gravity).expect("world")
 }
 
 /// A large open domain (no periodic axes).
