@@ -305,18 +305,23 @@ fn peak_rss_mb() -> f64 {
 
 fn run_liggghts(args: &BenchArgs, bin: &Path, na: u64, nb: u64) -> Result<Figures> {
     let work = std::env::temp_dir().join(format!("clump-bench-liggghts-{}", std::process::id()));
-    std::fs::create_dir_all(&work)?;
+    // the shared layout: the case files in the folder, the LIGGGHTS input
+    // in liggghts/ (gen_liggghts.py reads ../ic_N.txt)
+    let run_dir = work.join("liggghts");
+    std::fs::create_dir_all(&run_dir)?;
     let src = args.dir.join("liggghts");
     for f in ["in.bench", "tetra.multisphere", "gen_liggghts.py"] {
-        std::fs::copy(src.join(f), work.join(f))
+        std::fs::copy(src.join(f), run_dir.join(f))
             .with_context(|| format!("copying {}", src.join(f).display()))?;
     }
     for f in std::fs::read_dir(&args.dir)? {
         let p = f?.path();
-        if p.is_file() {
-            std::fs::copy(&p, work.join(p.file_name().unwrap()))?;
+        if let (true, Some(name)) = (p.is_file(), p.file_name()) {
+            std::fs::copy(&p, work.join(name))?;
         }
     }
+    let work_root = work;
+    let work = run_dir;
     let ztop = if args.n <= 2000 { "0.2" } else { "0.31" };
     let ok = std::process::Command::new("python3")
         .arg("gen_liggghts.py")
@@ -349,11 +354,22 @@ fn run_liggghts(args: &BenchArgs, bin: &Path, na: u64, nb: u64) -> Result<Figure
         .output()?;
     let text =
         String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
-    let loops: Vec<f64> = text
-        .lines()
-        .filter(|l| l.starts_with("Loop time of"))
-        .filter_map(|l| l.split_whitespace().nth(3)?.parse().ok())
-        .collect();
+    // "Loop time of T on P procs for N steps with M atoms": the insertion
+    // include runs many 1-step loops first; phase A and B are the last loops
+    // of NA and NB steps.
+    let loop_of = |steps: u64| -> Option<f64> {
+        text.lines()
+            .filter(|l| l.starts_with("Loop time of"))
+            .filter(|l| {
+                l.split_whitespace()
+                    .nth(8)
+                    .and_then(|x| x.parse::<u64>().ok())
+                    == Some(steps)
+            })
+            .filter_map(|l| l.split_whitespace().nth(3)?.parse().ok())
+            .next_back()
+    };
+    let loops: Vec<f64> = [loop_of(na), loop_of(nb)].into_iter().flatten().collect();
     let rss = text
         .lines()
         .find(|l| l.starts_with("MAXRSS_KB"))
@@ -377,7 +393,7 @@ fn run_liggghts(args: &BenchArgs, bin: &Path, na: u64, nb: u64) -> Result<Figure
         let f = work.join(format!("final_{}.dump", args.n));
         let _ = std::fs::copy(f, p.with_extension("liggghts.dump"));
     }
-    let _ = std::fs::remove_dir_all(&work);
+    let _ = std::fs::remove_dir_all(&work_root);
     Ok(Figures {
         a_seconds: loops[0],
         b_seconds: loops[1],
