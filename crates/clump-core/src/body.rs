@@ -122,23 +122,32 @@ impl Bodies {
     /// Reorders all arrays so that new index `k` holds old index `perm[k]`.
     /// `perm` may be shorter than `len()`: bodies not listed are dropped.
     pub fn permute(&mut self, perm: &[u32]) {
-        fn apply<T: Copy>(v: &mut Vec<T>, perm: &[u32]) {
-            let old = std::mem::take(v);
-            v.extend(perm.iter().map(|&k| old[k as usize]));
+        let mut out = Bodies::default();
+        self.permute_into(perm, &mut out);
+        *self = out;
+    }
+
+    /// Writes the bodies `perm[0], perm[1], …` of `self` into `out`, reusing
+    /// `out`'s buffers (no allocation once they are large enough): the
+    /// double-buffered form of [`Bodies::permute`] used at every rebuild.
+    pub fn permute_into(&self, perm: &[u32], out: &mut Bodies) {
+        fn gather<T: Copy>(src: &[T], perm: &[u32], dst: &mut Vec<T>) {
+            dst.clear();
+            dst.extend(perm.iter().map(|&k| src[k as usize]));
         }
-        apply(&mut self.id, perm);
-        apply(&mut self.template, perm);
-        apply(&mut self.position, perm);
-        apply(&mut self.velocity, perm);
-        apply(&mut self.orientation, perm);
-        apply(&mut self.angular_momentum, perm);
-        apply(&mut self.angular_velocity, perm);
-        apply(&mut self.force, perm);
-        apply(&mut self.torque, perm);
-        apply(&mut self.mass, perm);
-        apply(&mut self.inertia, perm);
-        apply(&mut self.force_flag, perm);
-        apply(&mut self.torque_flag, perm);
-        apply(&mut self.start_step, perm);
+        gather(&self.id, perm, &mut out.id);
+        gather(&self.template, perm, &mut out.template);
+        gather(&self.position, perm, &mut out.position);
+        gather(&self.velocity, perm, &mut out.velocity);
+        gather(&self.orientation, perm, &mut out.orientation);
+        gather(&self.angular_momentum, perm, &mut out.angular_momentum);
+        gather(&self.angular_velocity, perm, &mut out.angular_velocity);
+        gather(&self.force, perm, &mut out.force);
+        gather(&self.torque, perm, &mut out.torque);
+        gather(&self.mass, perm, &mut out.mass);
+        gather(&self.inertia, perm, &mut out.inertia);
+        gather(&self.force_flag, perm, &mut out.force_flag);
+        gather(&self.torque_flag, perm, &mut out.torque_flag);
+        gather(&self.start_step, perm, &mut out.start_step);
     }
 }

@@ -219,6 +219,12 @@ pub struct World {
     pub(crate) topology_dirty: bool,
     pub(crate) forces_ready: bool,
     pub(crate) scratch_perm: Vec<u32>,
+    /// Rebuild scratch (reused, so rebuilds do not allocate once warm): which
+    /// bodies stay, the permuted bodies, and the permuted wall-contact slots.
+    pub(crate) scratch_keep: Vec<bool>,
+    pub(crate) scratch_bodies: Bodies,
+    pub(crate) scratch_wall_key: Vec<[u32; WALL_SLOTS]>,
+    pub(crate) scratch_wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
     pub(crate) scratch_keys: Vec<(u64, u64, u32)>,
     pub(crate) chunk_stats: Vec<ContactStats>,
     pub(crate) chunk_wall_loads: Vec<WallLoad>,
@@ -259,6 +265,10 @@ impl World {
             topology_dirty: true,
             forces_ready: false,
             scratch_perm: Vec::new(),
+            scratch_keep: Vec::new(),
+            scratch_bodies: Bodies::default(),
+            scratch_wall_key: Vec::new(),
+            scratch_wall_hist: Vec::new(),
             scratch_keys: Vec::new(),
             chunk_stats: Vec::new(),
             chunk_wall_loads: Vec::new(),

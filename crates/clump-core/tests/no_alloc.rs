@@ -1,8 +1,8 @@
 //! "Nothing allocated per step once warmed up" (issue 3): a counting global
 //! allocator (this test binary only) watches a dense, moving bed of
 //! tetrahedral clumps. Steps without a neighbour-list rebuild must not touch
-//! the heap at all; rebuild steps may only reuse buffers once the bed has
-//! been through a few rebuilds (reported, and bounded).
+//! the heap at all; rebuild steps reuse their buffers, so only the rare
+//! growth of a buffer's capacity remains (reported, and bounded).
 //! Memory is O(N): the capacities of the per-pair and per-sphere buffers
 //! are checked to grow linearly with the number of bodies.
 
@@ -124,6 +124,16 @@ fn no_heap_allocation_per_step_after_warm_up() {
         );
         assert!(plain_steps > 100);
         assert_eq!(plain_allocs, 0, "a step without rebuild allocated");
+        // Rebuilds reuse their buffers (double-buffered bodies and wall slots,
+        // scratch masks, in-place pair fill): what remains is the occasional
+        // capacity growth of a buffer whose working size rises as the bed
+        // packs (measured: 5 in 76 rebuilds). Any per-rebuild allocation
+        // would give at least one per rebuild.
+        assert!(rebuild_steps > 20);
+        assert!(
+            4 * rebuild_allocs <= rebuild_steps,
+            "{rebuild_allocs} allocations in {rebuild_steps} rebuilds"
+        );
     });
 }
 

@@ -189,28 +189,24 @@ impl PairList {
         self.topo.clear();
         self.topo.resize(acc, PairTopo::default());
 
-        // 4. fill, block by block, into disjoint slices
+        // 4. fill, block by block, into disjoint ranges (no allocation)
         {
-            let mut rest: &mut [PairTopo] = &mut self.topo;
-            let mut blocks = Vec::with_capacity(n / BLOCK + 1);
-            let mut start = 0;
-            while start < n {
-                let end = (start + BLOCK).min(n);
-                let len = self.offsets[end] - self.offsets[start];
-                let (head, tail) = rest.split_at_mut(len);
-                blocks.push((start, end, head));
-                rest = tail;
-                start = end;
-            }
-            blocks.into_par_iter().for_each(|(s0, s1, out)| {
-                let mut k = 0;
+            let out = crate::step::shared::SharedMut::new(&mut self.topo);
+            let offsets = &self.offsets;
+            (0..n.div_ceil(BLOCK)).into_par_iter().for_each(|blk| {
+                let (s0, s1) = (blk * BLOCK, ((blk + 1) * BLOCK).min(n));
+                let mut k = offsets[s0];
                 for i in s0..s1 {
                     ctx.visit(i, |j, shift| {
-                        out[k] = PairTopo {
-                            i: i as u32,
-                            j,
-                            shift,
-                        };
+                        // SAFETY: sphere i's candidates own the range
+                        // offsets[i]..offsets[i + 1]; blocks are disjoint.
+                        unsafe {
+                            *out.get(k) = PairTopo {
+                                i: i as u32,
+                                j,
+                                shift,
+                            };
+                        }
                         k += 1;
                     });
                 }

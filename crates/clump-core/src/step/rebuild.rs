@@ -21,7 +21,9 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         w.pairs.save_history(&w.spheres.gid, &mut w.history_map);
         let domain = w.config.domain;
         let n = w.bodies.len();
-        let mut keep = vec![true; n];
+        let keep = &mut w.scratch_keep;
+        keep.clear();
+        keep.resize(n, true);
         for b in 0..n {
             let x = w.bodies.position[b];
             if domain.is_outside(x) {
@@ -36,7 +38,7 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
             &grid,
             &w.bodies.position,
             &w.bodies.id,
-            &keep,
+            &w.scratch_keep,
             &mut w.scratch_perm,
             &mut w.scratch_keys,
         );
@@ -44,8 +46,11 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         // carry wall-contact slots along with their spheres; bodies added
         // since the last build (indices ≥ old count) start with empty slots
         let old_n = w.spheres.body_first.len().saturating_sub(1);
-        let old_key = std::mem::take(&mut w.wall_key);
-        let old_hist = std::mem::take(&mut w.wall_hist);
+        std::mem::swap(&mut w.wall_key, &mut w.scratch_wall_key);
+        std::mem::swap(&mut w.wall_hist, &mut w.scratch_wall_hist);
+        w.wall_key.clear();
+        w.wall_hist.clear();
+        let (old_key, old_hist) = (&w.scratch_wall_key, &w.scratch_wall_hist);
         for &ob in &w.scratch_perm {
             let ob = ob as usize;
             if ob < old_n {
@@ -61,9 +66,9 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
                     .extend(std::iter::repeat([ContactHistory::default(); WALL_SLOTS]).take(ns));
             }
         }
-        let perm = std::mem::take(&mut w.scratch_perm);
-        w.bodies.permute(&perm);
-        w.scratch_perm = perm;
+        w.bodies
+            .permute_into(&w.scratch_perm, &mut w.scratch_bodies);
+        std::mem::swap(&mut w.bodies, &mut w.scratch_bodies);
         rebuild_sphere_topology(w);
         update_spheres(w);
         w.reference_pose.clear();
