@@ -203,27 +203,7 @@ fn concave_corner_gives_one_contact_per_face() {
 
 /// A closed axis-aligned cube `[-h, h]³`, 12 triangles.
 fn cube_mesh(h: f64) -> TriMesh {
-    let v: Vec<DVec3> = (0..8)
-        .map(|k| {
-            DVec3::new(
-                if k & 1 == 0 { -h } else { h },
-                if k & 2 == 0 { -h } else { h },
-                if k & 4 == 0 { -h } else { h },
-            )
-        })
-        .collect();
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let t = quads
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .collect();
+    let (v, t) = clump_core::wall::mesh::primitives::cuboid(DVec3::splat(-h), DVec3::splat(h));
     TriMesh::new(v, t).unwrap()
 }
 

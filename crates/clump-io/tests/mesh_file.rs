@@ -12,24 +12,7 @@ fn tmp(name: &str) -> PathBuf {
 
 /// A closed unit cube `[0, 1]³`, 12 triangles, outward winding.
 fn cube() -> (Vec<DVec3>, Vec<[u32; 3]>) {
-    let v: Vec<DVec3> = (0..8)
-        .map(|k| DVec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, ((k >> 2) & 1) as f64))
-        .collect();
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    (
-        v,
-        quads
-            .iter()
-            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-            .collect(),
-    )
+    clump_core::wall::mesh::primitives::cuboid(DVec3::ZERO, DVec3::ONE)
 }
 
 fn check_cube(m: &clump_core::wall::TriMesh, scale: f64, offset: DVec3) {

@@ -117,6 +117,34 @@ pub fn plate(size_x: f64, size_y: f64, nx: usize, ny: usize) -> MeshData {
     (v, t)
 }
 
+/// The closed axis-aligned box with corners `lo` and `hi` (mesh frame, m):
+/// 8 vertices (vertex `k` takes `hi` along axis `a` when bit `a` of `k` is
+/// set), 12 triangles, outward winding.
+pub fn cuboid(lo: DVec3, hi: DVec3) -> MeshData {
+    let v = (0..8)
+        .map(|k| {
+            DVec3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            )
+        })
+        .collect();
+    let quads: [[u32; 4]; 6] = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let t = quads
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect();
+    (v, t)
+}
+
 /// The unit icosphere: an icosahedron subdivided `level` times (each level
 /// splits every triangle in four), vertices on the unit sphere, outward
 /// winding; `20 · 4^level` triangles.
