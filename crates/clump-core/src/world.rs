@@ -198,6 +198,9 @@ pub struct World {
     pub stats: ContactStats,
     /// Number of neighbour-list builds so far.
     pub rebuilds: u64,
+    /// Wall-clock time spent in each stage of the step pipeline so far (a
+    /// profiling breakdown; not part of the simulated state).
+    pub stage_times: crate::step::StageTimes,
     pub(crate) next_id: u64,
     pub(crate) spheres: Spheres,
     pub(crate) pairs: PairList,
@@ -227,6 +230,7 @@ pub struct World {
     pub(crate) scratch_wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
     pub(crate) scratch_keys: Vec<(u64, u64, u32)>,
     pub(crate) chunk_stats: Vec<ContactStats>,
+    pub(crate) chunk_pair_stats: Vec<ContactStats>,
     pub(crate) chunk_wall_loads: Vec<WallLoad>,
 }
 
@@ -248,6 +252,7 @@ impl World {
             lost_bodies: 0,
             stats: ContactStats::default(),
             rebuilds: 0,
+            stage_times: Default::default(),
             next_id: 1,
             spheres: Spheres::default(),
             pairs: PairList::default(),
@@ -271,6 +276,7 @@ impl World {
             scratch_wall_hist: Vec::new(),
             scratch_keys: Vec::new(),
             chunk_stats: Vec::new(),
+            chunk_pair_stats: Vec::new(),
             chunk_wall_loads: Vec::new(),
         }
     }

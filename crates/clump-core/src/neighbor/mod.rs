@@ -17,4 +17,4 @@ pub mod skin;
 pub mod sort;
 
 pub use grid::CellGrid;
-pub use pairs::{PairList, PairState, PairTopo};
+pub use pairs::{PairList, PairLoad, PairTopo, SphereLoad};

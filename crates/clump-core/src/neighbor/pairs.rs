@@ -13,64 +13,75 @@ pub type HistoryMap = HashMap<(u64, u64), ContactHistory, rustc_hash::FxBuildHas
 /// Spheres per parallel work block while building the list.
 const BLOCK: usize = 512;
 
-/// Which two spheres a pair joins. `i` has the lower global sphere id, so a
-/// pair's orientation never depends on storage order.
+/// The partner of one pair in sphere `i`'s row of the half list: sphere `j`
+/// (storage index, always greater than `i`) and the periodic image shift.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct PairTopo {
-    /// Sphere index of the first sphere (lower global id).
-    pub i: u32,
-    /// Sphere index of the second sphere.
+    /// Sphere index of the partner, `j > i` in storage order.
     pub j: u32,
     /// Periodic image shift: the separation is `x_i − x_j + shift·L`.
     pub shift: [i8; 3],
 }
 
-/// Result of the last force evaluation of one pair (kept apart from the
-/// history so that the kernel touches little memory for non-touching pairs).
+/// What a pair contributes to its sphere `j` (the `i` side is summed per
+/// sphere while the pairs are evaluated): zero while the pair does not touch.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct PairState {
-    /// Force on sphere `i`, world frame, N (sphere `j` gets the opposite).
+pub struct PairLoad {
+    /// Force on sphere `j`, world frame, N.
     pub force: DVec3,
-    /// Torque on body of `i` about its centre of mass, world frame, N m.
-    pub torque_i: DVec3,
-    /// Torque on body of `j` about its centre of mass, world frame, N m.
-    pub torque_j: DVec3,
-    /// Elastic energy stored in the contact, J.
-    pub energy: f64,
-    /// Overlap, m: > 0 touching, 0 not touching, [`HISTORY_ONLY`] when the
-    /// pair holds a restored history that the next evaluation must check.
-    pub overlap: f64,
+    /// Torque on sphere `j` about its own centre, world frame, N m.
+    pub torque: DVec3,
+}
+
+/// Force and torque on one sphere summed over its pairs (world frame; N and
+/// N m about the sphere's centre).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SphereLoad {
+    /// Force, world frame, N.
+    pub force: DVec3,
+    /// Torque about the sphere centre, world frame, N m.
+    pub torque: DVec3,
 }
 
 /// Marker overlap of a pair whose history was restored (checkpoint or
 /// rebuild) but which has not been evaluated since.
 pub const HISTORY_ONLY: f64 = -1.0;
 
-/// The half pair list with per-sphere incidence, reused between builds.
+/// The half pair list, stored by rows: the candidate partners `j > i` of
+/// sphere `i` (storage order, other bodies only) are
+/// `topo[row_start[i]..row_start[i + 1]]`. Each pair is oriented by storage
+/// index (`i < j`); its history is stored in that orientation and carried
+/// across rebuilds by global sphere ids. Reused between builds.
 #[derive(Debug, Clone, Default)]
 pub struct PairList {
-    /// Pair topology.
+    /// Row offsets, one per sphere plus one.
+    pub row_start: Vec<u32>,
+    /// Partner of each pair.
     pub topo: Vec<PairTopo>,
-    /// Contact history per pair (parallel to `topo`), world frame.
+    /// Contact history per pair (parallel to `topo`), world frame, oriented
+    /// from `i` to `j`.
     pub history: Vec<ContactHistory>,
-    /// Last evaluation per pair (parallel to `topo`).
-    pub state: Vec<PairState>,
-    /// Incidence: pairs touching sphere `s` are
-    /// `incidence[incidence_start[s]..incidence_start[s+1]]`; each entry is a
-    /// pair index with bit 31 set when `s` is the pair's `j`.
-    pub incidence: Vec<u32>,
-    /// Offsets into `incidence`, one per sphere plus one.
-    pub incidence_start: Vec<u32>,
+    /// Overlap of each pair at the last evaluation, m: > 0 touching, 0 not
+    /// touching, [`HISTORY_ONLY`] for a restored history not yet evaluated.
+    pub overlap: Vec<f64>,
+    /// What each pair contributes to its sphere `j` (parallel to `topo`).
+    pub load_j: Vec<PairLoad>,
+    /// Per sphere: the sum over the pairs of its own row (its `i` side).
+    pub load_i: Vec<SphereLoad>,
+    /// Multi-contact scale of each pair's force (`1/n` under `average`,
+    /// parallel to `topo`; empty under `sum`).
+    pub scale: Vec<f64>,
+    /// Pairs in which sphere `s` is the `j`:
+    /// `col[col_start[s]..col_start[s + 1]]`, ascending pair index.
+    pub col: Vec<u32>,
+    /// Offsets into `col`, one per sphere plus one.
+    pub col_start: Vec<u32>,
     cell_start: Vec<u32>,
     cell_items: Vec<u32>,
     sphere_cell: Vec<[i64; 3]>,
     counts: Vec<u32>,
-    offsets: Vec<usize>,
     cursor: Vec<u32>,
 }
-
-/// Bit marking the `j` side in an incidence entry.
-pub const SIDE_J: u32 = 1 << 31;
 
 /// Neighbour-cell offsets (all 27).
 const STENCIL: [[i64; 3]; 27] = {
@@ -118,12 +129,27 @@ impl PairList {
         self.topo.is_empty()
     }
 
-    /// Collects the history of touching pairs keyed by (gid_i, gid_j).
+    /// Pair indices of sphere `i`'s row.
+    #[inline(always)]
+    pub fn row(&self, i: usize) -> std::ops::Range<usize> {
+        self.row_start[i] as usize..self.row_start[i + 1] as usize
+    }
+
+    /// Collects the history of touching pairs keyed by (lower, higher) global
+    /// sphere id and oriented from the lower to the higher id.
     pub fn save_history(&self, gid: &[u64], out: &mut HistoryMap) {
         out.clear();
-        for (t, h) in self.topo.iter().zip(&self.history) {
-            if *h != ContactHistory::default() {
-                out.insert((gid[t.i as usize], gid[t.j as usize]), *h);
+        for i in 0..self.row_start.len().saturating_sub(1) {
+            for p in self.row(i) {
+                let h = self.history[p];
+                if h != ContactHistory::default() {
+                    let (gi, gj) = (gid[i], gid[self.topo[p].j as usize]);
+                    if gi < gj {
+                        out.insert((gi, gj), h);
+                    } else {
+                        out.insert((gj, gi), reversed(h));
+                    }
+                }
             }
         }
     }
@@ -178,34 +204,31 @@ impl PairList {
             .map(|i| ctx.visit(i, |_, _| {}))
             .collect_into_vec(&mut self.counts);
 
-        // 3. offsets
-        self.offsets.clear();
-        self.offsets.push(0);
-        let mut acc = 0usize;
+        // 3. row offsets
+        self.row_start.clear();
+        self.row_start.push(0);
+        let mut acc = 0u32;
         for &c in &self.counts {
-            acc += c as usize;
-            self.offsets.push(acc);
+            acc += c;
+            self.row_start.push(acc);
         }
+        let acc = acc as usize;
         self.topo.clear();
         self.topo.resize(acc, PairTopo::default());
 
         // 4. fill, block by block, into disjoint ranges (no allocation)
         {
             let out = crate::step::shared::SharedMut::new(&mut self.topo);
-            let offsets = &self.offsets;
+            let rows = &self.row_start;
             (0..n.div_ceil(BLOCK)).into_par_iter().for_each(|blk| {
                 let (s0, s1) = (blk * BLOCK, ((blk + 1) * BLOCK).min(n));
-                let mut k = offsets[s0];
+                let mut k = rows[s0] as usize;
                 for i in s0..s1 {
                     ctx.visit(i, |j, shift| {
                         // SAFETY: sphere i's candidates own the range
-                        // offsets[i]..offsets[i + 1]; blocks are disjoint.
+                        // row_start[i]..row_start[i + 1]; blocks are disjoint.
                         unsafe {
-                            *out.get(k) = PairTopo {
-                                i: i as u32,
-                                j,
-                                shift,
-                            };
+                            *out.get(k) = PairTopo { j, shift };
                         }
                         k += 1;
                     });
@@ -213,51 +236,69 @@ impl PairList {
             });
         }
 
-        // 5. orient each pair by global id and restore history
+        // 5. restore the history of pairs that persist (stored from the lower
+        //    to the higher global id; pairs here run from i to j > i)
         let gid = inp.gid;
-        self.state.clear();
-        self.state.resize(acc, PairState::default());
+        self.overlap.clear();
+        self.overlap.resize(acc, 0.0);
         self.history.clear();
         self.history.resize(acc, ContactHistory::default());
-        self.topo
-            .par_iter_mut()
-            .zip(self.history.par_iter_mut().zip(self.state.par_iter_mut()))
-            .with_min_len(4096)
-            .for_each(|(t, (h, s))| {
-                if gid[t.i as usize] > gid[t.j as usize] {
-                    std::mem::swap(&mut t.i, &mut t.j);
-                    t.shift = [-t.shift[0], -t.shift[1], -t.shift[2]];
-                }
-                if !history.is_empty() {
-                    if let Some(old) = history.get(&(gid[t.i as usize], gid[t.j as usize])) {
-                        *h = *old;
-                        s.overlap = HISTORY_ONLY;
+        self.load_j.clear();
+        self.load_j.resize(acc, PairLoad::default());
+        self.load_i.clear();
+        self.load_i.resize(n, SphereLoad::default());
+        self.scale.clear();
+        if !history.is_empty() {
+            let hist = crate::step::shared::SharedMut::new(&mut self.history);
+            let ov = crate::step::shared::SharedMut::new(&mut self.overlap);
+            let (rows, topo) = (&self.row_start, &self.topo);
+            (0..n).into_par_iter().with_min_len(BLOCK).for_each(|i| {
+                for p in rows[i] as usize..rows[i + 1] as usize {
+                    let (gi, gj) = (gid[i], gid[topo[p].j as usize]);
+                    let old = if gi < gj {
+                        history.get(&(gi, gj)).copied()
+                    } else {
+                        history.get(&(gj, gi)).map(|h| reversed(*h))
+                    };
+                    if let Some(h) = old {
+                        // SAFETY: pair p belongs to row i only.
+                        unsafe {
+                            *hist.get(p) = h;
+                            *ov.get(p) = HISTORY_ONLY;
+                        }
                     }
                 }
             });
+        }
 
-        // 6. per-sphere incidence, in pair order (deterministic)
-        self.incidence_start.clear();
-        self.incidence_start.resize(n + 1, 0);
+        // 6. per-sphere column lists (pairs where the sphere is j), ascending
+        self.col_start.clear();
+        self.col_start.resize(n + 1, 0);
         for t in &self.topo {
-            self.incidence_start[t.i as usize + 1] += 1;
-            self.incidence_start[t.j as usize + 1] += 1;
+            self.col_start[t.j as usize + 1] += 1;
         }
         for s in 0..n {
-            self.incidence_start[s + 1] += self.incidence_start[s];
+            self.col_start[s + 1] += self.col_start[s];
         }
         self.cursor.clear();
-        self.cursor.extend_from_slice(&self.incidence_start[..n]);
-        self.incidence.clear();
-        self.incidence.resize(2 * acc, 0);
+        self.cursor.extend_from_slice(&self.col_start[..n]);
+        self.col.clear();
+        self.col.resize(acc, 0);
         for (p, t) in self.topo.iter().enumerate() {
-            let ci = &mut self.cursor[t.i as usize];
-            self.incidence[*ci as usize] = p as u32;
-            *ci += 1;
-            let cj = &mut self.cursor[t.j as usize];
-            self.incidence[*cj as usize] = p as u32 | SIDE_J;
-            *cj += 1;
+            let c = &mut self.cursor[t.j as usize];
+            self.col[*c as usize] = p as u32;
+            *c += 1;
         }
+    }
+}
+
+/// The history of a pair seen from the other side (`j` to `i`): both springs
+/// are relative quantities of `i` with respect to `j`, so they change sign.
+#[inline]
+fn reversed(h: ContactHistory) -> ContactHistory {
+    ContactHistory {
+        tangential: -h.tangential,
+        rolling: -h.rolling,
     }
 }
 

@@ -1,10 +1,18 @@
-//! Force stage: per-pair contact forces, then a per-body gather (in a fixed
-//! order) together with sphere–wall contacts and gravity.
+//! Force stage: per-pair contact forces over the rows of the half list
+//! (each pair's force is computed once; sphere `i`'s side is summed while its
+//! row is evaluated, sphere `j`'s side is stored with the pair), then a
+//! per-body gather in a fixed order with sphere–wall contacts and gravity.
+//!
+//! Body force and torque (seed eq. 4.87–4.88), world frame:
+//! `F = m g + Σ_s F_s`, `M = Σ_s [(x_s − r_cm) × F_s + T_s]`, where `F_s` is
+//! the total contact force on sphere `s` and `T_s` the torque of its contacts
+//! about the sphere centre, `Σ (x_c − x_s) × f + couples`. This equals
+//! `Σ (x_c − r_cm) × f` over the contacts.
 
 use super::shared::SharedMut;
 use crate::contact::{ContactHistory, ContactInput};
 use crate::multi_contact::{MultiContact, PartnerCounts};
-use crate::neighbor::pairs::{PairState, SIDE_J};
+use crate::neighbor::pairs::{PairLoad, SphereLoad};
 use crate::sphere::{point_velocity, SPHERE_ID_BITS};
 use crate::wall::{WallLoad, WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::{ContactStats, World, WALL_SLOTS};
@@ -16,82 +24,180 @@ use rayon::prelude::*;
 /// any number of threads.
 pub const BODY_CHUNK: usize = 128;
 
+/// Spheres (rows of the half list) per pair-force chunk; fixed for the same
+/// reason as [`BODY_CHUNK`].
+pub const SPHERE_CHUNK: usize = 256;
+
 /// Computes all contact forces and the total force and torque on every body.
 pub fn compute(w: &mut World) {
     pair_forces(w);
     gather(w);
 }
 
-/// Evaluates every candidate sphere pair; pairs that do not touch get zero
-/// force and their history is reset.
-fn pair_forces(w: &mut World) {
+/// Evaluates every candidate sphere pair, row by row: pairs that do not touch
+/// get zero force and their history is reset. Writes each sphere's row sum
+/// (`load_i`), each pair's contribution to its `j` (`load_j`), and the pair
+/// statistics per chunk of rows.
+pub(crate) fn pair_forces(w: &mut World) {
+    if w.config.multi_contact == MultiContact::Average {
+        average_scales(w);
+    } else {
+        w.pairs.scale.clear();
+    }
     let dt = w.config.dt;
     let domain = w.config.domain;
     let any_periodic = domain.periodic.iter().any(|&p| p);
     let sp = &w.spheres;
     let b = &w.bodies;
     let table = &w.contact_table;
+    let n = sp.len();
+    let nchunks = n.div_ceil(SPHERE_CHUNK);
+    let stats = &mut w.chunk_pair_stats;
+    stats.clear();
+    stats.resize(nchunks, ContactStats::default());
     let pairs = &mut w.pairs;
-    pairs
-        .topo
-        .par_iter()
-        .zip(pairs.history.par_iter_mut().zip(pairs.state.par_iter_mut()))
-        .with_min_len(512)
-        .for_each(|(t, (hist, st))| {
-            let (i, j) = (t.i as usize, t.j as usize);
-            let shift = if any_periodic && t.shift != [0; 3] {
-                domain.shift_vector(t.shift)
-            } else {
-                DVec3::ZERO
-            };
+    let (rows, topo, scale) = (&pairs.row_start, &pairs.topo, &pairs.scale);
+    let hist = SharedMut::new(&mut pairs.history);
+    let ov = SharedMut::new(&mut pairs.overlap);
+    let lj = SharedMut::new(&mut pairs.load_j);
+    let li = SharedMut::new(&mut pairs.load_i);
+    stats.par_iter_mut().enumerate().for_each(|(c, stat)| {
+        let s0 = c * SPHERE_CHUNK;
+        let s1 = (s0 + SPHERE_CHUNK).min(n);
+        for i in s0..s1 {
             let xi = sp.position[i];
-            let xj = sp.position[j] - shift;
-            let d = xi - xj;
-            let (ri, rj) = (sp.radius[i], sp.radius[j]);
-            let rsum = ri + rj;
-            let dist2 = d.length_squared();
-            if dist2 >= rsum * rsum {
-                // not touching: clear what a previous contact left
-                if st.overlap != 0.0 {
-                    *st = PairState::default();
-                    *hist = ContactHistory::default();
-                }
-                return;
+            let ri = sp.radius[i];
+            let mut acc = SphereLoad::default();
+            let (p0, p1) = (rows[i] as usize, rows[i + 1] as usize);
+            if p0 == p1 {
+                // SAFETY: sphere i belongs to this chunk only.
+                unsafe { *li.get(i) = acc };
+                continue;
             }
-            let dist = dist2.sqrt();
-            let n = d / dist;
-            let overlap = rsum - dist;
-            let (bi, bj) = (sp.body[i] as usize, sp.body[j] as usize);
-            let xc = xi - n * (ri - 0.5 * overlap);
-            let (ci, cj) = (b.position[bi], b.position[bj] - shift);
-            let (wi, wj) = (b.angular_velocity[bi], b.angular_velocity[bj]);
-            let vi = point_velocity(ci, b.velocity[bi], wi, xc);
-            let vj = point_velocity(cj, b.velocity[bj], wj, xc);
-            let (mi, mj) = (b.mass[bi], b.mass[bj]);
-            let input = ContactInput {
-                normal: n,
-                overlap,
-                rel_velocity: vi - vj,
-                rel_omega: wi - wj,
-                radius: ri * rj / rsum,
-                mass: mi * mj / (mi + mj),
-                dt,
-            };
-            let model = table.get(sp.material[i], sp.material[j]);
-            let out = model.evaluate(&input, hist);
-            st.force = out.force;
-            st.torque_i = (xc - ci).cross(out.force) + out.torque;
-            st.torque_j = (xc - cj).cross(-out.force) - out.torque;
-            st.energy = out.elastic_energy;
-            st.overlap = overlap;
+            let bi = sp.body[i] as usize;
+            for p in p0..p1 {
+                let t = topo[p];
+                let j = t.j as usize;
+                let xj = if any_periodic && t.shift != [0; 3] {
+                    sp.position[j] - domain.shift_vector(t.shift)
+                } else {
+                    sp.position[j]
+                };
+                let d = xi - xj;
+                let rj = sp.radius[j];
+                let rsum = ri + rj;
+                let dist2 = d.length_squared();
+                // SAFETY: pair p lies in row i, which belongs to this chunk only.
+                let (h, o, l) = unsafe { (hist.get(p), ov.get(p), lj.get(p)) };
+                if dist2 >= rsum * rsum {
+                    // not touching: clear what a previous contact left
+                    if *o != 0.0 {
+                        *o = 0.0;
+                        *h = ContactHistory::default();
+                        *l = PairLoad::default();
+                    }
+                    continue;
+                }
+                let dist = dist2.sqrt();
+                let nrm = d / dist;
+                let overlap = rsum - dist;
+                let bj = sp.body[j] as usize;
+                let (ai, aj) = (ri - 0.5 * overlap, rj - 0.5 * overlap);
+                let (wi, wj) = (b.angular_velocity[bi], b.angular_velocity[bj]);
+                // contact-point velocities: x_c − x_i = −a_i n, x_c − x_j = a_j n
+                let vrel = (sp.velocity[i] - sp.velocity[j]) - (wi * ai + wj * aj).cross(nrm);
+                let (mi, mj) = (b.mass[bi], b.mass[bj]);
+                let input = ContactInput {
+                    normal: nrm,
+                    overlap,
+                    rel_velocity: vrel,
+                    rel_omega: wi - wj,
+                    radius: ri * rj / rsum,
+                    mass: mi * mj / (mi + mj),
+                    dt,
+                };
+                let model = table.get(sp.material[i], sp.material[j]);
+                let out = model.evaluate(&input, h);
+                let k = if scale.is_empty() { 1.0 } else { scale[p] };
+                let f = out.force * k;
+                let couple = out.torque * k;
+                let g = nrm.cross(f);
+                acc.force += f;
+                acc.torque += couple - g * ai;
+                *l = PairLoad {
+                    force: -f,
+                    torque: -couple - g * aj,
+                };
+                *o = overlap;
+                stat.pair_contacts += 1;
+                stat.elastic_energy += out.elastic_energy * k;
+                let rmin = ri.min(rj);
+                if overlap > stat.max_overlap_ratio * rmin {
+                    stat.max_overlap_ratio = overlap / rmin;
+                    stat.max_overlap_bodies =
+                        [sp.gid[i] >> SPHERE_ID_BITS, sp.gid[j] >> SPHERE_ID_BITS];
+                    stat.max_overlap_wall = 0;
+                }
+            }
+            // SAFETY: sphere i belongs to this chunk only.
+            unsafe { *li.get(i) = acc };
+        }
+    });
+}
+
+/// `average` multi-contact: the scale `1/n` of every pair, `n` being the
+/// number of touching sphere pairs between the same two bodies. All pairs of
+/// bodies `A` and `B` (storage `A < B`) lie in the rows of `A`'s spheres,
+/// because a body's spheres are contiguous in storage order.
+fn average_scales(w: &mut World) {
+    let domain = w.config.domain;
+    let any_periodic = domain.periodic.iter().any(|&p| p);
+    let sp = &w.spheres;
+    let pairs = &mut w.pairs;
+    pairs.scale.clear();
+    pairs.scale.resize(pairs.topo.len(), 1.0);
+    let (rows, topo) = (&pairs.row_start, &pairs.topo);
+    let scale = SharedMut::new(&mut pairs.scale);
+    let nb = w.bodies.len();
+    let touching = |i: usize, p: usize| {
+        let t = topo[p];
+        let j = t.j as usize;
+        let mut xj = sp.position[j];
+        if any_periodic && t.shift != [0; 3] {
+            xj -= domain.shift_vector(t.shift);
+        }
+        let rsum = sp.radius[i] + sp.radius[j];
+        sp.position[i].distance_squared(xj) < rsum * rsum
+    };
+    (0..nb.div_ceil(BODY_CHUNK))
+        .into_par_iter()
+        .for_each_init(PartnerCounts::default, |counts, c| {
+            for bi in c * BODY_CHUNK..((c + 1) * BODY_CHUNK).min(nb) {
+                counts.clear();
+                let spheres = sp.of_body(bi);
+                for i in spheres.clone() {
+                    for p in rows[i] as usize..rows[i + 1] as usize {
+                        if touching(i, p) {
+                            counts.add(sp.body[topo[p].j as usize] as u64);
+                        }
+                    }
+                }
+                for i in spheres {
+                    for p in rows[i] as usize..rows[i + 1] as usize {
+                        let n = counts.get(sp.body[topo[p].j as usize] as u64).max(1);
+                        // SAFETY: the rows of body bi's spheres belong to this chunk only.
+                        unsafe { *scale.get(p) = 1.0 / n as f64 };
+                    }
+                }
+            }
         });
 }
 
-/// Per body: sum the pair forces of its spheres (scaled by 1/NCP under
-/// `average`), evaluate its sphere–wall contacts, add gravity. Bodies are
-/// processed in fixed chunks; wall loads and statistics are summed per chunk
-/// and then over chunks in order.
-fn gather(w: &mut World) {
+/// Per body: sum the pair loads of its spheres, evaluate its sphere–wall
+/// contacts, add gravity. Bodies are processed in fixed chunks; wall loads
+/// and statistics are summed per chunk and then over chunks in order (the
+/// pair chunks first).
+pub(crate) fn gather(w: &mut World) {
     let World {
         bodies,
         spheres: sp,
@@ -104,6 +210,7 @@ fn gather(w: &mut World) {
         wall_cull,
         wall_hist,
         chunk_stats,
+        chunk_pair_stats,
         chunk_wall_loads,
         config,
         wall_loads,
@@ -119,7 +226,6 @@ fn gather(w: &mut World) {
     chunk_wall_loads.resize(nchunks * nw, WallLoad::default());
     let dt = config.dt;
     let gravity = config.gravity;
-    let average = config.multi_contact == MultiContact::Average;
     let walls_average = walls
         .iter()
         .any(|x| x.multi_contact == MultiContact::Average);
@@ -129,6 +235,7 @@ fn gather(w: &mut World) {
     let hists = SharedMut::new(wall_hist);
     let loads = SharedMut::new(chunk_wall_loads);
     let b = &*bodies;
+    let pairs = &*pairs;
     // Walls to test for sphere `s`, in ascending order: of the first 64, the
     // active ones that are near it or have moved since the last rebuild (the
     // wall Verlet list, see `rebuild::build_wall_lists`); then every active
@@ -143,8 +250,8 @@ fn gather(w: &mut World) {
         lo.chain((64..nw).filter(|&wi| walls[wi].active))
     };
     chunk_stats.par_iter_mut().enumerate().for_each_init(
-        || (PartnerCounts::default(), PartnerCounts::default()),
-        |(counts, wcounts), (c, stat)| {
+        PartnerCounts::default,
+        |wcounts, (c, stat)| {
             let b0 = c * BODY_CHUNK;
             let b1 = (b0 + BODY_CHUNK).min(nb);
             for bi in b0..b1 {
@@ -152,51 +259,16 @@ fn gather(w: &mut World) {
                 let mut f = b.mass[bi] * gravity;
                 let mut m = DVec3::ZERO;
                 let spheres = sp.of_body(bi);
-                // --- sphere–sphere contacts
-                if average {
-                    counts.clear();
-                    for s in spheres.clone() {
-                        for &e in incident(pairs, s) {
-                            let p = (e & !SIDE_J) as usize;
-                            if pairs.state[p].overlap > 0.0 {
-                                counts.add(partner_body(sp, pairs, p, e));
-                            }
-                        }
-                    }
-                }
+                // --- sphere–sphere contacts: own row sums plus column entries
                 for s in spheres.clone() {
-                    for &e in incident(pairs, s) {
-                        let p = (e & !SIDE_J) as usize;
-                        let st = &pairs.state[p];
-                        if st.overlap <= 0.0 {
-                            continue;
-                        }
-                        let scale = if average {
-                            1.0 / counts.get(partner_body(sp, pairs, p, e)) as f64
-                        } else {
-                            1.0
-                        };
-                        if e & SIDE_J == 0 {
-                            f += st.force * scale;
-                            m += st.torque_i * scale;
-                            let t = pairs.topo[p];
-                            stat.pair_contacts += 1;
-                            stat.elastic_energy += st.energy * scale;
-                            let rmin = sp.radius[t.i as usize].min(sp.radius[t.j as usize]);
-                            let ratio = st.overlap / rmin;
-                            if ratio > stat.max_overlap_ratio {
-                                stat.max_overlap_ratio = ratio;
-                                stat.max_overlap_bodies = [
-                                    sp.gid[t.i as usize] >> SPHERE_ID_BITS,
-                                    sp.gid[t.j as usize] >> SPHERE_ID_BITS,
-                                ];
-                                stat.max_overlap_wall = 0;
-                            }
-                        } else {
-                            f -= st.force * scale;
-                            m += st.torque_j * scale;
-                        }
+                    let mut l = pairs.load_i[s];
+                    for &p in &pairs.col[pairs.col_start[s] as usize..pairs.col_start[s + 1] as usize] {
+                        let pl = &pairs.load_j[p as usize];
+                        l.force += pl.force;
+                        l.torque += pl.torque;
                     }
+                    f += l.force;
+                    m += (sp.position[s] - com).cross(l.force) + l.torque;
                 }
                 // --- sphere–wall contacts
                 if nw > 0 {
@@ -331,7 +403,7 @@ fn gather(w: &mut World) {
         },
     );
     let mut total = ContactStats::default();
-    for s in chunk_stats.iter() {
+    for s in chunk_pair_stats.iter().chain(chunk_stats.iter()) {
         total.merge(s);
     }
     *stats = total;
@@ -436,25 +508,6 @@ pub fn oct_decode(k: u16) -> glam::DVec3 {
         (u, v)
     };
     glam::DVec3::new(x, y, z).normalize()
-}
-
-/// Incidence entries of sphere `s`.
-#[inline(always)]
-fn incident(pairs: &crate::neighbor::PairList, s: usize) -> &[u32] {
-    &pairs.incidence[pairs.incidence_start[s] as usize..pairs.incidence_start[s + 1] as usize]
-}
-
-/// Global id of the body on the other side of pair `p` from incidence entry `e`.
-#[inline(always)]
-fn partner_body(
-    sp: &crate::sphere::Spheres,
-    pairs: &crate::neighbor::PairList,
-    p: usize,
-    e: u32,
-) -> u64 {
-    let t = pairs.topo[p];
-    let other = if e & SIDE_J == 0 { t.j } else { t.i };
-    sp.gid[other as usize] >> SPHERE_ID_BITS
 }
 
 struct WallCtx<'a> {
