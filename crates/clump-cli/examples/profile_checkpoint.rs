@@ -12,6 +12,15 @@ fn profiled(w: &mut clump_core::world::World, steps: u64) {
 }
 
 fn main() {
+    if std::env::var_os("PROFILE_MAIN_THREAD").is_some() {
+        // one pool thread, the main one: a profiler then attributes every
+        // stage's work to its caller
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .use_current_thread()
+            .build_global()
+            .expect("rayon pool");
+    }
     let a: Vec<String> = std::env::args().skip(1).collect();
     let path = std::path::PathBuf::from(a.first().expect("usage: profile_checkpoint CKPT STEPS"));
     let steps: u64 = a.get(1).map_or(1000, |s| s.parse().expect("STEPS"));
@@ -39,6 +48,7 @@ fn main() {
         th.wall_contacts
     );
     let ss = w.spheres().len() as f64 * steps as f64;
+    println!("  candidate pairs {} ({:.2} per sphere)", w.pairs().len(), w.pairs().len() as f64 / w.spheres().len() as f64);
     println!("  CPU time {cpu:.3} s: {:.1} ns CPU per sphere-step", cpu / ss * 1e9);
     for (name, t) in w.stage_times.rows() {
         println!("  {name:>18}: {:7.1} ns per sphere-step", t / ss * 1e9);

@@ -5,6 +5,8 @@
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
 use super::shared::SharedMut;
+use super::kinematics::sphere_state;
+use crate::neighbor::skin;
 use crate::rotation::omega_world;
 use crate::world::World;
 use rayon::prelude::*;
@@ -12,11 +14,18 @@ use rayon::prelude::*;
 /// First half of the step: v += F dt/(2 m'), x += v dt, L += M dt/(2 f_a),
 /// q ← drift(q, L, dt), ω from L. A body before its start step moves
 /// ballistically at its current velocity, ignoring forces.
-pub fn initial(w: &mut World) {
+///
+/// With `spheres` (the sphere topology is current), the same pass also
+/// updates the body's spheres (see [`super::kinematics`]) and checks them
+/// against the Verlet skin; it then returns true when some sphere moved more
+/// than half the skin since the last neighbour build. Without, the spheres
+/// are left alone and it returns false.
+pub fn initial(w: &mut World, spheres: bool) -> bool {
     let dt = w.config.dt;
     let scheme = w.config.rotation;
     let step = w.step;
     let n = w.bodies.len();
+    let limit2 = skin::trigger_distance2(w.skin());
     let b = &mut w.bodies;
     let templates = &w.templates;
     let added = w.config.added_mass;
@@ -27,39 +36,73 @@ pub fn initial(w: &mut World) {
     let omega = SharedMut::new(&mut b.angular_velocity);
     let (force, torque, mass, inertia) = (&b.force, &b.torque, &b.mass, &b.inertia);
     let (ff, tf, start, tmpl) = (&b.force_flag, &b.torque_flag, &b.start_step, &b.template);
-    (0..n).into_par_iter().with_min_len(256).for_each(|i| {
-        // SAFETY: each body index is handled by exactly one iteration.
-        let (x, v, q, l, om) = unsafe {
-            (
-                pos.get(i),
-                vel.get(i),
-                quat.get(i),
-                angm.get(i),
-                omega.get(i),
-            )
-        };
-        if step < start[i] {
-            *x += *v * dt;
-            return;
-        }
-        let fa = mass_factor(added, templates[tmpl[i] as usize].density);
-        let dtfm = 0.5 * dt / (mass[i] * fa);
-        for a in 0..3 {
-            if ff[i][a] {
-                v[a] += dtfm * force[i][a];
+    let sp = &mut w.spheres;
+    let spheres = spheres && w.reference_position.len() == sp.len();
+    let sx = SharedMut::new(&mut sp.position);
+    let sv = SharedMut::new(&mut sp.velocity);
+    let (first, tfirst, toff, xref) = (
+        &sp.body_first,
+        &w.template_first,
+        &w.template_offset,
+        &w.reference_position,
+    );
+    (0..n.div_ceil(BODY_BLOCK))
+        .into_par_iter()
+        .map(|blk| {
+            let mut stale = false;
+            for i in blk * BODY_BLOCK..((blk + 1) * BODY_BLOCK).min(n) {
+                // SAFETY: each body index is handled by exactly one block.
+                let (x, v, q, l, om) = unsafe {
+                    (
+                        pos.get(i),
+                        vel.get(i),
+                        quat.get(i),
+                        angm.get(i),
+                        omega.get(i),
+                    )
+                };
+                if step < start[i] {
+                    *x += *v * dt;
+                } else {
+                    let fa = mass_factor(added, templates[tmpl[i] as usize].density);
+                    let dtfm = 0.5 * dt / (mass[i] * fa);
+                    for a in 0..3 {
+                        if ff[i][a] {
+                            v[a] += dtfm * force[i][a];
+                        }
+                    }
+                    *x += *v * dt;
+                    let dtt = 0.5 * dt / fa;
+                    for a in 0..3 {
+                        if tf[i][a] {
+                            l[a] += dtt * torque[i][a];
+                        }
+                    }
+                    *q = scheme.drift(*q, *l, inertia[i], dt);
+                    *om = omega_world(*q, *l, inertia[i]);
+                }
+                if spheres {
+                    let o0 = tfirst[tmpl[i] as usize] as usize;
+                    let (s0, s1) = (first[i] as usize, first[i + 1] as usize);
+                    for (k, s) in (s0..s1).enumerate() {
+                        let (px, pv) = sphere_state(*x, *q, *v, *om, toff[o0 + k]);
+                        // SAFETY: the spheres of body i are written by its block only.
+                        unsafe {
+                            *sx.get(s) = px;
+                            *sv.get(s) = pv;
+                        }
+                        stale |= skin::moved_too_far(px, xref[s], limit2);
+                    }
+                }
             }
-        }
-        *x += *v * dt;
-        let dtt = 0.5 * dt / fa;
-        for a in 0..3 {
-            if tf[i][a] {
-                l[a] += dtt * torque[i][a];
-            }
-        }
-        *q = scheme.drift(*q, *l, inertia[i], dt);
-        *om = omega_world(*q, *l, inertia[i]);
-    });
+            stale
+        })
+        .reduce(|| false, |a, b| a | b)
 }
+
+/// Bodies per block of the first half step (a work unit; any size gives the
+/// same results).
+const BODY_BLOCK: usize = 256;
 
 /// Second half kick: v += F dt/(2 m'), L += M dt/(2 f_a), ω from L.
 pub fn final_kick(w: &mut World) {

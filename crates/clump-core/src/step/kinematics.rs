@@ -3,7 +3,19 @@
 
 use crate::sphere::{point_velocity, sphere_position};
 use crate::world::World;
+use glam::{DQuat, DVec3};
 use rayon::prelude::*;
+
+/// World position and velocity of a sphere with body-frame offset `offset`
+/// (m) from the centre of mass of a body at `com` (world, m) with orientation
+/// `q` (body → world), velocity `v` (world, m/s) and angular velocity `w`
+/// (world, rad/s). The one formula every stage uses, so that spheres updated
+/// in the integration pass and in a rebuild agree bit for bit.
+#[inline(always)]
+pub fn sphere_state(com: DVec3, q: DQuat, v: DVec3, w: DVec3, offset: DVec3) -> (DVec3, DVec3) {
+    let x = sphere_position(com, q, offset);
+    (x, point_velocity(com, v, w, x))
+}
 
 /// Recomputes every sphere's world position and velocity.
 pub fn update_spheres(w: &mut World) {
@@ -18,8 +30,12 @@ pub fn update_spheres(w: &mut World) {
         .for_each(|((x, v), (&bi, &k))| {
             let bi = bi as usize;
             let off = toff[(tf[b.template[bi] as usize] + k) as usize];
-            let com = b.position[bi];
-            *x = sphere_position(com, b.orientation[bi], off);
-            *v = point_velocity(com, b.velocity[bi], b.angular_velocity[bi], *x);
+            (*x, *v) = sphere_state(
+                b.position[bi],
+                b.orientation[bi],
+                b.velocity[bi],
+                b.angular_velocity[bi],
+                off,
+            );
         });
 }

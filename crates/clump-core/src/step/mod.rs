@@ -3,8 +3,9 @@
 //! 1. [`integrate::initial`]: half kick of v and L, drift of the centre of
 //!    mass, free-rotation drift of the orientation (the chosen rotation scheme);
 //!    walls move.
-//! 2. [`kinematics::update_spheres`]: sphere positions and velocities from the
-//!    body poses, r = r_cm + Aᵀ r_b, v = v_cm + ω × (r − r_cm).
+//! 2. Sphere kinematics ([`kinematics`]), in the same pass over each body:
+//!    sphere positions and velocities from the body pose, r = r_cm + Aᵀ r_b,
+//!    v = v_cm + ω × (r − r_cm), and the Verlet-skin check.
 //! 3. Neighbour search ([`rebuild`]), only when a sphere moved more than half
 //!    the skin. Bodies are wrapped, lost bodies removed and the rest Morton-sorted
 //!    here. A future MPI layer exchanges ghost spheres at this stage.
@@ -32,10 +33,9 @@ use thiserror::Error;
 /// clock costs about 0.1 µs per stage, negligible against a step.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StageTimes {
-    /// Initial integrate: half kicks, drift and rotation of the bodies, walls.
+    /// Initial integrate: half kicks, drift and rotation of the bodies, their
+    /// spheres' positions and velocities with the skin check, walls.
     pub initial: f64,
-    /// Sphere positions and velocities from the body poses, and the skin check.
-    pub kinematics: f64,
     /// Neighbour-list rebuilds (sorting, pair list, wall lists).
     pub neighbor: f64,
     /// Sphere–sphere pair forces.
@@ -48,10 +48,9 @@ pub struct StageTimes {
 
 impl StageTimes {
     /// The stages as (name, seconds), in pipeline order.
-    pub fn rows(&self) -> [(&'static str, f64); 6] {
+    pub fn rows(&self) -> [(&'static str, f64); 5] {
         [
             ("initial integrate", self.initial),
-            ("sphere kinematics", self.kinematics),
             ("neighbour build", self.neighbor),
             ("pair forces", self.pair),
             ("gather + walls", self.gather),
@@ -100,20 +99,15 @@ impl World {
         let dt = self.config.dt;
         let mut times = self.stage_times;
         let mut t = Instant::now();
-        integrate::initial(self);
+        // the spheres move with their bodies in the same pass unless the
+        // topology changed (then the rebuild below recomputes them)
+        let moved_out = integrate::initial(self, !self.topology_dirty);
         for w in &mut self.walls {
             w.advance(dt);
         }
         self.wall_cull &= rebuild::static_walls(&self.walls);
         lap(&mut times.initial, &mut t);
-        kinematics::update_spheres(self);
-        let stale = self.topology_dirty
-            || crate::neighbor::skin::needs_rebuild(
-                &self.spheres.position,
-                &self.reference_position,
-                self.skin(),
-            );
-        lap(&mut times.kinematics, &mut t);
+        let stale = self.topology_dirty || moved_out;
         if stale {
             rebuild::rebuild(self, true)?;
             lap(&mut times.neighbor, &mut t);
