@@ -65,19 +65,9 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
                     *x += *v * dt;
                 } else {
                     let fa = mass_factor(added, templates[tmpl[i] as usize].density);
-                    let dtfm = 0.5 * dt / (mass[i] * fa);
-                    for a in 0..3 {
-                        if ff[i][a] {
-                            v[a] += dtfm * force[i][a];
-                        }
-                    }
+                    let kick = HalfKick::new(dt, mass[i], fa);
+                    kick.apply(v, l, force[i], torque[i], ff[i], tf[i]);
                     *x += *v * dt;
-                    let dtt = 0.5 * dt / fa;
-                    for a in 0..3 {
-                        if tf[i][a] {
-                            l[a] += dtt * torque[i][a];
-                        }
-                    }
                     *q = scheme.drift(*q, *l, inertia[i], dt);
                     *om = omega_world(*q, *l, inertia[i]);
                 }
@@ -125,20 +115,48 @@ pub fn final_kick(w: &mut World) {
         // SAFETY: each body index is handled by exactly one iteration.
         let (v, l, om) = unsafe { (vel.get(i), angm.get(i), omega.get(i)) };
         let fa = mass_factor(added, templates[tmpl[i] as usize].density);
-        let dtfm = 0.5 * dt / (mass[i] * fa);
-        for a in 0..3 {
-            if ff[i][a] {
-                v[a] += dtfm * force[i][a];
-            }
-        }
-        let dtt = 0.5 * dt / fa;
-        for a in 0..3 {
-            if tf[i][a] {
-                l[a] += dtt * torque[i][a];
-            }
-        }
+        HalfKick::new(dt, mass[i], fa).apply(v, l, force[i], torque[i], ff[i], tf[i]);
         *om = omega_world(quat[i], *l, inertia[i]);
     });
+}
+
+/// A half kick of one body over `dt/2`: `v += F dt/(2 m f_a)`,
+/// `L += M dt/(2 f_a)` (world frame), per axis only where the flag allows.
+struct HalfKick {
+    /// `dt/(2 m f_a)`, s/kg.
+    dtfm: f64,
+    /// `dt/(2 f_a)`, s.
+    dtt: f64,
+}
+
+impl HalfKick {
+    #[inline(always)]
+    fn new(dt: f64, mass: f64, fa: f64) -> Self {
+        HalfKick {
+            dtfm: 0.5 * dt / (mass * fa),
+            dtt: 0.5 * dt / fa,
+        }
+    }
+
+    #[inline(always)]
+    fn apply(
+        &self,
+        v: &mut glam::DVec3,
+        l: &mut glam::DVec3,
+        force: glam::DVec3,
+        torque: glam::DVec3,
+        ff: crate::body::AxisFlags,
+        tf: crate::body::AxisFlags,
+    ) {
+        for a in 0..3 {
+            if ff[a] {
+                v[a] += self.dtfm * force[a];
+            }
+            if tf[a] {
+                l[a] += self.dtt * torque[a];
+            }
+        }
+    }
 }
 
 /// Added-mass factor `1 + CAdd ρ_f / ρ_body`.
