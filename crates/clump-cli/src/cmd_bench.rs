@@ -4,7 +4,8 @@
 //! The case: 4-sphere tetrahedral clumps (r = 1 mm, edge 1.2 mm, ρ = 2500)
 //! fall from a common initial condition into a 40 × 40 mm box and settle;
 //! Hertz–Mindlin with history, E = 5e6, ν = 0.3, e = 0.5, μ = 0.5, LIGGGHTS'
-//! damping law (for a like-for-like comparison), dt = 1e-5. Phase A (fall and
+//! damping law and unclamped (tensile) normal force as LIGGGHTS' default
+//! `limitForce off` (for a like-for-like comparison), dt = 1e-5. Phase A (fall and
 //! settle) and phase B (dense bed) are timed separately; throughput is
 //! spheres × steps / wall seconds.
 

@@ -5,12 +5,15 @@
 //!   Yade, MercuryDPM and DEM-Engine. With `n` simultaneous equal contacts the
 //!   body pair feels an `n`-times stiffer spring and an `n`-times larger
 //!   dashpot. Each dashpot was sized for one contact carrying the whole body
-//!   mass, so the damping ratio grows by √n (`n` × dashpot against `√n` ×
-//!   `√(k m)`) and the restitution **drops below** the input `e`:
-//!   `e_n = exp(−√n ζ π/√(1 − n ζ²))` with `ζ = −ln e/√(ln²e + π²)`
-//!   (no rebound once `n ζ² ≥ 1`). This holds for the linear law and, by the
-//!   phase-plane mapping in [`crate::contact::damping`], also for Hertz with the
-//!   δ^¼ dashpot. For `n = 2`, `e = 0.5` gives `e_2 ≈ 0.366`. The contact time
+//!   mass, so the damping ratio `ζ = −β` grows by √n (`n` × dashpot against
+//!   `√n` × `√(k m)`) and the restitution **drops below** the input `e`:
+//!   with the tensile clamp (default) `e_n = exp(−2ζ_n A(ζ_n))`,
+//!   `ζ_n = √n ζ` ([`crate::contact::damping::clamped_restitution`]); for a
+//!   `tensile` pair `e_n = exp(−√n ζ π/√(1 − n ζ²))` with
+//!   `ζ = −ln e/√(ln²e + π²)` (no rebound once `n ζ² ≥ 1`). This holds for the
+//!   linear law and, by the phase-plane mapping in [`crate::contact::damping`],
+//!   also for Hertz with the δ^¼ dashpot. For `n = 2`, `e = 0.5` gives
+//!   `e_2 ≈ 0.394` (clamped) or `0.366` (tensile). The contact time
 //!   shrinks by `√n` (linear) or `n^{2/5}` (Hertz). An elastic contact
 //!   (`e = 1`) stays elastic. The test `dimer_dropped_flat_sum_and_average`
 //!   checks this on a dimer dropped flat.

@@ -2,8 +2,8 @@
 //!
 //! [`tetra_lattice_bed`] builds the material of the shared tetra-bed
 //! benchmark (4-sphere tetrahedral clumps, r = 1 mm, edge 1.2 mm, ρ = 2500,
-//! Hertz–Mindlin with LIGGGHTS damping, E = 5 MPa, ν = 0.3, e = 0.5, μ = 0.5,
-//! dt = 1e-5 s) as a bed of any size: clumps on a cubic lattice of pitch
+//! Hertz–Mindlin with LIGGGHTS damping and no tensile clamp, as LIGGGHTS'
+//! default `limitForce off`, E = 5 MPa, ν = 0.3, e = 0.5, μ = 0.5, dt = 1e-5 s) as a bed of any size: clumps on a cubic lattice of pitch
 //! [`LATTICE_PITCH`], periodic in x and y, above a floor at z = 0, at rest.
 //! Because the box is periodic sideways, beds of different areas but the
 //! same number of layers have the same local structure, which is what a
@@ -31,12 +31,14 @@ pub fn tetra_material() -> Material {
     }
 }
 
-/// The benchmark's contact properties (LIGGGHTS damping, for comparisons).
+/// The benchmark's contact properties (LIGGGHTS damping, tensile normal
+/// force allowed as with LIGGGHTS' default `limitForce off`, for comparisons).
 pub fn tetra_contact() -> PairProperties {
     PairProperties {
         restitution: 0.5,
         friction: 0.5,
         damping: DampingLaw::Liggghts,
+        tensile: true,
         ..PairProperties::default()
     }
 }

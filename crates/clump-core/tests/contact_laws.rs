@@ -6,7 +6,8 @@
 //! `ContactModel::evaluate` directly (no engine).
 
 use clump_core::contact::damping::{
-    exact_hertz_beta, exact_hertz_beta_numeric, hertz_restitution, log_beta,
+    clamped_beta, clamped_restitution, exact_hertz_beta, exact_hertz_beta_numeric, hertz_gamma,
+    hertz_restitution, log_beta, restitution_numeric,
 };
 use clump_core::contact::material::{effective_modulus, effective_shear_modulus};
 use clump_core::contact::time_scale::{hertz_contact_time, rayleigh_time};
@@ -95,6 +96,8 @@ struct Impact {
     restitution: f64,
     /// Largest |kinetic + elastic − initial kinetic| / initial kinetic.
     energy_drift: f64,
+    /// Smallest normal force during the contact, N (negative: tensile).
+    min_force: f64,
 }
 
 /// Head-on impact along x. Body `i` (mass `mi`, radius `ri`) starts touching
@@ -102,19 +105,7 @@ struct Impact {
 /// x = 0) and approaches it at relative speed `v` (split so the total momentum
 /// is zero). Velocity Verlet; the contact force uses the predicted full-step
 /// velocity.
-/// With `clamp`, tensile normal forces are set to zero (LIGGGHTS'
-/// `limitForce`), which the engine does not do.
-#[allow(clippy::too_many_arguments)]
-fn head_on(
-    model: &ContactModel,
-    mi: f64,
-    ri: f64,
-    mj: f64,
-    rj: f64,
-    v: f64,
-    dt: f64,
-    clamp: bool,
-) -> Impact {
+fn head_on(model: &ContactModel, mi: f64, ri: f64, mj: f64, rj: f64, v: f64, dt: f64) -> Impact {
     let wall = mj.is_infinite();
     let (r_star, m_star) = if wall {
         (ri, mi)
@@ -133,6 +124,7 @@ fn head_on(
     let (mut ai, mut aj) = (0.0_f64, 0.0_f64);
     let mut h = ContactHistory::default();
     let (mut max_overlap, mut max_force, mut drift) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let mut min_force = f64::INFINITY;
     let mut t = 0.0;
     let mut prev_overlap = 0.0;
     for _ in 0..100_000_000u64 {
@@ -154,6 +146,7 @@ fn head_on(
                 duration,
                 restitution: vrel_out / v,
                 energy_drift: drift,
+                min_force,
             };
         }
         let input = ContactInput {
@@ -166,17 +159,14 @@ fn head_on(
             dt,
         };
         let out = model.evaluate(&input, &mut h);
-        let f = if clamp {
-            out.force.x.max(0.0)
-        } else {
-            out.force.x
-        };
+        let f = out.force.x;
         ai = f / mi;
         aj = if wall { 0.0 } else { -f / mj };
         vi += 0.5 * dt * ai;
         vj += 0.5 * dt * aj;
         max_overlap = max_overlap.max(overlap);
         max_force = max_force.max(out.normal_force);
+        min_force = min_force.min(out.normal_force);
         let ke = 0.5 * mi * vi * vi + if wall { 0.0 } else { 0.5 * mj * vj * vj };
         drift = drift.max((ke + out.elastic_energy - ke0).abs() / ke0);
         prev_overlap = overlap;
@@ -188,34 +178,14 @@ fn sphere_pair_impact(mat: Material, p: &PairProperties, r: f64, v_rel: f64, ste
     let model = ContactModel::new(&mat, &mat, p).unwrap();
     let m = sphere_mass(&mat, r);
     let tc = hertz_contact_time(model.effective_modulus(), r / 2.0, m / 2.0, v_rel);
-    head_on(&model, m, r, m, r, v_rel, tc / steps, false)
+    head_on(&model, m, r, m, r, v_rel, tc / steps)
 }
 
 fn wall_impact(mat: Material, p: &PairProperties, r: f64, v: f64, steps: f64) -> Impact {
-    wall_impact_clamp(mat, p, r, v, steps, false)
-}
-
-fn wall_impact_clamp(
-    mat: Material,
-    p: &PairProperties,
-    r: f64,
-    v: f64,
-    steps: f64,
-    clamp: bool,
-) -> Impact {
     let model = ContactModel::new(&mat, &wall(), p).unwrap();
     let m = sphere_mass(&mat, r);
     let tc = model.contact_time(r, m, v);
-    head_on(
-        &model,
-        m,
-        r,
-        f64::INFINITY,
-        f64::INFINITY,
-        v,
-        tc / steps,
-        clamp,
-    )
+    head_on(&model, m, r, f64::INFINITY, f64::INFINITY, v, tc / steps)
 }
 
 /// Chung & Ooi test 1: two identical spheres, R = 0.01 m, ±10 m/s, elastic.
@@ -273,7 +243,9 @@ fn chung_ooi_test2_sphere_wall() {
     }
 }
 
-/// Chung & Ooi test 3: restitution out vs in, R = 2.5 mm, 3.9 m/s onto a rigid wall.
+/// Chung & Ooi test 3: restitution out vs in, R = 2.5 mm, 3.9 m/s onto a rigid
+/// wall: exact damping for both laws, clamped (default) and tensile; the
+/// LIGGGHTS formula exact when tensile and biased upwards under the clamp.
 #[test]
 fn chung_ooi_test3_restitution() {
     let (r, v) = (2.5e-3, 3.9);
@@ -285,60 +257,144 @@ fn chung_ooi_test3_restitution() {
         let tc_hertz = hertz_contact_time(e_star, r, m, v);
         // Linear spring with the same undamped contact time π√(m/kn).
         let kn = m * (PI / tc_hertz).powi(2);
+        let linear = NormalLaw::Linear {
+            kn,
+            kt: 2.0 / 7.0 * kn,
+        };
         for k in 1..=5 {
             let e = 0.2 * k as f64;
-            let hertz = wall_impact(mat, &props(e, 0.0), r, v, 1000.0);
-            let pl = PairProperties {
-                normal: NormalLaw::Linear {
-                    kn,
-                    kt: 2.0 / 7.0 * kn,
-                },
-                ..props(e, 0.0)
+            let run = |normal: NormalLaw, damping: DampingLaw, tensile: bool| {
+                let p = PairProperties {
+                    normal,
+                    damping,
+                    tensile,
+                    ..props(e, 0.0)
+                };
+                wall_impact(mat, &p, r, v, 1000.0).restitution
             };
-            let linear = wall_impact(mat, &pl, r, v, 1000.0);
-            let pg = PairProperties {
-                damping: DampingLaw::Liggghts,
-                ..props(e, 0.0)
-            };
-            let lig = wall_impact(mat, &pg, r, v, 1000.0);
-            // What the non-dimensional ODE predicts for LIGGGHTS' β.
-            let lig_pred = hertz_restitution(log_beta(e));
-            // The same LIGGGHTS coefficients with the tensile force clamped to
-            // zero (LIGGGHTS' `limitForce`): this is where the bias comes from.
-            let clamped = wall_impact_clamp(mat, &pg, r, v, 1000.0, true);
+            let hertz = run(NormalLaw::Hertz, DampingLaw::Exact, false);
+            let lin = run(linear, DampingLaw::Exact, false);
+            let hertz_t = run(NormalLaw::Hertz, DampingLaw::Exact, true);
+            let lin_t = run(linear, DampingLaw::Exact, true);
+            let lig_t = run(NormalLaw::Hertz, DampingLaw::Liggghts, true);
+            let lig = run(NormalLaw::Hertz, DampingLaw::Liggghts, false);
+            let lig_lin = run(linear, DampingLaw::Liggghts, false);
+            // What the closed form predicts for LIGGGHTS' β under the clamp.
+            let lig_pred = clamped_restitution(log_beta(e));
             eprintln!(
-                "test3 {name} (linear kn {kn:.3e} N/m) e_in {e:.1}: hertz/exact {:.5}  linear/exact {:.5}  hertz/liggghts {:.5} (ODE {:.5})  hertz/liggghts+clamp {:.5}",
-                hertz.restitution, linear.restitution, lig.restitution, lig_pred, clamped.restitution
+                "test3 {name} e_in {e:.1}: exact clamped hertz {hertz:.5} linear {lin:.5}; exact tensile hertz {hertz_t:.5} linear {lin_t:.5}; liggghts tensile {lig_t:.5}, clamped hertz {lig:.5} linear {lig_lin:.5} (closed form {lig_pred:.5})"
             );
-            assert!(
-                (hertz.restitution - e).abs() < 0.01,
-                "hertz exact e_out {}",
-                hertz.restitution
-            );
-            assert!(
-                (linear.restitution - e).abs() < 0.01,
-                "linear exact e_out {}",
-                linear.restitution
-            );
-            // Without clamping, LIGGGHTS' formula is exact for Hertz too (see
-            // contact::damping: the δ^{1/4} dashpot maps onto a linear
-            // oscillator in the phase plane).
-            assert!(
-                (lig.restitution - e).abs() < 0.01,
-                "liggghts e_out {}",
-                lig.restitution
-            );
-            assert!((lig.restitution - lig_pred).abs() < 0.01);
-            // Clamping removes the tensile (decelerating) dashpot force at the
-            // end of the rebound, so less energy is dissipated: e_out > e_in.
+            for (what, got) in [
+                ("hertz exact", hertz),
+                ("linear exact", lin),
+                ("hertz exact tensile", hertz_t),
+                ("linear exact tensile", lin_t),
+                ("hertz liggghts tensile", lig_t),
+            ] {
+                assert!((got - e).abs() < 1e-3, "{what}: e_out {got} for e_in {e}");
+            }
+            // Under the clamp the tensile (decelerating) dashpot force at the
+            // end of the rebound is gone, so LIGGGHTS' β dissipates less:
+            // e_out > e_in, the same for both laws (phase-plane mapping).
+            assert!((lig - lig_pred).abs() < 1e-3 && (lig_lin - lig_pred).abs() < 1e-3);
             if e < 1.0 {
-                assert!(
-                    clamped.restitution > e + 0.005,
-                    "clamping the tensile force biases e upwards"
-                );
+                assert!(lig > e + 0.005, "clamping biases LIGGGHTS' e upwards");
             }
         }
     }
+}
+
+/// The clamped exact damping reproduces the input restitution to ~10⁻⁴ or
+/// better for both laws over e ∈ [0.01, 1] (single contact, small dt), and
+/// the normal force is never tensile.
+#[test]
+fn clamped_restitution_is_exact() {
+    let (mat, r, v) = (alumina(), 2.5e-3, 3.9);
+    let kn = 1e7;
+    let mut worst: f64 = 0.0;
+    for e in [0.01, 0.05, 0.1, 0.135, 0.2, 0.35, 0.5, 0.7, 0.9, 0.99, 1.0] {
+        for normal in [
+            NormalLaw::Hertz,
+            NormalLaw::Linear {
+                kn,
+                kt: 2.0 / 7.0 * kn,
+            },
+        ] {
+            let p = PairProperties {
+                normal,
+                ..props(e, 0.3)
+            };
+            let model = ContactModel::new(&mat, &wall(), &p).unwrap();
+            assert!(model.clamps_normal_force());
+            assert_eq!(model.damping_ratio(), clamped_beta(e));
+            let imp = wall_impact(mat, &p, r, v, 5000.0);
+            let err = (imp.restitution - e).abs();
+            eprintln!(
+                "clamped {normal:?} e_in {e}: β = {:.6}, e_out {:.6} (err {err:.1e}), min F_n {:.3e} N",
+                model.damping_ratio(),
+                imp.restitution,
+                imp.min_force
+            );
+            assert!(imp.min_force >= 0.0, "tensile normal force {}", imp.min_force);
+            assert!(err < 2e-4, "{normal:?} e {e}: e_out {}", imp.restitution);
+            worst = worst.max(err);
+        }
+    }
+    eprintln!("clamped restitution: worst |e_out − e_in| = {worst:.2e}");
+}
+
+/// `tensile = true` keeps the unclamped law: the dashpot pulls before
+/// separation (F_n < 0), the restitution is still exact with the log formula
+/// (both laws), and the Coulomb limit uses |F_n| there.
+#[test]
+fn tensile_option_keeps_the_unclamped_law() {
+    let (mat, r, v) = (alumina(), 2.5e-3, 3.9);
+    for normal in [NormalLaw::Hertz, NormalLaw::Linear { kn: 1e7, kt: 2e6 }] {
+        for e in [0.2, 0.5, 0.8] {
+            let p = PairProperties {
+                normal,
+                tensile: true,
+                ..props(e, 0.3)
+            };
+            let model = ContactModel::new(&mat, &wall(), &p).unwrap();
+            assert!(!model.clamps_normal_force());
+            assert_eq!(model.damping_ratio(), log_beta(e));
+            let imp = wall_impact(mat, &p, r, v, 5000.0);
+            eprintln!(
+                "tensile {normal:?} e_in {e}: e_out {:.6}, min F_n {:.3e} N (max {:.3e})",
+                imp.restitution, imp.min_force, imp.max_force
+            );
+            assert!(imp.min_force < -1e-3 * imp.max_force, "no tensile phase");
+            assert!((imp.restitution - e).abs() < 2e-4);
+        }
+    }
+    // A receding contact with a strong dashpot: tensile F_n, and the
+    // sliding friction is μ|F_n| (as LIGGGHTS).
+    let p = PairProperties {
+        tensile: true,
+        ..props(0.1, 0.3)
+    };
+    let model = ContactModel::new(&glass(), &wall(), &p).unwrap();
+    let c = ContactInput {
+        normal: DVec3::Z,
+        overlap: 1e-7,
+        rel_velocity: DVec3::new(2.0, 0.0, 1.0),
+        rel_omega: DVec3::ZERO,
+        radius: 0.005,
+        mass: 0.005,
+        dt: 1e-7,
+    };
+    let out = model.evaluate(&c, &mut ContactHistory::default());
+    let ft = out.force - out.normal_force * DVec3::Z;
+    assert!(out.normal_force < 0.0);
+    assert!(rel(ft.length(), 0.3 * out.normal_force.abs()) < 1e-12);
+    // The same contact clamped: no normal force, no friction.
+    let clamped = ContactModel::new(&glass(), &wall(), &props(0.1, 0.3)).unwrap();
+    let mut h = ContactHistory::default();
+    let out = clamped.evaluate(&c, &mut h);
+    assert_eq!(out.normal_force, 0.0);
+    assert_eq!(out.force, DVec3::ZERO);
+    assert_eq!(h.tangential, DVec3::ZERO);
 }
 
 /// With the δ^{1/4} dashpot and exact β', e does not depend on impact speed.
@@ -398,6 +454,10 @@ fn zero_restitution_does_not_rebound() {
         }
         eprintln!("e = 0 ({normal:?}): β = {}, separated: {separated}, final overlap {:.3e}, velocity {:.3e}", model.damping_ratio(), -x, vx);
         assert!(!separated || vx.abs() < 1e-3 * v);
+        // No finite clamped dashpot stops the rebound, so exact damping with
+        // e = 0 uses critical damping without the clamp.
+        assert!(!model.clamps_normal_force());
+        assert_eq!(model.damping_ratio(), -1.0);
     }
 }
 
@@ -449,8 +509,10 @@ fn coulomb_limit_and_history() {
             h.tangential.dot(n).abs() < 1e-14 * h.tangential.length(),
             "ξ in the tangent plane"
         );
-        if e == 1.0 {
-            // Stick step with no relative motion: elastic spring alone = limit.
+        {
+            // Step with no relative motion: the elastic spring alone holds the
+            // limit (e = 1: the same F_n), or more (e = 0.5: F_n has lost its
+            // dashpot part), so the contact is again exactly at the limit.
             let still = ContactInput {
                 rel_velocity: DVec3::ZERO,
                 ..c
@@ -463,6 +525,94 @@ fn coulomb_limit_and_history() {
             );
         }
     }
+}
+
+/// Gross sliding through a whole oblique Hertz impact with strong damping
+/// (Chung & Ooi test 5: Al alloy sphere R = 0.1 m onto a rigid wall at
+/// 0.2 m/s, 60° from the normal, e = 0.5, μ = 0.3; the tangential dashpot
+/// γ_t|v_t| exceeds μF_n for most of the contact): the contact carries
+/// |F_t| = μF_n exactly at every step, opposing the slip, so the tangential
+/// impulse is μ times the normal impulse. With the old Luding truncation
+/// ξ = −(F_t + γ_t v_t)/k_t the stored spring pointed forward and, as k_t
+/// grew during loading, the trial force fell below the limit (~10 % less
+/// impulse); this test failed there.
+#[test]
+fn gross_sliding_stays_at_the_coulomb_limit() {
+    let (mat, r, e, mu) = (al_alloy(), 0.1, 0.5, 0.3);
+    let model = ContactModel::new(&mat, &wall(), &props(e, mu)).unwrap();
+    let m = sphere_mass(&mat, r);
+    let inertia = 0.4 * m * r * r;
+    let th = 60f64.to_radians();
+    // World frame: wall z = 0, normal +z; sphere centre at height z.
+    let (mut vx, mut vz, mut wy) = (0.2 * th.sin(), -0.2 * th.cos(), 0.0_f64);
+    let vz0 = vz;
+    let mut z = r;
+    let dt = 5e-7;
+    let (mut fx, mut fz, mut ty) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let mut h = ContactHistory::default();
+    let (mut jt, mut jn, mut steps, mut dashpot_dominates) = (0.0, 0.0, 0, 0);
+    let mut worst: f64 = 0.0;
+    loop {
+        // velocity Verlet (half kick, drift, force, half kick)
+        vx += 0.5 * dt * fx / m;
+        vz += 0.5 * dt * fz / m;
+        wy += 0.5 * dt * ty / inertia;
+        z += dt * vz;
+        let overlap = r - z;
+        if overlap <= 0.0 {
+            break;
+        }
+        // contact point at −r ẑ from the centre: v_cp = v + ω × (−r ẑ)
+        let v_pred = DVec3::new(vx + 0.5 * dt * fx / m, 0.0, vz + 0.5 * dt * fz / m);
+        let w_pred = wy + 0.5 * dt * ty / inertia;
+        let v_cp = v_pred + DVec3::new(0.0, w_pred, 0.0).cross(DVec3::new(0.0, 0.0, -r));
+        let c = ContactInput {
+            normal: DVec3::Z,
+            overlap,
+            rel_velocity: v_cp,
+            rel_omega: DVec3::ZERO,
+            radius: r,
+            mass: m,
+            dt,
+        };
+        let out = model.evaluate(&c, &mut h);
+        let ft = out.force - out.normal_force * DVec3::Z;
+        assert!(v_cp.x > 0.0, "the contact must slide throughout");
+        assert!(out.normal_force >= 0.0, "tensile normal force");
+        if out.normal_force > 0.0 {
+            let err = (ft.length() - mu * out.normal_force).abs() / (mu * out.normal_force);
+            worst = worst.max(err);
+            assert!(ft.x < 0.0, "friction opposes the slip");
+        }
+        // How strong the tangential dashpot is compared with the limit.
+        let kt = 8.0 * model.effective_shear_modulus() * (r * overlap).sqrt();
+        let gamma_t = hertz_gamma(model.damping_ratio(), kt, m);
+        if gamma_t * v_cp.x > mu * out.normal_force {
+            dashpot_dominates += 1;
+        }
+        fx = out.force.x;
+        fz = out.force.z;
+        // torque about the centre of (−r ẑ) × F
+        ty = DVec3::new(0.0, 0.0, -r).cross(out.force).y;
+        jt += fx.abs() * dt;
+        jn += fz * dt;
+        steps += 1;
+        vx += 0.5 * dt * fx / m;
+        vz += 0.5 * dt * fz / m;
+        wy += 0.5 * dt * ty / inertia;
+    }
+    let w_rigid = 2.5 * mu * (1.0 + e) * (-vz0) / r;
+    eprintln!(
+        "gross sliding: {steps} steps, dashpot > limit in {dashpot_dominates}, worst ||F_t| − μF_n|/μF_n = {worst:.2e}; J_t/(μ J_n) − 1 = {:.2e}; e_out {:.5}; ω' {wy:.5} rad/s (rigid {w_rigid:.5})",
+        jt / (mu * jn) - 1.0,
+        vz / -vz0
+    );
+    assert!(steps > 1000);
+    assert!(dashpot_dominates > steps / 10, "the case must have a strong dashpot");
+    assert!(worst < 1e-12, "|F_t| = μF_n at every step (worst {worst:.3e})");
+    assert!((jt / (mu * jn) - 1.0).abs() < 1e-10);
+    assert!((vz / -vz0 - e).abs() < 1e-3);
+    assert!(rel(wy, w_rigid) < 2e-3, "ω' {wy} vs rigid {w_rigid}");
 }
 
 /// Mindlin stiffness, sign convention, history rotation and elastic energy.
@@ -537,8 +687,6 @@ fn linear_law_values() {
         normal: NormalLaw::Linear { kn, kt },
         ..props(e, 0.4)
     };
-    let model = ContactModel::new(&glass(), &glass(), &p).unwrap();
-    let beta = e.ln() / (e.ln().powi(2) + PI * PI).sqrt();
     let c = ContactInput {
         normal: DVec3::Y,
         overlap: 1e-4,
@@ -548,10 +696,19 @@ fn linear_law_values() {
         mass: m,
         dt: 1e-6,
     };
-    let out = model.evaluate(&c, &mut ContactHistory::default());
-    let expected = kn * 1e-4 - 2.0 * beta * (m * kn).sqrt() * 0.3;
-    assert!(rel(out.normal_force, expected) < 1e-14);
-    assert!(rel(out.elastic_energy, 0.5 * kn * 1e-8) < 1e-14);
+    // Clamped (default): β from exp(−2ζA(ζ)) = e; tensile: the log formula.
+    for (tensile, beta) in [
+        (false, clamped_beta(e)),
+        (true, e.ln() / (e.ln().powi(2) + PI * PI).sqrt()),
+    ] {
+        let pt = PairProperties { tensile, ..p };
+        let model = ContactModel::new(&glass(), &glass(), &pt).unwrap();
+        assert_eq!(model.damping_ratio(), beta);
+        let out = model.evaluate(&c, &mut ContactHistory::default());
+        let expected = kn * 1e-4 - 2.0 * beta * (m * kn).sqrt() * 0.3;
+        assert!(rel(out.normal_force, expected) < 1e-14);
+        assert!(rel(out.elastic_energy, 0.5 * kn * 1e-8) < 1e-14);
+    }
     let p0 = PairProperties {
         normal: NormalLaw::Linear { kn, kt: 0.0 },
         ..props(e, 0.4)
@@ -745,6 +902,11 @@ fn exact_beta_closed_form_vs_numeric() {
             hertz_restitution(closed)
         );
         assert!((closed - numeric).abs() < 1e-5);
+        // Clamped (the default): closed form against the RK4 solution.
+        let bc = clamped_beta(e);
+        for hertz in [true, false] {
+            assert!((restitution_numeric(hertz, bc, true) - e).abs() < 1e-5);
+        }
     }
     eprintln!(
         "numeric solve: {:.2} ms per e",

@@ -258,7 +258,7 @@ fn one_and_two_threads_are_bit_identical() {
 
 /// Restitution of a dimer (two overlapping spheres) dropped flat onto a
 /// plane, so both spheres hit at once.
-fn dimer_drop(normal: NormalLaw, e: f64, multi: MultiContact) -> f64 {
+fn dimer_drop(normal: NormalLaw, e: f64, multi: MultiContact, tensile: bool) -> f64 {
     let mat = Material {
         youngs_modulus: 1e8,
         poisson_ratio: 0.3,
@@ -268,6 +268,7 @@ fn dimer_drop(normal: NormalLaw, e: f64, multi: MultiContact) -> f64 {
         restitution: e,
         friction: 0.0,
         normal,
+        tensile,
         ..PairProperties::default()
     };
     let r = 1e-3;
@@ -300,8 +301,9 @@ fn dimer_drop(normal: NormalLaw, e: f64, multi: MultiContact) -> f64 {
 }
 
 /// Restitution of the non-dimensional Hertz–Tsuji impact x'' = −x^{3/2} − c x^{1/4} x'
-/// (test-local RK4, independent of the engine).
-fn hertz_tsuji_restitution(c: f64) -> f64 {
+/// (test-local RK4, independent of the engine). `clamped`: the force cannot
+/// pull, so the body leaves where it first reaches zero on the way out.
+fn hertz_tsuji_restitution(c: f64, clamped: bool) -> f64 {
     let (mut x, mut v) = (0.0f64, 1.0f64);
     let h = 2e-5;
     let f = |x: f64, v: f64| -x.max(0.0).powf(1.5) - c * x.max(0.0).powf(0.25) * v;
@@ -318,6 +320,12 @@ fn hertz_tsuji_restitution(c: f64) -> f64 {
             let s = x / (x - xn);
             return -(v + s * (vn - v));
         }
+        if clamped && vn < 0.0 && f(xn, vn) >= 0.0 {
+            // the force reaches zero: linear interpolation of v there
+            let (a0, a1) = (f(x, v), f(xn, vn));
+            let s = if a0 < 0.0 { -a0 / (a1 - a0) } else { 0.0 };
+            return -(v + s * (vn - v));
+        }
         x = xn;
         v = vn;
     }
@@ -327,39 +335,46 @@ fn hertz_tsuji_restitution(c: f64) -> f64 {
 /// Under `average` the dimer rebounds with the input e. Under `sum`, two
 /// contacts in parallel double the stiffness and the damping while the
 /// dashpot was sized for one contact with the whole body mass, so the damping
-/// ratio grows by √2:
-/// - linear law: e_sum = exp(−√2 ζ π/√(1 − 2ζ²)) with ζ = −ln e/√(ln²e + π²);
+/// ratio ζ = −β grows by √2:
+/// - linear law, clamped (default): e_sum = exp(−2ζ₂A(ζ₂)), ζ₂ = √2 ζ
+///   (`damping::clamped_restitution`); tensile: e_sum = exp(−√2 ζ π/√(1 − 2ζ²))
+///   with ζ = −ln e/√(ln²e + π²);
 /// - Hertz with the δ^¼ dashpot: e_sum is the restitution of the same
-///   non-dimensional problem with its damping constant multiplied by √2.
+///   non-dimensional problem (clamped or not) with its damping constant
+///   multiplied by √2.
 #[test]
 fn dimer_dropped_flat_sum_and_average() {
-    for e in [0.3, 0.5, 0.8] {
-        let avg_lin = dimer_drop(
-            NormalLaw::Linear { kn: 2e4, kt: 0.0 },
-            e,
-            MultiContact::Average,
-        );
-        let sum_lin = dimer_drop(NormalLaw::Linear { kn: 2e4, kt: 0.0 }, e, MultiContact::Sum);
-        let zeta = -e.ln() / (e.ln().powi(2) + std::f64::consts::PI.powi(2)).sqrt();
-        let z2 = 2f64.sqrt() * zeta;
-        let sum_lin_theory = (-z2 * std::f64::consts::PI / (1.0 - z2 * z2).sqrt()).exp();
-        let avg_h = dimer_drop(NormalLaw::Hertz, e, MultiContact::Average);
-        let sum_h = dimer_drop(NormalLaw::Hertz, e, MultiContact::Sum);
-        // find c for e by bisection on the test-local model, then predict with √2 c
-        let (mut lo, mut hi) = (0.0, 5.0);
-        for _ in 0..40 {
-            let mid = 0.5 * (lo + hi);
-            if hertz_tsuji_restitution(mid) > e {
-                lo = mid
+    use clump_core::contact::damping::{clamped_beta, clamped_restitution};
+    let lin = NormalLaw::Linear { kn: 2e4, kt: 0.0 };
+    for tensile in [false, true] {
+        for e in [0.3, 0.5, 0.8] {
+            let avg_lin = dimer_drop(lin, e, MultiContact::Average, tensile);
+            let sum_lin = dimer_drop(lin, e, MultiContact::Sum, tensile);
+            let sum_lin_theory = if tensile {
+                let zeta = -e.ln() / (e.ln().powi(2) + std::f64::consts::PI.powi(2)).sqrt();
+                let z2 = 2f64.sqrt() * zeta;
+                (-z2 * std::f64::consts::PI / (1.0 - z2 * z2).sqrt()).exp()
             } else {
-                hi = mid
+                clamped_restitution(2f64.sqrt() * clamped_beta(e))
+            };
+            let avg_h = dimer_drop(NormalLaw::Hertz, e, MultiContact::Average, tensile);
+            let sum_h = dimer_drop(NormalLaw::Hertz, e, MultiContact::Sum, tensile);
+            // find c for e by bisection on the test-local model, then predict with √2 c
+            let (mut lo, mut hi) = (0.0, 5.0);
+            for _ in 0..40 {
+                let mid = 0.5 * (lo + hi);
+                if hertz_tsuji_restitution(mid, !tensile) > e {
+                    lo = mid
+                } else {
+                    hi = mid
+                }
             }
+            let sum_h_theory = hertz_tsuji_restitution(0.5 * (lo + hi) * 2f64.sqrt(), !tensile);
+            eprintln!("dimer tensile={tensile} e={e}: linear avg {avg_lin:.4} sum {sum_lin:.4} (theory {sum_lin_theory:.4}); hertz avg {avg_h:.4} sum {sum_h:.4} (theory {sum_h_theory:.4})");
+            assert!((avg_lin - e).abs() < 0.01);
+            assert!((avg_h - e).abs() < 0.01);
+            assert!((sum_lin - sum_lin_theory).abs() < 0.01);
+            assert!((sum_h - sum_h_theory).abs() < 0.01);
         }
-        let sum_h_theory = hertz_tsuji_restitution(0.5 * (lo + hi) * 2f64.sqrt());
-        eprintln!("dimer e={e}: linear avg {avg_lin:.4} sum {sum_lin:.4} (theory {sum_lin_theory:.4}); hertz avg {avg_h:.4} sum {sum_h:.4} (theory {sum_h_theory:.4})");
-        assert!((avg_lin - e).abs() < 0.01);
-        assert!((avg_h - e).abs() < 0.01);
-        assert!((sum_lin - sum_lin_theory).abs() < 0.01);
-        assert!((sum_h - sum_h_theory).abs() < 0.01);
     }
 }

@@ -133,3 +133,31 @@ fn large_time_step_is_a_warning_below_the_limit() {
         "{w}"
     );
 }
+
+/// `tensile` is read from `[contact]` and `[[pair]]` (default false: the
+/// normal force is clamped); a pair inherits it from `[contact]` unless it
+/// sets its own.
+#[test]
+fn tensile_key_is_parsed() {
+    let base = std::fs::read_to_string(corpus().join("base_valid.toml")).unwrap();
+    let load = |text: String| {
+        scenario::parse(
+            &corpus().join("tensile.toml"),
+            text,
+            scenario::Files::disk(&corpus()),
+        )
+        .unwrap_or_else(|e| panic!("{e}"))
+    };
+    // material order: rock (0), steel (1); table row-major n × n
+    let sc = load(base.clone());
+    assert!(sc.pair_table.iter().all(|p| !p.tensile), "default: clamped");
+    let text = base
+        .replacen("friction = 0.5\n", "friction = 0.5\ntensile = true\n", 1)
+        .replacen("friction = 0.3\n", "friction = 0.3\ntensile = false\n", 1);
+    let sc = load(text);
+    let n = sc.material_names.len();
+    let at = |a: usize, b: usize| sc.pair_table[a * n + b];
+    assert!(at(0, 0).tensile && at(1, 1).tensile, "[contact] tensile = true");
+    assert!(!at(0, 1).tensile && !at(1, 0).tensile, "[[pair]] tensile = false");
+    assert_eq!(at(0, 1).restitution, 0.4);
+}

@@ -13,7 +13,7 @@ use clump_core::contact::{Material, NormalLaw, PairProperties};
 use clump_core::multi_contact::MultiContact;
 use clump_core::world::World;
 use glam::{DQuat, DVec3};
-use std::f64::consts::{FRAC_PI_2, PI};
+use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 
 const G: f64 = 9.81;
@@ -222,16 +222,20 @@ fn dimer_flat(g: &mut Group, quick: bool) -> Result<(), String> {
     let es: &[f64] = if quick { &[0.5] } else { &[0.3, 0.5, 0.8] };
     let lin = NormalLaw::Linear { kn: 2e4, kt: 0.0 };
     for &e in es {
-        let zeta = -e.ln() / (e.ln().powi(2) + PI * PI).sqrt();
-        let z2 = 2f64.sqrt() * zeta;
-        let e_sum_lin = (-z2 * PI / (1.0 - z2 * z2).sqrt()).exp();
+        // The contact force is clamped at zero (non-cohesive, the default):
+        // the reference ODEs clamp it too. Damping constant for one contact
+        // from e, then ×√2 for two contacts summed on the same body mass.
         let h = 1e-4;
-        let c = damping_for_restitution(1.5, 0.25, e, h);
-        let e_sum_hertz = impact_restitution(1.5, 0.25, 2f64.sqrt() * c, h, usize::MAX).0;
+        let sum_e = |p: f64, q: f64| {
+            let c = damping_for_restitution(p, q, e, true, h);
+            impact_restitution(p, q, 2f64.sqrt() * c, true, h, usize::MAX).0
+        };
+        let e_sum_lin = sum_e(1.0, 0.0);
+        let e_sum_hertz = sum_e(1.5, 0.25);
         let src_avg = "`average`: one contact's stiffness and damping, so e_out = e_in";
-        let src_lin = "`sum`: damping ratio ×√2, e = exp(−√2ζπ/√(1−2ζ²)), ζ = −ln e/√(ln²e+π²)";
+        let src_lin = "`sum`: linear x'' = −max(x + c x', 0) with c ×√2 (RK4, engine-independent; closed form exp(−2ζA(ζ)), ζ = √2ζ₁)";
         let src_h =
-            "`sum`: Hertz–Tsuji x'' = −x^1.5 − c x^¼ x' with c ×√2 (RK4, engine-independent)";
+            "`sum`: Hertz–Tsuji x'' = −max(x^1.5 + c x^¼ x', 0) with c ×√2 (RK4, engine-independent)";
         for (law, normal, multi, exp, src) in [
             ("linear", lin, MultiContact::Average, e, src_avg),
             ("linear", lin, MultiContact::Sum, e_sum_lin, src_lin),
@@ -266,7 +270,7 @@ fn dimer_flat(g: &mut Group, quick: bool) -> Result<(), String> {
 /// Runs the clump-specific group.
 pub fn run(sel: Selection, dir: &Path) -> Group {
     let mut g = Group::default();
-    g.notes.push("Material E = 1e7 Pa, ν = 0.3, ρ = 2500 kg/m³ on a rigid plane (dimer drop: E = 1e8 Pa, linear k_n = 2e4 N/m); Hertz normal law with exact damping; dimer = two spheres R = 1 mm, centres 1 mm apart (drop: 1.2 mm). The incline is modelled by tilting gravity, g = 9.81 (sin 20°, 0, −cos 20°) m/s²; the acceleration is a least-squares fit of v(t) for t ≥ 10 ms.".into());
+    g.notes.push("Material E = 1e7 Pa, ν = 0.3, ρ = 2500 kg/m³ on a rigid plane (dimer drop: E = 1e8 Pa, linear k_n = 2e4 N/m); Hertz normal law with exact damping, normal force clamped at zero (the default); dimer = two spheres R = 1 mm, centres 1 mm apart (drop: 1.2 mm). The incline is modelled by tilting gravity, g = 9.81 (sin 20°, 0, −cos 20°) m/s²; the acceleration is a least-squares fit of v(t) for t ≥ 10 ms.".into());
     let quick = sel == Selection::Quick;
     if let Err(e) = incline(&mut g, dir) {
         g.cases

@@ -27,23 +27,36 @@ pub fn rk4_step<const N: usize>(
 }
 
 /// A normal impact against a nonlinear spring–dashpot in non-dimensional
-/// form, `x'' = −x^p − c·x^q·x'` for `x > 0`, starting at `x = 0`, `x' = 1`.
-/// Returns the restitution (rebound speed at `x = 0`; 0 when the motion
-/// creeps back without crossing) and the trajectory `(t, x, force)` sampled
-/// every `every` steps.
-pub fn impact_restitution(p: f64, q: f64, c: f64, h: f64, every: usize) -> (f64, Vec<[f64; 3]>) {
-    let f = |y: [f64; 2]| {
+/// form, `x'' = −F`, `F = x^p + c·x^q·x'` for `x > 0`, starting at `x = 0`,
+/// `x' = 1`; with `clamped` the force cannot pull, `F ← max(F, 0)` (a
+/// non-cohesive contact). Returns the restitution (rebound speed at `x = 0`;
+/// 0 when the motion creeps back without crossing) and the trajectory
+/// `(t, x, force)` sampled every `every` steps.
+pub fn impact_restitution(
+    p: f64,
+    q: f64,
+    c: f64,
+    clamped: bool,
+    h: f64,
+    every: usize,
+) -> (f64, Vec<[f64; 3]>) {
+    let force = |y: [f64; 2]| {
         let x = y[0].max(0.0);
-        [y[1], -x.powf(p) - c * x.powf(q) * y[1]]
+        let f = x.powf(p) + c * x.powf(q) * y[1];
+        if clamped {
+            f.max(0.0)
+        } else {
+            f
+        }
     };
+    let f = |y: [f64; 2]| [y[1], -force(y)];
     let mut y = [0.0, 1.0];
     let mut samples = Vec::new();
     let max_steps = (200.0 / h) as usize;
     for n in 0..max_steps {
         let next = rk4_step(y, h, &f);
         if n % every.max(1) == 0 {
-            let x = y[0].max(0.0);
-            samples.push([n as f64 * h, y[0], x.powf(p) + c * x.powf(q) * y[1]]);
+            samples.push([n as f64 * h, y[0], force(y)]);
         }
         if next[0] <= 0.0 && next[1] < 0.0 {
             let s = y[0] / (y[0] - next[0]);
@@ -54,13 +67,13 @@ pub fn impact_restitution(p: f64, q: f64, c: f64, h: f64, every: usize) -> (f64,
     (0.0, samples)
 }
 
-/// The damping constant `c` of [`impact_restitution`] that gives restitution
-/// `e ∈ (0, 1)`, by bisection.
-pub fn damping_for_restitution(p: f64, q: f64, e: f64, h: f64) -> f64 {
+/// The damping constant `c` of [`impact_restitution`] (clamped or not) that
+/// gives restitution `e ∈ (0, 1)`, by bisection on `[0, 10]`.
+pub fn damping_for_restitution(p: f64, q: f64, e: f64, clamped: bool, h: f64) -> f64 {
     let (mut lo, mut hi) = (0.0, 10.0);
     for _ in 0..50 {
         let mid = 0.5 * (lo + hi);
-        if impact_restitution(p, q, mid, h, usize::MAX).0 > e {
+        if impact_restitution(p, q, mid, clamped, h, usize::MAX).0 > e {
             lo = mid;
         } else {
             hi = mid;
@@ -85,15 +98,23 @@ mod tests {
 
     #[test]
     fn undamped_impact_is_elastic_and_damping_inverts() {
-        let (e, _) = impact_restitution(1.5, 0.25, 0.0, 1e-3, usize::MAX);
+        let (e, _) = impact_restitution(1.5, 0.25, 0.0, false, 1e-3, usize::MAX);
         assert!((e - 1.0).abs() < 1e-6, "{e}");
         // linear spring with a linear dashpot: e = exp(−ζπ/√(1−ζ²)), c = 2ζ
         let zeta: f64 = 0.2;
-        let (e_lin, _) = impact_restitution(1.0, 0.0, 2.0 * zeta, 1e-4, usize::MAX);
+        let (e_lin, _) = impact_restitution(1.0, 0.0, 2.0 * zeta, false, 1e-4, usize::MAX);
         let exact = (-zeta * std::f64::consts::PI / (1.0 - zeta * zeta).sqrt()).exp();
         assert!((e_lin - exact).abs() < 1e-4, "{e_lin} vs {exact}");
+        // clamped: the force ends where x'' = 0; with ζ = cos α it ends at
+        // ω_d t = 2α and e = exp(−2ζα/√(1−ζ²)) (by hand, Schwager & Pöschel)
+        let (e_cl, _) = impact_restitution(1.0, 0.0, 2.0 * zeta, true, 1e-4, usize::MAX);
+        let exact_cl = (-2.0 * zeta * zeta.acos() / (1.0 - zeta * zeta).sqrt()).exp();
+        assert!((e_cl - exact_cl).abs() < 1e-4, "{e_cl} vs {exact_cl}");
         assert!((slope(&[(0.0, 1.0), (1.0, 3.0), (2.0, 5.0)]) - 2.0).abs() < 1e-12);
-        let c = damping_for_restitution(1.5, 0.25, 0.5, 1e-3);
-        assert!((impact_restitution(1.5, 0.25, c, 1e-3, usize::MAX).0 - 0.5).abs() < 1e-6);
+        for clamped in [false, true] {
+            let c = damping_for_restitution(1.5, 0.25, 0.5, clamped, 1e-3);
+            let e = impact_restitution(1.5, 0.25, c, clamped, 1e-3, usize::MAX).0;
+            assert!((e - 0.5).abs() < 1e-6);
+        }
     }
 }

@@ -34,19 +34,26 @@
 //! - [`normal`]: Hertz (`F = (4/3)E*√R* δ^{3/2}`) or linear (`F = k_n δ`).
 //! - [`damping`]: the normal/tangential dashpots; the default
 //!   [`DampingLaw::Exact`] reproduces the input restitution exactly for both
-//!   normal laws, [`DampingLaw::Liggghts`] uses LIGGGHTS' formula.
+//!   normal laws, with or without the tensile clamp; [`DampingLaw::Liggghts`]
+//!   uses LIGGGHTS' formula (biased under the clamp).
 //! - [`tangential`]: incremental history spring (Mindlin `k_t = 8G*√(R*δ)` or
-//!   linear `k_t`), dashpot, Coulomb limit `|F_t| ≤ μ|F_n|`.
+//!   linear `k_t`), dashpot, Coulomb limit `|F_t| ≤ μF_n`; a sliding contact
+//!   keeps the limit in its elastic spring.
 //! - [`rolling`]: rolling resistance, none, CDT or EPSD.
 //! - [`time_scale`]: Rayleigh time and Hertz contact duration, for choosing a
 //!   time step.
 //!
 //! # End of contact and tensile forces
 //! The engine keeps a contact while `overlap > 0` and calls `evaluate` for it.
-//! The normal force `F_n = F_elastic − γ_n v_n` is **not clamped**: near the end
-//! of a damped rebound the dashpot makes it slightly tensile (negative
-//! [`ContactOutput::normal_force`]). The exact-restitution damping of the Hertz
-//! law is calibrated with this same rule (contact ends when `δ ≤ 0`, no clamp).
+//! By default the total normal force is **clamped**,
+//! `F_n = max(F_elastic − γ_n v_n, 0)`: a contact between non-cohesive
+//! particles cannot pull, so near the end of a damped rebound, where the
+//! dashpot would make it tensile, `F_n` is zero and the particles separate
+//! with the speed they have then. The Coulomb and rolling limits use this
+//! `F_n ≥ 0`. [`PairProperties::tensile`] `= true` keeps the unclamped law
+//! (LIGGGHTS' default, `limitForce off`): `F_n` may be slightly negative near
+//! separation and the limits use `|F_n|`. The exact-restitution damping is
+//! calibrated for whichever rule the pair uses (see [`damping`]).
 
 pub mod damping;
 pub mod material;
@@ -115,7 +122,8 @@ pub struct ContactOutput {
     /// (+ EPSD rolling spring `½|M_r|²/k_r` when that law is used).
     pub elastic_energy: f64,
     /// Signed normal force component `F_n = force·normal`, N (elastic +
-    /// damping); negative when the contact is net tensile.
+    /// damping, after the tensile clamp): `≥ 0` unless the pair is
+    /// `tensile`, where it is negative when the contact is net tensile.
     pub normal_force: f64,
 }
 

@@ -7,9 +7,11 @@
 //! - tangential stiffness `k_t = k̂_t s` (`k̂_t = 8G*` or `k_t`),
 //! - dashpots `γ_n = ĝ_n √(s m*)`, `γ_t = ĝ_t √(s m*)`, where for Hertz
 //!   `ĝ_n = −2√(5/6)β√(2E*)`, `ĝ_t = −2√(5/6)β√(8G*)` and for linear
-//!   `ĝ_n = −2β√k_n`, `ĝ_t = −2β√k_t` (see [`super::damping`] for `β`).
+//!   `ĝ_n = −2β√k_n`, `ĝ_t = −2β√k_t` (see [`super::damping`] for `β`),
+//! - total normal force `F_n = max(F_el − γ_n v_n, 0)` (the tensile clamp,
+//!   default) or `F_el − γ_n v_n` ([`PairProperties::tensile`]).
 
-use super::damping::{exact_hertz_beta, log_beta, DampingLaw, HERTZ_DAMPING_PREFACTOR};
+use super::damping::{clamped_pulse_time, damping_ratio, DampingLaw, HERTZ_DAMPING_PREFACTOR};
 use super::material::{effective_modulus, effective_shear_modulus, Material};
 use super::normal::NormalLaw;
 use super::rolling::{cdt, epsd, rolling_omega, RollingLaw};
@@ -29,7 +31,7 @@ pub struct PairProperties {
     /// Sliding (Coulomb) friction coefficient `μ ≥ 0`, dimensionless.
     pub friction: f64,
     /// Rolling friction coefficient `μ_r ≥ 0`, dimensionless (the limiting
-    /// rolling couple is `μ_r R*|F_n|`).
+    /// rolling couple is `μ_r R* F_n`, `F_n` after the tensile clamp).
     pub rolling_friction: f64,
     /// Normal force law.
     pub normal: NormalLaw,
@@ -37,10 +39,20 @@ pub struct PairProperties {
     pub damping: DampingLaw,
     /// Rolling-resistance law.
     pub rolling: RollingLaw,
+    /// Whether the total normal force may be tensile (pull). `false`
+    /// (default): a contact between non-cohesive particles cannot pull, the
+    /// normal force is clamped, `F_n = max(F_el − γ_n v_n, 0)` (LIGGGHTS'
+    /// `limitForce on`), and the Coulomb and rolling limits use this
+    /// `F_n ≥ 0`. `true`: no clamp (LIGGGHTS' default, `limitForce off`): near
+    /// the end of a damped rebound the dashpot makes `F_n` slightly tensile,
+    /// and the limits use `|F_n|`, as LIGGGHTS does. [`DampingLaw::Exact`]
+    /// is calibrated for either choice (see [`super::damping`]).
+    pub tensile: bool,
 }
 
 impl Default for PairProperties {
-    /// `e = 0.5`, `μ = 0.5`, `μ_r = 0`, Hertz, exact damping, no rolling resistance.
+    /// `e = 0.5`, `μ = 0.5`, `μ_r = 0`, Hertz, exact damping, no rolling
+    /// resistance, normal force clamped (not tensile).
     fn default() -> Self {
         PairProperties {
             restitution: 0.5,
@@ -49,6 +61,7 @@ impl Default for PairProperties {
             normal: NormalLaw::Hertz,
             damping: DampingLaw::Exact,
             rolling: RollingLaw::None,
+            tensile: false,
         }
     }
 }
@@ -61,8 +74,10 @@ pub struct ContactModel {
     hertz: bool,
     e_star: f64,
     g_star: f64,
-    /// Damping ratio actually used (β or β'), ≤ 0.
+    /// Damping ratio actually used, ≤ 0 (see [`super::damping::damping_ratio`]).
     beta: f64,
+    /// Lower bound of the total normal force, N: 0 (clamped) or −∞ (tensile).
+    fn_floor: f64,
     kn_coef: f64,
     kt_coef: f64,
     gn_coef: f64,
@@ -78,8 +93,9 @@ impl ContactModel {
     /// Builds the model for materials `a` and `b` (symmetric in `a`, `b`) with
     /// pair properties `p`. Validates: `E > 0` (∞ for a rigid wall, but not both
     /// rigid), `ν ∈ (−1, 0.5)`, `ρ > 0`, `0 ≤ e ≤ 1`, `μ ≥ 0`, `μ_r ≥ 0`, and for
-    /// the linear law `k_n > 0`, `k_t ≥ 0`, all finite. Cheap (closed-form
-    /// coefficients, see [`super::damping`]).
+    /// the linear law `k_n > 0`, `k_t ≥ 0`, all finite. Cheap: closed-form
+    /// coefficients, and for the clamped exact damping a bisection on a
+    /// closed form (a few µs; see [`super::damping`]).
     pub fn new(a: &Material, b: &Material, p: &PairProperties) -> Result<Self, ContactError> {
         a.validate("a")?;
         b.validate("b")?;
@@ -102,21 +118,19 @@ impl ContactModel {
         }
         let e_star = effective_modulus(a, b);
         let g_star = effective_shear_modulus(a, b);
-        let (hertz, beta, kn_coef, kt_coef, gn_coef, gt_coef, energy_factor) = match p.normal {
+        // The same β serves both normal laws (phase-plane mapping, see
+        // `damping`), clamped or not.
+        let (beta, clamped) = damping_ratio(p.damping, e, p.tensile);
+        let (hertz, kn_coef, kt_coef, gn_coef, gt_coef, energy_factor) = match p.normal {
             NormalLaw::Hertz => {
                 if !e_star.is_finite() {
                     return perr(
                         "Hertz contact between two rigid materials (E* is infinite)".into(),
                     );
                 }
-                let beta = match p.damping {
-                    DampingLaw::Exact => exact_hertz_beta(e),
-                    DampingLaw::Liggghts => log_beta(e),
-                };
                 let pre = -HERTZ_DAMPING_PREFACTOR * beta;
                 (
                     true,
-                    beta,
                     4.0 / 3.0 * e_star,
                     8.0 * g_star,
                     pre * (2.0 * e_star).sqrt(),
@@ -135,11 +149,8 @@ impl ContactModel {
                         "linear tangential stiffness kt must be finite and >= 0 N/m, got {kt}"
                     ));
                 }
-                // Exact and LIGGGHTS coincide for a linear spring.
-                let beta = log_beta(e);
                 (
                     false,
-                    beta,
                     kn,
                     kt,
                     -2.0 * beta * kn.sqrt(),
@@ -154,6 +165,7 @@ impl ContactModel {
             e_star,
             g_star,
             beta,
+            fn_floor: if clamped { 0.0 } else { f64::NEG_INFINITY },
             kn_coef,
             kt_coef,
             gn_coef,
@@ -201,7 +213,15 @@ impl ContactModel {
         let vn = c.rel_velocity.dot(n);
         let vt = c.rel_velocity - vn * n;
         let f_el = kn * d;
-        let f_n = f_el - gamma_n * vn;
+        // Tensile clamp (fn_floor = 0) or none (fn_floor = −∞); the Coulomb
+        // and rolling limits use |F_n|, which is F_n itself when clamped.
+        // (A comparison rather than f64::max: one maxsd, and NaN propagates.)
+        let f_raw = f_el - gamma_n * vn;
+        let f_n = if f_raw < self.fn_floor {
+            self.fn_floor
+        } else {
+            f_raw
+        };
         let abs_fn = f_n.abs();
         let inv_kt = if kt > 0.0 { 1.0 / kt } else { 0.0 };
         let f_t = history_spring(
@@ -257,10 +277,18 @@ impl ContactModel {
         self.g_star
     }
 
-    /// The damping ratio `β` used, dimensionless, in `[−1, 0]`
-    /// (`ln e/√(ln²e+π²)`, restitution-exact for both normal laws).
+    /// The damping ratio `β` used, dimensionless, `≤ 0` (see
+    /// [`super::damping::damping_ratio`]: below −1 for the clamped exact damping with
+    /// `e < e^{−2}`).
     pub fn damping_ratio(&self) -> f64 {
         self.beta
+    }
+
+    /// Whether the total normal force is clamped at zero (not tensile): the
+    /// pair's `!tensile`, except for exact damping with `e = 0`, which uses
+    /// critical damping without the clamp (see [`super::damping::damping_ratio`]).
+    pub fn clamps_normal_force(&self) -> bool {
+        self.fn_floor == 0.0
     }
 
     /// The pair properties this model was built from.
@@ -281,12 +309,17 @@ impl ContactModel {
     /// Contact duration of a head-on impact, s, at relative normal speed
     /// `v_normal` (m/s), effective radius `r_star` (m) and mass `m_star` (kg):
     /// Hertz: the undamped `2.9432 δ_max/v`; linear: the exact damped
-    /// `π/(ω₀√(1−β²))`, `ω₀ = √(k_n/m*)` (infinite for `e = 0`).
+    /// duration of the force pulse, `ω₀ = √(k_n/m*)`: unclamped
+    /// `π/(ω₀√(1−β²))` (infinite for `β ≤ −1`), clamped `2A(−β)/ω₀` (until
+    /// the force reaches zero; `A` in [`super::damping`]).
     pub fn contact_time(&self, r_star: f64, m_star: f64, v_normal: f64) -> f64 {
         if self.hertz {
             hertz_contact_time(self.e_star, r_star, m_star, v_normal)
         } else {
             let w0 = (self.kn_coef / m_star).sqrt();
+            if self.clamps_normal_force() {
+                return clamped_pulse_time(self.beta) / w0;
+            }
             let r = 1.0 - self.beta * self.beta;
             if r > 0.0 {
                 std::f64::consts::PI / (w0 * r.sqrt())

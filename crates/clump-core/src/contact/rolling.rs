@@ -5,11 +5,12 @@
 //! `ω_r = ω_rel − (ω_rel·n) n` (rad/s, world), i.e. `rel_omega` projected onto
 //! the tangent plane: the twisting (torsion) component about the normal is not
 //! resisted. (LIGGGHTS' `rolling_friction cdt` likewise removes the normal
-//! component.) The limiting couple is `M_max = μ_r R* |F_n|` (N m) with `|F_n|`
-//! the magnitude of the total normal force.
+//! component.) The limiting couple is `M_max = μ_r R* F_n` (N m) with `F_n` the
+//! total normal force after the tensile clamp (`≥ 0`; `|F_n|` for a pair with
+//! `tensile = true`), the same normal force as the Coulomb limit.
 //!
 //! - **CDT** (constant directional torque, Zhou et al. 1999):
-//!   `M = −μ_r R* |F_n| ω̂_r`; zero when `|ω_r| ≤ 10⁻¹² rad/s` (no NaN). Being
+//!   `M = −μ_r R* F_n ω̂_r`; zero when `|ω_r| ≤ 10⁻¹² rad/s` (no NaN). Being
 //!   discontinuous at `ω_r = 0`, it can chatter at rest.
 //! - **EPSD** (elastic–plastic spring–dashpot; Iwashita & Oda 1998, Ai, Chen,
 //!   Rotter & Ooi 2011, Powder Technol. 206:269, model type C): an incremental
@@ -34,9 +35,9 @@ pub enum RollingLaw {
     /// No rolling resistance (default).
     #[default]
     None,
-    /// Constant directional torque `−μ_r R*|F_n| ω̂_r`.
+    /// Constant directional torque `−μ_r R* F_n ω̂_r`.
     Cdt,
-    /// Elastic–plastic spring–dashpot (history spring limited to `μ_r R*|F_n|`).
+    /// Elastic–plastic spring–dashpot (history spring limited to `μ_r R* F_n`).
     Epsd,
 }
 
@@ -50,7 +51,8 @@ pub fn rolling_omega(rel_omega: DVec3, n: DVec3) -> DVec3 {
 }
 
 /// CDT couple on `i`, N m, world: `−m_max ω̂_r` (zero if `|ω_r| ≤ 10⁻¹²`).
-/// `omega_r` is the rolling angular velocity (rad/s, world), `m_max = μ_r R*|F_n|` (N m).
+/// `omega_r` is the rolling angular velocity (rad/s, world), `m_max = μ_r R* F_n`
+/// (N m, `≥ 0`).
 #[inline(always)]
 pub fn cdt(omega_r: DVec3, m_max: f64) -> DVec3 {
     let w2 = omega_r.length_squared();
@@ -64,7 +66,7 @@ pub fn cdt(omega_r: DVec3, m_max: f64) -> DVec3 {
 /// EPSD couple on `i`, N m, world, updating the spring `m_r` (N m, world) in
 /// place. `n` unit normal; `omega_r` rolling angular velocity (rad/s); `dt` (s);
 /// `kr` rolling stiffness (N m/rad); `cr` viscous coefficient (N m s/rad);
-/// `m_max = μ_r R*|F_n|` (N m). Returns the couple and the spring energy
+/// `m_max = μ_r R* F_n` (N m, `≥ 0`). Returns the couple and the spring energy
 /// `½|M_r|²/k_r` (J, 0 if `k_r = 0`).
 #[inline(always)]
 pub fn epsd(

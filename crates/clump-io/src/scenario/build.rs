@@ -858,6 +858,7 @@ struct ContactFields {
     kt: Option<f64>,
     damping: Option<clump_core::contact::DampingLaw>,
     rolling: Option<RollingLaw>,
+    tensile: Option<bool>,
 }
 
 impl ContactFields {
@@ -871,6 +872,7 @@ impl ContactFields {
             kt: c.kt,
             damping: c.damping,
             rolling: c.rolling,
+            tensile: c.tensile,
         }
     }
     fn from_pair(c: &RawPair) -> Self {
@@ -883,6 +885,7 @@ impl ContactFields {
             kt: c.kt,
             damping: c.damping,
             rolling: c.rolling,
+            tensile: c.tensile,
         }
     }
 }
@@ -923,6 +926,9 @@ fn contact_props(
     }
     if let Some(r) = f.rolling {
         out.rolling = r;
+    }
+    if let Some(t) = f.tensile {
+        out.tensile = t;
     }
     let law = f.law.unwrap_or(match dflt.normal {
         NormalLaw::Hertz => LawName::Hertz,

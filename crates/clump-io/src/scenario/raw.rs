@@ -205,6 +205,8 @@ pub struct RawContact {
     pub damping: Option<DampingLaw>,
     /// Rolling resistance law.
     pub rolling: Option<RollingLaw>,
+    /// Whether the normal force may be tensile (no clamp at zero).
+    pub tensile: Option<bool>,
 }
 
 /// `[[pair]]`: like `[contact]` for one pair of materials.
@@ -229,6 +231,8 @@ pub struct RawPair {
     pub damping: Option<DampingLaw>,
     /// Rolling resistance law.
     pub rolling: Option<RollingLaw>,
+    /// Whether the normal force may be tensile (no clamp at zero).
+    pub tensile: Option<bool>,
 }
 
 /// Built-in template shape name.

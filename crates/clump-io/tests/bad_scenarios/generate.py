@@ -179,6 +179,8 @@ CASES = [
      ["'merge_angle' must be in [0, 90) degrees, found 120"]),
     ("plane_with_file", rep('normal = [0.0, 0.0, 1.0]\n', 'normal = [0.0, 0.0, 1.0]\nfile = "data_floor.obj"\n'), 'file = "data_floor.obj"',
      ["'file' does not apply to a wall of type \"plane\""]),
+    ("tensile_not_bool", rep("friction = 0.5", 'friction = 0.5\ntensile = "yes"'), 'tensile = "yes"',
+     ["wrong type for 'tensile' in [contact]: expected true or false", "found string"]),
 ]
 
 
