@@ -48,8 +48,15 @@ fn main() {
         th.wall_contacts
     );
     let ss = w.spheres().len() as f64 * steps as f64;
-    println!("  candidate pairs {} ({:.2} per sphere)", w.pairs().len(), w.pairs().len() as f64 / w.spheres().len() as f64);
-    println!("  CPU time {cpu:.3} s: {:.1} ns CPU per sphere-step", cpu / ss * 1e9);
+    println!(
+        "  candidate pairs {} ({:.2} per sphere)",
+        w.pairs().len(),
+        w.pairs().len() as f64 / w.spheres().len() as f64
+    );
+    println!(
+        "  CPU time {cpu:.3} s: {:.1} ns CPU per sphere-step",
+        cpu / ss * 1e9
+    );
     for (name, t) in w.stage_times.rows() {
         println!("  {name:>18}: {:7.1} ns per sphere-step", t / ss * 1e9);
     }
@@ -59,6 +66,9 @@ fn main() {
 fn cpu_seconds() -> f64 {
     let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
     let rest = stat.rsplit(')').next().unwrap_or("");
-    let f: Vec<f64> = rest.split_whitespace().map(|x| x.parse().unwrap_or(0.0)).collect();
+    let f: Vec<f64> = rest
+        .split_whitespace()
+        .map(|x| x.parse().unwrap_or(0.0))
+        .collect();
     (f.get(11).copied().unwrap_or(0.0) + f.get(12).copied().unwrap_or(0.0)) / 100.0
 }

@@ -69,27 +69,34 @@ fn every_example_passes_check() {
     }
 }
 
+/// Runs `clump run EX -o OUT ARGS…`, requires success (showing the end of
+/// stderr otherwise) and returns the run's manifest.
+fn run_example(ex: &std::path::Path, out: &std::path::Path, args: &[&str]) -> serde_json::Value {
+    let o = clump()
+        .arg("run")
+        .arg(ex)
+        .arg("-o")
+        .arg(out)
+        .args(args)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.success(),
+        "clump run {} {args:?} failed ({:?}):\n{}",
+        ex.display(),
+        o.status,
+        stderr.lines().rev().take(15).collect::<Vec<_>>().join("\n")
+    );
+    serde_json::from_slice(&std::fs::read(out.join("manifest.json")).unwrap()).unwrap()
+}
+
 #[test]
 fn every_example_runs_a_short_horizon() {
     for ex in examples() {
         let name = ex.file_stem().unwrap().to_string_lossy().into_owned();
         let out = out_dir(&name);
-        let o = clump()
-            .arg("run")
-            .arg(&ex)
-            .arg("-o")
-            .arg(&out)
-            .args(["--steps", "200", "--threads", "2"])
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&o.stderr);
-        assert!(
-            o.status.success(),
-            "clump run {name} --steps 200 failed ({:?}):\n{stderr}",
-            o.status
-        );
-        let manifest: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(out.join("manifest.json")).unwrap()).unwrap();
+        let manifest = run_example(&ex, &out, &["--steps", "200", "--threads", "2"]);
         assert_eq!(manifest["final_step"], 200, "{manifest}");
         assert_eq!(manifest["status"], "step_limit");
         for f in [
@@ -128,23 +135,7 @@ fn every_example_runs_to_completion() {
     for ex in examples() {
         let name = ex.file_stem().unwrap().to_string_lossy().into_owned();
         let out = out_dir(&format!("{name}_full"));
-        let o = clump()
-            .arg("run")
-            .arg(&ex)
-            .arg("-o")
-            .arg(&out)
-            .args(["--threads", "2"])
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&o.stderr);
-        assert!(
-            o.status.success(),
-            "clump run {name} failed ({:?}):\n{}",
-            o.status,
-            stderr.lines().rev().take(15).collect::<Vec<_>>().join("\n")
-        );
-        let manifest: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(out.join("manifest.json")).unwrap()).unwrap();
+        let manifest = run_example(&ex, &out, &["--threads", "2"]);
         assert_eq!(manifest["status"], "completed", "{name}: {manifest}");
         let _ = std::fs::remove_dir_all(&out);
     }

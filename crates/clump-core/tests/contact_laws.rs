@@ -335,7 +335,11 @@ fn clamped_restitution_is_exact() {
                 imp.restitution,
                 imp.min_force
             );
-            assert!(imp.min_force >= 0.0, "tensile normal force {}", imp.min_force);
+            assert!(
+                imp.min_force >= 0.0,
+                "tensile normal force {}",
+                imp.min_force
+            );
             assert!(err < 2e-4, "{normal:?} e {e}: e_out {}", imp.restitution);
             worst = worst.max(err);
         }
@@ -608,8 +612,14 @@ fn gross_sliding_stays_at_the_coulomb_limit() {
         vz / -vz0
     );
     assert!(steps > 1000);
-    assert!(dashpot_dominates > steps / 10, "the case must have a strong dashpot");
-    assert!(worst < 1e-12, "|F_t| = μF_n at every step (worst {worst:.3e})");
+    assert!(
+        dashpot_dominates > steps / 10,
+        "the case must have a strong dashpot"
+    );
+    assert!(
+        worst < 1e-12,
+        "|F_t| = μF_n at every step (worst {worst:.3e})"
+    );
     assert!((jt / (mu * jn) - 1.0).abs() < 1e-10);
     assert!((vz / -vz0 - e).abs() < 1e-3);
     assert!(rel(wy, w_rigid) < 2e-3, "ω' {wy} vs rigid {w_rigid}");

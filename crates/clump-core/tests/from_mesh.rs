@@ -7,37 +7,19 @@ use clump_core::shape::from_mesh::{
 use clump_core::wall::{MeshError, TriMesh};
 use glam::{DQuat, DVec3};
 
-use clump_core::wall::mesh::primitives::icosphere;
+use clump_core::wall::mesh::primitives::{cuboid, icosphere};
 
 #[test]
 fn polyhedron_properties_of_a_box() {
     // a 2 × 1 × 0.5 box, with the winding of half its triangles flipped
-    let s = DVec3::new(2.0, 1.0, 0.5);
-    let v: Vec<DVec3> = (0..8)
-        .map(|k| {
-            DVec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, ((k >> 2) & 1) as f64) * s
-                + DVec3::new(5.0, -3.0, 1.0)
-        })
-        .collect();
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let t: Vec<[u32; 3]> = quads
-        .iter()
-        .enumerate()
-        .flat_map(|(i, q)| {
-            if i % 2 == 0 {
-                [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
-            } else {
-                [[q[0], q[2], q[1]], [q[0], q[3], q[2]]]
-            }
-        })
-        .collect();
+    let lo = DVec3::new(5.0, -3.0, 1.0);
+    let (v, mut t) = cuboid(lo, lo + DVec3::new(2.0, 1.0, 0.5));
+    // flip the winding of every other face (two triangles per face)
+    for (k, tri) in t.iter_mut().enumerate() {
+        if (k / 2) % 2 == 1 {
+            tri.swap(1, 2);
+        }
+    }
     let m = TriMesh::new(v, t).unwrap();
     let p = polyhedron_properties(&m).unwrap();
     assert!((p.volume - 1.0).abs() < 1e-12);

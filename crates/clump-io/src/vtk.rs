@@ -406,13 +406,8 @@ pub fn walls_vtp(world: &World) -> Vec<u8> {
             }
             WallShape::Box { lo, hi, .. } => {
                 let base = pts.len() as i64;
-                for k in 0..8 {
-                    pts.push(DVec3::new(
-                        if k & 1 == 0 { lo.x } else { hi.x },
-                        if k & 2 == 0 { lo.y } else { hi.y },
-                        if k & 4 == 0 { lo.z } else { hi.z },
-                    ));
-                }
+                // vertex k takes hi along axis a when bit a of k is set
+                pts.extend(clump_core::wall::mesh::primitives::cuboid(lo, hi).0);
                 for face in [
                     [0, 2, 6, 4],
                     [1, 5, 7, 3],

@@ -157,7 +157,13 @@ fn tensile_key_is_parsed() {
     let sc = load(text);
     let n = sc.material_names.len();
     let at = |a: usize, b: usize| sc.pair_table[a * n + b];
-    assert!(at(0, 0).tensile && at(1, 1).tensile, "[contact] tensile = true");
-    assert!(!at(0, 1).tensile && !at(1, 0).tensile, "[[pair]] tensile = false");
+    assert!(
+        at(0, 0).tensile && at(1, 1).tensile,
+        "[contact] tensile = true"
+    );
+    assert!(
+        !at(0, 1).tensile && !at(1, 0).tensile,
+        "[[pair]] tensile = false"
+    );
     assert_eq!(at(0, 1).restitution, 0.4);
 }

@@ -495,14 +495,19 @@ mod tests {
     #[test]
     fn clamped_closed_form_matches_ode() {
         let mut worst = [0.0_f64; 2];
-        let es: Vec<f64> = [0.01, 0.02, 0.05, 0.1, 0.135, 0.136, 0.2, 0.3, 0.5, 0.7, 0.9, 0.98]
-            .into_iter()
-            .chain((1..=19).map(|k| 0.05 * k as f64))
-            .collect();
+        let es: Vec<f64> = [
+            0.01, 0.02, 0.05, 0.1, 0.135, 0.136, 0.2, 0.3, 0.5, 0.7, 0.9, 0.98,
+        ]
+        .into_iter()
+        .chain((1..=19).map(|k| 0.05 * k as f64))
+        .collect();
         for &e in &es {
             let b = clamped_beta(e);
             assert!(b <= 0.0 && b.is_finite());
-            assert!((clamped_restitution(b) - e).abs() < 1e-12 * e.max(0.1), "e {e}");
+            assert!(
+                (clamped_restitution(b) - e).abs() < 1e-12 * e.max(0.1),
+                "e {e}"
+            );
             for (k, hertz) in [(0, true), (1, false)] {
                 let e_ode = restitution_numeric(hertz, b, true);
                 worst[k] = worst[k].max((e_ode - e).abs());
@@ -523,7 +528,10 @@ mod tests {
             for hertz in [true, false] {
                 let bn = beta_numeric(hertz, e, true);
                 let b = clamped_beta(e);
-                assert!((bn - b).abs() < 1e-5 * b.abs().max(1.0), "e {e} {hertz}: {bn} vs {b}");
+                assert!(
+                    (bn - b).abs() < 1e-5 * b.abs().max(1.0),
+                    "e {e} {hertz}: {bn} vs {b}"
+                );
             }
         }
         // Reference values (independent: the closed form evaluated by hand).

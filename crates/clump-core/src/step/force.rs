@@ -169,9 +169,9 @@ fn average_scales(w: &mut World) {
         let rsum = sp.radius[i] + sp.radius[j];
         sp.position[i].distance_squared(xj) < rsum * rsum
     };
-    (0..nb.div_ceil(BODY_CHUNK))
-        .into_par_iter()
-        .for_each_init(PartnerCounts::default, |counts, c| {
+    (0..nb.div_ceil(BODY_CHUNK)).into_par_iter().for_each_init(
+        PartnerCounts::default,
+        |counts, c| {
             for bi in c * BODY_CHUNK..((c + 1) * BODY_CHUNK).min(nb) {
                 counts.clear();
                 let spheres = sp.of_body(bi);
@@ -190,7 +190,8 @@ fn average_scales(w: &mut World) {
                     }
                 }
             }
-        });
+        },
+    );
 }
 
 /// Per body: sum the pair loads of its spheres, evaluate its sphere–wall
@@ -262,7 +263,9 @@ pub(crate) fn gather(w: &mut World) {
                 // --- sphere–sphere contacts: own row sums plus column entries
                 for s in spheres.clone() {
                     let mut l = pairs.load_i[s];
-                    for &p in &pairs.col[pairs.col_start[s] as usize..pairs.col_start[s + 1] as usize] {
+                    for &p in
+                        &pairs.col[pairs.col_start[s] as usize..pairs.col_start[s + 1] as usize]
+                    {
                         let pl = &pairs.load_j[p as usize];
                         l.force += pl.force;
                         l.torque += pl.torque;

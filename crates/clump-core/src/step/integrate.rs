@@ -4,8 +4,8 @@
 //! factor; a full drift of the centre of mass; and a free-rotation drift of
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
-use super::shared::SharedMut;
 use super::kinematics::sphere_state;
+use super::shared::SharedMut;
 use crate::neighbor::skin;
 use crate::rotation::omega_world;
 use crate::world::World;
