@@ -26,6 +26,9 @@ fn main() {
     let steps: u64 = a.get(1).map_or(1000, |s| s.parse().expect("STEPS"));
     let bytes = std::fs::read(&path).expect("read checkpoint");
     let (_, mut w, _) = clump_io::run::load_checkpoint(&bytes, &path).expect("load checkpoint");
+    if std::env::var_os("PROFILE_NO_SQUISH").is_some() {
+        w.config.rotation = clump_core::rotation::RotationScheme::NoSquish;
+    }
     w.prepare().expect("prepare");
     let r0 = w.rebuilds;
     w.stage_times = Default::default();

@@ -49,16 +49,19 @@ pub struct BenchArgs {
     #[arg(long)]
     pub dump: Option<PathBuf>,
     /// Scaling study instead of the tetra-bed case: comma-separated target
-    /// sphere counts, e.g. `10000,100000,1000000`. Each size is a periodic
-    /// bed of tetra clumps (`--layers` deep) settled for `--settle` steps and
-    /// timed for `--steps` steps, in a child process of its own (clean peak RSS).
+    /// sphere counts, e.g. `10000,100000,1000000`. Each size is a dense
+    /// periodic bed of tetra clumps: a tile of about 10⁴ spheres (`--layers`
+    /// deep) settled for `--settle` steps and copied side by side to the
+    /// size, timed for `--steps` steps, in a child process of its own
+    /// (clean peak RSS).
     #[arg(long, value_delimiter = ',', value_name = "SPHERES")]
     pub scaling: Vec<usize>,
     /// Scaling study: lattice layers of the bed.
     #[arg(long, default_value_t = 8)]
     pub layers: usize,
-    /// Scaling study: settling steps before timing.
-    #[arg(long, default_value_t = 3000)]
+    /// Scaling study: settling steps of the tile before it is copied (the
+    /// default lets 8 lattice layers fall and settle into a dense bed).
+    #[arg(long, default_value_t = 20000)]
     pub settle: u64,
     /// Scaling study: timed steps.
     #[arg(long, default_value_t = 300)]
@@ -407,11 +410,11 @@ fn run_liggghts(args: &BenchArgs, bin: &Path, na: u64, nb: u64) -> Result<Figure
 fn scaling(args: &BenchArgs) -> Result<()> {
     let exe = std::env::current_exe()?;
     println!(
-        "scaling: periodic tetra beds, {} layers, settle {} steps, timed {} steps, threads {}",
+        "scaling: dense periodic tetra beds (a ~1e4-sphere tile of {} layers settled {} steps, copied side by side), timed {} steps, threads {}",
         args.layers, args.settle, args.steps, args.threads
     );
     println!(
-        "{:>9} {:>8} {:>13} {:>14} {:>11} {:>12} {:>12} {:>13}",
+        "{:>9} {:>8} {:>20} {:>14} {:>11} {:>12} {:>12} {:>13}",
         "spheres",
         "clumps",
         "bed",
@@ -445,16 +448,29 @@ fn scaling(args: &BenchArgs) -> Result<()> {
     Ok(())
 }
 
-/// One size of the scaling study, in this process.
+/// Spheres in the settled tile of the scaling study (about 10⁴).
+const SCALING_TILE_SPHERES: f64 = 1e4;
+
+/// One size of the scaling study, in this process: a periodic tile of about
+/// 10⁴ spheres (`--layers` lattice layers deep) is settled into a dense bed
+/// for `--settle` steps, then copied side by side
+/// ([`clump_core::testbed::tile_xy`]) to about `target_spheres`, run 200
+/// steps to rebuild its lists and contact histories, and timed for
+/// `--steps` steps. Every size thus times the same dense bed.
 fn scaling_one(args: &BenchArgs, target_spheres: usize) -> Result<()> {
     let nz = args.layers.max(1);
-    let nx = ((target_spheres as f64 / (4.0 * nz as f64)).sqrt().round() as usize).max(4);
+    let nx = ((SCALING_TILE_SPHERES / (4.0 * nz as f64)).sqrt().round() as usize).max(4);
+    let tile_spheres = 4 * nx * nx * nz;
+    let k = ((target_spheres as f64 / tile_spheres as f64).sqrt().round() as usize).max(1);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads)
         .build()?;
     pool.install(|| {
-        let mut w = clump_core::testbed::tetra_lattice_bed(nx, nx, nz, args.skin);
-        w.run(args.settle)?;
+        let mut tile = clump_core::testbed::tetra_lattice_bed(nx, nx, nz, args.skin);
+        tile.run(args.settle)?;
+        let mut w = clump_core::testbed::tile_xy(&tile, k, k);
+        drop(tile);
+        w.run(200)?;
         let t0 = Instant::now();
         w.run(args.steps)?;
         let s = t0.elapsed().as_secs_f64();
@@ -463,10 +479,10 @@ fn scaling_one(args: &BenchArgs, target_spheres: usize) -> Result<()> {
         let rate = ns as f64 * args.steps as f64 / s;
         let rss = peak_rss_mb();
         println!(
-            "{:>9} {:>8} {:>13} {:>14.3} {:>11.1} {:>12.2} {:>12.0} {:>13.0}",
+            "{:>9} {:>8} {:>20} {:>14.3} {:>11.1} {:>12.2} {:>12.0} {:>13.0}",
             ns,
             w.bodies.len(),
-            format!("{nx}x{nx}x{nz}"),
+            format!("{k}x{k} of {nx}x{nx}x{nz}"),
             rate / 1e6,
             1e9 / rate,
             2.0 * th.pair_contacts as f64 / ns as f64,

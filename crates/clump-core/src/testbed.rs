@@ -7,7 +7,9 @@
 //! [`LATTICE_PITCH`], periodic in x and y, above a floor at z = 0, at rest.
 //! Because the box is periodic sideways, beds of different areas but the
 //! same number of layers have the same local structure, which is what a
-//! cost-per-sphere scaling study needs.
+//! cost-per-sphere scaling study needs. [`tile_xy`] replicates a settled
+//! periodic bed side by side, so a dense bed of a million spheres costs one
+//! small settling run.
 
 use crate::body::BodyInit;
 use crate::boundary::Domain;
@@ -114,4 +116,77 @@ pub fn tetra_lattice_bed(nx: usize, ny: usize, nz: usize, skin: Option<f64>) -> 
         }
     }
     w
+}
+
+/// A world made of `kx × ky` copies of the periodic world `w` side by side
+/// in x and y (world frame): the domain grows to `kx·L_x × ky·L_y`, and every
+/// body is copied with its pose and velocities, shifted by whole periods.
+/// Because `w` is periodic in x and y, the copies join seamlessly: every
+/// contact of the tiled bed is a contact of `w` (contact histories start
+/// afresh). Walls, templates, materials and settings are those of `w`.
+///
+/// # Panics
+/// If `w` is not periodic in x and y, or `kx` or `ky` is zero.
+pub fn tile_xy(w: &World, kx: usize, ky: usize) -> World {
+    let dom = w.config.domain;
+    assert!(
+        dom.periodic[0] && dom.periodic[1],
+        "tile_xy needs a bed periodic in x and y"
+    );
+    assert!(kx > 0 && ky > 0, "tile_xy needs at least one tile each way");
+    let period = dom.hi - dom.lo;
+    let mut config = w.config;
+    config.domain.hi.x = dom.lo.x + kx as f64 * period.x;
+    config.domain.hi.y = dom.lo.y + ky as f64 * period.y;
+    let mut out = World::new(config, w.materials.clone(), w.contact_table.clone());
+    for (t, m) in w.templates.iter().zip(&w.template_material) {
+        out.add_template(t.clone(), *m)
+            .expect("the template's material exists");
+    }
+    for wall in &w.walls {
+        out.add_wall(wall.clone())
+            .expect("the source world's walls are valid");
+    }
+    let b = &w.bodies;
+    for ty in 0..ky {
+        for tx in 0..kx {
+            let shift = DVec3::new(tx as f64 * period.x, ty as f64 * period.y, 0.0);
+            for i in 0..b.len() {
+                let init = BodyInit {
+                    template: b.template[i],
+                    position: b.position[i] + shift,
+                    orientation: b.orientation[i],
+                    velocity: b.velocity[i],
+                    angular_velocity: b.angular_velocity[i],
+                    force_flag: b.force_flag[i],
+                    torque_flag: b.torque_flag[i],
+                    start_step: 0,
+                };
+                out.add_body(&init).expect("the template exists");
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Tiling a periodic bed 2 × 3 gives six times its contacts: every copy
+    /// sees the same neighbours across the seams as the original across
+    /// its periodic boundaries.
+    #[test]
+    fn tiled_bed_has_the_tile_contacts_times_the_tile_count() {
+        let mut w = tetra_lattice_bed(4, 4, 3, None);
+        w.run(3000).unwrap();
+        let mut tiled = tile_xy(&w, 2, 3);
+        assert_eq!(tiled.bodies.len(), 6 * w.bodies.len());
+        w.prepare().unwrap();
+        tiled.prepare().unwrap();
+        let (a, b) = (w.thermo(), tiled.thermo());
+        assert!(a.pair_contacts > 0);
+        assert_eq!(b.pair_contacts, 6 * a.pair_contacts);
+        assert_eq!(b.wall_contacts, 6 * a.wall_contacts);
+    }
 }

@@ -196,7 +196,7 @@ impl ContactModel {
     /// world), the stored elastic energy (J) and the signed normal force (N),
     /// and updates the history springs in `h`. Requires `c.overlap > 0`; no
     /// allocation.
-    #[inline]
+    #[inline(always)]
     pub fn evaluate(&self, c: &ContactInput, h: &mut ContactHistory) -> ContactOutput {
         let n = c.normal;
         let d = c.overlap;
@@ -223,14 +223,12 @@ impl ContactModel {
             f_raw
         };
         let abs_fn = f_n.abs();
-        let inv_kt = if kt > 0.0 { 1.0 / kt } else { 0.0 };
         let f_t = history_spring(
             &mut h.tangential,
             n,
             vt,
             c.dt,
             kt,
-            inv_kt,
             gamma_t,
             self.friction * abs_fn,
         );

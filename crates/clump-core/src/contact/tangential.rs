@@ -64,7 +64,7 @@ pub fn rotate_into_plane(v: DVec3, n: DVec3) -> DVec3 {
 ///
 /// - `n`: unit normal (world); `v_t`: tangential relative velocity (m/s, world,
 ///   already in the tangent plane); `dt`: time step (s);
-/// - `kt`: tangential stiffness (N/m); `inv_kt`: `1/kt`, or 0 when `kt = 0`;
+/// - `kt`: tangential stiffness (N/m, `≥ 0`);
 /// - `gamma_t`: tangential dashpot coefficient (kg/s);
 /// - `f_max`: Coulomb limit `μF_n` (N, `≥ 0`).
 #[inline(always)]
@@ -75,21 +75,23 @@ pub fn history_spring(
     v_t: DVec3,
     dt: f64,
     kt: f64,
-    inv_kt: f64,
     gamma_t: f64,
     f_max: f64,
 ) -> DVec3 {
     let s = rotate_into_plane(*xi, n) + v_t * dt;
     let f = -kt * s - gamma_t * v_t;
     let f2 = f.length_squared();
-    if f2 > f_max * f_max {
+    if kt <= 0.0 {
+        // no tangential stiffness: no tangential force, the spring stays zero
+        *xi = DVec3::ZERO;
+        DVec3::ZERO
+    } else if f2 > f_max * f_max {
         // Sliding: the elastic spring alone carries the limited force.
         let fl = f * (f_max / f2.sqrt());
-        *xi = -fl * inv_kt;
+        *xi = fl * (-1.0 / kt);
         fl
     } else {
-        // kt = 0 ⇒ inv_kt = 0 and f = 0: keep the spring at zero.
-        *xi = if inv_kt > 0.0 { s } else { DVec3::ZERO };
+        *xi = s;
         f
     }
 }

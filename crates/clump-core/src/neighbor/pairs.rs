@@ -83,6 +83,24 @@ pub struct PairList {
     cursor: Vec<u32>,
 }
 
+impl PairList {
+    /// Total load on sphere `s` (world frame; N, and N m about its centre):
+    /// its row sum plus the `j` sides of the pairs in its column, in
+    /// ascending pair order (the fixed order that makes the sum independent
+    /// of the thread count).
+    #[inline(always)]
+    pub fn sphere_load(&self, s: usize) -> SphereLoad {
+        let mut l = self.load_i[s];
+        let (c0, c1) = (self.col_start[s] as usize, self.col_start[s + 1] as usize);
+        for &p in &self.col[c0..c1] {
+            let pl = &self.load_j[p as usize];
+            l.force += pl.force;
+            l.torque += pl.torque;
+        }
+        l
+    }
+}
+
 /// Neighbour-cell offsets (all 27).
 const STENCIL: [[i64; 3]; 27] = {
     let mut s = [[0i64; 3]; 27];

@@ -4,13 +4,17 @@
 //! A zero principal moment is tolerated everywhere: its inverse is taken as
 //! zero, so the matching angular-velocity component is zero (never NaN).
 
-use glam::{DQuat, DVec3};
+use glam::{DMat3, DQuat, DVec3};
 
 /// Component-wise inverse of the principal moments (body frame, 1/(kg m²));
 /// a moment that is not strictly positive gives 0.
+/// Equal moments (a spherical top) take one division.
 #[inline]
 pub fn inverse_inertia(inertia: DVec3) -> DVec3 {
     let inv = |i: f64| if i > 0.0 { 1.0 / i } else { 0.0 };
+    if inertia.x == inertia.y && inertia.y == inertia.z {
+        return DVec3::splat(inv(inertia.x));
+    }
     DVec3::new(inv(inertia.x), inv(inertia.y), inv(inertia.z))
 }
 
@@ -28,7 +32,22 @@ pub fn omega_body(q: DQuat, l_world: DVec3, inertia: DVec3) -> DVec3 {
 /// A zero principal moment gives a zero component about that axis.
 #[inline]
 pub fn omega_world(q: DQuat, l_world: DVec3, inertia: DVec3) -> DVec3 {
-    q * omega_body(q, l_world, inertia)
+    omega_world_rot(&DMat3::from_quat(q), l_world, inverse_inertia(inertia))
+}
+
+/// [`omega_world`] from the rotation matrix `rot = R(q)` (body → world, the
+/// seed's `Aᵀ`) and the inverse principal moments `inv_inertia` (body frame,
+/// 1/(kg m²), see [`inverse_inertia`]): `ω = R (I⁻¹ ⊙ (Rᵀ L))`, world frame,
+/// rad/s. The integration pass builds `R` once per body and reuses it for
+/// the body's spheres.
+#[inline(always)]
+pub fn omega_world_rot(rot: &DMat3, l_world: DVec3, inv_inertia: DVec3) -> DVec3 {
+    let l_body = DVec3::new(
+        rot.x_axis.dot(l_world),
+        rot.y_axis.dot(l_world),
+        rot.z_axis.dot(l_world),
+    );
+    *rot * (l_body * inv_inertia)
 }
 
 /// Euler's equations: angular acceleration in the BODY frame (rad/s²),

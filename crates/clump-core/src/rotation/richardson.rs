@@ -7,7 +7,8 @@
 //! vector `ω h`). One full step `q_full`, two half steps `q_half2` (with `ω`
 //! recomputed from `L` at the intermediate orientation), and the extrapolation
 //! `q1 = normalise(2 q_half2 − q_full)` cancels the leading error term, giving
-//! a second-order scheme.
+//! a second-order scheme. The full step and the first half step share
+//! `ω(q)` and one exponential (see [`drift_inv`]).
 //!
 //! Difference from LAMMPS: LAMMPS uses the linearised sub-step
 //! `q + ½ h ω ⊗ q` followed by normalisation; we use the exact exponential map,
@@ -20,24 +21,37 @@ use glam::{DQuat, DVec3};
 use super::body_dynamics::inverse_inertia;
 use crate::math::quat_from_rotation_vector;
 
-/// One first-order sub-step: rotate `q` (body → world) by the world-frame
-/// angular velocity computed from `l_world` at `q`, frozen over `h` seconds;
-/// `inv_inertia` = inverse principal moments (body frame, 1/(kg m²)). The
-/// result is unit to round-off; [`drift`] normalises once at the end.
+/// World-frame angular velocity (rad/s) `ω = R I⁻¹ Rᵀ L` at orientation `q`
+/// (body → world) from the WORLD-frame angular momentum `l_world` (kg m²/s)
+/// and the inverse principal moments `inv_inertia` (body frame, 1/(kg m²)).
 #[inline(always)]
-fn frozen_omega_step(q: DQuat, l_world: DVec3, inv_inertia: DVec3, h: f64) -> DQuat {
-    let w = q * ((q.conjugate() * l_world) * inv_inertia);
-    quat_from_rotation_vector(w * h) * q
+fn omega_at(q: DQuat, l_world: DVec3, inv_inertia: DVec3) -> DVec3 {
+    q * ((q.conjugate() * l_world) * inv_inertia)
 }
 
 /// Torque-free drift over `dt` (s): new body → world orientation from `q`, the
 /// constant WORLD-frame angular momentum `l_world` (kg m²/s) and principal
 /// moments `inertia` (body frame, kg m²).
 pub fn drift(q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
-    let inv = inverse_inertia(inertia);
-    let q_full = frozen_omega_step(q, l_world, inv, dt);
-    let q_half1 = frozen_omega_step(q, l_world, inv, 0.5 * dt);
-    let q_half2 = frozen_omega_step(q_half1, l_world, inv, 0.5 * dt);
+    drift_inv(q, l_world, inverse_inertia(inertia), dt)
+}
+
+/// [`drift`] with the inverse principal moments `inv_inertia` (body frame,
+/// 1/(kg m²)).
+///
+/// The full step and the first half step start from the same orientation
+/// with the same frozen `ω₀ = ω(q)`, so they share it and one exponential:
+/// `exp(ω₀ dt) = exp(ω₀ dt/2)²` (same axis; the square is the double-angle
+/// formula). Cost: two `ω` evaluations and two exponential maps.
+#[inline(always)]
+fn drift_inv(q: DQuat, l_world: DVec3, inv_inertia: DVec3, dt: f64) -> DQuat {
+    let half = 0.5 * dt;
+    let w0 = omega_at(q, l_world, inv_inertia);
+    let e_half = quat_from_rotation_vector(w0 * half);
+    let q_full = (e_half * e_half) * q;
+    let q_half1 = e_half * q;
+    let w1 = omega_at(q_half1, l_world, inv_inertia);
+    let q_half2 = quat_from_rotation_vector(w1 * half) * q_half1;
     // Both estimates are O(dt²) apart, hence in the same hemisphere.
     (q_half2 * 2.0 - q_full).normalize()
 }

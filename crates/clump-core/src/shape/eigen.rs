@@ -160,13 +160,61 @@ pub fn principal_frame(m: &DMat3) -> (DVec3, [DVec3; 3]) {
     if axes[0].cross(axes[1]).dot(axes[2]) < 0.0 {
         axes[2] = -axes[2];
     }
-    (vals, axes)
+    (equalize_round_off(vals, scale), axes)
 }
+
+/// Eigenvalues that agree to within [`EQUAL_MOMENT_TOLERANCE`] of the largest
+/// magnitude differ only by the eigen-solver's round-off: a group of them
+/// (ascending `vals`) is set to its mean. A body with tetrahedral or cubic
+/// symmetry then has exactly equal principal moments (its tensor is a
+/// multiple of the identity), and the integrator takes the exact
+/// spherical-top rotation for it ([`crate::rotation::RotationScheme::drift`]).
+fn equalize_round_off(mut vals: DVec3, scale: f64) -> DVec3 {
+    let tol = EQUAL_MOMENT_TOLERANCE * scale;
+    let mut i = 0;
+    while i < 3 {
+        let mut j = i + 1;
+        while j < 3 && vals[j] - vals[j - 1] <= tol {
+            j += 1;
+        }
+        if j - i > 1 {
+            let mean = (i..j).map(|k| vals[k]).sum::<f64>() / (j - i) as f64;
+            for k in i..j {
+                vals[k] = mean;
+            }
+        }
+        i = j;
+    }
+    vals
+}
+
+/// Relative spread (of the largest eigenvalue magnitude) below which
+/// eigenvalues are taken as equal: a few thousand ulps, far below the error
+/// bound of the mass-property quadrature (≥ 1e-12) and far above the
+/// round-off of a 3 × 3 symmetric eigen-solve (~1e-15).
+pub const EQUAL_MOMENT_TOLERANCE: f64 = 1e-13;
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use glam::DQuat;
+
+    #[test]
+    fn round_off_spread_is_equalized_but_real_spread_is_kept() {
+        // a regular tetrahedron's tensor is isotropic: its computed
+        // eigenvalues may differ in the last bits, never more
+        let rot = DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7);
+        let r = DMat3::from_quat(rot);
+        let m = r * DMat3::from_diagonal(DVec3::splat(2.8479159279069097e-11)) * r.transpose();
+        let (v, _) = principal_frame(&m);
+        assert_eq!(v.x, v.y);
+        assert_eq!(v.y, v.z);
+        assert!((v.x / 2.8479159279069097e-11 - 1.0).abs() < 1e-14);
+        // a genuine relative difference of 1e-10 is kept
+        let m2 = DMat3::from_diagonal(DVec3::new(1.0, 1.0 + 1e-10, 2.0));
+        let (v2, _) = principal_frame(&m2);
+        assert!(v2.y - v2.x > 0.9e-10, "{v2}");
+    }
 
     #[test]
     fn isotropic_gives_identity() {

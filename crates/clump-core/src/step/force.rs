@@ -44,105 +44,219 @@ pub(crate) fn pair_forces(w: &mut World) {
     } else {
         w.pairs.scale.clear();
     }
-    let dt = w.config.dt;
-    let domain = w.config.domain;
-    let any_periodic = domain.periodic.iter().any(|&p| p);
-    let sp = &w.spheres;
-    let b = &w.bodies;
-    let table = &w.contact_table;
-    let n = sp.len();
+    let n = w.spheres.len();
     let nchunks = n.div_ceil(SPHERE_CHUNK);
     let stats = &mut w.chunk_pair_stats;
     stats.clear();
     stats.resize(nchunks, ContactStats::default());
     let pairs = &mut w.pairs;
-    let (rows, topo, scale) = (&pairs.row_start, &pairs.topo, &pairs.scale);
-    let hist = SharedMut::new(&mut pairs.history);
-    let ov = SharedMut::new(&mut pairs.overlap);
-    let lj = SharedMut::new(&mut pairs.load_j);
-    let li = SharedMut::new(&mut pairs.load_i);
+    let rows = RowCtx {
+        dt: w.config.dt,
+        domain: w.config.domain,
+        any_periodic: w.config.domain.periodic.iter().any(|&p| p),
+        sp: &w.spheres,
+        b: &w.bodies,
+        table: &w.contact_table,
+        row_start: &pairs.row_start,
+        topo: &pairs.topo,
+        scale: &pairs.scale,
+        hist: SharedMut::new(&mut pairs.history),
+        overlap: SharedMut::new(&mut pairs.overlap),
+        load_j: SharedMut::new(&mut pairs.load_j),
+        load_i: SharedMut::new(&mut pairs.load_i),
+    };
     stats.par_iter_mut().enumerate().for_each(|(c, stat)| {
         let s0 = c * SPHERE_CHUNK;
-        let s1 = (s0 + SPHERE_CHUNK).min(n);
-        for i in s0..s1 {
-            let xi = sp.position[i];
-            let ri = sp.radius[i];
-            let mut acc = SphereLoad::default();
-            let (p0, p1) = (rows[i] as usize, rows[i + 1] as usize);
-            if p0 == p1 {
-                // SAFETY: sphere i belongs to this chunk only.
-                unsafe { *li.get(i) = acc };
-                continue;
-            }
-            let bi = sp.body[i] as usize;
+        // SAFETY: chunk c owns rows s0.. of the half list, no other chunk's.
+        unsafe { rows.evaluate(s0..(s0 + SPHERE_CHUNK).min(n), stat) };
+    });
+}
+
+/// What the pair-force rows read and write.
+struct RowCtx<'a> {
+    dt: f64,
+    domain: crate::boundary::Domain,
+    any_periodic: bool,
+    sp: &'a crate::sphere::Spheres,
+    b: &'a crate::body::Bodies,
+    table: &'a crate::world::ContactTable,
+    row_start: &'a [u32],
+    topo: &'a [crate::neighbor::pairs::PairTopo],
+    scale: &'a [f64],
+    hist: SharedMut<ContactHistory>,
+    overlap: SharedMut<f64>,
+    load_j: SharedMut<PairLoad>,
+    load_i: SharedMut<SphereLoad>,
+}
+
+impl RowCtx<'_> {
+    /// Evaluates the rows `spheres` of the half list (see [`pair_forces`]) in
+    /// two passes per batch: a branch-free *detect* pass walks the candidate
+    /// pairs in order and compacts the touching ones into a small batch (the
+    /// common non-touching pair costs a distance test and clears stale
+    /// state); the *evaluate* pass then runs the contact law over the batch,
+    /// whose iterations are independent, so the processor overlaps their
+    /// long square-root and division chains. The batch keeps pair order, so
+    /// every sum is taken in ascending pair order as before.
+    ///
+    /// # Safety
+    /// No other thread touches these rows (their pairs' history, overlap and
+    /// `load_j`, and the spheres' `load_i`) during the call. The pair list
+    /// must be consistent with the spheres (every index in range), which
+    /// every rebuild guarantees; indexing is unchecked in this hot loop
+    /// (checked in debug builds).
+    #[inline(never)]
+    unsafe fn evaluate(&self, spheres: std::ops::Range<usize>, stat: &mut ContactStats) {
+        let sp = self.sp;
+        let n = sp.len();
+        let np = self.topo.len();
+        debug_assert!(self.row_start.len() == n + 1 && spheres.end <= n);
+        debug_assert!(self.row_start[n] as usize == np);
+        let mut batch = Batch::default();
+        for i in spheres {
+            *self.load_i.get(i) = SphereLoad::default();
+            let xi = at(&sp.position, i);
+            let ri = at(&sp.radius, i);
+            let (p0, p1) = (
+                at(self.row_start, i) as usize,
+                at(self.row_start, i + 1) as usize,
+            );
             for p in p0..p1 {
-                let t = topo[p];
+                let t = at(self.topo, p);
                 let j = t.j as usize;
-                let xj = if any_periodic && t.shift != [0; 3] {
-                    sp.position[j] - domain.shift_vector(t.shift)
-                } else {
-                    sp.position[j]
-                };
-                let d = xi - xj;
-                let rj = sp.radius[j];
-                let rsum = ri + rj;
-                let dist2 = d.length_squared();
-                // SAFETY: pair p lies in row i, which belongs to this chunk only.
-                let (h, o, l) = unsafe { (hist.get(p), ov.get(p), lj.get(p)) };
-                if dist2 >= rsum * rsum {
+                let d = xi - self.partner_position(j, t.shift);
+                let rsum = ri + at(&sp.radius, j);
+                let touching = d.length_squared() < rsum * rsum;
+                // branch-free compaction: the slot is always written, kept
+                // only when touching
+                batch.pair[batch.len] = p as u32;
+                batch.row[batch.len] = i as u32;
+                batch.len += touching as usize;
+                if !touching {
+                    let o = self.overlap.get(p);
                     // not touching: clear what a previous contact left
                     if *o != 0.0 {
                         *o = 0.0;
-                        *h = ContactHistory::default();
-                        *l = PairLoad::default();
+                        *self.hist.get(p) = ContactHistory::default();
+                        *self.load_j.get(p) = PairLoad::default();
                     }
-                    continue;
                 }
-                let dist = dist2.sqrt();
-                let nrm = d / dist;
-                let overlap = rsum - dist;
-                let bj = sp.body[j] as usize;
-                let (ai, aj) = (ri - 0.5 * overlap, rj - 0.5 * overlap);
-                let (wi, wj) = (b.angular_velocity[bi], b.angular_velocity[bj]);
-                // contact-point velocities: x_c − x_i = −a_i n, x_c − x_j = a_j n
-                let vrel = (sp.velocity[i] - sp.velocity[j]) - (wi * ai + wj * aj).cross(nrm);
-                let (mi, mj) = (b.mass[bi], b.mass[bj]);
-                let input = ContactInput {
-                    normal: nrm,
-                    overlap,
-                    rel_velocity: vrel,
-                    rel_omega: wi - wj,
-                    radius: ri * rj / rsum,
-                    mass: mi * mj / (mi + mj),
-                    dt,
-                };
-                let model = table.get(sp.material[i], sp.material[j]);
-                let out = model.evaluate(&input, h);
-                let k = if scale.is_empty() { 1.0 } else { scale[p] };
-                let f = out.force * k;
-                let couple = out.torque * k;
-                let g = nrm.cross(f);
-                acc.force += f;
-                acc.torque += couple - g * ai;
-                *l = PairLoad {
-                    force: -f,
-                    torque: -couple - g * aj,
-                };
-                *o = overlap;
-                stat.pair_contacts += 1;
-                stat.elastic_energy += out.elastic_energy * k;
-                let rmin = ri.min(rj);
-                if overlap > stat.max_overlap_ratio * rmin {
-                    stat.max_overlap_ratio = overlap / rmin;
-                    stat.max_overlap_bodies =
-                        [sp.gid[i] >> SPHERE_ID_BITS, sp.gid[j] >> SPHERE_ID_BITS];
-                    stat.max_overlap_wall = 0;
+                if batch.len == BATCH {
+                    self.contacts(&batch, stat);
+                    batch.len = 0;
                 }
             }
-            // SAFETY: sphere i belongs to this chunk only.
-            unsafe { *li.get(i) = acc };
         }
-    });
+        self.contacts(&batch, stat);
+    }
+
+    /// Centre of sphere `j` as seen across the periodic image `shift`
+    /// (world, m).
+    #[inline(always)]
+    unsafe fn partner_position(&self, j: usize, shift: [i8; 3]) -> DVec3 {
+        let x = at(&self.sp.position, j);
+        if self.any_periodic && shift != [0; 3] {
+            x - self.domain.shift_vector(shift)
+        } else {
+            x
+        }
+    }
+
+    /// The contact law over a batch of touching pairs, in order: writes each
+    /// pair's `j` side, overlap and history, and adds its `i` side to its
+    /// row's `load_i`.
+    #[inline(always)]
+    unsafe fn contacts(&self, batch: &Batch, stat: &mut ContactStats) {
+        let (sp, b) = (self.sp, self.b);
+        for k in 0..batch.len {
+            let p = batch.pair[k] as usize;
+            let i = batch.row[k] as usize;
+            let j = at(self.topo, p).j as usize;
+            let d = at(&sp.position, i) - self.partner_position(j, at(self.topo, p).shift);
+            let (ri, rj) = (at(&sp.radius, i), at(&sp.radius, j));
+            let rsum = ri + rj;
+            let dist = d.length();
+            let nrm = d * (1.0 / dist);
+            let overlap = rsum - dist;
+            let (bi, bj) = (at(&sp.body, i) as usize, at(&sp.body, j) as usize);
+            let (ai, aj) = (ri - 0.5 * overlap, rj - 0.5 * overlap);
+            let (wi, wj) = (at(&b.angular_velocity, bi), at(&b.angular_velocity, bj));
+            // contact-point velocities: x_c − x_i = −a_i n, x_c − x_j = a_j n
+            let vrel = (at(&sp.velocity, i) - at(&sp.velocity, j)) - (wi * ai + wj * aj).cross(nrm);
+            let (mi, mj) = (at(&b.mass, bi), at(&b.mass, bj));
+            let input = ContactInput {
+                normal: nrm,
+                overlap,
+                rel_velocity: vrel,
+                rel_omega: wi - wj,
+                radius: ri * rj / rsum,
+                mass: mi * mj / (mi + mj),
+                dt: self.dt,
+            };
+            let model = self.table.get(at(&sp.material, i), at(&sp.material, j));
+            let out = model.evaluate(&input, self.hist.get(p));
+            let scale = if self.scale.is_empty() {
+                1.0
+            } else {
+                at(self.scale, p)
+            };
+            let f = out.force * scale;
+            let couple = out.torque * scale;
+            let g = nrm.cross(f);
+            let li = self.load_i.get(i);
+            li.force += f;
+            li.torque += couple - g * ai;
+            *self.load_j.get(p) = PairLoad {
+                force: -f,
+                torque: -couple - g * aj,
+            };
+            *self.overlap.get(p) = overlap;
+            stat.elastic_energy += out.elastic_energy * scale;
+            let rmin = ri.min(rj);
+            if overlap > stat.max_overlap_ratio * rmin {
+                stat.max_overlap_ratio = overlap / rmin;
+                stat.max_overlap_bodies = [
+                    at(&sp.gid, i) >> SPHERE_ID_BITS,
+                    at(&sp.gid, j) >> SPHERE_ID_BITS,
+                ];
+                stat.max_overlap_wall = 0;
+            }
+        }
+        stat.pair_contacts += batch.len as u64;
+    }
+}
+
+/// Touching pairs per batch of [`RowCtx::contacts`] (stack arrays; no
+/// allocation).
+const BATCH: usize = 64;
+
+/// Touching pairs found by the detect pass: pair index and row (sphere `i`)
+/// of the first `len` slots; the slot at `len` is scratch for the
+/// branch-free compaction (`len < BATCH` between flushes).
+struct Batch {
+    pair: [u32; BATCH],
+    row: [u32; BATCH],
+    len: usize,
+}
+
+impl Default for Batch {
+    fn default() -> Self {
+        Batch {
+            pair: [0; BATCH],
+            row: [0; BATCH],
+            len: 0,
+        }
+    }
+}
+
+/// `v[i]` without a bounds check in release builds (checked in debug builds).
+///
+/// # Safety
+/// `i < v.len()`.
+#[inline(always)]
+unsafe fn at<T: Copy>(v: &[T], i: usize) -> T {
+    debug_assert!(i < v.len());
+    *v.get_unchecked(i)
 }
 
 /// `average` multi-contact: the scale `1/n` of every pair, `n` being the
@@ -251,8 +365,13 @@ pub(crate) fn gather(w: &mut World) {
         lo.chain((64..nw).filter(|&wi| walls[wi].active))
     };
     chunk_stats.par_iter_mut().enumerate().for_each_init(
-        PartnerCounts::default,
-        |wcounts, (c, stat)| {
+        || {
+            (
+                PartnerCounts::default(),
+                [WallTouch::default(); MAX_TOUCHES_PER_WALL],
+            )
+        },
+        |(wcounts, touch_buf), (c, stat)| {
             let b0 = c * BODY_CHUNK;
             let b1 = (b0 + BODY_CHUNK).min(nb);
             for bi in b0..b1 {
@@ -262,14 +381,7 @@ pub(crate) fn gather(w: &mut World) {
                 let spheres = sp.of_body(bi);
                 // --- sphere–sphere contacts: own row sums plus column entries
                 for s in spheres.clone() {
-                    let mut l = pairs.load_i[s];
-                    for &p in
-                        &pairs.col[pairs.col_start[s] as usize..pairs.col_start[s + 1] as usize]
-                    {
-                        let pl = &pairs.load_j[p as usize];
-                        l.force += pl.force;
-                        l.torque += pl.torque;
-                    }
+                    let l = pairs.sphere_load(s);
                     f += l.force;
                     m += (sp.position[s] - com).cross(l.force) + l.torque;
                 }
@@ -302,11 +414,15 @@ pub(crate) fn gather(w: &mut World) {
                         bi,
                         com,
                     };
+                    let buf = &mut *touch_buf;
                     for s in spheres {
-                        let mut cand = candidates(s).peekable();
                         // SAFETY: sphere s belongs to body bi, handled by this chunk only.
                         let (key, hist) = unsafe { (keys.get(s), hists.get(s)) };
-                        if cand.peek().is_none() {
+                        // most spheres have no wall to test: decide that from
+                        // the mask alone, without building the iterator
+                        let none_near = nw <= 64 && (moved | wall_near[s]) & active_lo == 0;
+                        let mut cand = candidates(s).peekable();
+                        if none_near || cand.peek().is_none() {
                             // no wall to test: only clear what a contact left
                             if key[0] != 0 {
                                 *key = [0; WALL_SLOTS];
@@ -318,16 +434,11 @@ pub(crate) fn gather(w: &mut World) {
                         let mut new_hist = [ContactHistory::default(); WALL_SLOTS];
                         let mut n_new = 0;
                         let mut used = [false; WALL_SLOTS];
-                        let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
                         for wi in cand {
                             let wall = &walls[wi];
-                            let k = wall.shape.contacts(
-                                meshes,
-                                sp.position[s],
-                                sp.radius[s],
-                                0.0,
-                                &mut buf,
-                            );
+                            let k =
+                                wall.shape
+                                    .contacts(meshes, sp.position[s], sp.radius[s], 0.0, buf);
                             let is_mesh = matches!(wall.shape, WallShape::Mesh { .. });
                             for touch in &buf[..k] {
                                 let (slot_key, old) = if is_mesh {

@@ -7,8 +7,9 @@
 use super::kinematics::sphere_state;
 use super::shared::SharedMut;
 use crate::neighbor::skin;
-use crate::rotation::omega_world;
+use crate::rotation::{inverse_inertia, omega_world_rot};
 use crate::world::World;
+use glam::DMat3;
 use rayon::prelude::*;
 
 /// First half of the step: v += F dt/(2 m'), x += v dt, L += M dt/(2 f_a),
@@ -61,21 +62,24 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
                         omega.get(i),
                     )
                 };
-                if step < start[i] {
+                let rot = if step < start[i] {
                     *x += *v * dt;
+                    DMat3::from_quat(*q)
                 } else {
                     let fa = mass_factor(added, templates[tmpl[i] as usize].density);
                     let kick = HalfKick::new(dt, mass[i], fa);
                     kick.apply(v, l, force[i], torque[i], ff[i], tf[i]);
                     *x += *v * dt;
                     *q = scheme.drift(*q, *l, inertia[i], dt);
-                    *om = omega_world(*q, *l, inertia[i]);
-                }
+                    let rot = DMat3::from_quat(*q);
+                    *om = omega_world_rot(&rot, *l, inverse_inertia(inertia[i]));
+                    rot
+                };
                 if spheres {
                     let o0 = tfirst[tmpl[i] as usize] as usize;
                     let (s0, s1) = (first[i] as usize, first[i + 1] as usize);
                     for (k, s) in (s0..s1).enumerate() {
-                        let (px, pv) = sphere_state(*x, *q, *v, *om, toff[o0 + k]);
+                        let (px, pv) = sphere_state(*x, &rot, *v, *om, toff[o0 + k]);
                         // SAFETY: the spheres of body i are written by its block only.
                         unsafe {
                             *sx.get(s) = px;
@@ -116,7 +120,7 @@ pub fn final_kick(w: &mut World) {
         let (v, l, om) = unsafe { (vel.get(i), angm.get(i), omega.get(i)) };
         let fa = mass_factor(added, templates[tmpl[i] as usize].density);
         HalfKick::new(dt, mass[i], fa).apply(v, l, force[i], torque[i], ff[i], tf[i]);
-        *om = omega_world(quat[i], *l, inertia[i]);
+        *om = omega_world_rot(&DMat3::from_quat(quat[i]), *l, inverse_inertia(inertia[i]));
     });
 }
 
@@ -132,9 +136,11 @@ struct HalfKick {
 impl HalfKick {
     #[inline(always)]
     fn new(dt: f64, mass: f64, fa: f64) -> Self {
+        let half = 0.5 * dt;
         HalfKick {
-            dtfm: 0.5 * dt / (mass * fa),
-            dtt: 0.5 * dt / fa,
+            dtfm: half / (mass * fa),
+            // without added mass (fa = 1) the quotient is `half` exactly
+            dtt: if fa == 1.0 { half } else { half / fa },
         }
     }
 
