@@ -65,7 +65,7 @@ pub mod time_scale;
 
 pub use damping::DampingLaw;
 pub use material::Material;
-pub use model::{ContactModel, PairProperties};
+pub use model::{ContactModel, ContactScales, PairProperties};
 pub use normal::NormalLaw;
 pub use rolling::RollingLaw;
 
@@ -74,7 +74,7 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 /// Geometry and kinematics of one contact, all in the world frame, SI units.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ContactInput {
     /// Unit contact normal, world frame, from `j`'s centre to `i`'s centre
     /// (for a wall: from the wall to the sphere).

@@ -66,6 +66,15 @@ impl Default for PairProperties {
     }
 }
 
+/// The geometric scales of one contact's law (see [`ContactModel::scales`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactScales {
+    /// Stiffness scale `s`: `√(R*δ)` for Hertz (m), 1 for linear.
+    pub stiffness: f64,
+    /// Dashpot scale `√(s m*)` (Hertz: m^½ kg^½; linear: kg^½).
+    pub damping: f64,
+}
+
 /// Precomputed contact model for one pair of materials. Cheap to evaluate;
 /// `Copy`, `Send + Sync`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -198,16 +207,43 @@ impl ContactModel {
     /// allocation.
     #[inline(always)]
     pub fn evaluate(&self, c: &ContactInput, h: &mut ContactHistory) -> ContactOutput {
-        let n = c.normal;
-        let d = c.overlap;
+        self.evaluate_scaled(c, self.scales(c), h)
+    }
+
+    /// The two square roots of the law, which depend only on the geometry
+    /// and masses of the contact: the stiffness scale `s = √(R*δ)` (Hertz, m;
+    /// 1 for linear) and the dashpot scale `√(s m*)`. Split from
+    /// [`Self::evaluate_scaled`] so that a batched caller can take them for
+    /// many contacts in one short loop, whose iterations the processor
+    /// overlaps.
+    #[inline(always)]
+    pub fn scales(&self, c: &ContactInput) -> ContactScales {
         let s = if self.hertz {
-            (c.radius * d).sqrt()
+            (c.radius * c.overlap).sqrt()
         } else {
             1.0
         };
+        ContactScales {
+            stiffness: s,
+            damping: (s * c.mass).sqrt(),
+        }
+    }
+
+    /// [`Self::evaluate`] with the scales of [`Self::scales`] for the same
+    /// contact already taken.
+    #[inline(always)]
+    pub fn evaluate_scaled(
+        &self,
+        c: &ContactInput,
+        sc: ContactScales,
+        h: &mut ContactHistory,
+    ) -> ContactOutput {
+        let n = c.normal;
+        let d = c.overlap;
+        let s = sc.stiffness;
         let kn = self.kn_coef * s;
         let kt = self.kt_coef * s;
-        let q = (s * c.mass).sqrt();
+        let q = sc.damping;
         let gamma_n = self.gn_coef * q;
         let gamma_t = self.gt_coef * q;
         let vn = c.rel_velocity.dot(n);

@@ -10,7 +10,7 @@
 //! `Σ (x_c − r_cm) × f` over the contacts.
 
 use super::shared::SharedMut;
-use crate::contact::{ContactHistory, ContactInput};
+use crate::contact::{ContactHistory, ContactInput, ContactScales};
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::{PairLoad, SphereLoad};
 use crate::sphere::{point_velocity, SPHERE_ID_BITS};
@@ -142,12 +142,12 @@ impl RowCtx<'_> {
                     }
                 }
                 if batch.len == BATCH {
-                    self.contacts(&batch, stat);
+                    self.contacts(&mut batch, stat);
                     batch.len = 0;
                 }
             }
         }
-        self.contacts(&batch, stat);
+        self.contacts(&mut batch, stat);
     }
 
     /// Centre of sphere `j` as seen across the periodic image `shift`
@@ -164,15 +164,20 @@ impl RowCtx<'_> {
 
     /// The contact law over a batch of touching pairs, in order: writes each
     /// pair's `j` side, overlap and history, and adds its `i` side to its
-    /// row's `load_i`.
+    /// row's `load_i`. Two loops: the geometry of every contact with the
+    /// law's square roots ([`ContactModel::scales`](crate::contact::ContactModel::scales)),
+    /// then the rest of the law. Each loop is short and its iterations are
+    /// independent, so the long square-root and division chains of several
+    /// contacts overlap.
     #[inline(always)]
-    unsafe fn contacts(&self, batch: &Batch, stat: &mut ContactStats) {
+    unsafe fn contacts(&self, batch: &mut Batch, stat: &mut ContactStats) {
         let (sp, b) = (self.sp, self.b);
         for k in 0..batch.len {
             let p = batch.pair[k] as usize;
             let i = batch.row[k] as usize;
-            let j = at(self.topo, p).j as usize;
-            let d = at(&sp.position, i) - self.partner_position(j, at(self.topo, p).shift);
+            let t = at(self.topo, p);
+            let j = t.j as usize;
+            let d = at(&sp.position, i) - self.partner_position(j, t.shift);
             let (ri, rj) = (at(&sp.radius, i), at(&sp.radius, j));
             let rsum = ri + rj;
             let dist = d.length();
@@ -194,7 +199,17 @@ impl RowCtx<'_> {
                 dt: self.dt,
             };
             let model = self.table.get(at(&sp.material, i), at(&sp.material, j));
-            let out = model.evaluate(&input, self.hist.get(p));
+            batch.scales[k] = model.scales(&input);
+            batch.input[k] = input;
+            batch.arm[k] = (ai, aj);
+        }
+        for k in 0..batch.len {
+            let p = batch.pair[k] as usize;
+            let i = batch.row[k] as usize;
+            let j = at(self.topo, p).j as usize;
+            let input = &batch.input[k];
+            let model = self.table.get(at(&sp.material, i), at(&sp.material, j));
+            let out = model.evaluate_scaled(input, batch.scales[k], self.hist.get(p));
             let scale = if self.scale.is_empty() {
                 1.0
             } else {
@@ -202,6 +217,8 @@ impl RowCtx<'_> {
             };
             let f = out.force * scale;
             let couple = out.torque * scale;
+            let (nrm, overlap) = (input.normal, input.overlap);
+            let (ai, aj) = batch.arm[k];
             let g = nrm.cross(f);
             let li = self.load_i.get(i);
             li.force += f;
@@ -212,7 +229,7 @@ impl RowCtx<'_> {
             };
             *self.overlap.get(p) = overlap;
             stat.elastic_energy += out.elastic_energy * scale;
-            let rmin = ri.min(rj);
+            let rmin = at(&sp.radius, i).min(at(&sp.radius, j));
             if overlap > stat.max_overlap_ratio * rmin {
                 stat.max_overlap_ratio = overlap / rmin;
                 stat.max_overlap_bodies = [
@@ -233,10 +250,15 @@ const BATCH: usize = 64;
 /// Touching pairs found by the detect pass: pair index and row (sphere `i`)
 /// of the first `len` slots; the slot at `len` is scratch for the
 /// branch-free compaction (`len < BATCH` between flushes).
+/// The evaluate pass's per-contact intermediates live here too.
 struct Batch {
     pair: [u32; BATCH],
     row: [u32; BATCH],
     len: usize,
+    input: [ContactInput; BATCH],
+    scales: [ContactScales; BATCH],
+    /// Distances from the sphere centres `i` and `j` to the contact point, m.
+    arm: [(f64, f64); BATCH],
 }
 
 impl Default for Batch {
@@ -245,6 +267,9 @@ impl Default for Batch {
             pair: [0; BATCH],
             row: [0; BATCH],
             len: 0,
+            input: [ContactInput::default(); BATCH],
+            scales: [ContactScales::default(); BATCH],
+            arm: [(0.0, 0.0); BATCH],
         }
     }
 }
