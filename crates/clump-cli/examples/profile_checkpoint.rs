@@ -2,7 +2,9 @@
 //! steps it, timed, without output.
 //! `cargo run --release -p clump-cli --example profile_checkpoint -- CKPT STEPS`
 //! With `PROFILE_WAIT` set it sleeps 3 s after loading (to switch a
-//! profiler's collection on, e.g. `callgrind_control -i on`).
+//! profiler's collection on, e.g. `callgrind_control -i on`); with
+//! `PROFILE_NO_SQUISH` set it steps with the NO_SQUISH rotation scheme
+//! instead of the checkpoint's (to compare the schemes' cost).
 
 use std::time::Instant;
 
