@@ -15,9 +15,6 @@ pub struct ValidateArgs {
     /// Run only the cheap subset (what CI runs, seconds instead of minutes).
     #[arg(long)]
     pub quick: bool,
-    /// Also run the Beverloo hopper series (slow, not in the default full suite).
-    #[arg(long, conflicts_with = "quick")]
-    pub hopper: bool,
     /// Output folder for `report.md` and the PNG plots.
     #[arg(short = 'o', long = "out", default_value = "validation")]
     pub out: PathBuf,

@@ -84,12 +84,48 @@ pub fn damping_for_restitution(p: f64, q: f64, e: f64, clamped: bool, h: f64) ->
 
 /// Least-squares slope of `(x, y)` points (NaN for fewer than two distinct x).
 pub fn slope(p: &[(f64, f64)]) -> f64 {
+    line_fit(p).slope
+}
+
+/// A least-squares straight line `y = intercept + slope · x` with the
+/// variances and covariance of its two coefficients estimated from the
+/// residual scatter (n − 2 degrees of freedom; NaN for n ≤ 2).
+#[derive(Debug, Clone, Copy)]
+pub struct Line {
+    /// Intercept, in y units.
+    pub intercept: f64,
+    /// Slope, in y units per x unit.
+    pub slope: f64,
+    /// Variance of the intercept.
+    pub var_intercept: f64,
+    /// Variance of the slope.
+    pub var_slope: f64,
+    /// Covariance of intercept and slope.
+    pub cov: f64,
+}
+
+/// Fits a [`Line`] to `(x, y)` points.
+pub fn line_fit(p: &[(f64, f64)]) -> Line {
     let n = p.len() as f64;
     let mx = p.iter().map(|a| a.0).sum::<f64>() / n;
     let my = p.iter().map(|a| a.1).sum::<f64>() / n;
     let sxy: f64 = p.iter().map(|a| (a.0 - mx) * (a.1 - my)).sum();
     let sxx: f64 = p.iter().map(|a| (a.0 - mx).powi(2)).sum();
-    sxy / sxx
+    let slope = sxy / sxx;
+    let intercept = my - slope * mx;
+    let s2 = p
+        .iter()
+        .map(|a| (a.1 - intercept - slope * a.0).powi(2))
+        .sum::<f64>()
+        / (n - 2.0);
+    let var_slope = s2 / sxx;
+    Line {
+        intercept,
+        slope,
+        var_intercept: s2 * (1.0 / n + mx * mx / sxx),
+        var_slope,
+        cov: -mx * var_slope,
+    }
 }
 
 #[cfg(test)]
@@ -111,6 +147,14 @@ mod tests {
         let exact_cl = (-2.0 * zeta * zeta.acos() / (1.0 - zeta * zeta).sqrt()).exp();
         assert!((e_cl - exact_cl).abs() < 1e-4, "{e_cl} vs {exact_cl}");
         assert!((slope(&[(0.0, 1.0), (1.0, 3.0), (2.0, 5.0)]) - 2.0).abs() < 1e-12);
+        // by hand: x̄ = 1.5, ȳ = 4, Sxx = 5, Sxy = 9.8, so slope 1.96 and
+        // intercept 1.06; residuals ±0.04, ∓0.12 give s² = 0.032/2 = 0.016,
+        // var(slope) = s²/Sxx = 0.0032, var(intercept) = s²(1/4 + x̄²/Sxx) = 0.0112
+        let l = line_fit(&[(0.0, 1.1), (1.0, 2.9), (2.0, 5.1), (3.0, 6.9)]);
+        assert!((l.slope - 1.96).abs() < 1e-12 && (l.intercept - 1.06).abs() < 1e-12);
+        assert!((l.var_slope - 0.0032).abs() < 1e-12);
+        assert!((l.var_intercept - 0.0112).abs() < 1e-12);
+        assert!((l.cov + 1.5 * 0.0032).abs() < 1e-12);
         for clamped in [false, true] {
             let c = damping_for_restitution(1.5, 0.25, 0.5, clamped, 1e-3);
             let e = impact_restitution(1.5, 0.25, c, clamped, 1e-3, usize::MAX).0;

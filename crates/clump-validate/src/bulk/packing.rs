@@ -19,7 +19,7 @@ const N: usize = 1200;
 
 /// Volume of the part of a sphere (centre height `z`, radius `r`) between
 /// the planes `z0 < z1`, m³.
-fn sphere_slab_volume(z: f64, r: f64, z0: f64, z1: f64) -> f64 {
+pub fn sphere_slab_volume(z: f64, r: f64, z0: f64, z1: f64) -> f64 {
     // integral of π(r² − (s − z)²) over s in [max(z0, z − r), min(z1, z + r)]
     let a = (z0 - z).max(-r);
     let b = (z1 - z).min(r);
