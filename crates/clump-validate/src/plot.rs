@@ -95,8 +95,9 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(127, 127, 127),
 ];
 
-fn bounds(series: &[Series]) -> Option<(f64, f64, f64, f64)> {
-    let pts = series
+/// Every finite point of the series, error-bar ends included.
+fn finite_points(series: &[Series]) -> impl Iterator<Item = (f64, f64)> + '_ {
+    series
         .iter()
         .flat_map(|s| {
             s.points
@@ -104,7 +105,11 @@ fn bounds(series: &[Series]) -> Option<(f64, f64, f64, f64)> {
                 .copied()
                 .chain(s.bars().flat_map(|(x, lo, hi)| [(x, lo), (x, hi)]))
         })
-        .filter(|p| p.0.is_finite() && p.1.is_finite());
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+}
+
+fn bounds(series: &[Series]) -> Option<(f64, f64, f64, f64)> {
+    let pts = finite_points(series);
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -185,15 +190,7 @@ fn dashed(points: &[(f64, f64)], x_span: f64) -> Vec<Vec<(f64, f64)>> {
 /// right and lower left with the fewest points (error-bar ends included) in
 /// its 40 % × 35 % of the plot area.
 fn legend_corner(series: &[Series], (x0, x1, y0, y1): (f64, f64, f64, f64)) -> SeriesLabelPosition {
-    let pts: Vec<(f64, f64)> = series
-        .iter()
-        .flat_map(|s| {
-            s.points
-                .iter()
-                .copied()
-                .chain(s.bars().flat_map(|(x, lo, hi)| [(x, lo), (x, hi)]))
-        })
-        .filter(|p| p.0.is_finite() && p.1.is_finite())
+    let pts: Vec<(f64, f64)> = finite_points(series)
         .map(|p| ((p.0 - x0) / (x1 - x0), (p.1 - y0) / (y1 - y0)))
         .collect();
     let corners = [
