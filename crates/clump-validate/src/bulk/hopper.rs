@@ -312,10 +312,10 @@ fn fit_free(data: &[(f64, f64)]) -> ((f64, f64), (f64, f64)) {
 /// Runs the hopper series.
 pub fn run(g: &mut Group, dir: &Path) -> Result<(), String> {
     // largest first: it takes longest
-    let jobs: Vec<Box<dyn FnOnce() -> Result<Discharge, String> + Send>> = ORIFICES
+    let jobs: Vec<super::Job<Result<Discharge, String>>> = ORIFICES
         .iter()
         .rev()
-        .map(|&r| Box::new(move || discharge(r * D)) as Box<dyn FnOnce() -> _ + Send>)
+        .map(|&r| Box::new(move || discharge(r * D)) as super::Job<_>)
         .collect();
     let mut runs = Vec::new();
     for r in super::run_parallel(jobs).into_iter().rev() {

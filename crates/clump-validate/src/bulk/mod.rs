@@ -67,16 +67,19 @@ pub fn settle(
     Ok(n)
 }
 
+/// One independent run for [`run_parallel`].
+pub type Job<'a, T> = Box<dyn FnOnce() -> T + Send + 'a>;
+
 /// Runs independent jobs (separate worlds) side by side, one per thread of
 /// the global rayon pool, each inside a one-thread pool of its own: small
 /// worlds scale poorly over threads, independent runs well. A world's result
 /// does not depend on its thread count (the engine's reductions use fixed
 /// chunks), so this changes only the wall time. Results in job order.
-pub fn run_parallel<T: Send>(jobs: Vec<Box<dyn FnOnce() -> T + Send + '_>>) -> Vec<T> {
+pub fn run_parallel<T: Send>(jobs: Vec<Job<'_, T>>) -> Vec<T> {
     use std::sync::atomic::{AtomicUsize, Ordering};
     use std::sync::Mutex;
     let n = jobs.len();
-    let jobs: Vec<Mutex<Option<Box<dyn FnOnce() -> T + Send + '_>>>> =
+    let jobs: Vec<Mutex<Option<Job<'_, T>>>> =
         jobs.into_iter().map(|j| Mutex::new(Some(j))).collect();
     let out: Vec<Mutex<Option<T>>> = (0..n).map(|_| Mutex::new(None)).collect();
     let next = AtomicUsize::new(0);
@@ -154,13 +157,13 @@ mod tests {
 
     #[test]
     fn parallel_jobs_all_run_and_come_back_in_order() {
-        let jobs: Vec<Box<dyn FnOnce() -> usize + Send>> = (0..7usize)
-            .map(|k| Box::new(move || k * k) as Box<dyn FnOnce() -> usize + Send>)
+        let jobs: Vec<Job<usize>> = (0..7usize)
+            .map(|k| Box::new(move || k * k) as Job<usize>)
             .collect();
         assert_eq!(run_parallel(jobs), vec![0, 1, 4, 9, 16, 25, 36]);
         // each job sees a pool of one thread
-        let jobs: Vec<Box<dyn FnOnce() -> usize + Send>> = (0..3)
-            .map(|_| Box::new(rayon::current_num_threads) as Box<dyn FnOnce() -> usize + Send>)
+        let jobs: Vec<Job<usize>> = (0..3)
+            .map(|_| Box::new(rayon::current_num_threads) as Job<usize>)
             .collect();
         assert_eq!(run_parallel(jobs), vec![1, 1, 1]);
     }

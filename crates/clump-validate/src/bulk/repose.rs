@@ -391,7 +391,7 @@ fn trend_case(label: &str, key: &str, xs: &[f64], cs: &[&Config]) -> Case {
 pub fn run(g: &mut Group, dir: &Path) -> Result<(), String> {
     // (μ, μ_r): the sliding series at μ_r = 0 and the rolling series at μ = 0.3
     let configs = [(0.1, 0.0), (0.3, 0.0), (0.6, 0.0), (0.3, 0.1), (0.3, 0.3)];
-    let mut jobs: Vec<Box<dyn FnOnce() -> Result<Heap, String> + Send>> = Vec::new();
+    let mut jobs: Vec<super::Job<Result<Heap, String>>> = Vec::new();
     for &(mu, mu_r) in &configs {
         for seed in SEEDS {
             jobs.push(Box::new(move || heap(&HeapSpec::new(mu, mu_r, seed))));
@@ -490,7 +490,7 @@ pub fn run(g: &mut Group, dir: &Path) -> Result<(), String> {
     let (cone_mur_ok, _) = rises(&by_mur.iter().map(|c| c.angle).collect::<Vec<_>>());
     if cone_mur_ok && !flank_mur_ok {
         g.notes.push(format!(
-            "angle of repose, rolling series, cone angle against flank slope: with μ_r = {} the heaps hold {:.0} → {:.0} → {:.0} clumps on average, with mean surface heights under the source {:.1} → {:.1} → {:.1} mm, on the flank {:.1} → {:.1} → {:.1} mm and at the rim {:.1} → {:.1} → {:.1} mm; the fixed-base angle rises, but the slope fitted to the flank between the source and the rim does not change beyond the seeds' scatter (above). Whether the mid-flank slope of a large heap rises with μ_r at μ = 0.3 is not resolved by heaps 5–6 clumps high; a larger pedestal is beyond this budget.",
+            "angle of repose, rolling series, cone angle against flank slope: with μ_r = {} the heaps hold {:.0} → {:.0} → {:.0} clumps on average, with mean surface heights under the source {:.1} → {:.1} → {:.1} mm, on the flank {:.1} → {:.1} → {:.1} mm and at the rim {:.1} → {:.1} → {:.1} mm; the fixed-base angle rises by more than 2σ at every step, the slope fitted to the flank between the source and the rim not at every step (above). The two weigh the heap differently: the cone angle counts every clump, under the source and at the rim included, the flank slope only the mid-flank of heaps 5–6 clumps high, where the scatter over the seeds is larger. Resolving the mid-flank slope's response to μ_r at μ = 0.3 would need a larger pedestal, beyond this budget.",
             xs_mur.map(|x| x.to_string()).join(", "),
             by_mur[0].heaps.iter().map(|h| h.clumps_left as f64).sum::<f64>() / SEEDS.len() as f64,
             by_mur[1].heaps.iter().map(|h| h.clumps_left as f64).sum::<f64>() / SEEDS.len() as f64,
