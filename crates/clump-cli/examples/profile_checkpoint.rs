@@ -5,6 +5,8 @@
 //! profiler's collection on, e.g. `callgrind_control -i on`); with
 //! `PROFILE_NO_SQUISH` set it steps with the NO_SQUISH rotation scheme
 //! instead of the checkpoint's (to compare the schemes' cost).
+//! `PROFILE_THREADS` sets the thread count (default 1); the main thread is
+//! one of the pool's, so a profiler sees every stage under `profiled`.
 
 use std::time::Instant;
 
@@ -14,15 +16,20 @@ fn profiled(w: &mut clump_core::world::World, steps: u64) {
 }
 
 fn main() {
-    if std::env::var_os("PROFILE_MAIN_THREAD").is_some() {
-        // one pool thread, the main one: a profiler then attributes every
-        // stage's work to its caller
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(1)
-            .use_current_thread()
-            .build_global()
-            .expect("rayon pool");
-    }
+    // the stepping runs inside the pool (as `clump run` and `clump bench`
+    // do): a caller outside it would pay a cross-thread hand-off per stage
+    let threads: usize = std::env::var("PROFILE_THREADS")
+        .ok()
+        .map_or(1, |s| s.parse().expect("PROFILE_THREADS"));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .use_current_thread()
+        .build()
+        .expect("rayon pool");
+    pool.install(body);
+}
+
+fn body() {
     let a: Vec<String> = std::env::args().skip(1).collect();
     let path = std::path::PathBuf::from(a.first().expect("usage: profile_checkpoint CKPT STEPS"));
     let steps: u64 = a.get(1).map_or(1000, |s| s.parse().expect("STEPS"));
@@ -62,6 +69,20 @@ fn main() {
         "  CPU time {cpu:.3} s: {:.1} ns CPU per sphere-step",
         cpu / ss * 1e9
     );
+    // a fingerprint of the final state, to compare builds bit for bit
+    let mut h = 0xcbf29ce484222325u64;
+    let b = &w.bodies;
+    let mut mix = |x: f64| {
+        h ^= x.to_bits();
+        h = h.wrapping_mul(0x100000001b3);
+    };
+    for i in 0..b.len() {
+        for v in [b.position[i], b.velocity[i], b.angular_momentum[i]] {
+            v.to_array().into_iter().for_each(&mut mix);
+        }
+        b.orientation[i].to_array().into_iter().for_each(&mut mix);
+    }
+    println!("  state fingerprint {h:016x}");
     for (name, t) in w.stage_times.rows() {
         println!("  {name:>18}: {:7.1} ns per sphere-step", t / ss * 1e9);
     }

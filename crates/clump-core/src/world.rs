@@ -49,6 +49,8 @@ pub struct WorldConfig {
 pub struct ContactTable {
     n: usize,
     models: Vec<ContactModel>,
+    /// Some model has a rolling couple.
+    rolling: bool,
 }
 
 impl ContactTable {
@@ -74,13 +76,31 @@ impl ContactTable {
                 models.push(m);
             }
         }
-        Ok(Self { n, models })
+        let rolling = models.iter().any(|m| m.has_rolling());
+        Ok(Self { n, models, rolling })
     }
 
     /// The model for materials `a` and `b`.
     #[inline(always)]
     pub fn get(&self, a: u16, b: u16) -> &ContactModel {
         &self.models[a as usize * self.n + b as usize]
+    }
+
+    /// Index of the model for materials `a` and `b` (see [`Self::by_index`]).
+    #[inline(always)]
+    pub fn index(&self, a: u16, b: u16) -> u32 {
+        (a as usize * self.n + b as usize) as u32
+    }
+
+    /// The model at `index` (from [`Self::index`]).
+    #[inline(always)]
+    pub fn by_index(&self, index: u32) -> &ContactModel {
+        &self.models[index as usize]
+    }
+
+    /// Whether some model has a rolling couple.
+    pub fn any_rolling(&self) -> bool {
+        self.rolling
     }
 }
 

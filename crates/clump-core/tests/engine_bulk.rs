@@ -11,31 +11,7 @@ use clump_core::rotation::RotationScheme;
 use clump_core::shape::{ClumpTemplate, Sphere};
 use clump_core::world::World;
 use common::*;
-use glam::{DQuat, DVec3};
-
-/// Tiny deterministic generator (test-local, independent of the engine).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn quat(&mut self) -> DQuat {
-        let (u1, u2, u3) = (self.next(), self.next(), self.next());
-        let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
-        let tau = std::f64::consts::TAU;
-        DQuat::from_xyzw(
-            a * (tau * u2).sin(),
-            a * (tau * u2).cos(),
-            b * (tau * u3).sin(),
-            b * (tau * u3).cos(),
-        )
-        .normalize()
-    }
-}
+use glam::DVec3;
 
 fn tetra(r: f64, edge: f64, density: f64) -> ClumpTemplate {
     clump_validate::setup::tetra(r, edge, density).unwrap()

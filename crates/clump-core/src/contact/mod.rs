@@ -65,7 +65,7 @@ pub mod time_scale;
 
 pub use damping::DampingLaw;
 pub use material::Material;
-pub use model::{ContactModel, ContactScales, PairProperties};
+pub use model::{ContactModel, PairProperties, SlidingLaw, SlidingOutput};
 pub use normal::NormalLaw;
 pub use rolling::RollingLaw;
 

@@ -66,13 +66,95 @@ impl Default for PairProperties {
     }
 }
 
-/// The geometric scales of one contact's law (see [`ContactModel::scales`]).
+/// The normal and tangential part of a [`ContactModel`] (everything but
+/// rolling resistance), with its material constants precomputed. Its
+/// [`evaluate`](Self::evaluate) is branch-free straight-line arithmetic on
+/// plain numbers, so that the engine can run it over arrays of contacts as
+/// vector instructions (the pair kernel, `step::force`); the scalar
+/// [`ContactModel::evaluate`] runs the same function, so there is one law.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlidingLaw {
+    /// Hertz (`s = √(R*δ)`) or linear (`s = 1`) stiffness scale.
+    pub hertz: bool,
+    /// Lower bound of the total normal force, N: 0 (clamped) or −∞ (tensile).
+    pub fn_floor: f64,
+    /// `k̂_n`: `(4/3)E*` (Pa, Hertz) or `k_n` (N/m, linear).
+    pub kn_coef: f64,
+    /// `k̂_t`: `8G*` (Pa, Hertz) or `k_t` (N/m, linear).
+    pub kt_coef: f64,
+    /// `ĝ_n`, the normal dashpot `γ_n = ĝ_n √(s m*)`.
+    pub gn_coef: f64,
+    /// `ĝ_t`, the tangential dashpot `γ_t = ĝ_t √(s m*)`.
+    pub gt_coef: f64,
+    /// Normal spring energy `factor · F_el δ` (2/5 Hertz, 1/2 linear).
+    pub energy_factor: f64,
+    /// Sliding friction coefficient `μ`.
+    pub friction: f64,
+}
+
+/// What [`SlidingLaw::evaluate`] returns, world frame, SI units.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ContactScales {
-    /// Stiffness scale `s`: `√(R*δ)` for Hertz (m), 1 for linear.
-    pub stiffness: f64,
-    /// Dashpot scale `√(s m*)` (Hertz: m^½ kg^½; linear: kg^½).
-    pub damping: f64,
+pub struct SlidingOutput {
+    /// Normal plus tangential force on `i`, N, at the contact point.
+    pub force: DVec3,
+    /// Signed normal force `F_n`, N (after the tensile clamp).
+    pub normal_force: f64,
+    /// Elastic energy of the normal and tangential springs, J.
+    pub energy: f64,
+    /// Normal stiffness `k_n = k̂_n s`, N/m (the EPSD rolling spring uses it).
+    pub kn: f64,
+}
+
+impl SlidingLaw {
+    /// Normal force with its dashpot and the tensile clamp, then the
+    /// tangential history spring with its dashpot and Coulomb limit (see the
+    /// [module docs](self)), updating the spring `xi` (m, world). `n` is the
+    /// unit normal (world), `overlap` `δ > 0` (m), `v_rel` the relative
+    /// velocity of the contact points (m/s, world), `radius` `R*` (m), `mass`
+    /// `m*` (kg), `dt` (s).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn evaluate(
+        &self,
+        n: DVec3,
+        overlap: f64,
+        v_rel: DVec3,
+        radius: f64,
+        mass: f64,
+        dt: f64,
+        xi: &mut DVec3,
+    ) -> SlidingOutput {
+        let d = overlap;
+        let s = if self.hertz {
+            (radius * overlap).sqrt()
+        } else {
+            1.0
+        };
+        let q = (s * mass).sqrt();
+        let kn = self.kn_coef * s;
+        let kt = self.kt_coef * s;
+        let gamma_n = self.gn_coef * q;
+        let gamma_t = self.gt_coef * q;
+        let vn = v_rel.dot(n);
+        let vt = v_rel - vn * n;
+        let f_el = kn * d;
+        // Tensile clamp (fn_floor = 0) or none (fn_floor = −∞); the Coulomb
+        // and rolling limits use |F_n|, which is F_n itself when clamped.
+        // (A comparison rather than f64::max: one maxsd, and NaN propagates.)
+        let f_raw = f_el - gamma_n * vn;
+        let f_n = if f_raw < self.fn_floor {
+            self.fn_floor
+        } else {
+            f_raw
+        };
+        let f_t = history_spring(xi, n, vt, dt, kt, gamma_t, self.friction * f_n.abs());
+        SlidingOutput {
+            force: f_n * n + f_t,
+            normal_force: f_n,
+            energy: self.energy_factor * f_el * d + 0.5 * kt * xi.length_squared(),
+            kn,
+        }
+    }
 }
 
 /// Precomputed contact model for one pair of materials. Cheap to evaluate;
@@ -80,19 +162,11 @@ pub struct ContactScales {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactModel {
     props: PairProperties,
-    hertz: bool,
     e_star: f64,
     g_star: f64,
     /// Damping ratio actually used, ≤ 0 (see [`super::damping::damping_ratio`]).
     beta: f64,
-    /// Lower bound of the total normal force, N: 0 (clamped) or −∞ (tensile).
-    fn_floor: f64,
-    kn_coef: f64,
-    kt_coef: f64,
-    gn_coef: f64,
-    gt_coef: f64,
-    energy_factor: f64,
-    friction: f64,
+    law: SlidingLaw,
     rolling_friction: f64,
     rolling: RollingLaw,
     rolling_damping: f64,
@@ -170,17 +244,19 @@ impl ContactModel {
         };
         Ok(ContactModel {
             props: *p,
-            hertz,
             e_star,
             g_star,
             beta,
-            fn_floor: if clamped { 0.0 } else { f64::NEG_INFINITY },
-            kn_coef,
-            kt_coef,
-            gn_coef,
-            gt_coef,
-            energy_factor,
-            friction: p.friction,
+            law: SlidingLaw {
+                hertz,
+                fn_floor: if clamped { 0.0 } else { f64::NEG_INFINITY },
+                kn_coef,
+                kt_coef,
+                gn_coef,
+                gt_coef,
+                energy_factor,
+                friction: p.friction,
+            },
             rolling_friction: p.rolling_friction,
             rolling: p.rolling,
             rolling_damping: 0.0,
@@ -204,76 +280,60 @@ impl ContactModel {
     /// returns the force on `i` (N, world), the rolling couple on `i` (N m,
     /// world), the stored elastic energy (J) and the signed normal force (N),
     /// and updates the history springs in `h`. Requires `c.overlap > 0`; no
-    /// allocation.
+    /// allocation. The normal and tangential part is [`SlidingLaw::evaluate`],
+    /// the rolling part [`Self::rolling_couple`].
     #[inline(always)]
     pub fn evaluate(&self, c: &ContactInput, h: &mut ContactHistory) -> ContactOutput {
-        self.evaluate_scaled(c, self.scales(c), h)
-    }
-
-    /// The two square roots of the law, which depend only on the geometry
-    /// and masses of the contact: the stiffness scale `s = √(R*δ)` (Hertz, m;
-    /// 1 for linear) and the dashpot scale `√(s m*)`. Split from
-    /// [`Self::evaluate_scaled`] so that a batched caller can take them for
-    /// many contacts in one short loop, whose iterations the processor
-    /// overlaps.
-    #[inline(always)]
-    pub fn scales(&self, c: &ContactInput) -> ContactScales {
-        let s = if self.hertz {
-            (c.radius * c.overlap).sqrt()
-        } else {
-            1.0
-        };
-        ContactScales {
-            stiffness: s,
-            damping: (s * c.mass).sqrt(),
+        let out = self.law.evaluate(
+            c.normal,
+            c.overlap,
+            c.rel_velocity,
+            c.radius,
+            c.mass,
+            c.dt,
+            &mut h.tangential,
+        );
+        let (torque, e_r) = self.rolling_couple(c, out.normal_force, out.kn, &mut h.rolling);
+        ContactOutput {
+            force: out.force,
+            torque,
+            elastic_energy: e_r.map_or(out.energy, |e| out.energy + e),
+            normal_force: out.normal_force,
         }
     }
 
-    /// [`Self::evaluate`] with the scales of [`Self::scales`] for the same
-    /// contact already taken.
+    /// The normal and tangential part of the law.
+    pub fn sliding_law(&self) -> &SlidingLaw {
+        &self.law
+    }
+
+    /// Whether the law has a rolling couple (a rolling law other than none).
+    pub fn has_rolling(&self) -> bool {
+        self.rolling != RollingLaw::None
+    }
+
+    /// Rolling couple on `i` (N m, world) of the contact `c` whose normal
+    /// force is `f_n` (N) and normal stiffness `kn` (N/m, from
+    /// [`SlidingLaw::evaluate`]), updating the EPSD spring `m_r` (N m,
+    /// world); with the EPSD spring's elastic energy (J) for that law.
     #[inline(always)]
-    pub fn evaluate_scaled(
+    pub fn rolling_couple(
         &self,
         c: &ContactInput,
-        sc: ContactScales,
-        h: &mut ContactHistory,
-    ) -> ContactOutput {
-        let n = c.normal;
-        let d = c.overlap;
-        let s = sc.stiffness;
-        let kn = self.kn_coef * s;
-        let kt = self.kt_coef * s;
-        let q = sc.damping;
-        let gamma_n = self.gn_coef * q;
-        let gamma_t = self.gt_coef * q;
-        let vn = c.rel_velocity.dot(n);
-        let vt = c.rel_velocity - vn * n;
-        let f_el = kn * d;
-        // Tensile clamp (fn_floor = 0) or none (fn_floor = −∞); the Coulomb
-        // and rolling limits use |F_n|, which is F_n itself when clamped.
-        // (A comparison rather than f64::max: one maxsd, and NaN propagates.)
-        let f_raw = f_el - gamma_n * vn;
-        let f_n = if f_raw < self.fn_floor {
-            self.fn_floor
-        } else {
-            f_raw
-        };
+        f_n: f64,
+        kn: f64,
+        m_r: &mut DVec3,
+    ) -> (DVec3, Option<f64>) {
         let abs_fn = f_n.abs();
-        let f_t = history_spring(
-            &mut h.tangential,
-            n,
-            vt,
-            c.dt,
-            kt,
-            gamma_t,
-            self.friction * abs_fn,
-        );
-        let mut energy = self.energy_factor * f_el * d + 0.5 * kt * h.tangential.length_squared();
-        let torque = match self.rolling {
-            RollingLaw::None => DVec3::ZERO,
-            RollingLaw::Cdt => cdt(
-                rolling_omega(c.rel_omega, n),
-                self.rolling_friction * c.radius * abs_fn,
+        let n = c.normal;
+        match self.rolling {
+            RollingLaw::None => (DVec3::ZERO, None),
+            RollingLaw::Cdt => (
+                cdt(
+                    rolling_omega(c.rel_omega, n),
+                    self.rolling_friction * c.radius * abs_fn,
+                ),
+                None,
             ),
             RollingLaw::Epsd => {
                 let mr = self.rolling_friction * c.radius;
@@ -281,7 +341,7 @@ impl ContactModel {
                 let cr =
                     self.rolling_damping * 2.0 * (1.4 * c.mass * c.radius * c.radius * kr).sqrt();
                 let (t, e_r) = epsd(
-                    &mut h.rolling,
+                    m_r,
                     n,
                     rolling_omega(c.rel_omega, n),
                     c.dt,
@@ -289,15 +349,8 @@ impl ContactModel {
                     cr,
                     mr * abs_fn,
                 );
-                energy += e_r;
-                t
+                (t, Some(e_r))
             }
-        };
-        ContactOutput {
-            force: f_n * n + f_t,
-            torque,
-            elastic_energy: energy,
-            normal_force: f_n,
         }
     }
 
@@ -322,7 +375,7 @@ impl ContactModel {
     /// pair's `!tensile`, except for exact damping with `e = 0`, which uses
     /// critical damping without the clamp (see [`super::damping::damping_ratio`]).
     pub fn clamps_normal_force(&self) -> bool {
-        self.fn_floor == 0.0
+        self.law.fn_floor == 0.0
     }
 
     /// The pair properties this model was built from.
@@ -333,10 +386,10 @@ impl ContactModel {
     /// Normal stiffness for time-step estimates, N/m: the Hertz tangent
     /// stiffness `2E*√(R*δ)` at overlap `δ` (m), or the linear `k_n`.
     pub fn normal_stiffness(&self, r_star: f64, overlap: f64) -> f64 {
-        if self.hertz {
-            1.5 * self.kn_coef * (r_star * overlap).sqrt()
+        if self.law.hertz {
+            1.5 * self.law.kn_coef * (r_star * overlap).sqrt()
         } else {
-            self.kn_coef
+            self.law.kn_coef
         }
     }
 
@@ -347,10 +400,10 @@ impl ContactModel {
     /// `π/(ω₀√(1−β²))` (infinite for `β ≤ −1`), clamped `2A(−β)/ω₀` (until
     /// the force reaches zero; `A` in [`super::damping`]).
     pub fn contact_time(&self, r_star: f64, m_star: f64, v_normal: f64) -> f64 {
-        if self.hertz {
+        if self.law.hertz {
             hertz_contact_time(self.e_star, r_star, m_star, v_normal)
         } else {
-            let w0 = (self.kn_coef / m_star).sqrt();
+            let w0 = (self.law.kn_coef / m_star).sqrt();
             if self.clamps_normal_force() {
                 return clamped_pulse_time(self.beta) / w0;
             }

@@ -81,17 +81,22 @@ pub fn history_spring(
     let s = rotate_into_plane(*xi, n) + v_t * dt;
     let f = -kt * s - gamma_t * v_t;
     let f2 = f.length_squared();
-    if kt <= 0.0 {
-        // no tangential stiffness: no tangential force, the spring stays zero
-        *xi = DVec3::ZERO;
-        DVec3::ZERO
-    } else if f2 > f_max * f_max {
-        // Sliding: the elastic spring alone carries the limited force.
-        let fl = f * (f_max / f2.sqrt());
-        *xi = fl * (-1.0 / kt);
-        fl
+    // Branch-free (selects; the batched pair kernel runs this as vector
+    // instructions). Sliding: the elastic spring alone carries the limited
+    // force.
+    let slide = f2 > f_max * f_max;
+    let fl = f * (f_max / f2.sqrt());
+    let (xi_new, f_new) = if slide {
+        (fl * (-1.0 / kt), fl)
     } else {
-        *xi = s;
-        f
+        (s, f)
+    };
+    // no tangential stiffness: no tangential force, the spring stays zero
+    let none = kt <= 0.0;
+    *xi = if none { DVec3::ZERO } else { xi_new };
+    if none {
+        DVec3::ZERO
+    } else {
+        f_new
     }
 }

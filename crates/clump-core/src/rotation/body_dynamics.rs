@@ -30,9 +30,14 @@ pub fn omega_body(q: DQuat, l_world: DVec3, inertia: DVec3) -> DVec3 {
 /// `R = R(q)` (body → world), `l_world` the WORLD-frame angular momentum
 /// (kg m²/s) and `inertia` the principal moments (body frame, kg m²).
 /// A zero principal moment gives a zero component about that axis.
+/// For a spherical top (three equal moments) `ω = L/I`, with no rotation.
 #[inline]
 pub fn omega_world(q: DQuat, l_world: DVec3, inertia: DVec3) -> DVec3 {
-    omega_world_rot(&DMat3::from_quat(q), l_world, inverse_inertia(inertia))
+    let inv = inverse_inertia(inertia);
+    if inv.x == inv.y && inv.y == inv.z {
+        return l_world * inv.x;
+    }
+    omega_world_rot(&DMat3::from_quat(q), l_world, inv)
 }
 
 /// [`omega_world`] from the rotation matrix `rot = R(q)` (body → world, the
@@ -42,6 +47,10 @@ pub fn omega_world(q: DQuat, l_world: DVec3, inertia: DVec3) -> DVec3 {
 /// the body's spheres.
 #[inline(always)]
 pub fn omega_world_rot(rot: &DMat3, l_world: DVec3, inv_inertia: DVec3) -> DVec3 {
+    if inv_inertia.x == inv_inertia.y && inv_inertia.y == inv_inertia.z {
+        // spherical top: R (c Rᵀ L) = c L exactly (no round-off of the rotation)
+        return l_world * inv_inertia.x;
+    }
     let l_body = DVec3::new(
         rot.x_axis.dot(l_world),
         rot.y_axis.dot(l_world),

@@ -9,11 +9,12 @@
 //! about the sphere centre, `Σ (x_c − x_s) × f + couples`. This equals
 //! `Σ (x_c − r_cm) × f` over the contacts.
 
+use super::affinity::for_each_chunk_with;
+use super::integrate::FinalKick;
 use super::shared::SharedMut;
-use crate::contact::{ContactHistory, ContactInput, ContactScales};
+use crate::contact::{ContactHistory, ContactInput};
 use crate::multi_contact::{MultiContact, PartnerCounts};
-use crate::neighbor::pairs::{PairLoad, SphereLoad};
-use crate::sphere::{point_velocity, SPHERE_ID_BITS};
+use crate::sphere::point_velocity;
 use crate::wall::{WallLoad, WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::{ContactStats, World, WALL_SLOTS};
 use glam::DVec3;
@@ -31,7 +32,7 @@ pub const SPHERE_CHUNK: usize = 256;
 /// Computes all contact forces and the total force and torque on every body.
 pub fn compute(w: &mut World) {
     pair_forces(w);
-    gather(w);
+    gather(w, false);
 }
 
 /// Evaluates every candidate sphere pair, row by row: pairs that do not touch
@@ -39,6 +40,7 @@ pub fn compute(w: &mut World) {
 /// (`load_i`), each pair's contribution to its `j` (`load_j`), and the pair
 /// statistics per chunk of rows.
 pub(crate) fn pair_forces(w: &mut World) {
+    use super::pair_kernel::{Batch, RowCtx};
     if w.config.multi_contact == MultiContact::Average {
         average_scales(w);
     } else {
@@ -64,224 +66,31 @@ pub(crate) fn pair_forces(w: &mut World) {
         overlap: SharedMut::new(&mut pairs.overlap),
         load_j: SharedMut::new(&mut pairs.load_j),
         load_i: SharedMut::new(&mut pairs.load_i),
+        avx2: avx2(),
     };
-    stats.par_iter_mut().enumerate().for_each(|(c, stat)| {
+    let stats = SharedMut::new(stats);
+    // one batch per thread, not per chunk (zeroing it per chunk cost 4 % of
+    // the step)
+    for_each_chunk_with(nchunks, Batch::default, |batch, c| {
         let s0 = c * SPHERE_CHUNK;
-        // SAFETY: chunk c owns rows s0.. of the half list, no other chunk's.
-        unsafe { rows.evaluate(s0..(s0 + SPHERE_CHUNK).min(n), stat) };
+        // SAFETY: chunk c owns rows s0.. of the half list and its statistics
+        // slot, no other chunk's.
+        unsafe {
+            rows.evaluate(s0..(s0 + SPHERE_CHUNK).min(n), batch, stats.get(c));
+        }
     });
 }
 
-/// What the pair-force rows read and write.
-struct RowCtx<'a> {
-    dt: f64,
-    domain: crate::boundary::Domain,
-    any_periodic: bool,
-    sp: &'a crate::sphere::Spheres,
-    b: &'a crate::body::Bodies,
-    table: &'a crate::world::ContactTable,
-    row_start: &'a [u32],
-    topo: &'a [crate::neighbor::pairs::PairTopo],
-    scale: &'a [f64],
-    hist: SharedMut<ContactHistory>,
-    overlap: SharedMut<f64>,
-    load_j: SharedMut<PairLoad>,
-    load_i: SharedMut<SphereLoad>,
-}
-
-impl RowCtx<'_> {
-    /// Evaluates the rows `spheres` of the half list (see [`pair_forces`]) in
-    /// two passes per batch: a branch-free *detect* pass walks the candidate
-    /// pairs in order and compacts the touching ones into a small batch (the
-    /// common non-touching pair costs a distance test and clears stale
-    /// state); the *evaluate* pass then runs the contact law over the batch,
-    /// whose iterations are independent, so the processor overlaps their
-    /// long square-root and division chains. The batch keeps pair order, so
-    /// every sum is taken in ascending pair order as before.
-    ///
-    /// # Safety
-    /// No other thread touches these rows (their pairs' history, overlap and
-    /// `load_j`, and the spheres' `load_i`) during the call. The pair list
-    /// must be consistent with the spheres (every index in range), which
-    /// every rebuild guarantees; indexing is unchecked in this hot loop
-    /// (checked in debug builds).
-    #[inline(never)]
-    unsafe fn evaluate(&self, spheres: std::ops::Range<usize>, stat: &mut ContactStats) {
-        let sp = self.sp;
-        let n = sp.len();
-        let np = self.topo.len();
-        debug_assert!(self.row_start.len() == n + 1 && spheres.end <= n);
-        debug_assert!(self.row_start[n] as usize == np);
-        let mut batch = Batch::default();
-        for i in spheres {
-            *self.load_i.get(i) = SphereLoad::default();
-            let xi = at(&sp.position, i);
-            let ri = at(&sp.radius, i);
-            let (p0, p1) = (
-                at(self.row_start, i) as usize,
-                at(self.row_start, i + 1) as usize,
-            );
-            for p in p0..p1 {
-                let t = at(self.topo, p);
-                let j = t.j as usize;
-                let d = xi - self.partner_position(j, t.shift);
-                let rsum = ri + at(&sp.radius, j);
-                let touching = d.length_squared() < rsum * rsum;
-                // branch-free compaction: the slot is always written, kept
-                // only when touching
-                batch.pair[batch.len] = p as u32;
-                batch.row[batch.len] = i as u32;
-                batch.len += touching as usize;
-                if !touching {
-                    let o = self.overlap.get(p);
-                    // not touching: clear what a previous contact left
-                    if *o != 0.0 {
-                        *o = 0.0;
-                        *self.hist.get(p) = ContactHistory::default();
-                        *self.load_j.get(p) = PairLoad::default();
-                    }
-                }
-                if batch.len == BATCH {
-                    self.contacts(&mut batch, stat);
-                    batch.len = 0;
-                }
-            }
-        }
-        self.contacts(&mut batch, stat);
+/// Whether this processor has AVX2 (the pair kernel's law loop then runs 4
+/// contacts per vector instruction). Detected once, then cached.
+fn avx2() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+        *AVX2.get_or_init(|| std::arch::is_x86_feature_detected!("avx2"))
     }
-
-    /// Centre of sphere `j` as seen across the periodic image `shift`
-    /// (world, m).
-    #[inline(always)]
-    unsafe fn partner_position(&self, j: usize, shift: [i8; 3]) -> DVec3 {
-        let x = at(&self.sp.position, j);
-        if self.any_periodic && shift != [0; 3] {
-            x - self.domain.shift_vector(shift)
-        } else {
-            x
-        }
-    }
-
-    /// The contact law over a batch of touching pairs, in order: writes each
-    /// pair's `j` side, overlap and history, and adds its `i` side to its
-    /// row's `load_i`. Two loops: the geometry of every contact with the
-    /// law's square roots ([`ContactModel::scales`](crate::contact::ContactModel::scales)),
-    /// then the rest of the law. Each loop is short and its iterations are
-    /// independent, so the long square-root and division chains of several
-    /// contacts overlap.
-    #[inline(always)]
-    unsafe fn contacts(&self, batch: &mut Batch, stat: &mut ContactStats) {
-        let (sp, b) = (self.sp, self.b);
-        for k in 0..batch.len {
-            let p = batch.pair[k] as usize;
-            let i = batch.row[k] as usize;
-            let t = at(self.topo, p);
-            let j = t.j as usize;
-            let d = at(&sp.position, i) - self.partner_position(j, t.shift);
-            let (ri, rj) = (at(&sp.radius, i), at(&sp.radius, j));
-            let rsum = ri + rj;
-            let dist = d.length();
-            let nrm = d * (1.0 / dist);
-            let overlap = rsum - dist;
-            let (bi, bj) = (at(&sp.body, i) as usize, at(&sp.body, j) as usize);
-            let (ai, aj) = (ri - 0.5 * overlap, rj - 0.5 * overlap);
-            let (wi, wj) = (at(&b.angular_velocity, bi), at(&b.angular_velocity, bj));
-            // contact-point velocities: x_c − x_i = −a_i n, x_c − x_j = a_j n
-            let vrel = (at(&sp.velocity, i) - at(&sp.velocity, j)) - (wi * ai + wj * aj).cross(nrm);
-            let (mi, mj) = (at(&b.mass, bi), at(&b.mass, bj));
-            let input = ContactInput {
-                normal: nrm,
-                overlap,
-                rel_velocity: vrel,
-                rel_omega: wi - wj,
-                radius: ri * rj / rsum,
-                mass: mi * mj / (mi + mj),
-                dt: self.dt,
-            };
-            let model = self.table.get(at(&sp.material, i), at(&sp.material, j));
-            batch.scales[k] = model.scales(&input);
-            batch.input[k] = input;
-            batch.arm[k] = (ai, aj);
-        }
-        for k in 0..batch.len {
-            let p = batch.pair[k] as usize;
-            let i = batch.row[k] as usize;
-            let j = at(self.topo, p).j as usize;
-            let input = &batch.input[k];
-            let model = self.table.get(at(&sp.material, i), at(&sp.material, j));
-            let out = model.evaluate_scaled(input, batch.scales[k], self.hist.get(p));
-            let scale = if self.scale.is_empty() {
-                1.0
-            } else {
-                at(self.scale, p)
-            };
-            let f = out.force * scale;
-            let couple = out.torque * scale;
-            let (nrm, overlap) = (input.normal, input.overlap);
-            let (ai, aj) = batch.arm[k];
-            let g = nrm.cross(f);
-            let li = self.load_i.get(i);
-            li.force += f;
-            li.torque += couple - g * ai;
-            *self.load_j.get(p) = PairLoad {
-                force: -f,
-                torque: -couple - g * aj,
-            };
-            *self.overlap.get(p) = overlap;
-            stat.elastic_energy += out.elastic_energy * scale;
-            let rmin = at(&sp.radius, i).min(at(&sp.radius, j));
-            if overlap > stat.max_overlap_ratio * rmin {
-                stat.max_overlap_ratio = overlap / rmin;
-                stat.max_overlap_bodies = [
-                    at(&sp.gid, i) >> SPHERE_ID_BITS,
-                    at(&sp.gid, j) >> SPHERE_ID_BITS,
-                ];
-                stat.max_overlap_wall = 0;
-            }
-        }
-        stat.pair_contacts += batch.len as u64;
-    }
-}
-
-/// Touching pairs per batch of [`RowCtx::contacts`] (stack arrays; no
-/// allocation).
-const BATCH: usize = 64;
-
-/// Touching pairs found by the detect pass: pair index and row (sphere `i`)
-/// of the first `len` slots; the slot at `len` is scratch for the
-/// branch-free compaction (`len < BATCH` between flushes).
-/// The evaluate pass's per-contact intermediates live here too.
-struct Batch {
-    pair: [u32; BATCH],
-    row: [u32; BATCH],
-    len: usize,
-    input: [ContactInput; BATCH],
-    scales: [ContactScales; BATCH],
-    /// Distances from the sphere centres `i` and `j` to the contact point, m.
-    arm: [(f64, f64); BATCH],
-}
-
-impl Default for Batch {
-    fn default() -> Self {
-        Batch {
-            pair: [0; BATCH],
-            row: [0; BATCH],
-            len: 0,
-            input: [ContactInput::default(); BATCH],
-            scales: [ContactScales::default(); BATCH],
-            arm: [(0.0, 0.0); BATCH],
-        }
-    }
-}
-
-/// `v[i]` without a bounds check in release builds (checked in debug builds).
-///
-/// # Safety
-/// `i < v.len()`.
-#[inline(always)]
-unsafe fn at<T: Copy>(v: &[T], i: usize) -> T {
-    debug_assert!(i < v.len());
-    *v.get_unchecked(i)
+    #[cfg(not(target_arch = "x86_64"))]
+    false
 }
 
 /// `average` multi-contact: the scale `1/n` of every pair, `n` being the
@@ -334,12 +143,15 @@ fn average_scales(w: &mut World) {
 }
 
 /// Per body: sum the pair loads of its spheres, evaluate its sphere–wall
-/// contacts, add gravity. Bodies are processed in fixed chunks; wall loads
-/// and statistics are summed per chunk and then over chunks in order (the
-/// pair chunks first).
-pub(crate) fn gather(w: &mut World) {
+/// contacts, add gravity; with `kick`, then apply the body's second half
+/// kick ([`FinalKick`]) in the same pass. Bodies are processed in fixed
+/// chunks; wall loads and statistics are summed per chunk and then over
+/// chunks in order (the pair chunks first).
+pub(crate) fn gather(w: &mut World, kick: bool) {
     let World {
         bodies,
+        templates,
+        step,
         spheres: sp,
         pairs,
         walls,
@@ -371,10 +183,14 @@ pub(crate) fn gather(w: &mut World) {
         .any(|x| x.multi_contact == MultiContact::Average);
     let force = SharedMut::new(&mut bodies.force);
     let torque = SharedMut::new(&mut bodies.torque);
+    let vel = SharedMut::new(&mut bodies.velocity);
+    let angm = SharedMut::new(&mut bodies.angular_momentum);
+    let omega = SharedMut::new(&mut bodies.angular_velocity);
     let keys = SharedMut::new(wall_key);
     let hists = SharedMut::new(wall_hist);
     let loads = SharedMut::new(chunk_wall_loads);
     let b = &*bodies;
+    let kick = kick.then(|| FinalKick::new(dt, *step, config.added_mass, templates, b));
     let pairs = &*pairs;
     // Walls to test for sphere `s`, in ascending order: of the first 64, the
     // active ones that are near it or have moved since the last rebuild (the
@@ -389,14 +205,18 @@ pub(crate) fn gather(w: &mut World) {
         let lo = BitIter((moved | wall_near[s]) & active_lo);
         lo.chain((64..nw).filter(|&wi| walls[wi].active))
     };
-    chunk_stats.par_iter_mut().enumerate().for_each_init(
+    let stats_out = SharedMut::new(chunk_stats);
+    for_each_chunk_with(
+        nchunks,
         || {
             (
                 PartnerCounts::default(),
                 [WallTouch::default(); MAX_TOUCHES_PER_WALL],
             )
         },
-        |(wcounts, touch_buf), (c, stat)| {
+        |(wcounts, touch_buf), c| {
+            // SAFETY: chunk c's statistics slot is written by chunk c only.
+            let stat = unsafe { stats_out.get(c) };
             let b0 = c * BODY_CHUNK;
             let b1 = (b0 + BODY_CHUNK).min(nb);
             for bi in b0..b1 {
@@ -519,9 +339,10 @@ pub(crate) fn gather(w: &mut World) {
                 // kick changes |v| by at most |F| dt / 2m (a force that
                 // would fling a body out of the domain shows here, before
                 // the body is removed)
-                let (v, l) = (b.velocity[bi], b.angular_momentum[bi]);
+                // SAFETY: body bi is handled by this chunk only.
+                let (v, l, om) = unsafe { (vel.get(bi), angm.get(bi), omega.get(bi)) };
                 let speed = v.length() + f.length() * (0.5 * dt / b.mass[bi]);
-                let ke = 0.5 * b.mass[bi] * speed * speed + 0.5 * b.angular_velocity[bi].dot(l);
+                let ke = 0.5 * b.mass[bi] * speed * speed + 0.5 * om.dot(*l);
                 stat.kinetic_energy += ke;
                 stat.total_mass += b.mass[bi];
                 if ke > stat.max_body_kinetic_energy {
@@ -537,6 +358,9 @@ pub(crate) fn gather(w: &mut World) {
                 unsafe {
                     *force.get(bi) = f;
                     *torque.get(bi) = m;
+                }
+                if let Some(k) = &kick {
+                    k.apply(bi, v, l, om, f, m);
                 }
             }
         },

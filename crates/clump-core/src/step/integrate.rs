@@ -4,13 +4,14 @@
 //! factor; a full drift of the centre of mass; and a free-rotation drift of
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
+use super::affinity::for_each_chunk;
 use super::kinematics::sphere_state;
 use super::shared::SharedMut;
 use crate::neighbor::skin;
-use crate::rotation::{inverse_inertia, omega_world_rot};
+use crate::rotation::{inverse_inertia, omega_world, omega_world_rot};
 use crate::world::World;
-use glam::DMat3;
-use rayon::prelude::*;
+use glam::{DMat3, DVec3};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// First half of the step: v += F dt/(2 m'), x += v dt, L += M dt/(2 f_a),
 /// q ← drift(q, L, dt), ω from L. A body before its start step moves
@@ -47,81 +48,113 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
         &w.template_offset,
         &w.reference_position,
     );
-    (0..n.div_ceil(BODY_BLOCK))
-        .into_par_iter()
-        .map(|blk| {
-            let mut stale = false;
-            for i in blk * BODY_BLOCK..((blk + 1) * BODY_BLOCK).min(n) {
-                // SAFETY: each body index is handled by exactly one block.
-                let (x, v, q, l, om) = unsafe {
-                    (
-                        pos.get(i),
-                        vel.get(i),
-                        quat.get(i),
-                        angm.get(i),
-                        omega.get(i),
-                    )
-                };
-                let rot = if step < start[i] {
-                    *x += *v * dt;
-                    DMat3::from_quat(*q)
-                } else {
-                    let fa = mass_factor(added, templates[tmpl[i] as usize].density);
-                    let kick = HalfKick::new(dt, mass[i], fa);
-                    kick.apply(v, l, force[i], torque[i], ff[i], tf[i]);
-                    *x += *v * dt;
-                    *q = scheme.drift(*q, *l, inertia[i], dt);
-                    let rot = DMat3::from_quat(*q);
-                    *om = omega_world_rot(&rot, *l, inverse_inertia(inertia[i]));
-                    rot
-                };
-                if spheres {
-                    let o0 = tfirst[tmpl[i] as usize] as usize;
-                    let (s0, s1) = (first[i] as usize, first[i + 1] as usize);
-                    for (k, s) in (s0..s1).enumerate() {
-                        let (px, pv) = sphere_state(*x, &rot, *v, *om, toff[o0 + k]);
-                        // SAFETY: the spheres of body i are written by its block only.
-                        unsafe {
-                            *sx.get(s) = px;
-                            *sv.get(s) = pv;
-                        }
-                        stale |= skin::moved_too_far(px, xref[s], limit2);
+    let any_stale = AtomicBool::new(false);
+    for_each_chunk(n.div_ceil(BODY_BLOCK), |blk| {
+        let mut stale = false;
+        for i in blk * BODY_BLOCK..((blk + 1) * BODY_BLOCK).min(n) {
+            // SAFETY: each body index is handled by exactly one block.
+            let (x, v, q, l, om) = unsafe {
+                (
+                    pos.get(i),
+                    vel.get(i),
+                    quat.get(i),
+                    angm.get(i),
+                    omega.get(i),
+                )
+            };
+            let rot = if step < start[i] {
+                *x += *v * dt;
+                DMat3::from_quat(*q)
+            } else {
+                let fa = mass_factor(added, templates[tmpl[i] as usize].density);
+                let kick = HalfKick::new(dt, mass[i], fa);
+                kick.apply(v, l, force[i], torque[i], ff[i], tf[i]);
+                *x += *v * dt;
+                *q = scheme.drift(*q, *l, inertia[i], dt);
+                let rot = DMat3::from_quat(*q);
+                *om = omega_world_rot(&rot, *l, inverse_inertia(inertia[i]));
+                rot
+            };
+            if spheres {
+                let o0 = tfirst[tmpl[i] as usize] as usize;
+                let (s0, s1) = (first[i] as usize, first[i + 1] as usize);
+                for (k, s) in (s0..s1).enumerate() {
+                    let (px, pv) = sphere_state(*x, &rot, *v, *om, toff[o0 + k]);
+                    // SAFETY: the spheres of body i are written by its block only.
+                    unsafe {
+                        *sx.get(s) = px;
+                        *sv.get(s) = pv;
                     }
+                    stale |= skin::moved_too_far(px, xref[s], limit2);
                 }
             }
-            stale
-        })
-        .reduce(|| false, |a, b| a | b)
+        }
+        if stale {
+            any_stale.store(true, Ordering::Relaxed);
+        }
+    });
+    any_stale.into_inner()
 }
 
 /// Bodies per block of the first half step (a work unit; any size gives the
-/// same results).
+/// same results; twice the gather's chunk, so that the threads' runs of
+/// blocks and of gather chunks cover the same bodies, see
+/// [`super::affinity`]).
 const BODY_BLOCK: usize = 256;
 
-/// Second half kick: v += F dt/(2 m'), L += M dt/(2 f_a), ω from L.
-pub fn final_kick(w: &mut World) {
-    let dt = w.config.dt;
-    let step = w.step;
-    let n = w.bodies.len();
-    let b = &mut w.bodies;
-    let templates = &w.templates;
-    let added = w.config.added_mass;
-    let vel = SharedMut::new(&mut b.velocity);
-    let angm = SharedMut::new(&mut b.angular_momentum);
-    let omega = SharedMut::new(&mut b.angular_velocity);
-    let (force, torque, mass, inertia, quat) =
-        (&b.force, &b.torque, &b.mass, &b.inertia, &b.orientation);
-    let (ff, tf, start, tmpl) = (&b.force_flag, &b.torque_flag, &b.start_step, &b.template);
-    (0..n).into_par_iter().with_min_len(256).for_each(|i| {
-        if step < start[i] {
+/// The second half kick, `v += F dt/(2 m')`, `L += M dt/(2 f_a)`, ω from L
+/// (world frame), of one body at a time: the force gather
+/// ([`super::force::gather`]) applies it to each body as soon as that body's
+/// force and torque are summed, in the same pass (one sweep over the bodies
+/// and one parallel loop fewer per step). A body before its start step is
+/// left alone.
+pub(crate) struct FinalKick<'a> {
+    dt: f64,
+    step: u64,
+    added: crate::world::AddedMass,
+    templates: &'a [crate::shape::ClumpTemplate],
+    b: &'a crate::body::Bodies,
+}
+
+impl<'a> FinalKick<'a> {
+    /// The kick of the current step of `w`'s bodies `b`.
+    pub(crate) fn new(
+        dt: f64,
+        step: u64,
+        added: crate::world::AddedMass,
+        templates: &'a [crate::shape::ClumpTemplate],
+        b: &'a crate::body::Bodies,
+    ) -> Self {
+        FinalKick {
+            dt,
+            step,
+            added,
+            templates,
+            b,
+        }
+    }
+
+    /// Kicks body `i`: its velocity `v` (m/s), angular momentum `l`
+    /// (kg m²/s) and angular velocity `om` (rad/s), all world frame, under
+    /// the force `f` (N) and torque `m` (N m, about the centre of mass).
+    #[inline(always)]
+    pub(crate) fn apply(
+        &self,
+        i: usize,
+        v: &mut DVec3,
+        l: &mut DVec3,
+        om: &mut DVec3,
+        f: DVec3,
+        m: DVec3,
+    ) {
+        let b = self.b;
+        if self.step < b.start_step[i] {
             return;
         }
-        // SAFETY: each body index is handled by exactly one iteration.
-        let (v, l, om) = unsafe { (vel.get(i), angm.get(i), omega.get(i)) };
-        let fa = mass_factor(added, templates[tmpl[i] as usize].density);
-        HalfKick::new(dt, mass[i], fa).apply(v, l, force[i], torque[i], ff[i], tf[i]);
-        *om = omega_world_rot(&DMat3::from_quat(quat[i]), *l, inverse_inertia(inertia[i]));
-    });
+        let fa = mass_factor(self.added, self.templates[b.template[i] as usize].density);
+        HalfKick::new(self.dt, b.mass[i], fa).apply(v, l, f, m, b.force_flag[i], b.torque_flag[i]);
+        *om = omega_world(b.orientation[i], *l, b.inertia[i]);
+    }
 }
 
 /// A half kick of one body over `dt/2`: `v += F dt/(2 m f_a)`,

@@ -12,15 +12,18 @@
 //! 4. [`force`]: per-pair forces (sphere pairs of different bodies), then a
 //!    per-body gather in a fixed order with sphere–wall contacts and gravity.
 //!    F = Σ f, M = Σ (x_c − r_cm) × f (seed eq. 4.87–4.88).
-//! 5. [`integrate::final_kick`]: second half kick.
+//! 5. [`integrate::FinalKick`]: second half kick, applied by the gather to
+//!    each body as soon as its force and torque are summed (same pass).
 //!
 //! Every parallel loop writes disjoint outputs and every reduction runs over
 //! fixed-size chunks in a fixed order, so the results are bit-identical for
 //! any thread count.
 
+mod affinity;
 pub mod force;
 pub mod integrate;
 pub mod kinematics;
+mod pair_kernel;
 pub mod rebuild;
 pub(crate) mod shared;
 
@@ -40,21 +43,19 @@ pub struct StageTimes {
     pub neighbor: f64,
     /// Sphere–sphere pair forces.
     pub pair: f64,
-    /// Per-body gather with sphere–wall contacts and gravity.
+    /// Per-body gather with sphere–wall contacts and gravity, and the final
+    /// integrate (second half kick) of each body in the same pass.
     pub gather: f64,
-    /// Final integrate (second half kick).
-    pub finalize: f64,
 }
 
 impl StageTimes {
     /// The stages as (name, seconds), in pipeline order.
-    pub fn rows(&self) -> [(&'static str, f64); 5] {
+    pub fn rows(&self) -> [(&'static str, f64); 4] {
         [
             ("initial integrate", self.initial),
             ("neighbour build", self.neighbor),
             ("pair forces", self.pair),
-            ("gather + walls", self.gather),
-            ("final integrate", self.finalize),
+            ("gather, walls, final integrate", self.gather),
         ]
     }
 
@@ -114,10 +115,8 @@ impl World {
         }
         force::pair_forces(self);
         lap(&mut times.pair, &mut t);
-        force::gather(self);
+        force::gather(self, true);
         lap(&mut times.gather, &mut t);
-        integrate::final_kick(self);
-        lap(&mut times.finalize, &mut t);
         self.stage_times = times;
         self.step += 1;
         self.time = self.step as f64 * dt;

@@ -103,3 +103,32 @@ pub fn run_impact(w: &mut World, body_id: u64, radius: f64, max_steps: usize) ->
 pub fn rel(a: f64, b: f64) -> f64 {
     ((a - b) / b).abs()
 }
+
+/// Tiny deterministic generator (test-local, independent of the engine).
+pub struct Lcg(pub u64);
+impl Lcg {
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    pub fn quat(&mut self) -> DQuat {
+        let (u1, u2, u3) = (self.next(), self.next(), self.next());
+        let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
+        let tau = std::f64::consts::TAU;
+        DQuat::from_xyzw(
+            a * (tau * u2).sin(),
+            a * (tau * u2).cos(),
+            b * (tau * u3).sin(),
+            b * (tau * u3).cos(),
+        )
+        .normalize()
+    }
+
+    /// A vector with components uniform in [−a, a).
+    pub fn vec(&mut self, a: f64) -> DVec3 {
+        DVec3::new(self.next() - 0.5, self.next() - 0.5, self.next() - 0.5) * (2.0 * a)
+    }
+}

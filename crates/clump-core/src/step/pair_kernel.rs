@@ -1,0 +1,451 @@
+//! The sphere–sphere pair kernel: the rows of the half list, evaluated in
+//! batches of touching pairs.
+//!
+//! Per batch, in order:
+//! 1. *detect* ([`RowCtx::evaluate`]): a branch-free pass walks the
+//!    candidate pairs of the rows and compacts the touching ones into the
+//!    batch (the common non-touching pair costs one distance test; stale
+//!    state is cleared only when a pair stops touching);
+//! 2. *gather*: each touching pair's inputs (world frame: centre
+//!    separation, sphere velocities, body angular velocities, radii, body
+//!    masses, tangential history) are copied into per-quantity arrays;
+//! 3. *law*: the contact geometry and the normal–tangential law
+//!    ([`SlidingLaw::evaluate`], the same function the scalar contact law
+//!    runs) over those arrays. This loop has no branches and no indirect
+//!    access, so the compiler turns it into vector instructions (4 contacts
+//!    per instruction with AVX2, chosen at run time; 2 with the baseline
+//!    SSE2); vector and scalar IEEE arithmetic give the same bits;
+//! 4. *scatter*: rolling couples (for laws that have one), then each pair's
+//!    `j` side, history and overlap are stored and its `i` side is added to
+//!    its row's sum, in pair order.
+//!
+//! The batch keeps pair order, so every sum is taken in ascending pair order
+//! and the results do not depend on the thread count.
+
+use super::shared::SharedMut;
+use crate::contact::{ContactHistory, ContactInput, SlidingLaw};
+use crate::neighbor::pairs::{PairLoad, SphereLoad};
+use crate::sphere::SPHERE_ID_BITS;
+use crate::world::ContactStats;
+use glam::DVec3;
+
+/// What the pair-force rows read and write.
+pub(super) struct RowCtx<'a> {
+    pub dt: f64,
+    pub domain: crate::boundary::Domain,
+    pub any_periodic: bool,
+    pub sp: &'a crate::sphere::Spheres,
+    pub b: &'a crate::body::Bodies,
+    pub table: &'a crate::world::ContactTable,
+    pub row_start: &'a [u32],
+    pub topo: &'a [crate::neighbor::pairs::PairTopo],
+    pub scale: &'a [f64],
+    pub hist: SharedMut<ContactHistory>,
+    pub overlap: SharedMut<f64>,
+    pub load_j: SharedMut<PairLoad>,
+    pub load_i: SharedMut<SphereLoad>,
+    /// The law loop may use AVX2 (detected once per step).
+    pub avx2: bool,
+}
+
+impl RowCtx<'_> {
+    /// Evaluates the rows `spheres` of the half list (see the module docs),
+    /// using `batch` as scratch.
+    ///
+    /// # Safety
+    /// No other thread touches these rows (their pairs' history, overlap and
+    /// `load_j`, and the spheres' `load_i`) during the call. The pair list
+    /// must be consistent with the spheres (every index in range), which
+    /// every rebuild guarantees; indexing is unchecked in this hot loop
+    /// (checked in debug builds).
+    #[inline(never)]
+    pub(super) unsafe fn evaluate(
+        &self,
+        spheres: std::ops::Range<usize>,
+        batch: &mut Batch,
+        stat: &mut ContactStats,
+    ) {
+        let sp = self.sp;
+        let n = sp.len();
+        let np = self.topo.len();
+        debug_assert!(self.row_start.len() == n + 1 && spheres.end <= n);
+        debug_assert!(self.row_start[n] as usize == np);
+        batch.len = 0;
+        for i in spheres {
+            *self.load_i.get(i) = SphereLoad::default();
+            let xi = at(&sp.position, i);
+            let ri = at(&sp.radius, i);
+            let (p0, p1) = (
+                at(self.row_start, i) as usize,
+                at(self.row_start, i + 1) as usize,
+            );
+            for p in p0..p1 {
+                let t = at(self.topo, p);
+                let j = t.j as usize;
+                let d = xi - self.partner_position(j, t.shift);
+                let rsum = ri + at(&sp.radius, j);
+                let touching = d.length_squared() < rsum * rsum;
+                // branch-free compaction: the slot is always written, kept
+                // only when touching
+                batch.pair[batch.len] = p as u32;
+                batch.row[batch.len] = i as u32;
+                batch.len += touching as usize;
+                if !touching {
+                    let o = self.overlap.get(p);
+                    // not touching: clear what a previous contact left
+                    if *o != 0.0 {
+                        *o = 0.0;
+                        *self.hist.get(p) = ContactHistory::default();
+                        *self.load_j.get(p) = PairLoad::default();
+                    }
+                }
+                if batch.len == BATCH {
+                    self.contacts(batch, stat);
+                    batch.len = 0;
+                }
+            }
+        }
+        self.contacts(batch, stat);
+    }
+
+    /// Centre of sphere `j` as seen across the periodic image `shift`
+    /// (world, m).
+    #[inline(always)]
+    unsafe fn partner_position(&self, j: usize, shift: [i8; 3]) -> DVec3 {
+        let x = at(&self.sp.position, j);
+        if self.any_periodic && shift != [0; 3] {
+            x - self.domain.shift_vector(shift)
+        } else {
+            x
+        }
+    }
+
+    /// Gather, law and scatter (see the module docs) over the touching
+    /// pairs of the batch.
+    #[inline(always)]
+    unsafe fn contacts(&self, batch: &mut Batch, stat: &mut ContactStats) {
+        if batch.len == 0 {
+            return;
+        }
+        let (sp, b) = (self.sp, self.b);
+        let len = batch.len.min(BATCH);
+        let l = &mut batch.lanes;
+        let first = self.model_index(batch.row[0] as usize, batch.pair[0] as usize);
+        let mut uniform = true;
+        for k in 0..len {
+            let p = batch.pair[k] as usize;
+            let i = batch.row[k] as usize;
+            let t = at(self.topo, p);
+            let j = t.j as usize;
+            let d = at(&sp.position, i) - self.partner_position(j, t.shift);
+            let dv = at(&sp.velocity, i) - at(&sp.velocity, j);
+            let (bi, bj) = (at(&sp.body, i) as usize, at(&sp.body, j) as usize);
+            let (wi, wj) = (at(&b.angular_velocity, bi), at(&b.angular_velocity, bj));
+            let h = self.hist.get(p).tangential;
+            l.set3(IN_D, k, d);
+            l.set3(IN_DV, k, dv);
+            l.set3(IN_WI, k, wi);
+            l.set3(IN_WJ, k, wj);
+            l.set3(IO_XI, k, h);
+            l.v[IN_RI][k] = at(&sp.radius, i);
+            l.v[IN_RJ][k] = at(&sp.radius, j);
+            l.v[IN_MI][k] = at(&b.mass, bi);
+            l.v[IN_MJ][k] = at(&b.mass, bj);
+            l.v[IN_SCALE][k] = if self.scale.is_empty() {
+                1.0
+            } else {
+                at(self.scale, p)
+            };
+            let m = self.model_index(i, p);
+            batch.model[k] = m;
+            uniform &= m == first;
+        }
+        let table = self.table;
+        let law = if uniform {
+            Some(*table.by_index(first).sliding_law())
+        } else {
+            for k in 0..len {
+                l.set_law(k, table.by_index(batch.model[k]).sliding_law());
+            }
+            None
+        };
+        run_law(l, len, law.as_ref(), self.dt, self.avx2);
+        if table.any_rolling() {
+            for k in 0..len {
+                let model = table.by_index(batch.model[k]);
+                if !model.has_rolling() {
+                    continue;
+                }
+                let p = batch.pair[k] as usize;
+                let input = ContactInput {
+                    normal: l.get3(OUT_N, k),
+                    overlap: l.v[OUT_OVERLAP][k],
+                    rel_velocity: DVec3::ZERO,
+                    rel_omega: l.get3(IN_WI, k) - l.get3(IN_WJ, k),
+                    radius: l.v[OUT_RSTAR][k],
+                    mass: l.v[OUT_MSTAR][k],
+                    dt: self.dt,
+                };
+                let h = self.hist.get(p);
+                let (couple, e_r) =
+                    model.rolling_couple(&input, l.v[OUT_FN][k], l.v[OUT_KN][k], &mut h.rolling);
+                let couple = couple * l.v[IN_SCALE][k];
+                l.set3(OUT_TI, k, l.get3(OUT_TI, k) + couple);
+                l.set3(OUT_TJ, k, l.get3(OUT_TJ, k) - couple);
+                if let Some(e) = e_r {
+                    l.v[OUT_ENERGY][k] += e;
+                }
+            }
+        }
+        for k in 0..len {
+            let p = batch.pair[k] as usize;
+            let i = batch.row[k] as usize;
+            let f = l.get3(OUT_F, k);
+            let li = self.load_i.get(i);
+            li.force += f;
+            li.torque += l.get3(OUT_TI, k);
+            *self.load_j.get(p) = PairLoad {
+                force: -f,
+                torque: l.get3(OUT_TJ, k),
+            };
+            self.hist.get(p).tangential = l.get3(IO_XI, k);
+            let overlap = l.v[OUT_OVERLAP][k];
+            *self.overlap.get(p) = overlap;
+            stat.elastic_energy += l.v[OUT_ENERGY][k] * l.v[IN_SCALE][k];
+            let rmin = l.v[IN_RI][k].min(l.v[IN_RJ][k]);
+            if overlap > stat.max_overlap_ratio * rmin {
+                let j = at(self.topo, p).j as usize;
+                stat.max_overlap_ratio = overlap / rmin;
+                stat.max_overlap_bodies = [
+                    at(&sp.gid, i) >> SPHERE_ID_BITS,
+                    at(&sp.gid, j) >> SPHERE_ID_BITS,
+                ];
+                stat.max_overlap_wall = 0;
+            }
+        }
+        stat.pair_contacts += len as u64;
+    }
+
+    /// Index in the contact table of the model of pair `p` in row `i`.
+    #[inline(always)]
+    unsafe fn model_index(&self, i: usize, p: usize) -> u32 {
+        let j = at(self.topo, p).j as usize;
+        self.table
+            .index(at(&self.sp.material, i), at(&self.sp.material, j))
+    }
+}
+
+/// Runs [`law_lanes`] over the first `len` lanes, with AVX2 where the
+/// processor has it.
+#[inline(always)]
+fn run_law(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64, avx2: bool) {
+    #[cfg(target_arch = "x86_64")]
+    if avx2 {
+        // SAFETY: the caller detected AVX2 on this processor.
+        unsafe { law_lanes_avx2(l, len, law, dt) };
+        return;
+    }
+    let _ = avx2;
+    law_lanes(l, len, law, dt);
+}
+
+/// [`law_lanes`] compiled for AVX2 (4 doubles per vector).
+///
+/// # Safety
+/// The processor supports AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn law_lanes_avx2(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
+    law_lanes(l, len, law, dt)
+}
+
+/// The contact geometry and the law over lanes `0..len`: `law` is the model
+/// of every lane, or `None` when the lanes carry their own
+/// ([`Lanes::set_law`]).
+#[inline(always)]
+fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
+    match law {
+        Some(law) => {
+            for k in 0..len.min(BATCH) {
+                l.contact(k, law, dt);
+            }
+        }
+        None => {
+            for k in 0..len.min(BATCH) {
+                let law = l.law(k);
+                l.contact(k, &law, dt);
+            }
+        }
+    }
+}
+
+/// Touching pairs per batch (stack arrays; no allocation).
+pub(super) const BATCH: usize = 64;
+
+/// Touching pairs found by the detect pass: pair index and row (sphere `i`)
+/// of the first `len` slots; the slot at `len` is scratch for the
+/// branch-free compaction (`len < BATCH` between flushes). The gathered
+/// inputs and the law's outputs live in `lanes`.
+pub(super) struct Batch {
+    pair: [u32; BATCH],
+    row: [u32; BATCH],
+    model: [u32; BATCH],
+    len: usize,
+    lanes: Lanes,
+}
+
+impl Default for Batch {
+    fn default() -> Self {
+        Batch {
+            pair: [0; BATCH],
+            row: [0; BATCH],
+            model: [0; BATCH],
+            len: 0,
+            lanes: Lanes {
+                v: [[0.0; BATCH]; NV],
+            },
+        }
+    }
+}
+
+// Rows of `Lanes::v` (world frame, SI units). Inputs:
+/// `x_i − x_j` (3 rows), m.
+const IN_D: usize = 0;
+/// `v_i − v_j` of the sphere centres (3), m/s.
+const IN_DV: usize = 3;
+/// `ω` of `i`'s body (3), rad/s.
+const IN_WI: usize = 6;
+/// `ω` of `j`'s body (3), rad/s.
+const IN_WJ: usize = 9;
+/// Tangential spring `ξ` (3), m: input, and output after the law.
+const IO_XI: usize = 12;
+/// Radius of `i`, m.
+const IN_RI: usize = 15;
+/// Radius of `j`, m.
+const IN_RJ: usize = 16;
+/// Mass of `i`'s body, kg.
+const IN_MI: usize = 17;
+/// Mass of `j`'s body, kg.
+const IN_MJ: usize = 18;
+/// Multi-contact scale of the force.
+const IN_SCALE: usize = 19;
+// Outputs:
+/// Force on `i`, scaled (3), N.
+const OUT_F: usize = 20;
+/// Torque on sphere `i` about its centre (3), N m.
+const OUT_TI: usize = 23;
+/// Torque on sphere `j` about its centre (3), N m.
+const OUT_TJ: usize = 26;
+/// Unit normal, `j` → `i` (3).
+const OUT_N: usize = 29;
+/// Overlap, m.
+const OUT_OVERLAP: usize = 32;
+/// Elastic energy, unscaled, J.
+const OUT_ENERGY: usize = 33;
+/// Signed normal force, unscaled, N.
+const OUT_FN: usize = 34;
+/// Normal stiffness, N/m.
+const OUT_KN: usize = 35;
+/// `R*`, m.
+const OUT_RSTAR: usize = 36;
+/// `m*`, kg.
+const OUT_MSTAR: usize = 37;
+// Per-lane law (when the batch mixes models):
+const LAW: usize = 38;
+/// Number of rows.
+const NV: usize = LAW + 8;
+
+/// Per-quantity arrays of a batch (structure of arrays: row `q`, lane `k`).
+pub(super) struct Lanes {
+    v: [[f64; BATCH]; NV],
+}
+
+impl Lanes {
+    #[inline(always)]
+    fn set3(&mut self, q: usize, k: usize, x: DVec3) {
+        self.v[q][k] = x.x;
+        self.v[q + 1][k] = x.y;
+        self.v[q + 2][k] = x.z;
+    }
+
+    #[inline(always)]
+    fn get3(&self, q: usize, k: usize) -> DVec3 {
+        DVec3::new(self.v[q][k], self.v[q + 1][k], self.v[q + 2][k])
+    }
+
+    /// Stores lane `k`'s law.
+    #[inline(always)]
+    fn set_law(&mut self, k: usize, law: &SlidingLaw) {
+        let v = &mut self.v;
+        v[LAW][k] = if law.hertz { 1.0 } else { 0.0 };
+        v[LAW + 1][k] = law.fn_floor;
+        v[LAW + 2][k] = law.kn_coef;
+        v[LAW + 3][k] = law.kt_coef;
+        v[LAW + 4][k] = law.gn_coef;
+        v[LAW + 5][k] = law.gt_coef;
+        v[LAW + 6][k] = law.energy_factor;
+        v[LAW + 7][k] = law.friction;
+    }
+
+    /// Lane `k`'s law, as stored by [`Self::set_law`].
+    #[inline(always)]
+    fn law(&self, k: usize) -> SlidingLaw {
+        let v = &self.v;
+        SlidingLaw {
+            hertz: v[LAW][k] != 0.0,
+            fn_floor: v[LAW + 1][k],
+            kn_coef: v[LAW + 2][k],
+            kt_coef: v[LAW + 3][k],
+            gn_coef: v[LAW + 4][k],
+            gt_coef: v[LAW + 5][k],
+            energy_factor: v[LAW + 6][k],
+            friction: v[LAW + 7][k],
+        }
+    }
+
+    /// Contact `k`: normal, overlap, contact-point velocities, `R*`, `m*`,
+    /// the law, and the torques of its force about the two sphere centres.
+    #[inline(always)]
+    fn contact(&mut self, k: usize, law: &SlidingLaw, dt: f64) {
+        let d = self.get3(IN_D, k);
+        let (ri, rj) = (self.v[IN_RI][k], self.v[IN_RJ][k]);
+        let rsum = ri + rj;
+        let dist = d.length();
+        let nrm = d * (1.0 / dist);
+        let overlap = rsum - dist;
+        let (ai, aj) = (ri - 0.5 * overlap, rj - 0.5 * overlap);
+        let (wi, wj) = (self.get3(IN_WI, k), self.get3(IN_WJ, k));
+        // contact-point velocities: x_c − x_i = −a_i n, x_c − x_j = a_j n
+        let vrel = self.get3(IN_DV, k) - (wi * ai + wj * aj).cross(nrm);
+        let (mi, mj) = (self.v[IN_MI][k], self.v[IN_MJ][k]);
+        let radius = ri * rj / rsum;
+        let mass = mi * mj / (mi + mj);
+        let mut xi = self.get3(IO_XI, k);
+        let out = law.evaluate(nrm, overlap, vrel, radius, mass, dt, &mut xi);
+        let scale = self.v[IN_SCALE][k];
+        let f = out.force * scale;
+        let g = nrm.cross(f);
+        self.set3(IO_XI, k, xi);
+        self.set3(OUT_F, k, f);
+        self.set3(OUT_TI, k, DVec3::ZERO - g * ai);
+        self.set3(OUT_TJ, k, -DVec3::ZERO - g * aj);
+        self.set3(OUT_N, k, nrm);
+        let v = &mut self.v;
+        v[OUT_OVERLAP][k] = overlap;
+        v[OUT_ENERGY][k] = out.energy;
+        v[OUT_FN][k] = out.normal_force;
+        v[OUT_KN][k] = out.kn;
+        v[OUT_RSTAR][k] = radius;
+        v[OUT_MSTAR][k] = mass;
+    }
+}
+
+/// `v[i]` without a bounds check in release builds (checked in debug builds).
+///
+/// # Safety
+/// `i < v.len()`.
+#[inline(always)]
+pub(super) unsafe fn at<T: Copy>(v: &[T], i: usize) -> T {
+    debug_assert!(i < v.len());
+    *v.get_unchecked(i)
+}
