@@ -231,6 +231,11 @@ pub struct World {
     /// Walls (< 64) that have not moved since the last neighbour build: only
     /// these may be skipped for spheres whose `wall_near` bit is clear.
     pub(crate) wall_cull: u64,
+    /// Cumulative per-body cost estimate of the gather (one unit per sphere,
+    /// more for a sphere with a wall nearby), `len = bodies + 1`; built with
+    /// the wall lists. Splits the per-body loops between threads (see
+    /// `step::affinity`).
+    pub(crate) body_cost: Vec<u64>,
     pub(crate) wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
     pub(crate) template_first: Vec<u32>,
     pub(crate) template_offset: Vec<DVec3>,
@@ -279,6 +284,7 @@ impl World {
             wall_key: Vec::new(),
             wall_near: Vec::new(),
             wall_cull: 0,
+            body_cost: Vec::new(),
             wall_hist: Vec::new(),
             template_first: vec![0],
             template_offset: Vec::new(),

@@ -16,15 +16,16 @@ const SMALL_ANGLE: f64 = 1e-4;
 /// **body**-frame axis. `v = 0` gives the identity (no division by zero: the
 /// factor `sin(|v|/2)/|v|` is evaluated by its series near zero).
 pub fn quat_from_rotation_vector(v: DVec3) -> DQuat {
-    let angle = v.length();
-    let half = 0.5 * angle;
-    let (s, c) = if half < 0.01 {
-        // sin(h)/h and cos(h) by their series (the angles of a DEM step):
-        // truncation error below 1e-20, no libm call, and v = 0 is exact.
-        let h2 = half * half;
+    let a2 = v.length_squared();
+    let h2 = 0.25 * a2;
+    let (s, c) = if h2 < 1e-4 {
+        // half angle h below 0.01 (the angles of a DEM step): sin(h)/h and
+        // cos(h) by their series in h²: truncation error below 1e-20, no
+        // square root, no libm call, and v = 0 is exact.
         (0.5 * sinc_series(h2), cos_series(h2))
     } else {
-        let (sh, ch) = half.sin_cos();
+        let angle = a2.sqrt();
+        let (sh, ch) = (0.5 * angle).sin_cos();
         (sh / angle, ch)
     };
     DQuat::from_xyzw(s * v.x, s * v.y, s * v.z, c)
@@ -110,5 +111,20 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
         (x * sinc_series(x2), cos_series(x2))
     } else {
         x.sin_cos()
+    }
+}
+
+/// `q/|q|` for a quaternion that is unit up to round-off (the product of
+/// two unit quaternions): one Newton step for `1/√(q·q)`,
+/// `q (3 − q·q)/2`, exact to `O(ε²)` for `q·q = 1 + ε` (below round-off
+/// for `|ε| < 10⁻⁸`), with no square root or division; farther from unit
+/// length it falls back to the exact [`DQuat::normalize`].
+#[inline(always)]
+pub fn renormalize(q: DQuat) -> DQuat {
+    let n2 = q.length_squared();
+    if (n2 - 1.0).abs() < 1e-8 {
+        q * (0.5 * (3.0 - n2))
+    } else {
+        q.normalize()
     }
 }

@@ -23,7 +23,7 @@ pub mod reference;
 pub mod richardson;
 pub mod zhao_van_wachem;
 
-use crate::math::quat_from_rotation_vector;
+use crate::math::{quat_from_rotation_vector, renormalize};
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -81,7 +81,7 @@ impl RotationScheme {
     /// benchmark is such a body.
     pub fn drift(self, q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
         if inertia.x == inertia.y && inertia.y == inertia.z && inertia.x > 0.0 {
-            return (quat_from_rotation_vector(l_world * (dt / inertia.x)) * q).normalize();
+            return renormalize(quat_from_rotation_vector(l_world * (dt / inertia.x)) * q);
         }
         match self {
             RotationScheme::Richardson => richardson::drift(q, l_world, inertia, dt),

@@ -1,38 +1,48 @@
-//! Chunk-to-thread affinity for the per-step loops.
+//! Chunk-to-thread affinity and balance for the per-step loops.
 //!
 //! Each per-step loop (first half step, pair forces, gather) runs over fixed
 //! chunks of bodies or spheres. Work stealing would hand the same bodies to
 //! different threads from one stage to the next, and every stage would then
-//! pull their data from the other core's cache. Here thread `t` of `T` always
-//! takes the same contiguous run of chunks, `[n t/T, n (t+1)/T)`: the bodies
-//! it moves in the first half step are the ones whose spheres' rows it
-//! evaluates and whose forces it gathers (bodies and their spheres are stored
-//! in the same Morton order, so the runs line up). Only the pairs across the
-//! seam between two runs touch the other core's data.
+//! pull their data from the other core's cache. Here each thread takes one
+//! contiguous run of chunks per loop, cut where the estimated cost is
+//! shared equally: the first half step and the gather use the same chunks
+//! and the same cost, so a thread moves the bodies whose forces it gathers,
+//! and the pair loop's runs cover nearly the same spheres (bodies and their
+//! spheres are stored in the same Morton order). Only pairs across the seam
+//! between two runs touch the other core's data.
 //!
-//! The results do not depend on the thread count: chunk boundaries are fixed
-//! sizes, every chunk writes its own outputs, and every reduction over chunks
-//! runs in chunk order afterwards.
+//! The results do not depend on the thread count or on the cuts: chunk
+//! boundaries are fixed sizes, every chunk writes its own outputs, and every
+//! reduction over chunks runs in chunk order afterwards.
 
-/// Calls `f(c)` for every chunk `c` in `0..n`, each exactly once; thread `t`
-/// of the current rayon pool's `T` takes chunks `[n t/T, n (t+1)/T)`, in
-/// order. On one thread it is a plain loop.
-pub(crate) fn for_each_chunk(n: usize, f: impl Fn(usize) + Sync) {
-    let threads = rayon::current_num_threads();
-    if threads <= 1 || n <= 1 {
-        (0..n).for_each(f);
-        return;
+/// Cost of the body chunks `0..c` of `chunk` bodies each, from the
+/// cumulative per-body cost `body_cost` (`World::body_cost`, `nb + 1`
+/// entries); one unit per body when that is out of date.
+pub(crate) fn body_chunk_cost(
+    body_cost: &[u64],
+    nb: usize,
+    chunk: usize,
+) -> impl Fn(usize) -> u64 + Sync + '_ {
+    let current = body_cost.len() == nb + 1;
+    move |c| {
+        let b = (c * chunk).min(nb);
+        if current {
+            body_cost[b]
+        } else {
+            b as u64
+        }
     }
-    rayon::broadcast(|ctx| {
-        let (t, nt) = (ctx.index(), ctx.num_threads());
-        (n * t / nt..n * (t + 1) / nt).for_each(&f);
-    });
 }
 
-/// Like [`for_each_chunk`], with one `&mut` scratch value per thread made by
-/// `init` (once per call and thread).
+/// Calls `f(s, c)` for every chunk `c` in `0..n`, each exactly once, with
+/// one `&mut` scratch value `s` per thread made by `init` (once per call and
+/// thread). `cost(c)` is the estimated cost of chunks `0..c` (non-decreasing,
+/// `cost(0) = 0`): thread `t` of the current rayon pool's `T` takes the
+/// contiguous run of chunks whose cost falls in `[C t/T, C (t+1)/T)`,
+/// `C = cost(n)`, in order. On one thread it is a plain loop.
 pub(crate) fn for_each_chunk_with<S>(
     n: usize,
+    cost: impl Fn(usize) -> u64 + Sync,
     init: impl Fn() -> S + Sync,
     f: impl Fn(&mut S, usize) + Sync,
 ) {
@@ -42,9 +52,25 @@ pub(crate) fn for_each_chunk_with<S>(
         (0..n).for_each(|c| f(&mut s, c));
         return;
     }
+    let total = cost(n) as u128;
+    // first chunk whose cost before it reaches the share of thread t
+    let start = |t: usize, nt: usize| {
+        let share = (total * t as u128 / nt as u128) as u64;
+        let (mut lo, mut hi) = (0, n);
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            if cost(mid) < share {
+                lo = mid + 1;
+            } else {
+                hi = mid;
+            }
+        }
+        lo
+    };
     rayon::broadcast(|ctx| {
         let (t, nt) = (ctx.index(), ctx.num_threads());
         let mut s = init();
-        (n * t / nt..n * (t + 1) / nt).for_each(|c| f(&mut s, c));
+        let end = if t + 1 == nt { n } else { start(t + 1, nt) };
+        (start(t, nt)..end).for_each(|c| f(&mut s, c));
     });
 }

@@ -9,7 +9,7 @@
 //! about the sphere centre, `Σ (x_c − x_s) × f + couples`. This equals
 //! `Σ (x_c − r_cm) × f` over the contacts.
 
-use super::affinity::for_each_chunk_with;
+use super::affinity::{body_chunk_cost, for_each_chunk_with};
 use super::integrate::FinalKick;
 use super::shared::SharedMut;
 use crate::contact::{ContactHistory, ContactInput};
@@ -71,7 +71,13 @@ pub(crate) fn pair_forces(w: &mut World) {
     let stats = SharedMut::new(stats);
     // one batch per thread, not per chunk (zeroing it per chunk cost 4 % of
     // the step)
-    for_each_chunk_with(nchunks, Batch::default, |batch, c| {
+    // cost estimate: one unit per sphere and per candidate pair
+    let row_start = rows.row_start;
+    let cost = |c: usize| {
+        let s = (c * SPHERE_CHUNK).min(n);
+        row_start.get(s).map_or(0, |&p| p as u64) + s as u64
+    };
+    for_each_chunk_with(nchunks, cost, Batch::default, |batch, c| {
         let s0 = c * SPHERE_CHUNK;
         // SAFETY: chunk c owns rows s0.. of the half list and its statistics
         // slot, no other chunk's.
@@ -161,6 +167,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
         wall_near,
         wall_cull,
         wall_hist,
+        body_cost,
         chunk_stats,
         chunk_pair_stats,
         chunk_wall_loads,
@@ -208,6 +215,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
     let stats_out = SharedMut::new(chunk_stats);
     for_each_chunk_with(
         nchunks,
+        body_chunk_cost(body_cost, nb, BODY_CHUNK),
         || {
             (
                 PartnerCounts::default(),

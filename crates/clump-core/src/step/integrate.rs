@@ -4,7 +4,7 @@
 //! factor; a full drift of the centre of mass; and a free-rotation drift of
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
-use super::affinity::for_each_chunk;
+use super::affinity::{body_chunk_cost, for_each_chunk_with};
 use super::kinematics::sphere_state;
 use super::shared::SharedMut;
 use crate::neighbor::skin;
@@ -49,58 +49,63 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
         &w.reference_position,
     );
     let any_stale = AtomicBool::new(false);
-    for_each_chunk(n.div_ceil(BODY_BLOCK), |blk| {
-        let mut stale = false;
-        for i in blk * BODY_BLOCK..((blk + 1) * BODY_BLOCK).min(n) {
-            // SAFETY: each body index is handled by exactly one block.
-            let (x, v, q, l, om) = unsafe {
-                (
-                    pos.get(i),
-                    vel.get(i),
-                    quat.get(i),
-                    angm.get(i),
-                    omega.get(i),
-                )
-            };
-            let rot = if step < start[i] {
-                *x += *v * dt;
-                DMat3::from_quat(*q)
-            } else {
-                let fa = mass_factor(added, templates[tmpl[i] as usize].density);
-                let kick = HalfKick::new(dt, mass[i], fa);
-                kick.apply(v, l, force[i], torque[i], ff[i], tf[i]);
-                *x += *v * dt;
-                *q = scheme.drift(*q, *l, inertia[i], dt);
-                let rot = DMat3::from_quat(*q);
-                *om = omega_world_rot(&rot, *l, inverse_inertia(inertia[i]));
-                rot
-            };
-            if spheres {
-                let o0 = tfirst[tmpl[i] as usize] as usize;
-                let (s0, s1) = (first[i] as usize, first[i + 1] as usize);
-                for (k, s) in (s0..s1).enumerate() {
-                    let (px, pv) = sphere_state(*x, &rot, *v, *om, toff[o0 + k]);
-                    // SAFETY: the spheres of body i are written by its block only.
-                    unsafe {
-                        *sx.get(s) = px;
-                        *sv.get(s) = pv;
+    let cost = body_chunk_cost(&w.body_cost, n, BODY_BLOCK);
+    for_each_chunk_with(
+        n.div_ceil(BODY_BLOCK),
+        cost,
+        || (),
+        |_, blk| {
+            let mut stale = false;
+            for i in blk * BODY_BLOCK..((blk + 1) * BODY_BLOCK).min(n) {
+                // SAFETY: each body index is handled by exactly one block.
+                let (x, v, q, l, om) = unsafe {
+                    (
+                        pos.get(i),
+                        vel.get(i),
+                        quat.get(i),
+                        angm.get(i),
+                        omega.get(i),
+                    )
+                };
+                let rot = if step < start[i] {
+                    *x += *v * dt;
+                    DMat3::from_quat(*q)
+                } else {
+                    let fa = mass_factor(added, templates[tmpl[i] as usize].density);
+                    let kick = HalfKick::new(dt, mass[i], fa);
+                    kick.apply(v, l, force[i], torque[i], ff[i], tf[i]);
+                    *x += *v * dt;
+                    *q = scheme.drift(*q, *l, inertia[i], dt);
+                    let rot = DMat3::from_quat(*q);
+                    *om = omega_world_rot(&rot, *l, inverse_inertia(inertia[i]));
+                    rot
+                };
+                if spheres {
+                    let o0 = tfirst[tmpl[i] as usize] as usize;
+                    let (s0, s1) = (first[i] as usize, first[i + 1] as usize);
+                    for (k, s) in (s0..s1).enumerate() {
+                        let (px, pv) = sphere_state(*x, &rot, *v, *om, toff[o0 + k]);
+                        // SAFETY: the spheres of body i are written by its block only.
+                        unsafe {
+                            *sx.get(s) = px;
+                            *sv.get(s) = pv;
+                        }
+                        stale |= skin::moved_too_far(px, xref[s], limit2);
                     }
-                    stale |= skin::moved_too_far(px, xref[s], limit2);
                 }
             }
-        }
-        if stale {
-            any_stale.store(true, Ordering::Relaxed);
-        }
-    });
+            if stale {
+                any_stale.store(true, Ordering::Relaxed);
+            }
+        },
+    );
     any_stale.into_inner()
 }
 
-/// Bodies per block of the first half step (a work unit; any size gives the
-/// same results; twice the gather's chunk, so that the threads' runs of
-/// blocks and of gather chunks cover the same bodies, see
-/// [`super::affinity`]).
-const BODY_BLOCK: usize = 256;
+/// Bodies per block of the first half step: the gather's chunk, so that a
+/// thread moves the bodies whose forces it gathers (see
+/// [`super::affinity`]); any size gives the same results.
+const BODY_BLOCK: usize = super::force::BODY_CHUNK;
 
 /// The second half kick, `v += F dt/(2 m')`, `L += M dt/(2 f_a)`, ω from L
 /// (world frame), of one body at a time: the force gather

@@ -151,7 +151,26 @@ fn build_wall_lists(w: &mut World) {
             *near = m;
         });
     w.wall_cull = static_walls(walls);
+    let sp = &w.spheres;
+    w.body_cost.clear();
+    w.body_cost.push(0);
+    let mut total = 0u64;
+    for b in 0..w.bodies.len() {
+        for s in sp.of_body(b) {
+            total += if w.wall_near[s] != 0 {
+                WALL_SPHERE_COST
+            } else {
+                1
+            };
+        }
+        w.body_cost.push(total);
+    }
 }
+
+/// Gather cost of a sphere with a wall nearby (it is tested against the
+/// wall, and often touches it), in units of a sphere without: a rough
+/// measured ratio, used only to balance threads.
+const WALL_SPHERE_COST: u64 = 8;
 
 /// Bits of the walls (< 64) whose geometry does not move (no translation or
 /// rotation; a surface velocity leaves the geometry in place).
