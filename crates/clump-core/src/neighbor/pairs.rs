@@ -64,17 +64,22 @@ pub struct PairList {
     /// Overlap of each pair at the last evaluation, m: > 0 touching, 0 not
     /// touching, [`HISTORY_ONLY`] for a restored history not yet evaluated.
     pub overlap: Vec<f64>,
-    /// What each pair contributes to its sphere `j` (parallel to `topo`).
+    /// What each pair contributes to its sphere `j`, in column order: pair
+    /// `p`'s entry is `load_j[col_slot[p]]`, so that sphere `s`'s entries are
+    /// the contiguous `load_j[col_start[s]..col_start[s + 1]]` (the gather
+    /// reads them in sequence; the pair kernel's scattered writes do not
+    /// stall it).
     pub load_j: Vec<PairLoad>,
     /// Per sphere: the sum over the pairs of its own row (its `i` side).
     pub load_i: Vec<SphereLoad>,
     /// Multi-contact scale of each pair's force (`1/n` under `average`,
     /// parallel to `topo`; empty under `sum`).
     pub scale: Vec<f64>,
-    /// Pairs in which sphere `s` is the `j`:
-    /// `col[col_start[s]..col_start[s + 1]]`, ascending pair index.
-    pub col: Vec<u32>,
-    /// Offsets into `col`, one per sphere plus one.
+    /// Column slot of each pair (parallel to `topo`): the pairs in which
+    /// sphere `s` is the `j` have the slots `col_start[s]..col_start[s + 1]`,
+    /// in ascending pair order.
+    pub col_slot: Vec<u32>,
+    /// Offsets of each sphere's column slots, one per sphere plus one.
     pub col_start: Vec<u32>,
     cell_start: Vec<u32>,
     cell_items: Vec<u32>,
@@ -92,8 +97,7 @@ impl PairList {
     pub fn sphere_load(&self, s: usize) -> SphereLoad {
         let mut l = self.load_i[s];
         let (c0, c1) = (self.col_start[s] as usize, self.col_start[s + 1] as usize);
-        for &p in &self.col[c0..c1] {
-            let pl = &self.load_j[p as usize];
+        for pl in &self.load_j[c0..c1] {
             l.force += pl.force;
             l.torque += pl.torque;
         }
@@ -300,11 +304,11 @@ impl PairList {
         }
         self.cursor.clear();
         self.cursor.extend_from_slice(&self.col_start[..n]);
-        self.col.clear();
-        self.col.resize(acc, 0);
+        self.col_slot.clear();
+        self.col_slot.resize(acc, 0);
         for (p, t) in self.topo.iter().enumerate() {
             let c = &mut self.cursor[t.j as usize];
-            self.col[*c as usize] = p as u32;
+            self.col_slot[p] = *c;
             *c += 1;
         }
     }

@@ -61,6 +61,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         table: &w.contact_table,
         row_start: &pairs.row_start,
         topo: &pairs.topo,
+        col_slot: &pairs.col_slot,
         scale: &pairs.scale,
         hist: SharedMut::new(&mut pairs.history),
         overlap: SharedMut::new(&mut pairs.overlap),

@@ -39,6 +39,8 @@ pub(super) struct RowCtx<'a> {
     pub table: &'a crate::world::ContactTable,
     pub row_start: &'a [u32],
     pub topo: &'a [crate::neighbor::pairs::PairTopo],
+    /// Column slot of each pair (where its `load_j` goes).
+    pub col_slot: &'a [u32],
     pub scale: &'a [f64],
     pub hist: SharedMut<ContactHistory>,
     pub overlap: SharedMut<f64>,
@@ -96,7 +98,7 @@ impl RowCtx<'_> {
                     if *o != 0.0 {
                         *o = 0.0;
                         *self.hist.get(p) = ContactHistory::default();
-                        *self.load_j.get(p) = PairLoad::default();
+                        *self.load_j.get(at(self.col_slot, p) as usize) = PairLoad::default();
                     }
                 }
                 if batch.len == BATCH {
@@ -204,7 +206,7 @@ impl RowCtx<'_> {
             let li = self.load_i.get(i);
             li.force += f;
             li.torque += l.get3(OUT_TI, k);
-            *self.load_j.get(p) = PairLoad {
+            *self.load_j.get(at(self.col_slot, p) as usize) = PairLoad {
                 force: -f,
                 torque: l.get3(OUT_TJ, k),
             };
