@@ -37,9 +37,10 @@ pub(crate) fn body_chunk_cost(
 /// Calls `f(s, c)` for every chunk `c` in `0..n`, each exactly once, with
 /// one `&mut` scratch value `s` per thread made by `init` (once per call and
 /// thread). `cost(c)` is the estimated cost of chunks `0..c` (non-decreasing,
-/// `cost(0) = 0`): thread `t` of the current rayon pool's `T` takes the
-/// contiguous run of chunks whose cost falls in `[C t/T, C (t+1)/T)`,
-/// `C = cost(n)`, in order. On one thread it is a plain loop.
+/// `cost(0) = 0`): the chunks are cut into as many contiguous runs as the
+/// current rayon pool has threads, run `t` of `T` holding the chunks whose
+/// cost falls in `[C t/T, C (t+1)/T)`, `C = cost(n)`; each run goes to one
+/// thread, in order. On one thread it is a plain loop. No allocation.
 pub(crate) fn for_each_chunk_with<S>(
     n: usize,
     cost: impl Fn(usize) -> u64 + Sync,
@@ -67,10 +68,30 @@ pub(crate) fn for_each_chunk_with<S>(
         }
         lo
     };
-    rayon::broadcast(|ctx| {
-        let (t, nt) = (ctx.index(), ctx.num_threads());
+    let start = |t: usize| if t == threads { n } else { start(t, threads) };
+    run_parts(0, threads, &start, &init, &f);
+}
+
+/// Runs the runs of threads `t0..t1` (see [`for_each_chunk_with`]),
+/// splitting the thread range in halves with `rayon::join` (which does not
+/// allocate, unlike a broadcast): the calling thread keeps the first half and
+/// an idle thread takes the second, so with two threads each keeps its run
+/// from one loop to the next.
+fn run_parts<S>(
+    t0: usize,
+    t1: usize,
+    start: &(impl Fn(usize) -> usize + Sync),
+    init: &(impl Fn() -> S + Sync),
+    f: &(impl Fn(&mut S, usize) + Sync),
+) {
+    if t1 - t0 == 1 {
         let mut s = init();
-        let end = if t + 1 == nt { n } else { start(t + 1, nt) };
-        (start(t, nt)..end).for_each(|c| f(&mut s, c));
-    });
+        (start(t0)..start(t1)).for_each(|c| f(&mut s, c));
+        return;
+    }
+    let mid = (t0 + t1) / 2;
+    rayon::join(
+        || run_parts(t0, mid, start, init, f),
+        || run_parts(mid, t1, start, init, f),
+    );
 }
