@@ -236,6 +236,9 @@ pub struct World {
     /// the wall lists. Splits the per-body loops between threads (see
     /// `step::affinity`).
     pub(crate) body_cost: Vec<u64>,
+    /// How the first half step, the pair loop and the gather share their
+    /// chunks between threads (learned; never affects results).
+    pub(crate) balance: [crate::step::affinity::Balance; 3],
     pub(crate) wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
     pub(crate) template_first: Vec<u32>,
     pub(crate) template_offset: Vec<DVec3>,
@@ -285,6 +288,7 @@ impl World {
             wall_near: Vec::new(),
             wall_cull: 0,
             body_cost: Vec::new(),
+            balance: Default::default(),
             wall_hist: Vec::new(),
             template_first: vec![0],
             template_offset: Vec::new(),

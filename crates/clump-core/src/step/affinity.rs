@@ -34,16 +34,69 @@ pub(crate) fn body_chunk_cost(
     }
 }
 
+/// How one per-step loop shares its chunks between threads: the fraction of
+/// the estimated cost given to each run, learned from the time each run
+/// took (a thread that also runs the serial parts of the step, or whose
+/// chunks cost more than estimated, gets less). Only the cuts depend on it,
+/// never the results.
+#[derive(Debug, Default)]
+pub(crate) struct Balance {
+    /// Fraction of the cost per run (sums to 1).
+    share: Vec<f64>,
+    /// Wall time of each run in the last call, ns.
+    time: Vec<std::sync::atomic::AtomicU64>,
+}
+
+/// Most runs per loop (threads beyond this share the runs).
+const MAX_RUNS: usize = 64;
+
+/// Weight of the newest measurement in the running shares.
+const BALANCE_GAIN: f64 = 0.2;
+
+impl Balance {
+    /// Makes room for `threads` runs (equal shares at first).
+    fn reset(&mut self, threads: usize) {
+        if self.share.len() != threads {
+            self.share = vec![1.0 / threads as f64; threads];
+            self.time = (0..threads)
+                .map(|_| std::sync::atomic::AtomicU64::new(0))
+                .collect();
+        }
+    }
+
+    /// Moves the shares toward the cost each run got through per unit time.
+    fn learn(&mut self, run_cost: impl Fn(usize) -> u64) {
+        let t = self.share.len();
+        let rate = |r: usize| {
+            let ns = self.time[r].load(std::sync::atomic::Ordering::Relaxed);
+            (ns > 0).then(|| run_cost(r) as f64 / ns as f64)
+        };
+        let rates: Option<Vec<f64>> = (0..t).map(rate).collect::<Option<_>>();
+        let Some(rates) = rates else { return };
+        let sum: f64 = rates.iter().sum();
+        if !(sum > 0.0) || rates.iter().any(|&r| r <= 0.0) {
+            return;
+        }
+        for (s, r) in self.share.iter_mut().zip(rates) {
+            *s = (1.0 - BALANCE_GAIN) * *s + BALANCE_GAIN * r / sum;
+        }
+        let total: f64 = self.share.iter().sum();
+        self.share.iter_mut().for_each(|s| *s /= total);
+    }
+}
+
 /// Calls `f(s, c)` for every chunk `c` in `0..n`, each exactly once, with
 /// one `&mut` scratch value `s` per thread made by `init` (once per call and
 /// thread). `cost(c)` is the estimated cost of chunks `0..c` (non-decreasing,
 /// `cost(0) = 0`): the chunks are cut into as many contiguous runs as the
-/// current rayon pool has threads, run `t` of `T` holding the chunks whose
-/// cost falls in `[C t/T, C (t+1)/T)`, `C = cost(n)`; each run goes to one
-/// thread, in order. On one thread it is a plain loop. No allocation.
+/// current rayon pool has threads, run `t` holding the chunks whose cost
+/// falls in its share of the total (see [`Balance`]); each run goes to one
+/// thread, in order. On one thread it is a plain loop. No allocation after
+/// the first call.
 pub(crate) fn for_each_chunk_with<S>(
     n: usize,
     cost: impl Fn(usize) -> u64 + Sync,
+    balance: &mut Balance,
     init: impl Fn() -> S + Sync,
     f: impl Fn(&mut S, usize) + Sync,
 ) {
@@ -53,14 +106,19 @@ pub(crate) fn for_each_chunk_with<S>(
         (0..n).for_each(|c| f(&mut s, c));
         return;
     }
-    let total = cost(n) as u128;
-    // first chunk whose cost before it reaches the share of thread t
-    let start = |t: usize, nt: usize| {
-        let share = (total * t as u128 / nt as u128) as u64;
+    let runs = threads.min(MAX_RUNS);
+    balance.reset(runs);
+    let total = cost(n) as f64;
+    // first chunk whose cost before it reaches the shares of runs 0..t
+    let start = |t: usize| {
+        if t == runs {
+            return n;
+        }
+        let target = total * balance.share[..t].iter().sum::<f64>();
         let (mut lo, mut hi) = (0, n);
         while lo < hi {
             let mid = (lo + hi) / 2;
-            if cost(mid) < share {
+            if (cost(mid) as f64) < target {
                 lo = mid + 1;
             } else {
                 hi = mid;
@@ -68,30 +126,41 @@ pub(crate) fn for_each_chunk_with<S>(
         }
         lo
     };
-    let start = |t: usize| if t == threads { n } else { start(t, threads) };
-    run_parts(0, threads, &start, &init, &f);
+    let mut cuts = [0usize; MAX_RUNS + 1];
+    for (t, c) in cuts.iter_mut().enumerate().take(runs + 1) {
+        *c = start(t);
+    }
+    let cuts = &cuts[..=runs];
+    run_parts(0, runs, cuts, &balance.time, &init, &f);
+    balance.learn(|r| cost(cuts[r + 1]) - cost(cuts[r]));
 }
 
-/// Runs the runs of threads `t0..t1` (see [`for_each_chunk_with`]),
-/// splitting the thread range in halves with `rayon::join` (which does not
-/// allocate, unlike a broadcast): the calling thread keeps the first half and
-/// an idle thread takes the second, so with two threads each keeps its run
-/// from one loop to the next.
+/// Runs the runs `t0..t1` (chunks `cuts[t]..cuts[t + 1]`), timing each,
+/// splitting the range in halves with `rayon::join` (which does not
+/// allocate, unlike a broadcast): the calling thread keeps the first half
+/// and an idle thread takes the second, so with two threads each keeps its
+/// run from one loop to the next.
 fn run_parts<S>(
     t0: usize,
     t1: usize,
-    start: &(impl Fn(usize) -> usize + Sync),
+    cuts: &[usize],
+    time: &[std::sync::atomic::AtomicU64],
     init: &(impl Fn() -> S + Sync),
     f: &(impl Fn(&mut S, usize) + Sync),
 ) {
     if t1 - t0 == 1 {
+        let clock = std::time::Instant::now();
         let mut s = init();
-        (start(t0)..start(t1)).for_each(|c| f(&mut s, c));
+        (cuts[t0]..cuts[t1]).for_each(|c| f(&mut s, c));
+        time[t0].store(
+            clock.elapsed().as_nanos() as u64,
+            std::sync::atomic::Ordering::Relaxed,
+        );
         return;
     }
     let mid = (t0 + t1) / 2;
     rayon::join(
-        || run_parts(t0, mid, start, init, f),
-        || run_parts(mid, t1, start, init, f),
+        || run_parts(t0, mid, cuts, time, init, f),
+        || run_parts(mid, t1, cuts, time, init, f),
     );
 }

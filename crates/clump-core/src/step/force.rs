@@ -78,7 +78,8 @@ pub(crate) fn pair_forces(w: &mut World) {
         let s = (c * SPHERE_CHUNK).min(n);
         row_start.get(s).map_or(0, |&p| p as u64) + s as u64
     };
-    for_each_chunk_with(nchunks, cost, Batch::default, |batch, c| {
+    let balance = &mut w.balance[1];
+    for_each_chunk_with(nchunks, cost, balance, Batch::default, |batch, c| {
         let s0 = c * SPHERE_CHUNK;
         // SAFETY: chunk c owns rows s0.. of the half list and its statistics
         // slot, no other chunk's.
@@ -169,6 +170,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
         wall_cull,
         wall_hist,
         body_cost,
+        balance,
         chunk_stats,
         chunk_pair_stats,
         chunk_wall_loads,
@@ -217,6 +219,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
     for_each_chunk_with(
         nchunks,
         body_chunk_cost(body_cost, nb, BODY_CHUNK),
+        &mut balance[2],
         || {
             (
                 PartnerCounts::default(),

@@ -53,6 +53,7 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
     for_each_chunk_with(
         n.div_ceil(BODY_BLOCK),
         cost,
+        &mut w.balance[0],
         || (),
         |_, blk| {
             let mut stale = false;

@@ -19,7 +19,7 @@
 //! fixed-size chunks in a fixed order, so the results are bit-identical for
 //! any thread count.
 
-mod affinity;
+pub(crate) mod affinity;
 pub mod force;
 pub mod integrate;
 pub mod kinematics;
