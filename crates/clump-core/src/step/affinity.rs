@@ -66,19 +66,22 @@ impl Balance {
 
     /// Moves the shares toward the cost each run got through per unit time.
     fn learn(&mut self, run_cost: impl Fn(usize) -> u64) {
-        let t = self.share.len();
-        let rate = |r: usize| {
+        let mut rates = [0.0f64; MAX_RUNS];
+        let mut sum = 0.0;
+        for (r, rate) in rates.iter_mut().enumerate().take(self.share.len()) {
             let ns = self.time[r].load(std::sync::atomic::Ordering::Relaxed);
-            (ns > 0).then(|| run_cost(r) as f64 / ns as f64)
-        };
-        let rates: Option<Vec<f64>> = (0..t).map(rate).collect::<Option<_>>();
-        let Some(rates) = rates else { return };
-        let sum: f64 = rates.iter().sum();
-        if !(sum > 0.0) || rates.iter().any(|&r| r <= 0.0) {
-            return;
+            *rate = run_cost(r) as f64 / ns as f64;
+            // an empty or unmeasured run says nothing: keep the shares
+            if !(*rate > 0.0 && rate.is_finite()) {
+                return;
+            }
+            sum += *rate;
         }
+        // no run drops below a quarter of an equal share (a run left empty
+        // would never be measured again)
+        let floor = 0.25 / self.share.len() as f64;
         for (s, r) in self.share.iter_mut().zip(rates) {
-            *s = (1.0 - BALANCE_GAIN) * *s + BALANCE_GAIN * r / sum;
+            *s = ((1.0 - BALANCE_GAIN) * *s + BALANCE_GAIN * r / sum).max(floor);
         }
         let total: f64 = self.share.iter().sum();
         self.share.iter_mut().for_each(|s| *s /= total);
