@@ -138,16 +138,15 @@ pub struct ContactStats {
     /// a sphere–wall contact, 0 when it is a sphere–sphere contact (or none).
     #[serde(default)]
     pub max_overlap_wall: u32,
-    /// Bound of the kinetic energy of all bodies at the end of the step,
-    /// Σ ½ m (|v| + |F| dt/2m)² + ½ ω·L, with the velocities seen by the force
-    /// evaluation (the half-step velocities inside a step; world frame), J.
-    /// Not finite when some body's state is not finite.
+    /// Kinetic energy of all bodies at the end of the step, Σ ½ m v·v + ½ ω·L
+    /// (after the second half kick, which the gather applies; world frame),
+    /// J. Not finite when some body's state is not finite.
     #[serde(default)]
     pub kinetic_energy: f64,
     /// Total mass of the bodies, kg.
     #[serde(default)]
     pub total_mass: f64,
-    /// Largest kinetic energy (bound) of a single body, J.
+    /// Largest kinetic energy of a single body at the end of the step, J.
     #[serde(default)]
     pub max_body_kinetic_energy: f64,
     /// Global id of the body with the largest kinetic energy (0 = no bodies).

@@ -79,10 +79,18 @@ impl RotationScheme {
     /// which the exact step removes), and it costs one exponential map
     /// instead of several. The regular tetrahedral clump of the shared
     /// benchmark is such a body.
+    #[inline]
     pub fn drift(self, q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
         if inertia.x == inertia.y && inertia.y == inertia.z && inertia.x > 0.0 {
             return renormalize(quat_from_rotation_vector(l_world * (dt / inertia.x)) * q);
         }
+        self.drift_asymmetric(q, l_world, inertia, dt)
+    }
+
+    /// [`Self::drift`] of a body that is not a spherical top (out of line:
+    /// the spherical-top step above is what the integration loop inlines).
+    #[inline(never)]
+    fn drift_asymmetric(self, q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
         match self {
             RotationScheme::Richardson => richardson::drift(q, l_world, inertia, dt),
             RotationScheme::ZhaoVanWachem => zhao_van_wachem::drift(q, l_world, inertia, dt),

@@ -346,15 +346,21 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                         }
                     }
                 }
-                // --- health statistics (folded into this pass: no extra sweep)
-                // kinetic energy bound at the end of the step: the coming half
-                // kick changes |v| by at most |F| dt / 2m (a force that
-                // would fling a body out of the domain shows here, before
-                // the body is removed)
                 // SAFETY: body bi is handled by this chunk only.
                 let (v, l, om) = unsafe { (vel.get(bi), angm.get(bi), omega.get(bi)) };
-                let speed = v.length() + f.length() * (0.5 * dt / b.mass[bi]);
-                let ke = 0.5 * b.mass[bi] * speed * speed + 0.5 * om.dot(*l);
+                // SAFETY: body bi is handled by this chunk only.
+                unsafe {
+                    *force.get(bi) = f;
+                    *torque.get(bi) = m;
+                }
+                if let Some(k) = &kick {
+                    k.apply(bi, v, l, om, f, m);
+                }
+                // --- health statistics (folded into this pass: no extra
+                // sweep): the kinetic energy at the end of the step, after
+                // the kick (a force that would fling a body out of the
+                // domain shows here, before the body is removed)
+                let ke = 0.5 * b.mass[bi] * v.length_squared() + 0.5 * om.dot(*l);
                 stat.kinetic_energy += ke;
                 stat.total_mass += b.mass[bi];
                 if ke > stat.max_body_kinetic_energy {
@@ -365,14 +371,6 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                     && !(ke.is_finite() && com.is_finite() && f.is_finite() && m.is_finite())
                 {
                     stat.non_finite_body = b.id[bi];
-                }
-                // SAFETY: body bi is handled by this chunk only.
-                unsafe {
-                    *force.get(bi) = f;
-                    *torque.get(bi) = m;
-                }
-                if let Some(k) = &kick {
-                    k.apply(bi, v, l, om, f, m);
                 }
             }
         },

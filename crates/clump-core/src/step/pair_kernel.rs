@@ -72,7 +72,8 @@ impl RowCtx<'_> {
         let np = self.topo.len();
         debug_assert!(self.row_start.len() == n + 1 && spheres.end <= n);
         debug_assert!(self.row_start[n] as usize == np);
-        batch.len = 0;
+        // the batch length lives in a register during the detect pass
+        let mut len = 0usize;
         for i in spheres {
             *self.load_i.get(i) = SphereLoad::default();
             let xi = at(&sp.position, i);
@@ -88,10 +89,11 @@ impl RowCtx<'_> {
                 let rsum = ri + at(&sp.radius, j);
                 let touching = d.length_squared() < rsum * rsum;
                 // branch-free compaction: the slot is always written, kept
-                // only when touching
-                batch.pair[batch.len] = p as u32;
-                batch.row[batch.len] = i as u32;
-                batch.len += touching as usize;
+                // only when touching (len < BATCH here)
+                debug_assert!(len < BATCH);
+                *batch.pair.get_unchecked_mut(len) = p as u32;
+                *batch.row.get_unchecked_mut(len) = i as u32;
+                len += touching as usize;
                 if !touching {
                     let o = self.overlap.get(p);
                     // not touching: clear what a previous contact left
@@ -101,12 +103,14 @@ impl RowCtx<'_> {
                         *self.load_j.get(at(self.col_slot, p) as usize) = PairLoad::default();
                     }
                 }
-                if batch.len == BATCH {
+                if len == BATCH {
+                    batch.len = len;
                     self.contacts(batch, stat);
-                    batch.len = 0;
+                    len = 0;
                 }
             }
         }
+        batch.len = len;
         self.contacts(batch, stat);
     }
 
