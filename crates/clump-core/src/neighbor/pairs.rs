@@ -93,11 +93,21 @@ impl PairList {
     /// its row sum plus the `j` sides of the pairs in its column, in
     /// ascending pair order (the fixed order that makes the sum independent
     /// of the thread count).
+    ///
+    /// # Safety
+    /// `s` is a sphere of the list's last build (`s + 1 < col_start.len()`);
+    /// the list is consistent, as every build leaves it. Unchecked in
+    /// release builds (the gather's hot loop), checked in debug builds.
     #[inline(always)]
-    pub fn sphere_load(&self, s: usize) -> SphereLoad {
-        let mut l = self.load_i[s];
-        let (c0, c1) = (self.col_start[s] as usize, self.col_start[s + 1] as usize);
-        for pl in &self.load_j[c0..c1] {
+    pub(crate) unsafe fn sphere_load(&self, s: usize) -> SphereLoad {
+        use crate::step::shared::at;
+        let mut l = at(&self.load_i, s);
+        let (c0, c1) = (
+            at(&self.col_start, s) as usize,
+            at(&self.col_start, s + 1) as usize,
+        );
+        debug_assert!(c0 <= c1 && c1 <= self.load_j.len());
+        for pl in self.load_j.get_unchecked(c0..c1) {
             l.force += pl.force;
             l.torque += pl.torque;
         }

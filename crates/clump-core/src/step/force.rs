@@ -11,7 +11,7 @@
 
 use super::affinity::{body_chunk_cost, for_each_chunk_with};
 use super::integrate::FinalKick;
-use super::shared::SharedMut;
+use super::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput};
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::sphere::point_velocity;
@@ -238,9 +238,11 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                 let spheres = sp.of_body(bi);
                 // --- sphere–sphere contacts: own row sums plus column entries
                 for s in spheres.clone() {
-                    let l = pairs.sphere_load(s);
+                    // SAFETY: the pair list was built for these spheres (a
+                    // rebuild precedes every gather after a change).
+                    let (l, x) = unsafe { (pairs.sphere_load(s), at(&sp.position, s)) };
                     f += l.force;
-                    m += (sp.position[s] - com).cross(l.force) + l.torque;
+                    m += (x - com).cross(l.force) + l.torque;
                 }
                 // --- sphere–wall contacts
                 if nw > 0 {
@@ -277,7 +279,9 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                         let (key, hist) = unsafe { (keys.get(s), hists.get(s)) };
                         // most spheres have no wall to test: decide that from
                         // the mask alone, without building the iterator
-                        let none_near = nw <= 64 && (moved | wall_near[s]) & active_lo == 0;
+                        // SAFETY: the wall lists have one mask per sphere.
+                        let near = unsafe { at(wall_near, s) };
+                        let none_near = nw <= 64 && (moved | near) & active_lo == 0;
                         let mut cand = candidates(s).peekable();
                         if none_near || cand.peek().is_none() {
                             // no wall to test: only clear what a contact left

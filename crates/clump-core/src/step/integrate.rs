@@ -6,7 +6,7 @@
 
 use super::affinity::{body_chunk_cost, for_each_chunk_with};
 use super::kinematics::sphere_state;
-use super::shared::SharedMut;
+use super::shared::{at, SharedMut};
 use crate::neighbor::skin;
 use crate::rotation::{inverse_inertia, omega_world, omega_world_rot};
 use crate::world::World;
@@ -68,30 +68,37 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
                         omega.get(i),
                     )
                 };
-                let rot = if step < start[i] {
+                // SAFETY (all `at` below): i < n, every body array has n
+                // entries, template indices are valid, and with `spheres` the
+                // sphere topology (body_first, reference positions) is current.
+                let rot = if step < unsafe { at(start, i) } {
                     *x += *v * dt;
                     DMat3::from_quat(*q)
                 } else {
-                    let fa = mass_factor(added, templates[tmpl[i] as usize].density);
-                    let kick = HalfKick::new(dt, mass[i], fa);
-                    kick.apply(v, l, force[i], torque[i], ff[i], tf[i]);
+                    let t = unsafe { at(tmpl, i) } as usize;
+                    let fa = mass_factor(added, templates[t].density);
+                    let kick = HalfKick::new(dt, unsafe { at(mass, i) }, fa);
+                    let (fi, ti) = unsafe { (at(force, i), at(torque, i)) };
+                    kick.apply(v, l, fi, ti, unsafe { at(ff, i) }, unsafe { at(tf, i) });
                     *x += *v * dt;
-                    *q = scheme.drift(*q, *l, inertia[i], dt);
+                    let inertia_i = unsafe { at(inertia, i) };
+                    *q = scheme.drift(*q, *l, inertia_i, dt);
                     let rot = DMat3::from_quat(*q);
-                    *om = omega_world_rot(&rot, *l, inverse_inertia(inertia[i]));
+                    *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
                     rot
                 };
                 if spheres {
-                    let o0 = tfirst[tmpl[i] as usize] as usize;
-                    let (s0, s1) = (first[i] as usize, first[i + 1] as usize);
+                    let o0 = unsafe { at(tfirst, at(tmpl, i) as usize) } as usize;
+                    let (s0, s1) = unsafe { (at(first, i) as usize, at(first, i + 1) as usize) };
                     for (k, s) in (s0..s1).enumerate() {
-                        let (px, pv) = sphere_state(*x, &rot, *v, *om, toff[o0 + k]);
+                        let off = unsafe { at(toff, o0 + k) };
+                        let (px, pv) = sphere_state(*x, &rot, *v, *om, off);
                         // SAFETY: the spheres of body i are written by its block only.
                         unsafe {
                             *sx.get(s) = px;
                             *sv.get(s) = pv;
                         }
-                        stale |= skin::moved_too_far(px, xref[s], limit2);
+                        stale |= skin::moved_too_far(px, unsafe { at(xref, s) }, limit2);
                     }
                 }
             }
@@ -154,12 +161,16 @@ impl<'a> FinalKick<'a> {
         m: DVec3,
     ) {
         let b = self.b;
-        if self.step < b.start_step[i] {
+        // SAFETY (all `at`): the gather passes a body index i < n.
+        if self.step < unsafe { at(&b.start_step, i) } {
             return;
         }
-        let fa = mass_factor(self.added, self.templates[b.template[i] as usize].density);
-        HalfKick::new(self.dt, b.mass[i], fa).apply(v, l, f, m, b.force_flag[i], b.torque_flag[i]);
-        *om = omega_world(b.orientation[i], *l, b.inertia[i]);
+        let t = unsafe { at(&b.template, i) } as usize;
+        let fa = mass_factor(self.added, self.templates[t].density);
+        let (ff, tf) = unsafe { (at(&b.force_flag, i), at(&b.torque_flag, i)) };
+        HalfKick::new(self.dt, unsafe { at(&b.mass, i) }, fa).apply(v, l, f, m, ff, tf);
+        let (q, inertia) = unsafe { (at(&b.orientation, i), at(&b.inertia, i)) };
+        *om = omega_world(q, *l, inertia);
     }
 }
 

@@ -22,7 +22,7 @@
 //! The batch keeps pair order, so every sum is taken in ascending pair order
 //! and the results do not depend on the thread count.
 
-use super::shared::SharedMut;
+use super::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput, SlidingLaw};
 use crate::neighbor::pairs::{PairLoad, SphereLoad};
 use crate::sphere::SPHERE_ID_BITS;
@@ -444,14 +444,4 @@ impl Lanes {
         v[OUT_RSTAR][k] = radius;
         v[OUT_MSTAR][k] = mass;
     }
-}
-
-/// `v[i]` without a bounds check in release builds (checked in debug builds).
-///
-/// # Safety
-/// `i < v.len()`.
-#[inline(always)]
-pub(super) unsafe fn at<T: Copy>(v: &[T], i: usize) -> T {
-    debug_assert!(i < v.len());
-    *v.get_unchecked(i)
 }

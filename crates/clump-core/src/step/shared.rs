@@ -1,4 +1,5 @@
-//! A raw pointer that parallel loops use to write disjoint elements.
+//! A raw pointer that parallel loops use to write disjoint elements, and
+//! unchecked reads for the hot loops.
 
 /// Pointer to the start of a slice, shared across threads. Safety: callers
 /// must write each element from at most one thread at a time, and keep the
@@ -22,4 +23,14 @@ impl<T> SharedMut<T> {
         debug_assert!(i < self.1);
         &mut *self.0.add(i)
     }
+}
+
+/// `v[i]` without a bounds check in release builds (checked in debug builds).
+///
+/// # Safety
+/// `i < v.len()`.
+#[inline(always)]
+pub(crate) unsafe fn at<T: Copy>(v: &[T], i: usize) -> T {
+    debug_assert!(i < v.len());
+    *v.get_unchecked(i)
 }
