@@ -138,6 +138,21 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             ca / la,
             cb / lb
         );
+        // each round's own ratio (the two codes ran back to back): on a
+        // machine whose speed drifts, the median of these is the steadier
+        // figure
+        let mut per_round: Vec<f64> = clump
+            .iter()
+            .zip(&peer)
+            .map(|(c, l)| l.b_seconds / c.b_seconds)
+            .collect();
+        let list: Vec<String> = per_round.iter().map(|r| format!("{r:.2}x")).collect();
+        per_round.sort_by(|a, b| a.total_cmp(b));
+        println!(
+            "phase B ratio per round: {}; median {:.2}x",
+            list.join(", "),
+            per_round[per_round.len() / 2]
+        );
     }
     Ok(())
 }
