@@ -68,6 +68,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         load_j: SharedMut::new(&mut pairs.load_j),
         load_i: SharedMut::new(&mut pairs.load_i),
         avx2: avx2(),
+        prefetch: n >= super::pair_kernel::PREFETCH_MIN_SPHERES,
     };
     let stats = SharedMut::new(stats);
     // one batch per thread, not per chunk (zeroing it per chunk cost 4 % of

@@ -48,6 +48,9 @@ pub(super) struct RowCtx<'a> {
     pub load_i: SharedMut<SphereLoad>,
     /// The law loop may use AVX2 (detected once per step).
     pub avx2: bool,
+    /// The detect pass prefetches partner data (beds beyond the caches,
+    /// see [`PREFETCH_MIN_SPHERES`]).
+    pub prefetch: bool,
 }
 
 impl RowCtx<'_> {
@@ -83,6 +86,15 @@ impl RowCtx<'_> {
                 at(self.row_start, i + 1) as usize,
             );
             for p in p0..p1 {
+                // the partner a few pairs ahead: its centre, radius and velocity,
+                // which in a bed larger than the caches may lie far away in
+                // memory (Morton neighbours across a coarse cell boundary)
+                if self.prefetch && p + PREFETCH < np {
+                    let ahead = at(self.topo, p + PREFETCH).j as usize;
+                    prefetch(sp.position.as_ptr().add(ahead));
+                    prefetch(sp.radius.as_ptr().add(ahead));
+                    prefetch(sp.velocity.as_ptr().add(ahead));
+                }
                 let t = at(self.topo, p);
                 let j = t.j as usize;
                 let d = xi - self.partner_position(j, t.shift);
@@ -283,6 +295,29 @@ fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
             }
         }
     }
+}
+
+/// How many candidate pairs ahead the detect pass prefetches the partner's
+/// data.
+const PREFETCH: usize = 16;
+
+/// Spheres from which the detect pass prefetches: measured on settled tetra
+/// beds (one thread), prefetching gains 5–10 % at 93 000 spheres, whose data
+/// exceed the L3 cache, and costs 12 % at 8 000, whose data fit (the extra
+/// instructions then buy nothing).
+pub(super) const PREFETCH_MIN_SPHERES: usize = 50_000;
+
+/// Asks the processor to bring the cache line at `x` into L1 (a hint; no
+/// effect on results, and none on other architectures).
+#[inline(always)]
+fn prefetch<T>(x: *const T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch never faults, whatever the address.
+    unsafe {
+        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(x as *const i8)
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = x;
 }
 
 /// Touching pairs per batch (stack arrays; no allocation).
