@@ -1,7 +1,8 @@
 //! Force stage: per-pair contact forces over the rows of the half list
-//! (each pair's force is computed once; sphere `i`'s side is summed while its
-//! row is evaluated, sphere `j`'s side is stored with the pair), then a
-//! per-body gather in a fixed order with sphere–wall contacts and gravity.
+//! (each pair's force is computed once, in batches, by `step::pair_kernel`;
+//! sphere `i`'s side is summed while its row is evaluated, sphere `j`'s side
+//! is stored in `j`'s column), then a per-body gather in a fixed order with
+//! sphere–wall contacts and gravity, which also applies the final kick.
 //!
 //! Body force and torque (seed eq. 4.87–4.88), world frame:
 //! `F = m g + Σ_s F_s`, `M = Σ_s [(x_s − r_cm) × F_s + T_s]`, where `F_s` is

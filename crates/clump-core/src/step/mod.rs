@@ -9,15 +9,19 @@
 //! 3. Neighbour search ([`rebuild`]), only when a sphere moved more than half
 //!    the skin. Bodies are wrapped, lost bodies removed and the rest Morton-sorted
 //!    here. A future MPI layer exchanges ghost spheres at this stage.
-//! 4. [`force`]: per-pair forces (sphere pairs of different bodies), then a
-//!    per-body gather in a fixed order with sphere–wall contacts and gravity.
+//! 4. [`force`]: per-pair forces (sphere pairs of different bodies, the
+//!    batched `pair_kernel`), then a per-body gather in a fixed order with
+//!    sphere–wall contacts and gravity.
 //!    F = Σ f, M = Σ (x_c − r_cm) × f (seed eq. 4.87–4.88).
-//! 5. [`integrate::FinalKick`]: second half kick, applied by the gather to
-//!    each body as soon as its force and torque are summed (same pass).
+//! 5. Final integrate (`integrate::FinalKick`): second half kick, applied by
+//!    the gather to each body as soon as its force and torque are summed
+//!    (same pass).
 //!
 //! Every parallel loop writes disjoint outputs and every reduction runs over
 //! fixed-size chunks in a fixed order, so the results are bit-identical for
-//! any thread count.
+//! any thread count. Each loop gives every thread one contiguous run of
+//! chunks (`affinity`), balanced by measured time; the cuts never change
+//! the results.
 
 pub(crate) mod affinity;
 pub mod force;
