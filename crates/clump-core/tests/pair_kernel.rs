@@ -13,9 +13,8 @@ use clump_core::contact::{
     ContactHistory, ContactInput, DampingLaw, Material, NormalLaw, PairProperties, RollingLaw,
 };
 use clump_core::multi_contact::MultiContact;
-use clump_core::rotation::RotationScheme;
 use clump_core::shape::{ClumpTemplate, Sphere};
-use clump_core::world::{AddedMass, ContactTable, World, WorldConfig};
+use clump_core::world::{ContactTable, World};
 use common::Lcg;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -66,20 +65,17 @@ fn pair_props(a: usize, b: usize) -> PairProperties {
 fn cloud(multi: MultiContact) -> World {
     let mats = materials();
     let table = ContactTable::new(&mats, pair_props).expect("table");
-    let config = WorldConfig {
-        domain: Domain {
-            lo: DVec3::splat(-0.05),
-            hi: DVec3::splat(0.05),
-            periodic: [false; 3],
-        },
-        gravity: DVec3::new(0.0, 0.0, -9.81),
-        dt: 1e-5,
-        rotation: RotationScheme::default(),
-        added_mass: AddedMass::default(),
-        skin: None,
-        multi_contact: multi,
+    let domain = Domain {
+        lo: DVec3::splat(-0.05),
+        hi: DVec3::splat(0.05),
+        periodic: [false; 3],
     };
-    let mut w = World::new(config, mats, table);
+    let mut w = common::world(mats[0], PairProperties::default(), 1e-5, domain, DVec3::Z);
+    // two particle materials, their three models, no wall material
+    w.materials = mats;
+    w.contact_table = table;
+    w.config.gravity = DVec3::new(0.0, 0.0, -9.81);
+    w.config.multi_contact = multi;
     let r = 1e-3;
     let dimer = ClumpTemplate::from_spheres(
         "dimer",
