@@ -315,7 +315,8 @@ impl ContactModel {
     /// Rolling couple on `i` (N m, world) of the contact `c` whose normal
     /// force is `f_n` (N) and normal stiffness `kn` (N/m, from
     /// [`SlidingLaw::evaluate`]), updating the EPSD spring `m_r` (N m,
-    /// world); with the EPSD spring's elastic energy (J) for that law.
+    /// world); with the EPSD spring's elastic energy (J) for that law. Reads
+    /// `c.normal`, `c.rel_omega`, `c.radius`, `c.mass` and `c.dt` only.
     #[inline(always)]
     pub fn rolling_couple(
         &self,

@@ -15,6 +15,13 @@
 //! boundaries are fixed sizes, every chunk writes its own outputs, and every
 //! reduction over chunks runs in chunk order afterwards.
 
+/// Index of the first half step's [`Balance`] in `World::balance`.
+pub(crate) const INITIAL_LOOP: usize = 0;
+/// Index of the pair loop's [`Balance`].
+pub(crate) const PAIR_LOOP: usize = 1;
+/// Index of the gather's [`Balance`].
+pub(crate) const GATHER_LOOP: usize = 2;
+
 /// Cost of the body chunks `0..c` of `chunk` bodies each, from the
 /// cumulative per-body cost `body_cost` (`World::body_cost`, `nb + 1`
 /// entries); one unit per body when that is out of date.

@@ -10,7 +10,7 @@
 //! about the sphere centre, `Σ (x_c − x_s) × f + couples`. This equals
 //! `Σ (x_c − r_cm) × f` over the contacts.
 
-use super::affinity::{body_chunk_cost, for_each_chunk_with};
+use super::affinity::{body_chunk_cost, for_each_chunk_with, GATHER_LOOP, PAIR_LOOP};
 use super::integrate::FinalKick;
 use super::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput};
@@ -68,7 +68,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         overlap: SharedMut::new(&mut pairs.overlap),
         load_j: SharedMut::new(&mut pairs.load_j),
         load_i: SharedMut::new(&mut pairs.load_i),
-        avx2: avx2(),
+        avx2: super::pair_kernel::avx2(),
         prefetch: n >= super::pair_kernel::PREFETCH_MIN_SPHERES,
     };
     let stats = SharedMut::new(stats);
@@ -80,7 +80,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         let s = (c * SPHERE_CHUNK).min(n);
         row_start.get(s).map_or(0, |&p| p as u64) + s as u64
     };
-    let balance = &mut w.balance[1];
+    let balance = &mut w.balance[PAIR_LOOP];
     for_each_chunk_with(nchunks, cost, balance, Batch::default, |batch, c| {
         let s0 = c * SPHERE_CHUNK;
         // SAFETY: chunk c owns rows s0.. of the half list and its statistics
@@ -89,18 +89,6 @@ pub(crate) fn pair_forces(w: &mut World) {
             rows.evaluate(s0..(s0 + SPHERE_CHUNK).min(n), batch, stats.get(c));
         }
     });
-}
-
-/// Whether this processor has AVX2 (the pair kernel's law loop then runs 4
-/// contacts per vector instruction). Detected once, then cached.
-fn avx2() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-        *AVX2.get_or_init(|| std::arch::is_x86_feature_detected!("avx2"))
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    false
 }
 
 /// `average` multi-contact: the scale `1/n` of every pair, `n` being the
@@ -221,7 +209,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
     for_each_chunk_with(
         nchunks,
         body_chunk_cost(body_cost, nb, BODY_CHUNK),
-        &mut balance[2],
+        &mut balance[GATHER_LOOP],
         || {
             (
                 PartnerCounts::default(),
@@ -360,7 +348,8 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                     *torque.get(bi) = m;
                 }
                 if let Some(k) = &kick {
-                    k.apply(bi, v, l, om, f, m);
+                    // SAFETY: bi < nb.
+                    unsafe { k.apply(bi, v, l, om, f, m) };
                 }
                 // --- health statistics (folded into this pass: no extra
                 // sweep): the kinetic energy at the end of the step, after

@@ -4,7 +4,7 @@
 //! factor; a full drift of the centre of mass; and a free-rotation drift of
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
-use super::affinity::{body_chunk_cost, for_each_chunk_with};
+use super::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};
 use super::kinematics::sphere_state;
 use super::shared::{at, SharedMut};
 use crate::neighbor::skin;
@@ -53,7 +53,7 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
     for_each_chunk_with(
         n.div_ceil(BODY_BLOCK),
         cost,
-        &mut w.balance[0],
+        &mut w.balance[INITIAL_LOOP],
         || (),
         |_, blk| {
             let mut stale = false;
@@ -150,8 +150,11 @@ impl<'a> FinalKick<'a> {
     /// Kicks body `i`: its velocity `v` (m/s), angular momentum `l`
     /// (kg m²/s) and angular velocity `om` (rad/s), all world frame, under
     /// the force `f` (N) and torque `m` (N m, about the centre of mass).
+    ///
+    /// # Safety
+    /// `i` is a body index (`i < b.len()`); read unchecked in release builds.
     #[inline(always)]
-    pub(crate) fn apply(
+    pub(crate) unsafe fn apply(
         &self,
         i: usize,
         v: &mut DVec3,
@@ -161,7 +164,6 @@ impl<'a> FinalKick<'a> {
         m: DVec3,
     ) {
         let b = self.b;
-        // SAFETY (all `at`): the gather passes a body index i < n.
         if self.step < unsafe { at(&b.start_step, i) } {
             return;
         }

@@ -29,28 +29,53 @@ use crate::sphere::SPHERE_ID_BITS;
 use crate::world::ContactStats;
 use glam::DVec3;
 
-/// What the pair-force rows read and write.
+/// What the pair-force rows read and write (world frame, SI units).
 pub(super) struct RowCtx<'a> {
+    /// Time step, s.
     pub dt: f64,
+    /// The domain, for periodic image shifts.
     pub domain: crate::boundary::Domain,
+    /// Some axis of the domain is periodic.
     pub any_periodic: bool,
+    /// Sphere state (centres, m; velocities, m/s; radii, m; owners).
     pub sp: &'a crate::sphere::Spheres,
+    /// Body state (angular velocities, rad/s; masses, kg).
     pub b: &'a crate::body::Bodies,
+    /// Contact models per material pair.
     pub table: &'a crate::world::ContactTable,
+    /// Row offsets of the half list, one per sphere plus one.
     pub row_start: &'a [u32],
+    /// Partner and periodic image of each pair.
     pub topo: &'a [crate::neighbor::pairs::PairTopo],
     /// Column slot of each pair (where its `load_j` goes).
     pub col_slot: &'a [u32],
+    /// Multi-contact scale per pair (empty: all 1).
     pub scale: &'a [f64],
+    /// Contact history per pair (written).
     pub hist: SharedMut<ContactHistory>,
+    /// Overlap per pair, m (written).
     pub overlap: SharedMut<f64>,
+    /// `j`-side loads in column order (written).
     pub load_j: SharedMut<PairLoad>,
+    /// Row sums per sphere (written).
     pub load_i: SharedMut<SphereLoad>,
-    /// The law loop may use AVX2 (detected once per step).
+    /// The law loop may use AVX2 ([`avx2`]).
     pub avx2: bool,
     /// The detect pass prefetches partner data (beds beyond the caches,
     /// see [`PREFETCH_MIN_SPHERES`]).
     pub prefetch: bool,
+}
+
+/// Whether this processor has AVX2 (the law loop then runs 4 contacts per
+/// vector instruction). Detected once, then cached.
+pub(super) fn avx2() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+        *AVX2.get_or_init(|| std::arch::is_x86_feature_detected!("avx2"))
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    false
 }
 
 impl RowCtx<'_> {
@@ -195,6 +220,8 @@ impl RowCtx<'_> {
                     continue;
                 }
                 let p = batch.pair[k] as usize;
+                // the rolling laws read the normal, the relative angular
+                // velocity, R*, m* and dt (not the sliding velocity)
                 let input = ContactInput {
                     normal: l.get3(OUT_N, k),
                     overlap: l.v[OUT_OVERLAP][k],
