@@ -282,7 +282,7 @@ fn write_dump(w: &World, path: &Path) -> Result<()> {
     let mut id = 1;
     for b in order {
         for k in sp.of_body(b) {
-            let x = sp.position[k];
+            let x = sp.position(k);
             writeln!(
                 s,
                 "{id} {} {:.9e} {:.9e} {:.9e} {:.6e}",

@@ -20,9 +20,10 @@ fn bed(nx: usize, settle: u64) -> World {
 fn neighbor_build(c: &mut Criterion) {
     let w = bed(16, 3000);
     let sp = w.spheres();
-    let grid = CellGrid::new(&w.config.domain, &sp.position, 2e-3 + 0.5e-3).unwrap();
+    let position: Vec<DVec3> = sp.positions().collect();
+    let grid = CellGrid::new(&w.config.domain, &position, 2e-3 + 0.5e-3).unwrap();
     let inp = BuildInput {
-        position: &sp.position,
+        position: &position,
         radius: &sp.radius,
         body: &sp.body,
         gid: &sp.gid,

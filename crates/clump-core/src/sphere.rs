@@ -31,16 +31,58 @@ pub struct Spheres {
     pub radius: Vec<f64>,
     /// Material index.
     pub material: Vec<u16>,
-    /// Centre, world frame, m. Not wrapped: it is the owner's centre of mass
-    /// plus the rotated body-frame offset, so it may lie outside a periodic box.
-    pub position: Vec<DVec3>,
-    /// Velocity of the centre, world frame, m/s.
-    pub velocity: Vec<DVec3>,
+    /// Centre and velocity of each sphere, with its radius, owner and
+    /// material, one cache line per sphere ([`SphereState`]).
+    pub state: Vec<SphereState>,
     /// First sphere of each body; `body_first[n_bodies]` = number of spheres.
     pub body_first: Vec<u32>,
 }
 
+/// What the contact kernels read of a sphere, packed into one 64-byte cache
+/// line: the pair kernel fetches a partner sphere (often far away in
+/// memory in a large bed) with a single cache miss instead of one per
+/// array. Position and velocity live only here; radius, owner and material
+/// are copies of the topology arrays of [`Spheres`], written with them
+/// whenever the topology is rebuilt.
+#[repr(C, align(64))]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SphereState {
+    /// Centre, world frame, m. Not wrapped: it is the owner's centre of mass
+    /// plus the rotated body-frame offset, so it may lie outside a periodic box.
+    pub position: DVec3,
+    /// Radius, m.
+    pub radius: f64,
+    /// Velocity of the centre, world frame, m/s.
+    pub velocity: DVec3,
+    /// Storage index of the owner body.
+    pub body: u32,
+    /// Material index.
+    pub material: u16,
+}
+
 impl Spheres {
+    /// Centre of sphere `s`, world frame, m (see [`SphereState::position`]).
+    #[inline(always)]
+    pub fn position(&self, s: usize) -> DVec3 {
+        self.state[s].position
+    }
+
+    /// Velocity of the centre of sphere `s`, world frame, m/s.
+    #[inline(always)]
+    pub fn velocity(&self, s: usize) -> DVec3 {
+        self.state[s].velocity
+    }
+
+    /// Centres of all spheres in storage order, world frame, m.
+    pub fn positions(&self) -> impl ExactSizeIterator<Item = DVec3> + '_ {
+        self.state.iter().map(|x| x.position)
+    }
+
+    /// Velocities of all spheres in storage order, world frame, m/s.
+    pub fn velocities(&self) -> impl ExactSizeIterator<Item = DVec3> + '_ {
+        self.state.iter().map(|x| x.velocity)
+    }
+
     /// Number of spheres.
     pub fn len(&self) -> usize {
         self.body.len()

@@ -159,7 +159,7 @@ fn mesh_drum_carries_a_clump_in_rigid_rotation_until_it_tips_or_slips() {
             let sp = w.spheres();
             let mut touching = 0;
             for k in sp.of_body(b) {
-                let xs = sp.position[k];
+                let xs = sp.position(k);
                 let radial = DVec3::new(xs.x, 0.0, xs.z) - DVec3::new(c.x, 0.0, c.z);
                 // (the facets lie up to RD (1 − cos(π/360)) ≈ 2 µm inside the circle)
                 if radial.length() + sp.radius[k] < RD - 1e-5 {

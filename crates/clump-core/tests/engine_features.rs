@@ -391,7 +391,7 @@ fn periodic_clump_straddling_the_boundary() {
             let sp = w.spheres();
             straddled |= sp
                 .of_body(ia)
-                .any(|k| sp.position[k].x + 0.005 > 0.1 || sp.position[k].x - 0.005 < 0.0);
+                .any(|k| sp.position(k).x + 0.005 > 0.1 || sp.position(k).x - 0.005 < 0.0);
         }
         let (ia, ic) = (w.body_index(a).unwrap(), w.body_index(c).unwrap());
         (
@@ -527,7 +527,7 @@ fn ten_to_one_size_ratio() {
         for i in 0..sp.len() {
             for j in i + 1..sp.len() {
                 if sp.body[i] != sp.body[j]
-                    && (sp.position[i] - sp.position[j]).length() < sp.radius[i] + sp.radius[j]
+                    && (sp.position(i) - sp.position(j)).length() < sp.radius[i] + sp.radius[j]
                 {
                     brute += 1;
                     if sp.radius[i] != sp.radius[j] {

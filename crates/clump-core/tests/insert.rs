@@ -127,7 +127,7 @@ fn pack_300_tetra_no_overlap_inside() {
     w.prepare().unwrap();
     let sp = w.spheres();
     let es: Vec<_> = (0..sp.len())
-        .map(|i| (sp.position[i], sp.radius[i], sp.body[i] as usize))
+        .map(|i| (sp.position(i), sp.radius[i], sp.body[i] as usize))
         .collect();
     assert!(worst_overlap(&es) <= 1e-12);
     assert_eq!(w.stats.pair_contacts, 0);

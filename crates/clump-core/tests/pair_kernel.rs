@@ -135,7 +135,7 @@ fn reference(w: &World, multi: MultiContact) -> HashMap<u64, (DVec3, DVec3)> {
     for i in 0..n {
         for j in i + 1..n {
             let (bi, bj) = (sp.body[i] as usize, sp.body[j] as usize);
-            let d = sp.position[i] - sp.position[j];
+            let d = sp.position(i) - sp.position(j);
             let rsum = sp.radius[i] + sp.radius[j];
             if bi != bj && d.length_squared() < rsum * rsum {
                 contacts.push((i, j));
@@ -153,11 +153,11 @@ fn reference(w: &World, multi: MultiContact) -> HashMap<u64, (DVec3, DVec3)> {
     for &(i, j) in &contacts {
         let (bi, bj) = (sp.body[i] as usize, sp.body[j] as usize);
         let (ri, rj) = (sp.radius[i], sp.radius[j]);
-        let d = sp.position[i] - sp.position[j];
+        let d = sp.position(i) - sp.position(j);
         let dist = d.length();
         let nrm = d / dist;
         let overlap = ri + rj - dist;
-        let xc = sp.position[i] - nrm * (ri - 0.5 * overlap);
+        let xc = sp.position(i) - nrm * (ri - 0.5 * overlap);
         let vc = |k: usize| b.velocity[k] + b.angular_velocity[k].cross(xc - b.position[k]);
         let input = ContactInput {
             normal: nrm,

@@ -84,7 +84,7 @@ fn xyzq_in_input_frame_places_spheres_as_the_file_says() {
         for (c, r) in SPHERES {
             let expect = x + q * (DVec3::from_array(c) - com);
             let found = (0..sp.len()).any(|k| {
-                (sp.position[k] - expect).length() < 1e-12 && (sp.radius[k] - r).abs() < 1e-15
+                (sp.position(k) - expect).length() < 1e-12 && (sp.radius[k] - r).abs() < 1e-15
             });
             assert!(found, "no sphere of radius {r} at {expect}");
         }
@@ -92,12 +92,12 @@ fn xyzq_in_input_frame_places_spheres_as_the_file_says() {
         let d_expect = q * (DVec3::from_array(SPHERES[1].0) - DVec3::from_array(SPHERES[0].0));
         let near = |p: DVec3| {
             (0..sp.len())
-                .find(|&k| (sp.position[k] - p).length() < 1e-9)
+                .find(|&k| (sp.position(k) - p).length() < 1e-9)
                 .unwrap()
         };
         let k0 = near(x + q * (DVec3::from_array(SPHERES[0].0) - com));
         let k1 = near(x + q * (DVec3::from_array(SPHERES[1].0) - com));
-        assert!((sp.position[k1] - sp.position[k0] - d_expect).length() < 1e-12);
+        assert!((sp.position(k1) - sp.position(k0) - d_expect).length() < 1e-12);
     }
 }
 

@@ -14,13 +14,20 @@ pub type HistoryMap = HashMap<(u64, u64), ContactHistory, rustc_hash::FxBuildHas
 const BLOCK: usize = 512;
 
 /// The partner of one pair in sphere `i`'s row of the half list: sphere `j`
-/// (storage index, always greater than `i`) and the periodic image shift.
+/// (storage index, always greater than `i`), the periodic image shift, and
+/// whether the pair holds contact state (8 bytes in all: the pair kernel's
+/// detect pass reads only this for the common non-touching pair).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct PairTopo {
     /// Sphere index of the partner, `j > i` in storage order.
     pub j: u32,
     /// Periodic image shift: the separation is `x_i − x_j + shift·L`.
     pub shift: [i8; 3],
+    /// The pair touched at its last evaluation, or its history was restored
+    /// (checkpoint or rebuild) and it has not been evaluated since: its
+    /// history and `j`-side load may be non-zero and must be cleared when it
+    /// is found not touching.
+    pub live: bool,
 }
 
 /// What a pair contributes to its sphere `j` (the `i` side is summed per
@@ -43,14 +50,11 @@ pub struct SphereLoad {
     pub torque: DVec3,
 }
 
-/// Marker overlap of a pair whose history was restored (checkpoint or
-/// rebuild) but which has not been evaluated since.
-pub const HISTORY_ONLY: f64 = -1.0;
-
 /// The half pair list, stored by rows: the candidate partners `j > i` of
 /// sphere `i` (storage order, other bodies only) are
 /// `topo[row_start[i]..row_start[i + 1]]`. Each pair is oriented by storage
-/// index (`i < j`); its history is stored in that orientation and carried
+/// index (`i < j`); its history (`tangential`, `rolling`) is stored in that
+/// orientation and carried
 /// across rebuilds by global sphere ids. Reused between builds.
 #[derive(Debug, Clone, Default)]
 pub struct PairList {
@@ -58,12 +62,14 @@ pub struct PairList {
     pub row_start: Vec<u32>,
     /// Partner of each pair.
     pub topo: Vec<PairTopo>,
-    /// Contact history per pair (parallel to `topo`), world frame, oriented
-    /// from `i` to `j`.
-    pub history: Vec<ContactHistory>,
-    /// Overlap of each pair at the last evaluation, m: > 0 touching, 0 not
-    /// touching, [`HISTORY_ONLY`] for a restored history not yet evaluated.
-    pub overlap: Vec<f64>,
+    /// Tangential spring of each pair (parallel to `topo`), world frame, m,
+    /// oriented from `i` to `j` ([`ContactHistory::tangential`]).
+    pub tangential: Vec<DVec3>,
+    /// Rolling spring of each pair (parallel to `topo`), world frame, N m,
+    /// oriented from `i` to `j` ([`ContactHistory::rolling`]). Kept apart
+    /// from the tangential springs: laws without rolling resistance never
+    /// touch it, so the pair kernel streams half the history bytes.
+    pub rolling: Vec<DVec3>,
     /// What each pair contributes to its sphere `j`, in column order: pair
     /// `p`'s entry is `load_j[col_slot[p]]`, so that sphere `s`'s entries are
     /// the contiguous `load_j[col_start[s]..col_start[s + 1]]` (the gather
@@ -173,7 +179,10 @@ impl PairList {
         out.clear();
         for i in 0..self.row_start.len().saturating_sub(1) {
             for p in self.row(i) {
-                let h = self.history[p];
+                let h = ContactHistory {
+                    tangential: self.tangential[p],
+                    rolling: self.rolling[p],
+                };
                 if h != ContactHistory::default() {
                     let (gi, gj) = (gid[i], gid[self.topo[p].j as usize]);
                     if gi < gj {
@@ -260,7 +269,11 @@ impl PairList {
                         // SAFETY: sphere i's candidates own the range
                         // row_start[i]..row_start[i + 1]; blocks are disjoint.
                         unsafe {
-                            *out.get(k) = PairTopo { j, shift };
+                            *out.get(k) = PairTopo {
+                                j,
+                                shift,
+                                live: false,
+                            };
                         }
                         k += 1;
                     });
@@ -271,32 +284,36 @@ impl PairList {
         // 5. restore the history of pairs that persist (stored from the lower
         //    to the higher global id; pairs here run from i to j > i)
         let gid = inp.gid;
-        self.overlap.clear();
-        self.overlap.resize(acc, 0.0);
-        self.history.clear();
-        self.history.resize(acc, ContactHistory::default());
+        self.tangential.clear();
+        self.tangential.resize(acc, DVec3::ZERO);
+        self.rolling.clear();
+        self.rolling.resize(acc, DVec3::ZERO);
         self.load_j.clear();
         self.load_j.resize(acc, PairLoad::default());
         self.load_i.clear();
         self.load_i.resize(n, SphereLoad::default());
         self.scale.clear();
         if !history.is_empty() {
-            let hist = crate::step::shared::SharedMut::new(&mut self.history);
-            let ov = crate::step::shared::SharedMut::new(&mut self.overlap);
-            let (rows, topo) = (&self.row_start, &self.topo);
+            let tan = crate::step::shared::SharedMut::new(&mut self.tangential);
+            let rol = crate::step::shared::SharedMut::new(&mut self.rolling);
+            let topo = crate::step::shared::SharedMut::new(&mut self.topo);
+            let rows = &self.row_start;
             (0..n).into_par_iter().with_min_len(BLOCK).for_each(|i| {
                 for p in rows[i] as usize..rows[i + 1] as usize {
-                    let (gi, gj) = (gid[i], gid[topo[p].j as usize]);
+                    // SAFETY: pair p belongs to row i only.
+                    let t = unsafe { topo.get(p) };
+                    let (gi, gj) = (gid[i], gid[t.j as usize]);
                     let old = if gi < gj {
                         history.get(&(gi, gj)).copied()
                     } else {
                         history.get(&(gj, gi)).map(|h| reversed(*h))
                     };
                     if let Some(h) = old {
+                        t.live = true;
                         // SAFETY: pair p belongs to row i only.
                         unsafe {
-                            *hist.get(p) = h;
-                            *ov.get(p) = HISTORY_ONLY;
+                            *tan.get(p) = h.tangential;
+                            *rol.get(p) = h.rolling;
                         }
                     }
                 }

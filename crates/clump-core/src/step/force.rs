@@ -61,11 +61,11 @@ pub(crate) fn pair_forces(w: &mut World) {
         b: &w.bodies,
         table: &w.contact_table,
         row_start: &pairs.row_start,
-        topo: &pairs.topo,
+        topo: SharedMut::new(&mut pairs.topo),
         col_slot: &pairs.col_slot,
         scale: &pairs.scale,
-        hist: SharedMut::new(&mut pairs.history),
-        overlap: SharedMut::new(&mut pairs.overlap),
+        tangential: SharedMut::new(&mut pairs.tangential),
+        rolling: SharedMut::new(&mut pairs.rolling),
         load_j: SharedMut::new(&mut pairs.load_j),
         load_i: SharedMut::new(&mut pairs.load_i),
         avx2: super::pair_kernel::avx2(),
@@ -108,12 +108,12 @@ fn average_scales(w: &mut World) {
     let touching = |i: usize, p: usize| {
         let t = topo[p];
         let j = t.j as usize;
-        let mut xj = sp.position[j];
+        let mut xj = sp.position(j);
         if any_periodic && t.shift != [0; 3] {
             xj -= domain.shift_vector(t.shift);
         }
         let rsum = sp.radius[i] + sp.radius[j];
-        sp.position[i].distance_squared(xj) < rsum * rsum
+        sp.position(i).distance_squared(xj) < rsum * rsum
     };
     (0..nb.div_ceil(BODY_CHUNK)).into_par_iter().for_each_init(
         PartnerCounts::default,
@@ -230,7 +230,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                 for s in spheres.clone() {
                     // SAFETY: the pair list was built for these spheres (a
                     // rebuild precedes every gather after a change).
-                    let (l, x) = unsafe { (pairs.sphere_load(s), at(&sp.position, s)) };
+                    let (l, x) = unsafe { (pairs.sphere_load(s), at(&sp.state, s).position) };
                     f += l.force;
                     m += (x - com).cross(l.force) + l.torque;
                 }
@@ -243,7 +243,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                             for wi in candidates(s) {
                                 let k = walls[wi].shape.contacts(
                                     meshes,
-                                    sp.position[s],
+                                    sp.position(s),
                                     sp.radius[s],
                                     0.0,
                                     &mut buf,
@@ -289,7 +289,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                             let wall = &walls[wi];
                             let k =
                                 wall.shape
-                                    .contacts(meshes, sp.position[s], sp.radius[s], 0.0, buf);
+                                    .contacts(meshes, sp.position(s), sp.radius[s], 0.0, buf);
                             let is_mesh = matches!(wall.shape, WallShape::Mesh { .. });
                             for touch in &buf[..k] {
                                 let (slot_key, old) = if is_mesh {
@@ -503,7 +503,7 @@ impl WallCtx<'_> {
         let wall = &self.walls[wi];
         let r = self.sp.radius[s];
         let n = touch.normal;
-        let xc = self.sp.position[s] - n * (r - 0.5 * touch.overlap);
+        let xc = self.sp.position(s) - n * (r - 0.5 * touch.overlap);
         let bi = self.bi;
         let wb = self.b.angular_velocity[bi];
         let v_body = point_velocity(self.com, self.b.velocity[bi], wb, xc);

@@ -40,8 +40,7 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
     let (ff, tf, start, tmpl) = (&b.force_flag, &b.torque_flag, &b.start_step, &b.template);
     let sp = &mut w.spheres;
     let spheres = spheres && w.reference_position.len() == sp.len();
-    let sx = SharedMut::new(&mut sp.position);
-    let sv = SharedMut::new(&mut sp.velocity);
+    let sst = SharedMut::new(&mut sp.state);
     let (first, tfirst, toff, xref) = (
         &sp.body_first,
         &w.template_first,
@@ -94,10 +93,9 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
                         let off = unsafe { at(toff, o0 + k) };
                         let (px, pv) = sphere_state(*x, &rot, *v, *om, off);
                         // SAFETY: the spheres of body i are written by its block only.
-                        unsafe {
-                            *sx.get(s) = px;
-                            *sv.get(s) = pv;
-                        }
+                        let st = unsafe { sst.get(s) };
+                        st.position = px;
+                        st.velocity = pv;
                         stale |= skin::moved_too_far(px, unsafe { at(xref, s) }, limit2);
                     }
                 }

@@ -24,15 +24,14 @@ pub fn update_spheres(w: &mut World) {
     let b = &w.bodies;
     let sp = &mut w.spheres;
     let (tf, toff) = (&w.template_first, &w.template_offset);
-    sp.position
+    sp.state
         .par_iter_mut()
-        .zip(sp.velocity.par_iter_mut())
-        .zip(sp.body.par_iter().zip(sp.index_in_template.par_iter()))
+        .zip(sp.index_in_template.par_iter())
         .with_min_len(1024)
-        .for_each(|((x, v), (&bi, &k))| {
-            let bi = bi as usize;
+        .for_each(|(st, &k)| {
+            let bi = st.body as usize;
             let off = toff[(tf[b.template[bi] as usize] + k) as usize];
-            (*x, *v) = sphere_state(
+            (st.position, st.velocity) = sphere_state(
                 b.position[bi],
                 &DMat3::from_quat(b.orientation[bi]),
                 b.velocity[bi],

@@ -16,14 +16,14 @@
 //!    per instruction with AVX2, chosen at run time; 2 with the baseline
 //!    SSE2); vector and scalar IEEE arithmetic give the same bits;
 //! 4. *scatter*: rolling couples (for laws that have one), then each pair's
-//!    `j` side, history and overlap are stored and its `i` side is added to
+//!    `j` side and history are stored (and the pair marked live) and its `i` side is added to
 //!    its row's sum, in pair order.
 //!
 //! The batch keeps pair order, so every sum is taken in ascending pair order
 //! and the results do not depend on the thread count.
 
 use super::shared::{at, SharedMut};
-use crate::contact::{ContactHistory, ContactInput, SlidingLaw};
+use crate::contact::{ContactInput, SlidingLaw};
 use crate::neighbor::pairs::{PairLoad, SphereLoad};
 use crate::sphere::SPHERE_ID_BITS;
 use crate::world::ContactStats;
@@ -45,16 +45,18 @@ pub(super) struct RowCtx<'a> {
     pub table: &'a crate::world::ContactTable,
     /// Row offsets of the half list, one per sphere plus one.
     pub row_start: &'a [u32],
-    /// Partner and periodic image of each pair.
-    pub topo: &'a [crate::neighbor::pairs::PairTopo],
+    /// Partner, periodic image and live flag of each pair (the flag is
+    /// written).
+    pub topo: SharedMut<crate::neighbor::pairs::PairTopo>,
     /// Column slot of each pair (where its `load_j` goes).
     pub col_slot: &'a [u32],
     /// Multi-contact scale per pair (empty: all 1).
     pub scale: &'a [f64],
-    /// Contact history per pair (written).
-    pub hist: SharedMut<ContactHistory>,
-    /// Overlap per pair, m (written).
-    pub overlap: SharedMut<f64>,
+    /// Tangential spring per pair, m (written).
+    pub tangential: SharedMut<DVec3>,
+    /// Rolling spring per pair, N m (written by laws with rolling
+    /// resistance only).
+    pub rolling: SharedMut<DVec3>,
     /// `j`-side loads in column order (written).
     pub load_j: SharedMut<PairLoad>,
     /// Row sums per sphere (written).
@@ -83,8 +85,8 @@ impl RowCtx<'_> {
     /// using `batch` as scratch.
     ///
     /// # Safety
-    /// No other thread touches these rows (their pairs' history, overlap and
-    /// `load_j`, and the spheres' `load_i`) during the call. The pair list
+    /// No other thread touches these rows (their pairs' topology, history
+    /// and `load_j`, and the spheres' `load_i`) during the call. The pair list
     /// must be consistent with the spheres (every index in range), which
     /// every rebuild guarantees; indexing is unchecked in this hot loop
     /// (checked in debug builds).
@@ -98,14 +100,15 @@ impl RowCtx<'_> {
         let sp = self.sp;
         let n = sp.len();
         let np = self.topo.len();
+        let topo = &self.topo;
         debug_assert!(self.row_start.len() == n + 1 && spheres.end <= n);
         debug_assert!(self.row_start[n] as usize == np);
         // the batch length lives in a register during the detect pass
         let mut len = 0usize;
         for i in spheres {
             *self.load_i.get(i) = SphereLoad::default();
-            let xi = at(&sp.position, i);
-            let ri = at(&sp.radius, i);
+            let si = self.sphere(i);
+            let (xi, ri) = (si.position, si.radius);
             let (p0, p1) = (
                 at(self.row_start, i) as usize,
                 at(self.row_start, i + 1) as usize,
@@ -115,15 +118,13 @@ impl RowCtx<'_> {
                 // which in a bed larger than the caches may lie far away in
                 // memory (Morton neighbours across a coarse cell boundary)
                 if self.prefetch && p + PREFETCH < np {
-                    let ahead = at(self.topo, p + PREFETCH).j as usize;
-                    prefetch(sp.position.as_ptr().add(ahead));
-                    prefetch(sp.radius.as_ptr().add(ahead));
-                    prefetch(sp.velocity.as_ptr().add(ahead));
+                    let ahead = topo.read(p + PREFETCH).j as usize;
+                    prefetch(sp.state.as_ptr().add(ahead));
                 }
-                let t = at(self.topo, p);
+                let t = topo.read(p);
                 let j = t.j as usize;
                 let d = xi - self.partner_position(j, t.shift);
-                let rsum = ri + at(&sp.radius, j);
+                let rsum = ri + self.sphere(j).radius;
                 let touching = d.length_squared() < rsum * rsum;
                 // branch-free compaction: the slot is always written, kept
                 // only when touching (len < BATCH here)
@@ -131,14 +132,12 @@ impl RowCtx<'_> {
                 *batch.pair.get_unchecked_mut(len) = p as u32;
                 *batch.row.get_unchecked_mut(len) = i as u32;
                 len += touching as usize;
-                if !touching {
-                    let o = self.overlap.get(p);
+                if !touching && t.live {
                     // not touching: clear what a previous contact left
-                    if *o != 0.0 {
-                        *o = 0.0;
-                        *self.hist.get(p) = ContactHistory::default();
-                        *self.load_j.get(at(self.col_slot, p) as usize) = PairLoad::default();
-                    }
+                    self.topo.get(p).live = false;
+                    *self.tangential.get(p) = DVec3::ZERO;
+                    *self.rolling.get(p) = DVec3::ZERO;
+                    *self.load_j.get(at(self.col_slot, p) as usize) = PairLoad::default();
                 }
                 if len == BATCH {
                     batch.len = len;
@@ -151,11 +150,21 @@ impl RowCtx<'_> {
         self.contacts(batch, stat);
     }
 
+    /// Sphere `s`'s packed state.
+    ///
+    /// # Safety
+    /// `s` is a sphere index (unchecked in release builds).
+    #[inline(always)]
+    unsafe fn sphere(&self, s: usize) -> &crate::sphere::SphereState {
+        debug_assert!(s < self.sp.state.len());
+        self.sp.state.get_unchecked(s)
+    }
+
     /// Centre of sphere `j` as seen across the periodic image `shift`
     /// (world, m).
     #[inline(always)]
     unsafe fn partner_position(&self, j: usize, shift: [i8; 3]) -> DVec3 {
-        let x = at(&self.sp.position, j);
+        let x = self.sphere(j).position;
         if self.any_periodic && shift != [0; 3] {
             x - self.domain.shift_vector(shift)
         } else {
@@ -178,20 +187,21 @@ impl RowCtx<'_> {
         for k in 0..len {
             let p = batch.pair[k] as usize;
             let i = batch.row[k] as usize;
-            let t = at(self.topo, p);
+            let t = self.topo.read(p);
             let j = t.j as usize;
-            let d = at(&sp.position, i) - self.partner_position(j, t.shift);
-            let dv = at(&sp.velocity, i) - at(&sp.velocity, j);
-            let (bi, bj) = (at(&sp.body, i) as usize, at(&sp.body, j) as usize);
+            let (si, sj) = (self.sphere(i), self.sphere(j));
+            let d = si.position - self.partner_position(j, t.shift);
+            let dv = si.velocity - sj.velocity;
+            let (bi, bj) = (si.body as usize, sj.body as usize);
             let (wi, wj) = (at(&b.angular_velocity, bi), at(&b.angular_velocity, bj));
-            let h = self.hist.get(p).tangential;
+            let h = self.tangential.read(p);
             l.set3(IN_D, k, d);
             l.set3(IN_DV, k, dv);
             l.set3(IN_WI, k, wi);
             l.set3(IN_WJ, k, wj);
             l.set3(IO_XI, k, h);
-            l.v[IN_RI][k] = at(&sp.radius, i);
-            l.v[IN_RJ][k] = at(&sp.radius, j);
+            l.v[IN_RI][k] = si.radius;
+            l.v[IN_RJ][k] = sj.radius;
             l.v[IN_MI][k] = at(&b.mass, bi);
             l.v[IN_MJ][k] = at(&b.mass, bj);
             l.v[IN_SCALE][k] = if self.scale.is_empty() {
@@ -231,9 +241,12 @@ impl RowCtx<'_> {
                     mass: l.v[OUT_MSTAR][k],
                     dt: self.dt,
                 };
-                let h = self.hist.get(p);
-                let (couple, e_r) =
-                    model.rolling_couple(&input, l.v[OUT_FN][k], l.v[OUT_KN][k], &mut h.rolling);
+                let (couple, e_r) = model.rolling_couple(
+                    &input,
+                    l.v[OUT_FN][k],
+                    l.v[OUT_KN][k],
+                    self.rolling.get(p),
+                );
                 let couple = couple * l.v[IN_SCALE][k];
                 l.set3(OUT_TI, k, l.get3(OUT_TI, k) + couple);
                 l.set3(OUT_TJ, k, l.get3(OUT_TJ, k) - couple);
@@ -253,13 +266,16 @@ impl RowCtx<'_> {
                 force: -f,
                 torque: l.get3(OUT_TJ, k),
             };
-            self.hist.get(p).tangential = l.get3(IO_XI, k);
+            *self.tangential.get(p) = l.get3(IO_XI, k);
+            let t = self.topo.get(p);
+            if !t.live {
+                t.live = true;
+            }
             let overlap = l.v[OUT_OVERLAP][k];
-            *self.overlap.get(p) = overlap;
             stat.elastic_energy += l.v[OUT_ENERGY][k] * l.v[IN_SCALE][k];
             let rmin = l.v[IN_RI][k].min(l.v[IN_RJ][k]);
             if overlap > stat.max_overlap_ratio * rmin {
-                let j = at(self.topo, p).j as usize;
+                let j = self.topo.read(p).j as usize;
                 stat.max_overlap_ratio = overlap / rmin;
                 stat.max_overlap_bodies = [
                     at(&sp.gid, i) >> SPHERE_ID_BITS,
@@ -274,9 +290,9 @@ impl RowCtx<'_> {
     /// Index in the contact table of the model of pair `p` in row `i`.
     #[inline(always)]
     unsafe fn model_index(&self, i: usize, p: usize) -> u32 {
-        let j = at(self.topo, p).j as usize;
+        let j = self.topo.read(p).j as usize;
         self.table
-            .index(at(&self.sp.material, i), at(&self.sp.material, j))
+            .index(self.sphere(i).material, self.sphere(j).material)
     }
 }
 
@@ -328,11 +344,12 @@ fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
 /// data.
 const PREFETCH: usize = 16;
 
-/// Spheres from which the detect pass prefetches: measured on settled tetra
-/// beds (one thread), prefetching gains 5–10 % at 93 000 spheres, whose data
-/// exceed the L3 cache, and costs 12 % at 8 000, whose data fit (the extra
-/// instructions then buy nothing).
-pub(super) const PREFETCH_MIN_SPHERES: usize = 50_000;
+/// Spheres from which the detect pass prefetches: from about 1 MiB of
+/// packed sphere state (64 B each), a typical per-core L2. Measured on
+/// settled tetra beds, one thread: at 40 000 spheres prefetching cuts the
+/// pair stage from 115 to 96 ns per sphere-step; at 8 000, whose data fit,
+/// it costs about 8 % (the extra instructions then buy nothing).
+pub(super) const PREFETCH_MIN_SPHERES: usize = 16_384;
 
 /// Asks the processor to bring the cache line at `x` into L1 (a hint; no
 /// effect on results, and none on other architectures).

@@ -80,7 +80,7 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
                 .map(|(&x, &q)| (x, q)),
         );
         w.reference_position.clear();
-        w.reference_position.extend_from_slice(&w.spheres.position);
+        w.reference_position.extend(w.spheres.positions());
         w.topology_dirty = false;
     } else {
         // positions at the last build, recomputed from the stored poses
@@ -98,7 +98,7 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         }
         update_spheres(w);
         w.reference_position.clear();
-        w.reference_position.extend_from_slice(&w.spheres.position);
+        w.reference_position.extend(w.spheres.positions());
         for (b, (x, q)) in current.into_iter().enumerate() {
             w.bodies.position[b] = x;
             w.bodies.orientation[b] = q;
@@ -211,8 +211,12 @@ pub(crate) fn rebuild_sphere_topology(w: &mut World) {
     }
     sp.body_first.push(sp.body.len() as u32);
     let n = sp.body.len();
-    sp.position.resize(n, Default::default());
-    sp.velocity.resize(n, Default::default());
+    sp.state.resize(n, Default::default());
+    for (s, st) in sp.state.iter_mut().enumerate() {
+        st.radius = sp.radius[s];
+        st.body = sp.body[s];
+        st.material = sp.material[s];
+    }
     w.wall_key.resize(n, [0; WALL_SLOTS]);
     w.wall_hist
         .resize(n, [ContactHistory::default(); WALL_SLOTS]);

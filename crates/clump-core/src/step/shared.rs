@@ -23,6 +23,24 @@ impl<T> SharedMut<T> {
         debug_assert!(i < self.1);
         &mut *self.0.add(i)
     }
+
+    /// Reads element `i` (a copy; no reference to the slice is formed).
+    ///
+    /// # Safety
+    /// `i` is in range and no other thread writes it during the call.
+    #[inline(always)]
+    pub(crate) unsafe fn read(&self, i: usize) -> T
+    where
+        T: Copy,
+    {
+        debug_assert!(i < self.1);
+        *self.0.add(i)
+    }
+
+    /// Number of elements.
+    pub(crate) fn len(&self) -> usize {
+        self.1
+    }
 }
 
 /// `v[i]` without a bounds check in release builds (checked in debug builds).

@@ -266,7 +266,7 @@ pub fn heap(spec: &HeapSpec) -> Result<Heap, String> {
     let nb = (rp / BIN).ceil() as usize;
     let mut bins = vec![[0.0f64; SECTORS]; nb];
     let sp = w.spheres();
-    for (s, x) in sp.position.iter().enumerate() {
+    for (s, x) in sp.positions().enumerate() {
         let r = x.x.hypot(x.y);
         if w.bodies.template[sp.body[s] as usize] != t || x.z < 0.0 || r >= rp {
             continue;
@@ -595,14 +595,14 @@ mod tests {
         assert_eq!(top, 2.0 * R);
         w.step().unwrap();
         let sp = w.spheres();
-        assert!(sp.position.len() > 20);
-        for x in &sp.position {
+        assert!(sp.len() > 20);
+        for x in sp.positions() {
             assert!(x.x.hypot(x.y) <= 0.008 - R + 1e-12);
             assert!((x.z - R).abs() <= 0.25 * R + 1e-12, "{x}");
         }
         // centres on the lattice: no two closer than its spacing
-        for (i, a) in sp.position.iter().enumerate() {
-            for b in &sp.position[i + 1..] {
+        for (i, a) in sp.positions().enumerate() {
+            for b in sp.positions().skip(i + 1) {
                 assert!((a.truncate() - b.truncate()).length() > 2.05 * R - 1e-9);
             }
         }
