@@ -87,6 +87,10 @@ pub struct PairList {
     pub col_slot: Vec<u32>,
     /// Offsets of each sphere's column slots, one per sphere plus one.
     pub col_start: Vec<u32>,
+    /// Per sphere: the first row (sphere `i`) with a pair in its column, or
+    /// the sphere itself when its column is empty. Its load is complete once
+    /// the rows from there to its own are evaluated.
+    pub first_feed: Vec<u32>,
     cell_start: Vec<u32>,
     cell_items: Vec<u32>,
     sphere_cell: Vec<[i64; 3]>,
@@ -94,31 +98,44 @@ pub struct PairList {
     cursor: Vec<u32>,
 }
 
-impl PairList {
-    /// Total load on sphere `s` (world frame; N, and N m about its centre):
-    /// its row sum plus the `j` sides of the pairs in its column, in
-    /// ascending pair order (the fixed order that makes the sum independent
-    /// of the thread count).
-    ///
-    /// # Safety
-    /// `s` is a sphere of the list's last build (`s + 1 < col_start.len()`);
-    /// the list is consistent, as every build leaves it. Unchecked in
-    /// release builds (the gather's hot loop), checked in debug builds.
-    #[inline(always)]
-    pub(crate) unsafe fn sphere_load(&self, s: usize) -> SphereLoad {
-        use crate::step::shared::at;
-        let mut l = at(&self.load_i, s);
-        let (c0, c1) = (
-            at(&self.col_start, s) as usize,
-            at(&self.col_start, s + 1) as usize,
-        );
-        debug_assert!(c0 <= c1 && c1 <= self.load_j.len());
-        for pl in self.load_j.get_unchecked(c0..c1) {
+/// Pair force (N) and torque (N m, about the centre of mass `com`) on the
+/// body whose spheres are `spheres`, world frame: per sphere, its row sum
+/// plus the `j` sides of the pairs in its column in ascending pair order,
+/// `F = Σ f_s`, `M = Σ (x_s − com) × f_s + t_s`. The one summation both the
+/// pair kernel (for bodies complete in its thread's run) and the gather
+/// (for the others) use, so either gives the same bits and the results do
+/// not depend on the thread count.
+///
+/// # Safety
+/// `load_i` and `load_j` point to the list's arrays; the spheres are of the
+/// list's last build, their loads are complete and nothing writes them
+/// during the call. Unchecked in release builds (hot loop), checked in
+/// debug builds.
+#[inline(always)]
+pub(crate) unsafe fn body_load(
+    load_i: *const SphereLoad,
+    load_j: *const PairLoad,
+    col_start: &[u32],
+    state: &[crate::sphere::SphereState],
+    spheres: std::ops::Range<usize>,
+    com: DVec3,
+) -> SphereLoad {
+    use crate::step::shared::at;
+    let mut total = SphereLoad::default();
+    for s in spheres {
+        let mut l = *load_i.add(s);
+        let (c0, c1) = (at(col_start, s) as usize, at(col_start, s + 1) as usize);
+        debug_assert!(c0 <= c1);
+        for c in c0..c1 {
+            let pl = &*load_j.add(c);
             l.force += pl.force;
             l.torque += pl.torque;
         }
-        l
+        let x = at(state, s).position;
+        total.force += l.force;
+        total.torque += (x - com).cross(l.force) + l.torque;
     }
+    total
 }
 
 /// Neighbour-cell offsets (all 27).
@@ -337,6 +354,14 @@ impl PairList {
             let c = &mut self.cursor[t.j as usize];
             self.col_slot[p] = *c;
             *c += 1;
+        }
+        self.first_feed.clear();
+        self.first_feed.extend(0..n as u32);
+        for i in (0..n).rev() {
+            for p in self.row(i) {
+                let j = self.topo[p].j as usize;
+                self.first_feed[j] = i as u32;
+            }
         }
     }
 }

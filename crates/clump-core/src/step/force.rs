@@ -15,20 +15,18 @@ use super::integrate::FinalKick;
 use super::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput};
 use crate::multi_contact::{MultiContact, PartnerCounts};
+use crate::neighbor::pairs::body_load;
 use crate::sphere::point_velocity;
 use crate::wall::{WallLoad, WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::{ContactStats, World, WALL_SLOTS};
 use glam::DVec3;
 use rayon::prelude::*;
 
-/// Bodies per gather chunk. Fixed (never derived from the thread count) so
-/// that the chunked reductions of wall loads and statistics are the same for
-/// any number of threads.
+/// Bodies per chunk of the pair stage (the rows of their spheres) and of
+/// the gather. Fixed (never derived from the thread count) so that the
+/// chunked reductions of wall loads and statistics are the same for any
+/// number of threads.
 pub const BODY_CHUNK: usize = 128;
-
-/// Spheres (rows of the half list) per pair-force chunk; fixed for the same
-/// reason as [`BODY_CHUNK`].
-pub const SPHERE_CHUNK: usize = 256;
 
 /// Computes all contact forces and the total force and torque on every body.
 pub fn compute(w: &mut World) {
@@ -47,11 +45,13 @@ pub(crate) fn pair_forces(w: &mut World) {
     } else {
         w.pairs.scale.clear();
     }
-    let n = w.spheres.len();
-    let nchunks = n.div_ceil(SPHERE_CHUNK);
+    let nb = w.bodies.len();
+    let nchunks = nb.div_ceil(BODY_CHUNK);
     let stats = &mut w.chunk_pair_stats;
     stats.clear();
     stats.resize(nchunks, ContactStats::default());
+    w.body_load.resize(nb, Default::default());
+    w.body_ready.resize(nb, false);
     let pairs = &mut w.pairs;
     let rows = RowCtx {
         dt: w.config.dt,
@@ -68,25 +68,36 @@ pub(crate) fn pair_forces(w: &mut World) {
         rolling: SharedMut::new(&mut pairs.rolling),
         load_j: SharedMut::new(&mut pairs.load_j),
         load_i: SharedMut::new(&mut pairs.load_i),
+        col_start: &pairs.col_start,
+        first_feed: &pairs.first_feed,
+        body_load: SharedMut::new(&mut w.body_load),
+        body_ready: SharedMut::new(&mut w.body_ready),
         avx2: super::pair_kernel::avx2(),
-        prefetch: n >= super::pair_kernel::PREFETCH_MIN_SPHERES,
+        prefetch: w.spheres.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
     };
     let stats = SharedMut::new(stats);
-    // one batch per thread, not per chunk (zeroing it per chunk cost 4 % of
-    // the step)
-    // cost estimate: one unit per sphere and per candidate pair
-    let row_start = rows.row_start;
+    // the chunks are the gather's body chunks, so that a body's rows never
+    // straddle two threads; cost estimate: one unit per sphere and per
+    // candidate pair
+    let (row_start, first) = (rows.row_start, &w.spheres.body_first);
     let cost = |c: usize| {
-        let s = (c * SPHERE_CHUNK).min(n);
+        let s = first
+            .get((c * BODY_CHUNK).min(nb))
+            .map_or(0, |&s| s as usize);
         row_start.get(s).map_or(0, |&p| p as u64) + s as u64
     };
     let balance = &mut w.balance[PAIR_LOOP];
-    for_each_chunk_with(nchunks, cost, balance, Batch::default, |batch, c| {
-        let s0 = c * SPHERE_CHUNK;
-        // SAFETY: chunk c owns rows s0.. of the half list and its statistics
-        // slot, no other chunk's.
+    // per thread: one batch (not one per chunk: zeroing it per chunk cost 4 %
+    // of the step) and the first sphere of its run of chunks
+    let init = || (Batch::default(), None::<usize>);
+    for_each_chunk_with(nchunks, cost, balance, init, |(batch, run_start), c| {
+        let b0 = c * BODY_CHUNK;
+        let b1 = (b0 + BODY_CHUNK).min(nb);
+        let run_start = *run_start.get_or_insert(first[b0] as usize);
+        // SAFETY: chunk c owns the rows of bodies b0..b1 of the half list,
+        // their body loads and its statistics slot, no other chunk's.
         unsafe {
-            rows.evaluate(s0..(s0 + SPHERE_CHUNK).min(n), batch, stats.get(c));
+            rows.evaluate(b0..b1, run_start, batch, stats.get(c));
         }
     });
 }
@@ -160,6 +171,8 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
         wall_cull,
         wall_hist,
         body_cost,
+        body_load: body_loads,
+        body_ready,
         balance,
         chunk_stats,
         chunk_pair_stats,
@@ -223,17 +236,28 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
             let b1 = (b0 + BODY_CHUNK).min(nb);
             for bi in b0..b1 {
                 let com = b.position[bi];
-                let mut f = b.mass[bi] * gravity;
-                let mut m = DVec3::ZERO;
                 let spheres = sp.of_body(bi);
-                // --- sphere–sphere contacts: own row sums plus column entries
-                for s in spheres.clone() {
+                // --- sphere–sphere contacts: summed by the pair stage, or
+                // here for a body on the seam between two threads' runs
+                let pl = if body_ready[bi] {
+                    body_loads[bi]
+                } else {
                     // SAFETY: the pair list was built for these spheres (a
-                    // rebuild precedes every gather after a change).
-                    let (l, x) = unsafe { (pairs.sphere_load(s), at(&sp.state, s).position) };
-                    f += l.force;
-                    m += (x - com).cross(l.force) + l.torque;
-                }
+                    // rebuild precedes every gather after a change), and the
+                    // pair stage is over.
+                    unsafe {
+                        body_load(
+                            pairs.load_i.as_ptr(),
+                            pairs.load_j.as_ptr(),
+                            &pairs.col_start,
+                            &sp.state,
+                            spheres.clone(),
+                            com,
+                        )
+                    }
+                };
+                let mut f = b.mass[bi] * gravity + pl.force;
+                let mut m = pl.torque;
                 // --- sphere–wall contacts
                 if nw > 0 {
                     if walls_average {

@@ -24,7 +24,7 @@
 
 use super::shared::{at, SharedMut};
 use crate::contact::{ContactInput, SlidingLaw};
-use crate::neighbor::pairs::{PairLoad, SphereLoad};
+use crate::neighbor::pairs::{body_load, PairLoad, SphereLoad};
 use crate::sphere::SPHERE_ID_BITS;
 use crate::world::ContactStats;
 use glam::DVec3;
@@ -61,6 +61,18 @@ pub(super) struct RowCtx<'a> {
     pub load_j: SharedMut<PairLoad>,
     /// Row sums per sphere (written).
     pub load_i: SharedMut<SphereLoad>,
+    /// Column offsets per sphere, one per sphere plus one.
+    pub col_start: &'a [u32],
+    /// First row feeding each sphere's column ([`PairList::first_feed`]).
+    ///
+    /// [`PairList::first_feed`]: crate::neighbor::PairList::first_feed
+    pub first_feed: &'a [u32],
+    /// Pair force and torque per body (world frame; N, N m about the centre
+    /// of mass), for the bodies marked in `body_ready` (written).
+    pub body_load: SharedMut<SphereLoad>,
+    /// Per body: whether `body_load` holds its pair load this step (written;
+    /// false: the gather sums it).
+    pub body_ready: SharedMut<bool>,
     /// The law loop may use AVX2 ([`avx2`]).
     pub avx2: bool,
     /// The detect pass prefetches partner data (beds beyond the caches,
@@ -81,8 +93,14 @@ pub(super) fn avx2() -> bool {
 }
 
 impl RowCtx<'_> {
-    /// Evaluates the rows `spheres` of the half list (see the module docs),
-    /// using `batch` as scratch.
+    /// Evaluates the rows of the spheres of `bodies` (see the module docs),
+    /// using `batch` as scratch, and sums the pair load of each body whose
+    /// load is then complete: all its rows are done and all the rows feeding
+    /// its columns lie in this thread's run, which starts at sphere
+    /// `run_start` (they run in ascending order, so they are done too). Such
+    /// a body's load is summed while its spheres' loads are still in cache;
+    /// the gather sums the others' (a body on the seam with an earlier
+    /// run). Which does the sum never changes the result ([`body_load`]).
     ///
     /// # Safety
     /// No other thread touches these rows (their pairs' topology, history
@@ -93,7 +111,8 @@ impl RowCtx<'_> {
     #[inline(never)]
     pub(super) unsafe fn evaluate(
         &self,
-        spheres: std::ops::Range<usize>,
+        bodies: std::ops::Range<usize>,
+        run_start: usize,
         batch: &mut Batch,
         stat: &mut ContactStats,
     ) {
@@ -101,11 +120,16 @@ impl RowCtx<'_> {
         let n = sp.len();
         let np = self.topo.len();
         let topo = &self.topo;
-        debug_assert!(self.row_start.len() == n + 1 && spheres.end <= n);
+        debug_assert!(self.row_start.len() == n + 1 && bodies.end < sp.body_first.len());
         debug_assert!(self.row_start[n] as usize == np);
+        let first = &sp.body_first;
+        let spheres = at(first, bodies.start) as usize..at(first, bodies.end) as usize;
+        debug_assert!(spheres.end <= n);
+        // the next body whose load is to be summed
+        let mut next = bodies.start;
         // the batch length lives in a register during the detect pass
         let mut len = 0usize;
-        for i in spheres {
+        for i in spheres.clone() {
             *self.load_i.get(i) = SphereLoad::default();
             let si = self.sphere(i);
             let (xi, ri) = (si.position, si.radius);
@@ -143,11 +167,40 @@ impl RowCtx<'_> {
                     batch.len = len;
                     self.contacts(batch, stat);
                     len = 0;
+                    // the rows before i are complete
+                    self.sum_bodies(&mut next, bodies.end, i, run_start);
                 }
             }
         }
         batch.len = len;
         self.contacts(batch, stat);
+        self.sum_bodies(&mut next, bodies.end, spheres.end, run_start);
+    }
+
+    /// Sums the pair loads of the bodies from `*next` (before `end`) whose
+    /// rows all lie before sphere `done` (see [`Self::evaluate`]).
+    #[inline(never)]
+    unsafe fn sum_bodies(&self, next: &mut usize, end: usize, done: usize, run_start: usize) {
+        let (sp, first) = (self.sp, &self.sp.body_first);
+        while *next < end && at(first, *next + 1) as usize <= done {
+            let b = *next;
+            let spheres = at(first, b) as usize..at(first, b + 1) as usize;
+            let ready = spheres
+                .clone()
+                .all(|s| at(self.first_feed, s) as usize >= run_start);
+            *self.body_ready.get(b) = ready;
+            if ready {
+                *self.body_load.get(b) = body_load(
+                    self.load_i.as_ptr(),
+                    self.load_j.as_ptr(),
+                    self.col_start,
+                    &sp.state,
+                    spheres,
+                    at(&self.b.position, b),
+                );
+            }
+            *next += 1;
+        }
     }
 
     /// Sphere `s`'s packed state.

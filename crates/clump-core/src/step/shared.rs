@@ -37,6 +37,11 @@ impl<T> SharedMut<T> {
         *self.0.add(i)
     }
 
+    /// The start of the slice, for reads through raw pointers.
+    pub(crate) fn as_ptr(&self) -> *const T {
+        self.0
+    }
+
     /// Number of elements.
     pub(crate) fn len(&self) -> usize {
         self.1
