@@ -97,12 +97,8 @@ impl Balance {
 
 /// Calls `f(s, c)` for every chunk `c` in `0..n`, each exactly once, with
 /// one `&mut` scratch value `s` per thread made by `init` (once per call and
-/// thread). `cost(c)` is the estimated cost of chunks `0..c` (non-decreasing,
-/// `cost(0) = 0`): the chunks are cut into as many contiguous runs as the
-/// current rayon pool has threads, run `t` holding the chunks whose cost
-/// falls in its share of the total (see [`Balance`]); each run goes to one
-/// thread, in order. On one thread it is a plain loop. No allocation after
-/// the first call.
+/// thread), the chunks of a run in ascending order (see [`for_each_run`]).
+/// On one thread it is a plain loop. No allocation after the first call.
 pub(crate) fn for_each_chunk_with<S>(
     n: usize,
     cost: impl Fn(usize) -> u64 + Sync,
@@ -110,10 +106,27 @@ pub(crate) fn for_each_chunk_with<S>(
     init: impl Fn() -> S + Sync,
     f: impl Fn(&mut S, usize) + Sync,
 ) {
+    for_each_run(n, cost, balance, |run| {
+        let mut s = init();
+        run.for_each(|c| f(&mut s, c));
+    });
+}
+
+/// Calls `f(run)` for contiguous runs of chunks that together cover `0..n`
+/// once, one run per thread. `cost(c)` is the estimated cost of chunks
+/// `0..c` (non-decreasing, `cost(0) = 0`): the chunks are cut into as many
+/// runs as the current rayon pool has threads, run `t` holding the chunks
+/// whose cost falls in its share of the total (see [`Balance`]). On one
+/// thread it is `f(0..n)`. No allocation after the first call.
+pub(crate) fn for_each_run(
+    n: usize,
+    cost: impl Fn(usize) -> u64 + Sync,
+    balance: &mut Balance,
+    f: impl Fn(std::ops::Range<usize>) + Sync,
+) {
     let threads = rayon::current_num_threads();
     if threads <= 1 || n <= 1 {
-        let mut s = init();
-        (0..n).for_each(|c| f(&mut s, c));
+        f(0..n);
         return;
     }
     let runs = threads.min(MAX_RUNS);
@@ -141,7 +154,7 @@ pub(crate) fn for_each_chunk_with<S>(
         *c = start(t);
     }
     let cuts = &cuts[..=runs];
-    run_parts(0, runs, cuts, &balance.time, &init, &f);
+    run_parts(0, runs, cuts, &balance.time, &f);
     balance.learn(|r| cost(cuts[r + 1]) - cost(cuts[r]));
 }
 
@@ -150,18 +163,16 @@ pub(crate) fn for_each_chunk_with<S>(
 /// allocate, unlike a broadcast): the calling thread keeps the first half
 /// and an idle thread takes the second, so with two threads each keeps its
 /// run from one loop to the next.
-fn run_parts<S>(
+fn run_parts(
     t0: usize,
     t1: usize,
     cuts: &[usize],
     time: &[std::sync::atomic::AtomicU64],
-    init: &(impl Fn() -> S + Sync),
-    f: &(impl Fn(&mut S, usize) + Sync),
+    f: &(impl Fn(std::ops::Range<usize>) + Sync),
 ) {
     if t1 - t0 == 1 {
         let clock = std::time::Instant::now();
-        let mut s = init();
-        (cuts[t0]..cuts[t1]).for_each(|c| f(&mut s, c));
+        f(cuts[t0]..cuts[t1]);
         time[t0].store(
             clock.elapsed().as_nanos() as u64,
             std::sync::atomic::Ordering::Relaxed,
@@ -170,7 +181,7 @@ fn run_parts<S>(
     }
     let mid = (t0 + t1) / 2;
     rayon::join(
-        || run_parts(t0, mid, cuts, time, init, f),
-        || run_parts(mid, t1, cuts, time, init, f),
+        || run_parts(t0, mid, cuts, time, f),
+        || run_parts(mid, t1, cuts, time, f),
     );
 }

@@ -10,7 +10,7 @@
 //! about the sphere centre, `Σ (x_c − x_s) × f + couples`. This equals
 //! `Σ (x_c − r_cm) × f` over the contacts.
 
-use super::affinity::{body_chunk_cost, for_each_chunk_with, GATHER_LOOP, PAIR_LOOP};
+use super::affinity::{body_chunk_cost, for_each_chunk_with, for_each_run, GATHER_LOOP, PAIR_LOOP};
 use super::integrate::FinalKick;
 use super::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput};
@@ -26,7 +26,7 @@ use rayon::prelude::*;
 /// the gather. Fixed (never derived from the thread count) so that the
 /// chunked reductions of wall loads and statistics are the same for any
 /// number of threads.
-pub const BODY_CHUNK: usize = 128;
+pub const BODY_CHUNK: usize = 32;
 
 /// Computes all contact forces and the total force and torque on every body.
 pub fn compute(w: &mut World) {
@@ -87,17 +87,19 @@ pub(crate) fn pair_forces(w: &mut World) {
         row_start.get(s).map_or(0, |&p| p as u64) + s as u64
     };
     let balance = &mut w.balance[PAIR_LOOP];
-    // per thread: one batch (not one per chunk: zeroing it per chunk cost 4 %
-    // of the step) and the first sphere of its run of chunks
-    let init = || (Batch::default(), None::<usize>);
-    for_each_chunk_with(nchunks, cost, balance, init, |(batch, run_start), c| {
-        let b0 = c * BODY_CHUNK;
-        let b1 = (b0 + BODY_CHUNK).min(nb);
-        let run_start = *run_start.get_or_insert(first[b0] as usize);
-        // SAFETY: chunk c owns the rows of bodies b0..b1 of the half list,
-        // their body loads and its statistics slot, no other chunk's.
+    // one run of chunks per thread, one batch per run: a batch may span
+    // chunks (the statistics go to each pair's own chunk, in pair order)
+    for_each_run(nchunks, cost, balance, |run| {
+        let b0 = run.start * BODY_CHUNK;
+        let b1 = (run.end * BODY_CHUNK).min(nb);
+        if b0 >= b1 {
+            return;
+        }
+        let mut batch = Batch::default();
+        // SAFETY: this run owns the rows of bodies b0..b1 of the half list,
+        // their body loads and its chunks' statistics slots, no other run's.
         unsafe {
-            rows.evaluate(b0..b1, run_start, batch, stats.get(c));
+            rows.evaluate(b0..b1, first[b0] as usize, &mut batch, &stats);
         }
     });
 }

@@ -22,6 +22,7 @@
 //! The batch keeps pair order, so every sum is taken in ascending pair order
 //! and the results do not depend on the thread count.
 
+use super::force::BODY_CHUNK;
 use super::shared::{at, SharedMut};
 use crate::contact::{ContactInput, SlidingLaw};
 use crate::neighbor::pairs::{body_load, PairLoad, SphereLoad};
@@ -114,7 +115,7 @@ impl RowCtx<'_> {
         bodies: std::ops::Range<usize>,
         run_start: usize,
         batch: &mut Batch,
-        stat: &mut ContactStats,
+        stats: &SharedMut<ContactStats>,
     ) {
         let sp = self.sp;
         let n = sp.len();
@@ -165,7 +166,7 @@ impl RowCtx<'_> {
                 }
                 if len == BATCH {
                     batch.len = len;
-                    self.contacts(batch, stat);
+                    self.contacts(batch, stats);
                     len = 0;
                     // the rows before i are complete
                     self.sum_bodies(&mut next, bodies.end, i, run_start);
@@ -173,7 +174,7 @@ impl RowCtx<'_> {
             }
         }
         batch.len = len;
-        self.contacts(batch, stat);
+        self.contacts(batch, stats);
         self.sum_bodies(&mut next, bodies.end, spheres.end, run_start);
     }
 
@@ -228,7 +229,7 @@ impl RowCtx<'_> {
     /// Gather, law and scatter (see the module docs) over the touching
     /// pairs of the batch.
     #[inline(always)]
-    unsafe fn contacts(&self, batch: &mut Batch, stat: &mut ContactStats) {
+    unsafe fn contacts(&self, batch: &mut Batch, stats: &SharedMut<ContactStats>) {
         if batch.len == 0 {
             return;
         }
@@ -325,6 +326,9 @@ impl RowCtx<'_> {
                 t.live = true;
             }
             let overlap = l.v[OUT_OVERLAP][k];
+            // the statistics of the pair's chunk (a batch may span chunks)
+            let stat = stats.get(self.sphere(i).body as usize / BODY_CHUNK);
+            stat.pair_contacts += 1;
             stat.elastic_energy += l.v[OUT_ENERGY][k] * l.v[IN_SCALE][k];
             let rmin = l.v[IN_RI][k].min(l.v[IN_RJ][k]);
             if overlap > stat.max_overlap_ratio * rmin {
@@ -337,7 +341,6 @@ impl RowCtx<'_> {
                 stat.max_overlap_wall = 0;
             }
         }
-        stat.pair_contacts += len as u64;
     }
 
     /// Index in the contact table of the model of pair `p` in row `i`.
