@@ -87,9 +87,10 @@ pub struct PairList {
     pub col_slot: Vec<u32>,
     /// Offsets of each sphere's column slots, one per sphere plus one.
     pub col_start: Vec<u32>,
-    /// Per sphere: the first row (sphere `i`) with a pair in its column, or
-    /// the sphere itself when its column is empty. Its load is complete once
-    /// the rows from there to its own are evaluated.
+    /// Per body (storage index): the first row (sphere `i`) with a pair in
+    /// the column of one of its spheres, or its first sphere when they have
+    /// none. Its pair load is complete once the rows from there to its last
+    /// sphere's are evaluated.
     pub first_feed: Vec<u32>,
     cell_start: Vec<u32>,
     cell_items: Vec<u32>,
@@ -355,12 +356,18 @@ impl PairList {
             self.col_slot[p] = *c;
             *c += 1;
         }
+        // a body's spheres are contiguous: its first sphere is the first
+        // with its owner index
+        let nb = inp.body.last().map_or(0, |&b| b as usize + 1);
         self.first_feed.clear();
-        self.first_feed.extend(0..n as u32);
-        for i in (0..n).rev() {
+        self.first_feed.resize(nb, u32::MAX);
+        for (s, &b) in inp.body.iter().enumerate().rev() {
+            self.first_feed[b as usize] = s as u32;
+        }
+        for i in 0..n {
             for p in self.row(i) {
-                let j = self.topo[p].j as usize;
-                self.first_feed[j] = i as u32;
+                let b = inp.body[self.topo[p].j as usize] as usize;
+                self.first_feed[b] = self.first_feed[b].min(i as u32);
             }
         }
     }

@@ -64,7 +64,7 @@ pub(super) struct RowCtx<'a> {
     pub load_i: SharedMut<SphereLoad>,
     /// Column offsets per sphere, one per sphere plus one.
     pub col_start: &'a [u32],
-    /// First row feeding each sphere's column ([`PairList::first_feed`]).
+    /// First row feeding each body's columns ([`PairList::first_feed`]).
     ///
     /// [`PairList::first_feed`]: crate::neighbor::PairList::first_feed
     pub first_feed: &'a [u32],
@@ -186,9 +186,7 @@ impl RowCtx<'_> {
         while *next < end && at(first, *next + 1) as usize <= done {
             let b = *next;
             let spheres = at(first, b) as usize..at(first, b + 1) as usize;
-            let ready = spheres
-                .clone()
-                .all(|s| at(self.first_feed, s) as usize >= run_start);
+            let ready = at(self.first_feed, b) as usize >= run_start;
             *self.body_ready.get(b) = ready;
             if ready {
                 *self.body_load.get(b) = body_load(
