@@ -214,6 +214,9 @@ fn bed_state(threads: usize) -> (Vec<u64>, u64, u64) {
             }
             bits.extend(b.orientation[i].to_array().map(f64::to_bits));
         }
+        // the chunked sums of the statistics too
+        let st = &w.stats;
+        bits.extend([st.elastic_energy, st.kinetic_energy, st.max_overlap_ratio].map(f64::to_bits));
         (bits, w.stats.pair_contacts, w.stats.wall_contacts)
     })
 }

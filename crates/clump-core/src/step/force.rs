@@ -1,8 +1,10 @@
 //! Force stage: per-pair contact forces over the rows of the half list
 //! (each pair's force is computed once, in batches, by `step::pair_kernel`;
 //! sphere `i`'s side is summed while its row is evaluated, sphere `j`'s side
-//! is stored in `j`'s column), then a per-body gather in a fixed order with
-//! sphere–wall contacts and gravity, which also applies the final kick.
+//! is stored in `j`'s column; a body's pair load is summed as soon as all
+//! the rows that feed it are evaluated, `neighbor::pairs::body_load`),
+//! then a per-body gather in a fixed order with sphere–wall contacts and
+//! gravity, which also applies the final kick.
 //!
 //! Body force and torque (seed eq. 4.87–4.88), world frame:
 //! `F = m g + Σ_s F_s`, `M = Σ_s [(x_s − r_cm) × F_s + T_s]`, where `F_s` is
@@ -550,5 +552,50 @@ impl WallCtx<'_> {
         let m_body = (xc - self.com).cross(out.force) + out.torque;
         let m_wall_from_body = (xc - wall.motion.center).cross(out.force) + out.torque;
         (out.force, m_body, m_wall_from_body, out.elastic_energy)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::testbed::tetra_lattice_bed;
+
+    /// Regression for the pair stage's body sums: on two threads, the bodies
+    /// on the seam between the runs are summed by the gather and the others
+    /// by the pair stage (both paths run), and every body's force and torque
+    /// are bit for bit those of one thread, where the pair stage sums all.
+    #[test]
+    fn seam_bodies_are_summed_by_the_gather_with_the_same_bits() {
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut w = tetra_lattice_bed(8, 8, 4, None);
+                w.run(3000).unwrap();
+                let ready = w.body_ready.clone();
+                let forces: Vec<u64> = (0..w.bodies.len())
+                    .flat_map(|i| {
+                        let (f, m) = (w.bodies.force[i], w.bodies.torque[i]);
+                        [f.x, f.y, f.z, m.x, m.y, m.z].map(f64::to_bits)
+                    })
+                    .collect();
+                (ready, forces, w.stats.pair_contacts)
+            })
+        };
+        let (ready1, f1, contacts) = run(1);
+        let (ready2, f2, _) = run(2);
+        assert!(contacts > 100, "too few contacts to test: {contacts}");
+        assert!(
+            ready1.iter().all(|&r| r),
+            "one thread: the pair stage sums every body"
+        );
+        let seam = ready2.iter().filter(|&&r| !r).count();
+        assert!(
+            seam > 0 && seam < ready2.len(),
+            "two threads: {seam} of {} bodies on the seam",
+            ready2.len()
+        );
+        assert!(f1 == f2, "body forces differ between 1 and 2 threads");
     }
 }

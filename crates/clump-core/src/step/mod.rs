@@ -10,8 +10,10 @@
 //!    the skin. Bodies are wrapped, lost bodies removed and the rest Morton-sorted
 //!    here. A future MPI layer exchanges ghost spheres at this stage.
 //! 4. [`force`]: per-pair forces (sphere pairs of different bodies, the
-//!    batched `pair_kernel`), then a per-body gather in a fixed order with
-//!    sphere–wall contacts and gravity.
+//!    batched `pair_kernel`), which also sums each body's pair force and
+//!    torque as soon as all its pairs are evaluated; then a per-body gather
+//!    in a fixed order with sphere–wall contacts and gravity (and the pair
+//!    sums of the bodies on the seam between two threads' runs).
 //!    F = Σ f, M = Σ (x_c − r_cm) × f (seed eq. 4.87–4.88).
 //! 5. Final integrate (`integrate::FinalKick`): second half kick, applied by
 //!    the gather to each body as soon as its force and torque are summed
