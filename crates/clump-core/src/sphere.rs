@@ -78,11 +78,6 @@ impl Spheres {
         self.state.iter().map(|x| x.position)
     }
 
-    /// Velocities of all spheres in storage order, world frame, m/s.
-    pub fn velocities(&self) -> impl ExactSizeIterator<Item = DVec3> + '_ {
-        self.state.iter().map(|x| x.velocity)
-    }
-
     /// Number of spheres.
     pub fn len(&self) -> usize {
         self.body.len()

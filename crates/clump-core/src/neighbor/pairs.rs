@@ -54,8 +54,8 @@ pub struct SphereLoad {
 /// sphere `i` (storage order, other bodies only) are
 /// `topo[row_start[i]..row_start[i + 1]]`. Each pair is oriented by storage
 /// index (`i < j`); its history (`tangential`, `rolling`) is stored in that
-/// orientation and carried
-/// across rebuilds by global sphere ids. Reused between builds.
+/// orientation and carried across rebuilds by global sphere ids. Reused
+/// between builds.
 #[derive(Debug, Clone, Default)]
 pub struct PairList {
     /// Row offsets, one per sphere plus one.

@@ -16,8 +16,8 @@
 //!    per instruction with AVX2, chosen at run time; 2 with the baseline
 //!    SSE2); vector and scalar IEEE arithmetic give the same bits;
 //! 4. *scatter*: rolling couples (for laws that have one), then each pair's
-//!    `j` side and history are stored (and the pair marked live) and its `i` side is added to
-//!    its row's sum, in pair order.
+//!    `j` side and history are stored (and the pair marked live) and its
+//!    `i` side is added to its row's sum, in pair order.
 //!
 //! The batch keeps pair order, so every sum is taken in ascending pair order
 //! and the results do not depend on the thread count.
@@ -139,9 +139,9 @@ impl RowCtx<'_> {
                 at(self.row_start, i + 1) as usize,
             );
             for p in p0..p1 {
-                // the partner a few pairs ahead: its centre, radius and velocity,
-                // which in a bed larger than the caches may lie far away in
-                // memory (Morton neighbours across a coarse cell boundary)
+                // the partner a few pairs ahead: its packed state line, which
+                // in a bed larger than the caches may lie far away in memory
+                // (Morton neighbours across a coarse cell boundary)
                 if self.prefetch && p + PREFETCH < np {
                     let ahead = topo.read(p + PREFETCH).j as usize;
                     prefetch(sp.state.as_ptr().add(ahead));
