@@ -315,11 +315,30 @@ impl RowCtx<'_> {
                 }
             }
         }
+        // The row sum of the current row and the statistics of the current
+        // chunk are carried in registers and stored when the row or chunk
+        // changes (rows and chunks ascend in the batch). Accumulating in
+        // place chained every contact through a store and a reload. Same
+        // additions in the same order, so the same bits.
+        let mut row = batch.row[0] as usize;
+        let mut li = *self.load_i.get(row);
+        let mut chunk = self.sphere(row).body as usize / BODY_CHUNK;
+        let mut stat = *stats.get(chunk);
         for k in 0..len {
             let p = batch.pair[k] as usize;
             let i = batch.row[k] as usize;
+            if i != row {
+                *self.load_i.get(row) = li;
+                row = i;
+                li = *self.load_i.get(row);
+                let c = self.sphere(row).body as usize / BODY_CHUNK;
+                if c != chunk {
+                    *stats.get(chunk) = stat;
+                    chunk = c;
+                    stat = *stats.get(chunk);
+                }
+            }
             let f = l.get3(OUT_F, k);
-            let li = self.load_i.get(i);
             li.force += f;
             li.torque += l.get3(OUT_TI, k);
             *self.load_j.get(at(self.col_slot, p) as usize) = PairLoad {
@@ -333,7 +352,6 @@ impl RowCtx<'_> {
             }
             let overlap = l.v[OUT_OVERLAP][k];
             // the statistics of the pair's chunk (a batch may span chunks)
-            let stat = stats.get(self.sphere(i).body as usize / BODY_CHUNK);
             stat.pair_contacts += 1;
             stat.elastic_energy += l.v[OUT_ENERGY][k] * l.v[IN_SCALE][k];
             let rmin = l.v[IN_RI][k].min(l.v[IN_RJ][k]);
@@ -347,6 +365,8 @@ impl RowCtx<'_> {
                 stat.max_overlap_wall = 0;
             }
         }
+        *self.load_i.get(row) = li;
+        *stats.get(chunk) = stat;
     }
 
     /// Index in the contact table of the model of pair `p` in row `i`.
