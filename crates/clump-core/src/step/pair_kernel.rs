@@ -130,6 +130,7 @@ impl RowCtx<'_> {
         let mut next = bodies.start;
         // the batch length lives in a register during the detect pass
         let mut len = 0usize;
+        let mut n_clear = 0usize;
         for i in spheres.clone() {
             *self.load_i.get(i) = SphereLoad::default();
             let si = self.sphere(i);
@@ -165,14 +166,15 @@ impl RowCtx<'_> {
                 *batch.pair.get_unchecked_mut(len) = p as u32;
                 *batch.row.get_unchecked_mut(len) = i as u32;
                 len += touching as usize;
-                if !touching && t.live {
-                    // not touching: clear what a previous contact left
-                    self.topo.get(p).live = false;
-                    *self.tangential.get(p) = DVec3::ZERO;
-                    *self.rolling.get(p) = DVec3::ZERO;
-                    *self.load_j.get(at(self.col_slot, p) as usize) = PairLoad::default();
-                }
-                if len == BATCH {
+                // pairs that stopped touching are compacted the same way
+                // and cleared at the flush: a branch on `!touching && live`
+                // here went on `touching` (or on `live`), as good as random
+                // in a dense bed, where half the candidates touch
+                *batch.clear.get_unchecked_mut(n_clear) = p as u32;
+                n_clear += (!touching & t.live) as usize;
+                if len == BATCH || n_clear == BATCH {
+                    self.clear_pairs(&batch.clear[..n_clear]);
+                    n_clear = 0;
                     batch.len = len;
                     self.contacts(batch, stats);
                     len = 0;
@@ -181,9 +183,26 @@ impl RowCtx<'_> {
                 }
             }
         }
+        self.clear_pairs(&batch.clear[..n_clear]);
         batch.len = len;
         self.contacts(batch, stats);
         self.sum_bodies(&mut next, bodies.end, spheres.end, run_start);
+    }
+
+    /// Clears what a contact left on the pairs `ps`, which no longer touch:
+    /// the live flag, the springs and the `j`-side load.
+    ///
+    /// # Safety
+    /// As [`Self::evaluate`]: the pairs lie in this thread's rows.
+    #[inline(always)]
+    unsafe fn clear_pairs(&self, ps: &[u32]) {
+        for &p in ps {
+            let p = p as usize;
+            self.topo.get(p).live = false;
+            *self.tangential.get(p) = DVec3::ZERO;
+            *self.rolling.get(p) = DVec3::ZERO;
+            *self.load_j.get(at(self.col_slot, p) as usize) = PairLoad::default();
+        }
     }
 
     /// Sums the pair loads of the bodies from `*next` (before `end`) whose
@@ -455,6 +474,9 @@ pub(super) const BATCH: usize = 64;
 /// inputs and the law's outputs live in `lanes`.
 pub(super) struct Batch {
     pair: [u32; BATCH],
+    /// Pairs that stopped touching, to clear at the next flush (the slot
+    /// at the count is scratch, like `pair`'s).
+    clear: [u32; BATCH],
     row: [u32; BATCH],
     model: [u32; BATCH],
     len: usize,
@@ -465,6 +487,7 @@ impl Default for Batch {
     fn default() -> Self {
         Batch {
             pair: [0; BATCH],
+            clear: [0; BATCH],
             row: [0; BATCH],
             model: [0; BATCH],
             len: 0,
