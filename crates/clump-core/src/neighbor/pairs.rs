@@ -70,21 +70,21 @@ pub struct PairList {
     /// from the tangential springs: laws without rolling resistance never
     /// touch it, so the pair kernel streams half the history bytes.
     pub rolling: Vec<DVec3>,
-    /// What each pair contributes to its sphere `j`, in column order: pair
-    /// `p`'s entry is `load_j[col_slot[p]]`, so that sphere `s`'s entries are
-    /// the contiguous `load_j[col_start[s]..col_start[s + 1]]` (the gather
-    /// reads them in sequence; the pair kernel's scattered writes do not
-    /// stall it).
+    /// What each pair contributes to its sphere `j` (parallel to `topo`):
+    /// the pair kernel writes it in pair order, next to the springs, and
+    /// the body sums read sphere `s`'s entries through its column,
+    /// `load_j[col_pair[c]]` for `c` in `col_start[s]..col_start[s + 1]`.
+    /// (Stored in column order, the kernel's scattered 48-byte writes, half
+    /// of them split over two cache lines, took 11 % of its time.)
     pub load_j: Vec<PairLoad>,
     /// Per sphere: the sum over the pairs of its own row (its `i` side).
     pub load_i: Vec<SphereLoad>,
     /// Multi-contact scale of each pair's force (`1/n` under `average`,
     /// parallel to `topo`; empty under `sum`).
     pub scale: Vec<f64>,
-    /// Column slot of each pair (parallel to `topo`): the pairs in which
-    /// sphere `s` is the `j` have the slots `col_start[s]..col_start[s + 1]`,
-    /// in ascending pair order.
-    pub col_slot: Vec<u32>,
+    /// The pairs of each column slot: the pairs in which sphere `s` is the
+    /// `j` are `col_pair[col_start[s]..col_start[s + 1]]`, ascending.
+    pub col_pair: Vec<u32>,
     /// Offsets of each sphere's column slots, one per sphere plus one.
     pub col_start: Vec<u32>,
     /// Per body (storage index): the first row (sphere `i`) with a pair in
@@ -117,6 +117,7 @@ pub(crate) unsafe fn body_load(
     load_i: *const SphereLoad,
     load_j: *const PairLoad,
     col_start: &[u32],
+    col_pair: &[u32],
     state: &[crate::sphere::SphereState],
     spheres: std::ops::Range<usize>,
     com: DVec3,
@@ -128,7 +129,7 @@ pub(crate) unsafe fn body_load(
         let (c0, c1) = (at(col_start, s) as usize, at(col_start, s + 1) as usize);
         debug_assert!(c0 <= c1);
         for c in c0..c1 {
-            let pl = &*load_j.add(c);
+            let pl = &*load_j.add(at(col_pair, c) as usize);
             l.force += pl.force;
             l.torque += pl.torque;
         }
@@ -349,11 +350,11 @@ impl PairList {
         }
         self.cursor.clear();
         self.cursor.extend_from_slice(&self.col_start[..n]);
-        self.col_slot.clear();
-        self.col_slot.resize(acc, 0);
+        self.col_pair.clear();
+        self.col_pair.resize(acc, 0);
         for (p, t) in self.topo.iter().enumerate() {
             let c = &mut self.cursor[t.j as usize];
-            self.col_slot[p] = *c;
+            self.col_pair[*c as usize] = p as u32;
             *c += 1;
         }
         // a body's spheres are contiguous: its first sphere is the first

@@ -49,8 +49,10 @@ pub(super) struct RowCtx<'a> {
     /// Partner, periodic image and live flag of each pair (the flag is
     /// written).
     pub topo: SharedMut<crate::neighbor::pairs::PairTopo>,
-    /// Column slot of each pair (where its `load_j` goes).
-    pub col_slot: &'a [u32],
+    /// The pair of each column slot ([`PairList::col_pair`]).
+    ///
+    /// [`PairList::col_pair`]: crate::neighbor::PairList::col_pair
+    pub col_pair: &'a [u32],
     /// Multi-contact scale per pair (empty: all 1).
     pub scale: &'a [f64],
     /// Tangential spring per pair, m (written).
@@ -146,14 +148,6 @@ impl RowCtx<'_> {
                 if self.prefetch && p + PREFETCH < np {
                     let ahead = topo.read(p + PREFETCH).j as usize;
                     prefetch(sp.state.as_ptr().add(ahead));
-                    // and the column slot its j-side load will be stored in
-                    // (scattered writes missed the cache: +9 % on the
-                    // 40 000-sphere bed, paired runs)
-                    prefetch(
-                        self.load_j
-                            .as_ptr()
-                            .add(at(self.col_slot, p + PREFETCH) as usize),
-                    );
                 }
                 let t = topo.read(p);
                 let j = t.j as usize;
@@ -201,7 +195,7 @@ impl RowCtx<'_> {
             self.topo.get(p).live = false;
             *self.tangential.get(p) = DVec3::ZERO;
             *self.rolling.get(p) = DVec3::ZERO;
-            *self.load_j.get(at(self.col_slot, p) as usize) = PairLoad::default();
+            *self.load_j.get(p) = PairLoad::default();
         }
     }
 
@@ -220,6 +214,7 @@ impl RowCtx<'_> {
                     self.load_i.as_ptr(),
                     self.load_j.as_ptr(),
                     self.col_start,
+                    self.col_pair,
                     &sp.state,
                     spheres,
                     at(&self.b.position, b),
@@ -360,7 +355,7 @@ impl RowCtx<'_> {
             let f = l.get3(OUT_F, k);
             li.force += f;
             li.torque += l.get3(OUT_TI, k);
-            *self.load_j.get(at(self.col_slot, p) as usize) = PairLoad {
+            *self.load_j.get(p) = PairLoad {
                 force: -f,
                 torque: l.get3(OUT_TJ, k),
             };
