@@ -18,7 +18,7 @@ use super::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput};
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::body_load;
-use crate::sphere::point_velocity;
+use crate::sphere::{point_velocity, SPHERE_ID_BITS};
 use crate::wall::{WallLoad, WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::{ContactStats, World, WALL_SLOTS};
 use glam::DVec3;
@@ -399,6 +399,15 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
             }
         },
     );
+    // the pair stage recorded the spheres (storage indices) of each chunk's
+    // deepest pair: their bodies' ids
+    for s in chunk_pair_stats.iter_mut() {
+        if s.max_overlap_ratio > 0.0 {
+            s.max_overlap_bodies = s
+                .max_overlap_bodies
+                .map(|x| sp.gid[x as usize] >> SPHERE_ID_BITS);
+        }
+    }
     let mut total = ContactStats::default();
     for s in chunk_pair_stats.iter().chain(chunk_stats.iter()) {
         total.merge(s);
