@@ -70,13 +70,21 @@ pub struct PairList {
     /// from the tangential springs: laws without rolling resistance never
     /// touch it, so the pair kernel streams half the history bytes.
     pub rolling: Vec<DVec3>,
-    /// What each pair contributes to its sphere `j` (parallel to `topo`):
-    /// the pair kernel writes it in pair order, next to the springs, and
-    /// the body sums read sphere `s`'s entries through its column,
-    /// `load_j[col_pair[c]]` for `c` in `col_start[s]..col_start[s + 1]`.
-    /// (Stored in column order, the kernel's scattered 48-byte writes, half
-    /// of them split over two cache lines, took 11 % of its time.)
+    /// What each pair contributes to its sphere `j` (parallel to `topo`),
+    /// recorded only for a `j` whose body is on a seam between two threads'
+    /// runs (see `load_c`), and zero for a pair that does not touch: the
+    /// gather sums such a sphere's column through `col_pair`
+    /// ([`column_sum`]).
     pub load_j: Vec<PairLoad>,
+    /// Per sphere: the sum of the `j` sides of the pairs in its column, in
+    /// ascending pair order, accumulated by the pair kernel as it evaluates
+    /// them when all of them lie in the same thread's run as the sphere's
+    /// body (always on one thread). The body sum reads it and sets it back
+    /// to zero, so it is all zero between steps. (Stored per pair and read
+    /// back through the column, the `j` sides cost a 48-byte write per
+    /// contact and a scattered read: 20 % of the pair stage at 40 000
+    /// spheres.)
+    pub load_c: Vec<SphereLoad>,
     /// Per sphere: the sum over the pairs of its own row (its `i` side).
     pub load_i: Vec<SphereLoad>,
     /// Multi-contact scale of each pair's force (`1/n` under `average`,
@@ -101,23 +109,22 @@ pub struct PairList {
 
 /// Pair force (N) and torque (N m, about the centre of mass `com`) on the
 /// body whose spheres are `spheres`, world frame: per sphere, its row sum
-/// plus the `j` sides of the pairs in its column in ascending pair order,
+/// plus its column sum (`column(s)`, the `j` sides of the pairs in its
+/// column added in ascending pair order, starting from zero),
 /// `F = Σ f_s`, `M = Σ (x_s − com) × f_s + t_s`. The one summation both the
-/// pair kernel (for bodies complete in its thread's run) and the gather
-/// (for the others) use, so either gives the same bits and the results do
-/// not depend on the thread count.
+/// pair kernel (bodies complete in its thread's run, whose column sums it
+/// accumulated as it went, `PairList::load_c`) and the gather (the others,
+/// from the pairs' own records, [`column_sum`]) use, so either gives the
+/// same bits and the results do not depend on the thread count.
 ///
 /// # Safety
-/// `load_i` and `load_j` point to the list's arrays; the spheres are of the
-/// list's last build, their loads are complete and nothing writes them
-/// during the call. Unchecked in release builds (hot loop), checked in
-/// debug builds.
+/// `load_i` points to the list's row sums; the spheres are of the list's
+/// last build, their loads are complete and nothing writes them during the
+/// call. Unchecked in release builds (hot loop), checked in debug builds.
 #[inline(always)]
 pub(crate) unsafe fn body_load(
     load_i: *const SphereLoad,
-    load_j: *const PairLoad,
-    col_start: &[u32],
-    col_pair: &[u32],
+    column: impl Fn(usize) -> SphereLoad,
     state: &[crate::sphere::SphereState],
     spheres: std::ops::Range<usize>,
     com: DVec3,
@@ -125,19 +132,39 @@ pub(crate) unsafe fn body_load(
     use crate::step::shared::at;
     let mut total = SphereLoad::default();
     for s in spheres {
-        let mut l = *load_i.add(s);
-        let (c0, c1) = (at(col_start, s) as usize, at(col_start, s + 1) as usize);
-        debug_assert!(c0 <= c1);
-        for c in c0..c1 {
-            let pl = &*load_j.add(at(col_pair, c) as usize);
-            l.force += pl.force;
-            l.torque += pl.torque;
-        }
+        let (row, col) = (*load_i.add(s), column(s));
+        let f = row.force + col.force;
         let x = at(state, s).position;
-        total.force += l.force;
-        total.torque += (x - com).cross(l.force) + l.torque;
+        total.force += f;
+        total.torque += (x - com).cross(f) + (row.torque + col.torque);
     }
     total
+}
+
+/// The column sum of sphere `s` from the pairs' own records: the `j` sides
+/// `load_j` of the pairs in its column, added in ascending pair order from
+/// zero (the order in which the pair kernel accumulates `load_c`).
+///
+/// # Safety
+/// `load_j` points to the list's `load_j`, complete for these pairs; `s` is
+/// a sphere of the list's last build. Unchecked in release builds.
+#[inline(always)]
+pub(crate) unsafe fn column_sum(
+    load_j: *const PairLoad,
+    col_start: &[u32],
+    col_pair: &[u32],
+    s: usize,
+) -> SphereLoad {
+    use crate::step::shared::at;
+    let mut l = SphereLoad::default();
+    let (c0, c1) = (at(col_start, s) as usize, at(col_start, s + 1) as usize);
+    debug_assert!(c0 <= c1);
+    for c in c0..c1 {
+        let pl = &*load_j.add(at(col_pair, c) as usize);
+        l.force += pl.force;
+        l.torque += pl.torque;
+    }
+    l
 }
 
 /// Neighbour-cell offsets (all 27).
@@ -311,6 +338,8 @@ impl PairList {
         self.load_j.resize(acc, PairLoad::default());
         self.load_i.clear();
         self.load_i.resize(n, SphereLoad::default());
+        self.load_c.clear();
+        self.load_c.resize(n, SphereLoad::default());
         self.scale.clear();
         if !history.is_empty() {
             let tan = crate::step::shared::SharedMut::new(&mut self.tangential);

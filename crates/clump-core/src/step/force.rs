@@ -1,8 +1,10 @@
 //! Force stage: per-pair contact forces over the rows of the half list
 //! (each pair's force is computed once, in batches, by `step::pair_kernel`;
 //! sphere `i`'s side is summed while its row is evaluated, sphere `j`'s side
-//! is stored in `j`'s column; a body's pair load is summed as soon as all
-//! the rows that feed it are evaluated, `neighbor::pairs::body_load`),
+//! is added to `j`'s column sum, or recorded with the pair when `j`'s body
+//! is on a seam between two threads' runs; a body's pair load is summed as
+//! soon as all the rows that feed it are evaluated,
+//! `neighbor::pairs::body_load`),
 //! then a per-body gather in a fixed order with sphere–wall contacts and
 //! gravity, which also applies the final kick.
 //!
@@ -17,7 +19,7 @@ use super::integrate::FinalKick;
 use super::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput};
 use crate::multi_contact::{MultiContact, PartnerCounts};
-use crate::neighbor::pairs::body_load;
+use crate::neighbor::pairs::{body_load, column_sum};
 use crate::sphere::{point_velocity, SPHERE_ID_BITS};
 use crate::wall::{WallLoad, WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::{ContactStats, World, WALL_SLOTS};
@@ -38,8 +40,9 @@ pub fn compute(w: &mut World) {
 
 /// Evaluates every candidate sphere pair, row by row: pairs that do not touch
 /// get zero force and their history is reset. Writes each sphere's row sum
-/// (`load_i`), each pair's contribution to its `j` (`load_j`), and the pair
-/// statistics per chunk of rows.
+/// (`load_i`) and column sum (`load_c`), or each pair's contribution to a
+/// seam `j` (`load_j`), the pair loads of the bodies complete in a thread's
+/// run, and the pair statistics per chunk of rows.
 pub(crate) fn pair_forces(w: &mut World) {
     use super::pair_kernel::{Batch, RowCtx};
     if w.config.multi_contact == MultiContact::Average {
@@ -64,13 +67,12 @@ pub(crate) fn pair_forces(w: &mut World) {
         table: &w.contact_table,
         row_start: &pairs.row_start,
         topo: SharedMut::new(&mut pairs.topo),
-        col_pair: &pairs.col_pair,
         scale: &pairs.scale,
         tangential: SharedMut::new(&mut pairs.tangential),
         rolling: SharedMut::new(&mut pairs.rolling),
         load_j: SharedMut::new(&mut pairs.load_j),
         load_i: SharedMut::new(&mut pairs.load_i),
-        col_start: &pairs.col_start,
+        load_c: SharedMut::new(&mut pairs.load_c),
         first_feed: &pairs.first_feed,
         body_load: SharedMut::new(&mut w.body_load),
         body_ready: SharedMut::new(&mut w.body_ready),
@@ -250,11 +252,12 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                     // rebuild precedes every gather after a change), and the
                     // pair stage is over.
                     unsafe {
+                        let column = |s: usize| {
+                            column_sum(pairs.load_j.as_ptr(), &pairs.col_start, &pairs.col_pair, s)
+                        };
                         body_load(
                             pairs.load_i.as_ptr(),
-                            pairs.load_j.as_ptr(),
-                            &pairs.col_start,
-                            &pairs.col_pair,
+                            column,
                             &sp.state,
                             spheres.clone(),
                             com,

@@ -16,8 +16,10 @@
 //!    per instruction with AVX2, chosen at run time; 2 with the baseline
 //!    SSE2); vector and scalar IEEE arithmetic give the same bits;
 //! 4. *scatter*: rolling couples (for laws that have one), then each pair's
-//!    `j` side and history are stored (and the pair marked live) and its
-//!    `i` side is added to its row's sum, in pair order.
+//!    history is stored (and the pair marked live), its `i` side is added
+//!    to its row's sum and its `j` side to `j`'s column sum (or recorded
+//!    with the pair when `j`'s body is on a seam between two threads'
+//!    runs), in pair order.
 //!
 //! The batch keeps pair order, so every sum is taken in ascending pair order
 //! and the results do not depend on the thread count.
@@ -48,10 +50,6 @@ pub(super) struct RowCtx<'a> {
     /// Partner, periodic image and live flag of each pair (the flag is
     /// written).
     pub topo: SharedMut<crate::neighbor::pairs::PairTopo>,
-    /// The pair of each column slot ([`PairList::col_pair`]).
-    ///
-    /// [`PairList::col_pair`]: crate::neighbor::PairList::col_pair
-    pub col_pair: &'a [u32],
     /// Multi-contact scale per pair (empty: all 1).
     pub scale: &'a [f64],
     /// Tangential spring per pair, m (written).
@@ -59,12 +57,18 @@ pub(super) struct RowCtx<'a> {
     /// Rolling spring per pair, N m (written by laws with rolling
     /// resistance only).
     pub rolling: SharedMut<DVec3>,
-    /// `j`-side loads in column order (written).
+    /// `j`-side loads of the pairs whose `j` is on a seam, in pair order
+    /// ([`PairList::load_j`]; written).
+    ///
+    /// [`PairList::load_j`]: crate::neighbor::PairList::load_j
     pub load_j: SharedMut<PairLoad>,
+    /// Column sums per sphere, for the spheres whose bodies are complete in
+    /// their thread's run ([`PairList::load_c`]; written).
+    ///
+    /// [`PairList::load_c`]: crate::neighbor::PairList::load_c
+    pub load_c: SharedMut<SphereLoad>,
     /// Row sums per sphere (written).
     pub load_i: SharedMut<SphereLoad>,
-    /// Column offsets per sphere, one per sphere plus one.
-    pub col_start: &'a [u32],
     /// First row feeding each body's columns ([`PairList::first_feed`]).
     ///
     /// [`PairList::first_feed`]: crate::neighbor::PairList::first_feed
@@ -127,6 +131,7 @@ impl RowCtx<'_> {
         let first = &sp.body_first;
         let spheres = at(first, bodies.start) as usize..at(first, bodies.end) as usize;
         debug_assert!(spheres.end <= n);
+        (batch.run_start, batch.run_end) = (run_start, spheres.end);
         // the next body whose load is to be summed
         let mut next = bodies.start;
         // the batch length lives in a register during the detect pass
@@ -147,6 +152,8 @@ impl RowCtx<'_> {
                 if self.prefetch && p + PREFETCH < np {
                     let ahead = topo.read(p + PREFETCH).j as usize;
                     prefetch(sp.state.as_ptr().add(ahead));
+                    // and its column sum, which a contact adds to
+                    prefetch(self.load_c.as_ptr().add(ahead));
                 }
                 let t = topo.read(p);
                 let j = t.j as usize;
@@ -209,11 +216,11 @@ impl RowCtx<'_> {
             let ready = at(self.first_feed, b) as usize >= run_start;
             *self.body_ready.get(b) = ready;
             if ready {
+                // the column sums this run accumulated, read and reset
+                let column = |s: usize| std::mem::take(self.load_c.get(s));
                 *self.body_load.get(b) = body_load(
                     self.load_i.as_ptr(),
-                    self.load_j.as_ptr(),
-                    self.col_start,
-                    self.col_pair,
+                    column,
                     &sp.state,
                     spheres,
                     at(&self.b.position, b),
@@ -354,10 +361,22 @@ impl RowCtx<'_> {
             let f = l.get3(OUT_F, k);
             li.force += f;
             li.torque += l.get3(OUT_TI, k);
-            *self.load_j.get(p) = PairLoad {
+            // the j side: added to j's column sum when j's body is complete
+            // in this run (then every pair feeding it is evaluated here, in
+            // ascending order), else recorded for the gather
+            let side = PairLoad {
                 force: -f,
                 torque: l.get3(OUT_TJ, k),
             };
+            let j = self.topo.read(p).j as usize;
+            let bj = self.sphere(j).body as usize;
+            if j < batch.run_end && at(self.first_feed, bj) as usize >= batch.run_start {
+                let c = self.load_c.get(j);
+                c.force += side.force;
+                c.torque += side.torque;
+            } else {
+                *self.load_j.get(p) = side;
+            }
             *self.tangential.get(p) = l.get3(IO_XI, k);
             let t = self.topo.get(p);
             if !t.live {
@@ -468,6 +487,9 @@ pub(super) const BATCH: usize = 64;
 /// inputs and the law's outputs live in `lanes`.
 pub(super) struct Batch {
     pair: [u32; BATCH],
+    /// The spheres of the thread's run: `run_start..run_end`.
+    run_start: usize,
+    run_end: usize,
     /// Pairs that stopped touching, to clear at the next flush (the slot
     /// at the count is scratch, like `pair`'s).
     clear: [u32; BATCH],
@@ -481,6 +503,8 @@ impl Default for Batch {
     fn default() -> Self {
         Batch {
             pair: [0; BATCH],
+            run_start: 0,
+            run_end: 0,
             clear: [0; BATCH],
             row: [0; BATCH],
             model: [0; BATCH],
