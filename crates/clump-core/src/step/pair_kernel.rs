@@ -468,7 +468,7 @@ pub(super) const PREFETCH_MIN_SPHERES: usize = 16_384;
 /// Asks the processor to bring the cache line at `x` into L1 (a hint; no
 /// effect on results, and none on other architectures).
 #[inline(always)]
-fn prefetch<T>(x: *const T) {
+pub(super) fn prefetch<T>(x: *const T) {
     #[cfg(target_arch = "x86_64")]
     // SAFETY: a prefetch never faults, whatever the address.
     unsafe {
