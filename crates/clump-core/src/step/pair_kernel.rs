@@ -152,11 +152,13 @@ impl RowCtx<'_> {
                 if self.prefetch && p + PREFETCH < np {
                     let ahead = topo.read(p + PREFETCH).j as usize;
                     prefetch(sp.state.as_ptr().add(ahead));
-                    // and its column sum, which a contact adds to
-                    prefetch(self.load_c.as_ptr().add(ahead));
                 }
                 let t = topo.read(p);
                 let j = t.j as usize;
+                // the partner's column sum, which the scatter adds to at the
+                // flush, a batch later (without, its reads stalled the
+                // scatter: 9 % of this function on 8 000 spheres)
+                prefetch(self.load_c.as_ptr().add(j));
                 let d = xi - self.partner_position(j, t.shift);
                 let rsum = ri + self.sphere(j).radius;
                 let touching = d.length_squared() < rsum * rsum;
