@@ -5,6 +5,7 @@
 //! profiler's collection on, e.g. `callgrind_control -i on`); with
 //! `PROFILE_NO_SQUISH` set it steps with the NO_SQUISH rotation scheme
 //! instead of the checkpoint's (to compare the schemes' cost).
+//! `PROFILE_SKIN` (m) overrides the Verlet skin.
 //! `PROFILE_THREADS` sets the thread count (default 1); the main thread is
 //! one of the pool's, so a profiler sees every stage under `profiled`.
 
@@ -37,6 +38,9 @@ fn body() {
     let (_, mut w, _) = clump_io::run::load_checkpoint(&bytes, &path).expect("load checkpoint");
     if std::env::var_os("PROFILE_NO_SQUISH").is_some() {
         w.config.rotation = clump_core::rotation::RotationScheme::NoSquish;
+    }
+    if let Some(skin) = std::env::var("PROFILE_SKIN").ok() {
+        w.config.skin = Some(skin.parse().expect("PROFILE_SKIN"));
     }
     w.prepare().expect("prepare");
     let r0 = w.rebuilds;
