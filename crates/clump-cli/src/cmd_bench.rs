@@ -429,7 +429,7 @@ fn scaling(args: &BenchArgs) -> Result<()> {
         args.layers, args.settle, args.steps, args.threads
     );
     println!(
-        "{:>9} {:>8} {:>20} {:>14} {:>11} {:>12} {:>12} {:>13}",
+        "{:>9} {:>8} {:>20} {:>14} {:>11} {:>12} {:>12} {:>13}   ns/sph-step by stage: initial, neighbour, pair, gather",
         "spheres",
         "clumps",
         "bed",
@@ -486,8 +486,11 @@ fn scaling_one(args: &BenchArgs, target_spheres: usize) -> Result<()> {
         let mut w = clump_core::testbed::tile_xy(&tile, k, k);
         drop(tile);
         w.run(200)?;
+        w.stage_times = Default::default();
         let t0 = Instant::now();
         w.run(args.steps)?;
+        let per = 1e9 / (w.spheres().len() as f64 * args.steps as f64);
+        let stages = w.stage_times.rows().map(|(_, t)| format!("{:.1}", t * per));
         let s = t0.elapsed().as_secs_f64();
         let th = w.thermo();
         let ns = w.spheres().len();
@@ -504,6 +507,7 @@ fn scaling_one(args: &BenchArgs, target_spheres: usize) -> Result<()> {
             rss,
             rss * 1024.0 * 1024.0 / ns as f64
         );
+        println!("{:>104}", stages.join(", "));
         Ok(())
     })
 }

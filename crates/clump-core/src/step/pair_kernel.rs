@@ -159,6 +159,19 @@ impl RowCtx<'_> {
                 // flush, a batch later (without, its reads stalled the
                 // scatter: 9 % of this function on 8 000 spheres)
                 prefetch(self.load_c.as_ptr().add(j));
+                if self.prefetch {
+                    // in a large bed also the column sum's second line (an
+                    // entry may straddle two) and the partner body's angular
+                    // velocity and mass, which the batch gather reads: the
+                    // partner body can lie far away in memory (at 10⁶
+                    // spheres its ω was the top stall, 11 % of this
+                    // function); the partner's state line, with its owner,
+                    // was prefetched a few pairs ago
+                    prefetch((self.load_c.as_ptr().add(j) as *const u8).add(47));
+                    let bj = self.sphere(j).body as usize;
+                    prefetch(self.b.angular_velocity.as_ptr().add(bj));
+                    prefetch(self.b.mass.as_ptr().add(bj));
+                }
                 let d = xi - self.partner_position(j, t.shift);
                 let rsum = ri + self.sphere(j).radius;
                 let touching = d.length_squared() < rsum * rsum;
@@ -371,8 +384,12 @@ impl RowCtx<'_> {
                 torque: l.get3(OUT_TJ, k),
             };
             let j = self.topo.read(p).j as usize;
-            let bj = self.sphere(j).body as usize;
-            if j < batch.run_end && at(self.first_feed, bj) as usize >= batch.run_start {
+            // one run (one thread): every body is complete in it
+            let direct = batch.run_start == 0 && batch.run_end == self.sp.len() || {
+                let bj = self.sphere(j).body as usize;
+                j < batch.run_end && at(self.first_feed, bj) as usize >= batch.run_start
+            };
+            if direct {
                 let c = self.load_c.get(j);
                 c.force += side.force;
                 c.torque += side.torque;
