@@ -5,7 +5,8 @@
 //! profiler's collection on, e.g. `callgrind_control -i on`); with
 //! `PROFILE_NO_SQUISH` set it steps with the NO_SQUISH rotation scheme
 //! instead of the checkpoint's (to compare the schemes' cost).
-//! `PROFILE_SKIN` (m) overrides the Verlet skin.
+//! `PROFILE_SKIN` (m) overrides the Verlet skin. `PROFILE_REBUILDS=K`
+//! times K neighbour rebuilds (`World::prepare`) instead of stepping.
 //! `PROFILE_THREADS` sets the thread count (default 1); the main thread is
 //! one of the pool's, so a profiler sees every stage under `profiled`.
 
@@ -43,6 +44,22 @@ fn body() {
         w.config.skin = Some(skin.parse().expect("PROFILE_SKIN"));
     }
     w.prepare().expect("prepare");
+    if let Some(k) = std::env::var("PROFILE_REBUILDS").ok() {
+        // time k neighbour rebuilds (each with a force evaluation) instead
+        let k: u32 = k.parse().expect("PROFILE_REBUILDS");
+        let t = Instant::now();
+        for _ in 0..k {
+            w.prepare().expect("prepare");
+        }
+        let s = t.elapsed().as_secs_f64() / k as f64;
+        println!(
+            "{} spheres: {:.3} ms per rebuild and force evaluation; {} candidate pairs",
+            w.spheres().len(),
+            s * 1e3,
+            w.pairs().len()
+        );
+        return;
+    }
     let r0 = w.rebuilds;
     w.stage_times = Default::default();
     if std::env::var_os("PROFILE_WAIT").is_some() {

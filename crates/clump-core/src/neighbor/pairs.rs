@@ -105,6 +105,8 @@ pub struct PairList {
     sphere_cell: Vec<[i64; 3]>,
     counts: Vec<u32>,
     cursor: Vec<u32>,
+    /// Scratch of the build: the candidates found by each block of rows.
+    block_topo: Vec<Vec<PairTopo>>,
 }
 
 /// Pair force (N) and torque (N m, about the centre of mass `com`) on the
@@ -166,27 +168,6 @@ pub(crate) unsafe fn column_sum(
     }
     l
 }
-
-/// Neighbour-cell offsets (all 27).
-const STENCIL: [[i64; 3]; 27] = {
-    let mut s = [[0i64; 3]; 27];
-    let mut n = 0;
-    let mut z = -1;
-    while z <= 1 {
-        let mut y = -1;
-        while y <= 1 {
-            let mut x = -1;
-            while x <= 1 {
-                s[n] = [x, y, z];
-                n += 1;
-                x += 1;
-            }
-            y += 1;
-        }
-        z += 1;
-    }
-    s
-};
 
 /// Inputs describing the spheres for a build.
 pub struct BuildInput<'a> {
@@ -285,13 +266,39 @@ impl PairList {
             length: domain.size(),
             half: 0.5 * domain.size(),
         };
-        (0..n)
-            .into_par_iter()
-            .with_min_len(BLOCK)
-            .map(|i| ctx.visit(i, |_, _| {}))
-            .collect_into_vec(&mut self.counts);
+        // one search per sphere, block by block: each block's candidates go
+        // to its own scratch list (kept from build to build, so no
+        // allocation once they are large enough), then are concatenated in
+        // block order (searching twice, to count and then to fill, cost
+        // twice as much)
+        let nblocks = n.div_ceil(BLOCK);
+        if self.block_topo.len() < nblocks {
+            self.block_topo.resize_with(nblocks, Vec::new);
+        }
+        self.counts.clear();
+        self.counts.resize(n, 0);
+        {
+            let counts = crate::step::shared::SharedMut::new(&mut self.counts);
+            self.block_topo[..nblocks]
+                .par_iter_mut()
+                .enumerate()
+                .for_each(|(blk, out)| {
+                    out.clear();
+                    for i in blk * BLOCK..((blk + 1) * BLOCK).min(n) {
+                        let c = ctx.visit(i, |j, shift| {
+                            out.push(PairTopo {
+                                j,
+                                shift,
+                                live: false,
+                            })
+                        });
+                        // SAFETY: sphere i belongs to this block only.
+                        unsafe { *counts.get(i) = c };
+                    }
+                });
+        }
 
-        // 3. row offsets
+        // 3. row offsets, and the rows in order
         self.row_start.clear();
         self.row_start.push(0);
         let mut acc = 0u32;
@@ -301,31 +308,10 @@ impl PairList {
         }
         let acc = acc as usize;
         self.topo.clear();
-        self.topo.resize(acc, PairTopo::default());
-
-        // 4. fill, block by block, into disjoint ranges (no allocation)
-        {
-            let out = crate::step::shared::SharedMut::new(&mut self.topo);
-            let rows = &self.row_start;
-            (0..n.div_ceil(BLOCK)).into_par_iter().for_each(|blk| {
-                let (s0, s1) = (blk * BLOCK, ((blk + 1) * BLOCK).min(n));
-                let mut k = rows[s0] as usize;
-                for i in s0..s1 {
-                    ctx.visit(i, |j, shift| {
-                        // SAFETY: sphere i's candidates own the range
-                        // row_start[i]..row_start[i + 1]; blocks are disjoint.
-                        unsafe {
-                            *out.get(k) = PairTopo {
-                                j,
-                                shift,
-                                live: false,
-                            };
-                        }
-                        k += 1;
-                    });
-                }
-            });
+        for b in &self.block_topo[..nblocks] {
+            self.topo.extend_from_slice(b);
         }
+        debug_assert_eq!(self.topo.len(), acc);
 
         // 5. restore the history of pairs that persist (stored from the lower
         //    to the higher global id; pairs here run from i to j > i)
@@ -426,46 +412,98 @@ struct Search<'a> {
 
 impl Search<'_> {
     /// Calls `f(j, shift)` for every candidate partner `j > i` of sphere `i`
-    /// on another body; returns the count.
+    /// on another body, in stencil order (cells by z, then y, then x; each
+    /// cell's spheres in storage order); returns the count.
+    ///
+    /// The three cells of a stencil row along x are contiguous in the cell
+    /// list, so a row is one slice of spheres unless it wraps around a
+    /// periodic x boundary (then cell by cell, in the same order). Each
+    /// sphere is tested without an early exit: `j ≤ i`, same body and out
+    /// of range are folded into one rarely true condition (skipping `j ≤ i`
+    /// first was a branch on a coin toss, 40 % of the build).
     #[inline]
     fn visit(&self, i: usize, mut f: impl FnMut(u32, [i8; 3])) -> u32 {
+        let grid = self.grid;
+        let c = self.sphere_cell[i];
+        let mut count = 0;
+        for dz in -1..=1i64 {
+            let Some(z) = self.wrap(c[2] + dz, 2) else {
+                continue;
+            };
+            for dy in -1..=1i64 {
+                let Some(y) = self.wrap(c[1] + dy, 1) else {
+                    continue;
+                };
+                let nx = grid.dims[0] as i64;
+                let (x0, x1) = (c[0] - 1, c[0] + 1);
+                if !grid.periodic[0] || (x0 >= 0 && x1 < nx) {
+                    let k0 = grid.index([x0.max(0), y, z]);
+                    let k1 = grid.index([x1.min(nx - 1), y, z]);
+                    self.scan(i, k0, k1 + 1, &mut f, &mut count);
+                } else {
+                    for dx in -1..=1i64 {
+                        if let Some(x) = self.wrap(c[0] + dx, 0) {
+                            let k = grid.index([x, y, z]);
+                            self.scan(i, k, k + 1, &mut f, &mut count);
+                        }
+                    }
+                }
+            }
+        }
+        count
+    }
+
+    /// Cell coordinate `k` along axis `a`, wrapped if periodic; `None` when
+    /// outside a bounded axis.
+    #[inline(always)]
+    fn wrap(&self, k: i64, a: usize) -> Option<i64> {
+        let d = self.grid.dims[a] as i64;
+        if self.grid.periodic[a] {
+            Some(k.rem_euclid(d))
+        } else if k < 0 || k >= d {
+            None
+        } else {
+            Some(k)
+        }
+    }
+
+    /// The candidates of `i` among the spheres of cells `k0..k1`.
+    #[inline(always)]
+    fn scan(
+        &self,
+        i: usize,
+        k0: usize,
+        k1: usize,
+        f: &mut impl FnMut(u32, [i8; 3]),
+        count: &mut u32,
+    ) {
         let inp = self.inp;
         let xi = inp.position[i];
         let ri = inp.radius[i];
         let bi = inp.body[i];
         let any_periodic = self.domain.periodic.iter().any(|&p| p);
-        let mut count = 0;
-        for o in STENCIL {
-            let Some(nc) = self.grid.neighbor(self.sphere_cell[i], o) else {
-                continue;
-            };
-            let k = self.grid.index(nc);
-            for &j in &self.cell_items[self.cell_start[k] as usize..self.cell_start[k + 1] as usize]
-            {
-                let ju = j as usize;
-                if ju <= i || inp.body[ju] == bi {
-                    continue;
-                }
-                let mut d = xi - inp.position[ju];
-                let mut shift = [0i8; 3];
-                if any_periodic {
-                    // minimum image; the division only runs for pairs that
-                    // straddle the boundary
-                    for a in 0..3 {
-                        if self.domain.periodic[a] && d[a].abs() > self.half[a] {
-                            let s = -(d[a] / self.length[a]).round();
-                            shift[a] = s as i8;
-                            d[a] += s * self.length[a];
-                        }
+        let items = &self.cell_items[self.cell_start[k0] as usize..self.cell_start[k1] as usize];
+        for &j in items {
+            let ju = j as usize;
+            let mut d = xi - inp.position[ju];
+            let mut shift = [0i8; 3];
+            if any_periodic {
+                // minimum image; the division only runs for pairs that
+                // straddle the boundary
+                for a in 0..3 {
+                    if self.domain.periodic[a] && d[a].abs() > self.half[a] {
+                        let s = -(d[a] / self.length[a]).round();
+                        shift[a] = s as i8;
+                        d[a] += s * self.length[a];
                     }
                 }
-                let cut = ri + inp.radius[ju] + inp.skin;
-                if d.length_squared() < cut * cut {
-                    f(j, shift);
-                    count += 1;
-                }
+            }
+            let cut = ri + inp.radius[ju] + inp.skin;
+            let hit = (ju > i) & (inp.body[ju] != bi) & (d.length_squared() < cut * cut);
+            if hit {
+                f(j, shift);
+                *count += 1;
             }
         }
-        count
     }
 }
