@@ -53,12 +53,12 @@ fn departure_angle(rc: f64, m: f64) -> f64 {
         // N₋ a₋ + N₊ a₊ = rhs with a± = −e_r(θ ± β) + κ e_t(θ ± β)
         let rhs = -m * OMEGA * OMEGA * rc * er(theta) - m * glam::DVec2::new(0.0, -G);
         let mut kappa = 0.0;
-        let (mut nm, mut np) = (0.0, 0.0);
+        let mut np = 0.0;
         for _ in 0..100 {
             let am = -er(theta - beta) + kappa * et(theta - beta);
             let ap = -er(theta + beta) + kappa * et(theta + beta);
             let det = am.x * ap.y - am.y * ap.x;
-            nm = (rhs.x * ap.y - rhs.y * ap.x) / det;
+            let nm = (rhs.x * ap.y - rhs.y * ap.x) / det;
             np = (am.x * rhs.y - am.y * rhs.x) / det;
             kappa = m * G * rc * theta.sin() / ((nm + np) * RD);
         }
