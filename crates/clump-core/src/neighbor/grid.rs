@@ -104,21 +104,17 @@ impl CellGrid {
         self.len() == 0
     }
 
-    /// The neighbour cell of `c` at offset `o`, wrapped along periodic axes;
-    /// `None` if outside along a non-periodic axis.
-    #[inline]
-    pub fn neighbor(&self, c: [i64; 3], o: [i64; 3]) -> Option<[i64; 3]> {
-        let mut n = [0i64; 3];
-        for a in 0..3 {
-            let d = self.dims[a] as i64;
-            let mut k = c[a] + o[a];
-            if self.periodic[a] {
-                k = k.rem_euclid(d);
-            } else if k < 0 || k >= d {
-                return None;
-            }
-            n[a] = k;
+    /// Cell coordinate `k` along axis `a`, wrapped if the axis is periodic;
+    /// `None` when outside a bounded axis.
+    #[inline(always)]
+    pub fn wrap(&self, k: i64, a: usize) -> Option<i64> {
+        let d = self.dims[a] as i64;
+        if self.periodic[a] {
+            Some(k.rem_euclid(d))
+        } else if k < 0 || k >= d {
+            None
+        } else {
+            Some(k)
         }
-        Some(n)
     }
 }

@@ -427,11 +427,11 @@ impl Search<'_> {
         let c = self.sphere_cell[i];
         let mut count = 0;
         for dz in -1..=1i64 {
-            let Some(z) = self.wrap(c[2] + dz, 2) else {
+            let Some(z) = grid.wrap(c[2] + dz, 2) else {
                 continue;
             };
             for dy in -1..=1i64 {
-                let Some(y) = self.wrap(c[1] + dy, 1) else {
+                let Some(y) = grid.wrap(c[1] + dy, 1) else {
                     continue;
                 };
                 let nx = grid.dims[0] as i64;
@@ -442,7 +442,7 @@ impl Search<'_> {
                     self.scan(i, k0, k1 + 1, &mut f, &mut count);
                 } else {
                     for dx in -1..=1i64 {
-                        if let Some(x) = self.wrap(c[0] + dx, 0) {
+                        if let Some(x) = grid.wrap(c[0] + dx, 0) {
                             let k = grid.index([x, y, z]);
                             self.scan(i, k, k + 1, &mut f, &mut count);
                         }
@@ -451,20 +451,6 @@ impl Search<'_> {
             }
         }
         count
-    }
-
-    /// Cell coordinate `k` along axis `a`, wrapped if periodic; `None` when
-    /// outside a bounded axis.
-    #[inline(always)]
-    fn wrap(&self, k: i64, a: usize) -> Option<i64> {
-        let d = self.grid.dims[a] as i64;
-        if self.grid.periodic[a] {
-            Some(k.rem_euclid(d))
-        } else if k < 0 || k >= d {
-            None
-        } else {
-            Some(k)
-        }
     }
 
     /// The candidates of `i` among the spheres of cells `k0..k1`.

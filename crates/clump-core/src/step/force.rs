@@ -251,9 +251,8 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                     // test: their state lines and wall histories, which the
                     // pair stage has pushed out of the cache by now in a
                     // large bed (the wall spheres' reads were a third of
-                    // this pass at 40 000 spheres)
-                    // (within the chunk: the slots beyond are another
-                    // thread's)
+                    // this pass at 40 000 spheres); within the chunk, as
+                    // the slots beyond are another thread's
                     let ahead = sp.of_body((bi + GATHER_PREFETCH).min(b1 - 1));
                     for s in ahead {
                         // SAFETY: s is a sphere of this chunk (one mask and

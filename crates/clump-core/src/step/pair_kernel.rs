@@ -407,7 +407,6 @@ impl RowCtx<'_> {
             stat.elastic_energy += l.v[OUT_ENERGY][k] * l.v[IN_SCALE][k];
             let rmin = l.v[IN_RI][k].min(l.v[IN_RJ][k]);
             if overlap > stat.max_overlap_ratio * rmin {
-                let j = self.topo.read(p).j as usize;
                 stat.max_overlap_ratio = overlap / rmin;
                 // the two spheres' storage indices: the gather turns them
                 // into body ids, once per chunk (looking the ids up here
