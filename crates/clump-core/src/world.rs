@@ -258,10 +258,8 @@ pub struct World {
     pub(crate) scratch_keys: Vec<(u64, u64, u32)>,
     pub(crate) chunk_stats: Vec<ContactStats>,
     pub(crate) chunk_pair_stats: Vec<ContactStats>,
-    /// Pair force and torque per body summed by the pair stage (world frame;
-    /// N, and N m about the centre of mass), valid where `body_ready` is set.
-    pub(crate) body_load: Vec<crate::neighbor::SphereLoad>,
-    /// Per body: the pair stage summed its pair load this step.
+    /// Per body: the pair stage summed its column (`PairList::col_load`)
+    /// this step.
     pub(crate) body_ready: Vec<bool>,
     pub(crate) chunk_wall_loads: Vec<WallLoad>,
 }
@@ -311,7 +309,6 @@ impl World {
             scratch_keys: Vec::new(),
             chunk_stats: Vec::new(),
             chunk_pair_stats: Vec::new(),
-            body_load: Vec::new(),
             body_ready: Vec::new(),
             chunk_wall_loads: Vec::new(),
         }

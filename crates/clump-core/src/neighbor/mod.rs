@@ -17,4 +17,4 @@ pub mod skin;
 pub mod sort;
 
 pub use grid::CellGrid;
-pub use pairs::{PairList, PairLoad, PairTopo, SphereLoad};
+pub use pairs::{BodyLoad, PairList, PairTopo};

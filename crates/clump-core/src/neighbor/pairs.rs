@@ -30,24 +30,26 @@ pub struct PairTopo {
     pub live: bool,
 }
 
-/// What a pair contributes to its sphere `j` (the `i` side is summed per
-/// sphere while the pairs are evaluated): zero while the pair does not touch.
+/// A force and its torque about a body's centre of mass (world frame; N and
+/// N m): what one pair contributes to one of its two bodies, or the sum of
+/// such contributions.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct PairLoad {
-    /// Force on sphere `j`, world frame, N.
+pub struct BodyLoad {
+    /// Force, world frame, N.
     pub force: DVec3,
-    /// Torque on sphere `j` about its own centre, world frame, N m.
+    /// Torque about the body's centre of mass, world frame, N m.
     pub torque: DVec3,
 }
 
-/// Force and torque on one sphere summed over its pairs (world frame; N and
-/// N m about the sphere's centre).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct SphereLoad {
-    /// Force, world frame, N.
-    pub force: DVec3,
-    /// Torque about the sphere centre, world frame, N m.
-    pub torque: DVec3,
+impl BodyLoad {
+    /// The sum of two loads on the same body.
+    #[inline(always)]
+    pub fn add(self, o: BodyLoad) -> BodyLoad {
+        BodyLoad {
+            force: self.force + o.force,
+            torque: self.torque + o.torque,
+        }
+    }
 }
 
 /// The half pair list, stored by rows: the candidate partners `j > i` of
@@ -70,30 +72,33 @@ pub struct PairList {
     /// from the tangential springs: laws without rolling resistance never
     /// touch it, so the pair kernel streams half the history bytes.
     pub rolling: Vec<DVec3>,
-    /// What each pair contributes to its sphere `j` (parallel to `topo`),
-    /// recorded only for a `j` whose body is on a seam between two threads'
-    /// runs (see `load_c`), and zero for a pair that does not touch: the
-    /// gather sums such a sphere's column through `col_pair`
-    /// ([`column_sum`]).
-    pub load_j: Vec<PairLoad>,
-    /// Per sphere: the sum of the `j` sides of the pairs in its column, in
-    /// ascending pair order, accumulated by the pair kernel as it evaluates
-    /// them when all of them lie in the same thread's run as the sphere's
-    /// body (always on one thread). The body sum reads it and sets it back
-    /// to zero, so it is all zero between steps. (Stored per pair and read
-    /// back through the column, the `j` sides cost a 48-byte write per
-    /// contact, 11 % of the pair kernel's time at 40 000 spheres, and a
-    /// scattered read in the body sums, 12 % of the step.)
-    pub load_c: Vec<SphereLoad>,
-    /// Per sphere: the sum over the pairs of its own row (its `i` side).
-    pub load_i: Vec<SphereLoad>,
+    /// What each pair contributes to the body of its sphere `j` (parallel
+    /// to `topo`; torque about that body's centre of mass), recorded only
+    /// when that body is on a seam between two threads' runs (see
+    /// `col_load`), and zero for a pair that does not touch: the gather sums
+    /// such a body's column through `col_pair` ([`column_sum`]).
+    pub load_j: Vec<BodyLoad>,
+    /// Per body: the `i` sides of the pairs in the rows of its spheres
+    /// (torque about its centre of mass), summed in pair order. A body's
+    /// spheres are contiguous, so its rows are one run of pairs.
+    pub row_load: Vec<BodyLoad>,
+    /// Per body: the `j` sides of the pairs in the columns of its spheres,
+    /// summed in ascending pair order by the pair kernel as it evaluates
+    /// them, when all of them lie in the same thread's run as the body
+    /// (always on one thread). The gather reads it and sets it back to
+    /// zero, so it is all zero between steps. (Summed per body rather than
+    /// per sphere, the lever arms are applied per contact in the vectorised
+    /// law, and the per-sphere sums, 96 bytes a sphere read and written
+    /// every step, are gone.)
+    pub col_load: Vec<BodyLoad>,
     /// Multi-contact scale of each pair's force (`1/n` under `average`,
     /// parallel to `topo`; empty under `sum`).
     pub scale: Vec<f64>,
-    /// The pairs of each column slot: the pairs in which sphere `s` is the
-    /// `j` are `col_pair[col_start[s]..col_start[s + 1]]`, ascending.
+    /// The pairs of each body's column: the pairs whose sphere `j` belongs
+    /// to body `b` are `col_pair[col_start[b]..col_start[b + 1]]`,
+    /// ascending.
     pub col_pair: Vec<u32>,
-    /// Offsets of each sphere's column slots, one per sphere plus one.
+    /// Offsets of each body's column, one per body plus one.
     pub col_start: Vec<u32>,
     /// Per body (storage index): the first row (sphere `i`) with a pair in
     /// the column of one of its spheres, or its first sphere when they have
@@ -109,62 +114,29 @@ pub struct PairList {
     block_topo: Vec<Vec<PairTopo>>,
 }
 
-/// Pair force (N) and torque (N m, about the centre of mass `com`) on the
-/// body whose spheres are `spheres`, world frame: per sphere, its row sum
-/// plus its column sum (`column(s)`, the `j` sides of the pairs in its
-/// column added in ascending pair order, starting from zero),
-/// `F = Σ f_s`, `M = Σ (x_s − com) × f_s + t_s`. The one summation both the
-/// pair kernel (bodies complete in its thread's run, whose column sums it
-/// accumulated as it went, `PairList::load_c`) and the gather (the others,
-/// from the pairs' own records, [`column_sum`]) use, so either gives the
-/// same bits and the results do not depend on the thread count.
-///
-/// # Safety
-/// `load_i` points to the list's row sums; the spheres are of the list's
-/// last build, their loads are complete and nothing writes them during the
-/// call. Unchecked in release builds (hot loop), checked in debug builds.
-#[inline(always)]
-pub(crate) unsafe fn body_load(
-    load_i: *const SphereLoad,
-    column: impl Fn(usize) -> SphereLoad,
-    state: &[crate::sphere::SphereState],
-    spheres: std::ops::Range<usize>,
-    com: DVec3,
-) -> SphereLoad {
-    use crate::step::shared::at;
-    let mut total = SphereLoad::default();
-    for s in spheres {
-        let (row, col) = (*load_i.add(s), column(s));
-        let f = row.force + col.force;
-        let x = at(state, s).position;
-        total.force += f;
-        total.torque += (x - com).cross(f) + (row.torque + col.torque);
-    }
-    total
-}
-
-/// The column sum of sphere `s` from the pairs' own records: the `j` sides
+/// The column sum of body `b` from the pairs' own records: the `j` sides
 /// `load_j` of the pairs in its column, added in ascending pair order from
-/// zero (the order in which the pair kernel accumulates `load_c`).
+/// zero, the order in which the pair kernel accumulates
+/// [`PairList::col_load`]. Either way the body's pair load is
+/// `row_load + column`, with the same bits, so the results do not depend
+/// on which thread summed it.
 ///
 /// # Safety
-/// `load_j` points to the list's `load_j`, complete for these pairs; `s` is
-/// a sphere of the list's last build. Unchecked in release builds.
+/// `load_j` points to the list's `load_j`, complete for these pairs; `b` is
+/// a body of the list's last build. Unchecked in release builds.
 #[inline(always)]
 pub(crate) unsafe fn column_sum(
-    load_j: *const PairLoad,
+    load_j: *const BodyLoad,
     col_start: &[u32],
     col_pair: &[u32],
-    s: usize,
-) -> SphereLoad {
+    b: usize,
+) -> BodyLoad {
     use crate::step::shared::at;
-    let mut l = SphereLoad::default();
-    let (c0, c1) = (at(col_start, s) as usize, at(col_start, s + 1) as usize);
+    let mut l = BodyLoad::default();
+    let (c0, c1) = (at(col_start, b) as usize, at(col_start, b + 1) as usize);
     debug_assert!(c0 <= c1);
     for c in c0..c1 {
-        let pl = &*load_j.add(at(col_pair, c) as usize);
-        l.force += pl.force;
-        l.torque += pl.torque;
+        l = l.add(*load_j.add(at(col_pair, c) as usize));
     }
     l
 }
@@ -321,11 +293,7 @@ impl PairList {
         self.rolling.clear();
         self.rolling.resize(acc, DVec3::ZERO);
         self.load_j.clear();
-        self.load_j.resize(acc, PairLoad::default());
-        self.load_i.clear();
-        self.load_i.resize(n, SphereLoad::default());
-        self.load_c.clear();
-        self.load_c.resize(n, SphereLoad::default());
+        self.load_j.resize(acc, BodyLoad::default());
         self.scale.clear();
         if !history.is_empty() {
             let tan = crate::step::shared::SharedMut::new(&mut self.tangential);
@@ -354,27 +322,31 @@ impl PairList {
             });
         }
 
-        // 6. per-sphere column lists (pairs where the sphere is j), ascending
+        // 6. per-body column lists (pairs whose j belongs to the body),
+        //    ascending; a body's spheres are contiguous: its first sphere is
+        //    the first with its owner index
+        let nb = inp.body.last().map_or(0, |&b| b as usize + 1);
+        self.row_load.clear();
+        self.row_load.resize(nb, BodyLoad::default());
+        self.col_load.clear();
+        self.col_load.resize(nb, BodyLoad::default());
         self.col_start.clear();
-        self.col_start.resize(n + 1, 0);
+        self.col_start.resize(nb + 1, 0);
         for t in &self.topo {
-            self.col_start[t.j as usize + 1] += 1;
+            self.col_start[inp.body[t.j as usize] as usize + 1] += 1;
         }
-        for s in 0..n {
-            self.col_start[s + 1] += self.col_start[s];
+        for b in 0..nb {
+            self.col_start[b + 1] += self.col_start[b];
         }
         self.cursor.clear();
-        self.cursor.extend_from_slice(&self.col_start[..n]);
+        self.cursor.extend_from_slice(&self.col_start[..nb]);
         self.col_pair.clear();
         self.col_pair.resize(acc, 0);
         for (p, t) in self.topo.iter().enumerate() {
-            let c = &mut self.cursor[t.j as usize];
+            let c = &mut self.cursor[inp.body[t.j as usize] as usize];
             self.col_pair[*c as usize] = p as u32;
             *c += 1;
         }
-        // a body's spheres are contiguous: its first sphere is the first
-        // with its owner index
-        let nb = inp.body.last().map_or(0, |&b| b as usize + 1);
         self.first_feed.clear();
         self.first_feed.resize(nb, u32::MAX);
         for (s, &b) in inp.body.iter().enumerate().rev() {

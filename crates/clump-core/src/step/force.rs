@@ -1,12 +1,11 @@
 //! Force stage: per-pair contact forces over the rows of the half list
-//! (each pair's force is computed once, in batches, by `step::pair_kernel`;
-//! sphere `i`'s side is summed while its row is evaluated, sphere `j`'s side
-//! is added to `j`'s column sum, or recorded with the pair when `j`'s body
-//! is on a seam between two threads' runs; a body's pair load is summed as
-//! soon as all the rows that feed it are evaluated,
-//! `neighbor::pairs::body_load`),
-//! then a per-body gather in a fixed order with sphere–wall contacts and
-//! gravity, which also applies the final kick.
+//! (each pair's force is computed once, in batches, by `step::pair_kernel`,
+//! with its torques about both bodies' centres of mass; sphere `i`'s side is
+//! added to the row sum of its body while its row is evaluated, sphere `j`'s
+//! side to the column sum of `j`'s body, or recorded with the pair when
+//! that body is on a seam between two threads' runs,
+//! `neighbor::pairs::column_sum`), then a per-body gather in a fixed order
+//! with sphere–wall contacts and gravity, which also applies the final kick.
 //!
 //! Body force and torque (seed eq. 4.87–4.88), world frame:
 //! `F = m g + Σ_s F_s`, `M = Σ_s [(x_s − r_cm) × F_s + T_s]`, where `F_s` is
@@ -20,7 +19,7 @@ use super::pair_kernel::prefetch;
 use super::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput};
 use crate::multi_contact::{MultiContact, PartnerCounts};
-use crate::neighbor::pairs::{body_load, column_sum};
+use crate::neighbor::pairs::column_sum;
 use crate::sphere::{point_velocity, SPHERE_ID_BITS};
 use crate::wall::{WallLoad, WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::{ContactStats, World, WALL_SLOTS};
@@ -43,10 +42,9 @@ pub fn compute(w: &mut World) {
 }
 
 /// Evaluates every candidate sphere pair, row by row: pairs that do not touch
-/// get zero force and their history is reset. Writes each sphere's row sum
-/// (`load_i`) and column sum (`load_c`), or each pair's contribution to a
-/// seam `j` (`load_j`), the pair loads of the bodies complete in a thread's
-/// run, and the pair statistics per chunk of rows.
+/// get zero force and their history is reset. Writes each body's row sum
+/// (`row_load`) and column sum (`col_load`), or each pair's contribution to
+/// a seam body (`load_j`), and the pair statistics per chunk of rows.
 pub(crate) fn pair_forces(w: &mut World) {
     use super::pair_kernel::{Batch, RowCtx};
     if w.config.multi_contact == MultiContact::Average {
@@ -59,7 +57,6 @@ pub(crate) fn pair_forces(w: &mut World) {
     let stats = &mut w.chunk_pair_stats;
     stats.clear();
     stats.resize(nchunks, ContactStats::default());
-    w.body_load.resize(nb, Default::default());
     w.body_ready.resize(nb, false);
     let pairs = &mut w.pairs;
     let rows = RowCtx {
@@ -75,10 +72,9 @@ pub(crate) fn pair_forces(w: &mut World) {
         tangential: SharedMut::new(&mut pairs.tangential),
         rolling: SharedMut::new(&mut pairs.rolling),
         load_j: SharedMut::new(&mut pairs.load_j),
-        load_i: SharedMut::new(&mut pairs.load_i),
-        load_c: SharedMut::new(&mut pairs.load_c),
+        row_load: SharedMut::new(&mut pairs.row_load),
+        col_load: SharedMut::new(&mut pairs.col_load),
         first_feed: &pairs.first_feed,
-        body_load: SharedMut::new(&mut w.body_load),
         body_ready: SharedMut::new(&mut w.body_ready),
         avx2: super::pair_kernel::avx2(),
         prefetch: w.spheres.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
@@ -105,7 +101,8 @@ pub(crate) fn pair_forces(w: &mut World) {
         }
         let mut batch = Batch::default();
         // SAFETY: this run owns the rows of bodies b0..b1 of the half list,
-        // their body loads and its chunks' statistics slots, no other run's.
+        // their row sums and its chunks' statistics slots, no other run's;
+        // the column sums it writes are of bodies complete in it.
         unsafe {
             rows.evaluate(b0..b1, first[b0] as usize, &mut batch, &stats);
         }
@@ -181,7 +178,6 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
         wall_cull,
         wall_hist,
         body_cost,
-        body_load: body_loads,
         body_ready,
         balance,
         chunk_stats,
@@ -214,6 +210,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
     let loads = SharedMut::new(chunk_wall_loads);
     let b = &*bodies;
     let kick = kick.then(|| FinalKick::new(dt, *step, config.added_mass, templates, b));
+    let col_load = SharedMut::new(&mut pairs.col_load);
     let pairs = &*pairs;
     // Walls to test for sphere `s`, in ascending order: of the first 64, the
     // active ones that are near it or have moved since the last rebuild (the
@@ -271,24 +268,18 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                 let spheres = sp.of_body(bi);
                 // --- sphere–sphere contacts: summed by the pair stage, or
                 // here for a body on the seam between two threads' runs
+                let row = pairs.row_load[bi];
                 let pl = if body_ready[bi] {
-                    body_loads[bi]
+                    // SAFETY: body bi is handled by this chunk only; its
+                    // column sum is read and reset for the next step.
+                    row.add(std::mem::take(unsafe { col_load.get(bi) }))
                 } else {
-                    // SAFETY: the pair list was built for these spheres (a
+                    // SAFETY: the pair list was built for these bodies (a
                     // rebuild precedes every gather after a change), and the
                     // pair stage is over.
-                    unsafe {
-                        let column = |s: usize| {
-                            column_sum(pairs.load_j.as_ptr(), &pairs.col_start, &pairs.col_pair, s)
-                        };
-                        body_load(
-                            pairs.load_i.as_ptr(),
-                            column,
-                            &sp.state,
-                            spheres.clone(),
-                            com,
-                        )
-                    }
+                    row.add(unsafe {
+                        column_sum(pairs.load_j.as_ptr(), &pairs.col_start, &pairs.col_pair, bi)
+                    })
                 };
                 let mut f = b.mass[bi] * gravity + pl.force;
                 let mut m = pl.torque;

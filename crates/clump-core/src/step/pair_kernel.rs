@@ -17,9 +17,11 @@
 //!    SSE2); vector and scalar IEEE arithmetic give the same bits;
 //! 4. *scatter*: rolling couples (for laws that have one), then each pair's
 //!    history is stored (and the pair marked live), its `i` side is added
-//!    to its row's sum and its `j` side to `j`'s column sum (or recorded
-//!    with the pair when `j`'s body is on a seam between two threads'
-//!    runs), in pair order.
+//!    to the row sum of `i`'s body and its `j` side to the column sum of
+//!    `j`'s body (or recorded with the pair when `j`'s body is on a seam
+//!    between two threads' runs), in pair order. The law loop has already
+//!    turned each side's torque into the torque about its body's centre of
+//!    mass, so these sums are the bodies' pair loads.
 //!
 //! The batch keeps pair order, so every sum is taken in ascending pair order
 //! and the results do not depend on the thread count.
@@ -27,7 +29,7 @@
 use super::force::BODY_CHUNK;
 use super::shared::{at, SharedMut};
 use crate::contact::{ContactInput, SlidingLaw};
-use crate::neighbor::pairs::{body_load, PairLoad, SphereLoad};
+use crate::neighbor::pairs::BodyLoad;
 use crate::world::ContactStats;
 use glam::DVec3;
 
@@ -57,27 +59,26 @@ pub(super) struct RowCtx<'a> {
     /// Rolling spring per pair, N m (written by laws with rolling
     /// resistance only).
     pub rolling: SharedMut<DVec3>,
-    /// `j`-side loads of the pairs whose `j` is on a seam, in pair order
-    /// ([`PairList::load_j`]; written).
+    /// `j`-side loads of the pairs whose `j`'s body is on a seam, in pair
+    /// order ([`PairList::load_j`]; written).
     ///
     /// [`PairList::load_j`]: crate::neighbor::PairList::load_j
-    pub load_j: SharedMut<PairLoad>,
-    /// Column sums per sphere, for the spheres whose bodies are complete in
-    /// their thread's run ([`PairList::load_c`]; written).
+    pub load_j: SharedMut<BodyLoad>,
+    /// Column sums per body, for the bodies complete in their thread's run
+    /// ([`PairList::col_load`]; written).
     ///
-    /// [`PairList::load_c`]: crate::neighbor::PairList::load_c
-    pub load_c: SharedMut<SphereLoad>,
-    /// Row sums per sphere (written).
-    pub load_i: SharedMut<SphereLoad>,
+    /// [`PairList::col_load`]: crate::neighbor::PairList::col_load
+    pub col_load: SharedMut<BodyLoad>,
+    /// Row sums per body ([`PairList::row_load`]; written).
+    ///
+    /// [`PairList::row_load`]: crate::neighbor::PairList::row_load
+    pub row_load: SharedMut<BodyLoad>,
     /// First row feeding each body's columns ([`PairList::first_feed`]).
     ///
     /// [`PairList::first_feed`]: crate::neighbor::PairList::first_feed
     pub first_feed: &'a [u32],
-    /// Pair force and torque per body (world frame; N, N m about the centre
-    /// of mass), for the bodies marked in `body_ready` (written).
-    pub body_load: SharedMut<SphereLoad>,
-    /// Per body: whether `body_load` holds its pair load this step (written;
-    /// false: the gather sums it).
+    /// Per body: whether `col_load` holds its column sum this step
+    /// (written; false: the gather sums it from `load_j`).
     pub body_ready: SharedMut<bool>,
     /// The law loop may use AVX2 ([`avx2`]).
     pub avx2: bool,
@@ -100,20 +101,20 @@ pub(super) fn avx2() -> bool {
 
 impl RowCtx<'_> {
     /// Evaluates the rows of the spheres of `bodies` (see the module docs),
-    /// using `batch` as scratch, and sums the pair load of each body whose
-    /// load is then complete: all its rows are done and all the rows feeding
-    /// its columns lie in this thread's run, which starts at sphere
-    /// `run_start` (they run in ascending order, so they are done too). Such
-    /// a body's load is summed while its spheres' loads are still in cache;
-    /// the gather sums the others' (a body on the seam with an earlier
-    /// run). Which does the sum never changes the result ([`body_load`]).
+    /// using `batch` as scratch. The thread's run starts at sphere
+    /// `run_start`: a body all of whose column pairs lie in rows from
+    /// there on (`first_feed`) is complete in the run, and its column sum
+    /// is accumulated here (it is marked in `body_ready`); the gather sums
+    /// the others' (a body on the seam with an earlier run) from the pairs'
+    /// records. Which does the sum never changes the result
+    /// ([`crate::neighbor::pairs::column_sum`]).
     ///
     /// # Safety
     /// No other thread touches these rows (their pairs' topology, history
-    /// and `load_j`, and the spheres' `load_i`) during the call. The pair list
-    /// must be consistent with the spheres (every index in range), which
-    /// every rebuild guarantees; indexing is unchecked in this hot loop
-    /// (checked in debug builds).
+    /// and `load_j`) or these bodies' row sums during the call. The pair
+    /// list must be consistent with the spheres (every index in range),
+    /// which every rebuild guarantees; indexing is unchecked in this hot
+    /// loop (checked in debug builds).
     #[inline(never)]
     pub(super) unsafe fn evaluate(
         &self,
@@ -132,13 +133,14 @@ impl RowCtx<'_> {
         let spheres = at(first, bodies.start) as usize..at(first, bodies.end) as usize;
         debug_assert!(spheres.end <= n);
         (batch.run_start, batch.run_end) = (run_start, spheres.end);
-        // the next body whose load is to be summed
-        let mut next = bodies.start;
+        for b in bodies.clone() {
+            *self.row_load.get(b) = BodyLoad::default();
+            *self.body_ready.get(b) = at(self.first_feed, b) as usize >= run_start;
+        }
         // the batch length lives in a register during the detect pass
         let mut len = 0usize;
         let mut n_clear = 0usize;
         for i in spheres.clone() {
-            *self.load_i.get(i) = SphereLoad::default();
             let si = self.sphere(i);
             let (xi, ri) = (si.position, si.radius);
             let (p0, p1) = (
@@ -146,31 +148,28 @@ impl RowCtx<'_> {
                 at(self.row_start, i + 1) as usize,
             );
             for p in p0..p1 {
-                // the partner a few pairs ahead: its packed state line, which
-                // in a bed larger than the caches may lie far away in memory
-                // (Morton neighbours across a coarse cell boundary)
-                if self.prefetch && p + PREFETCH < np {
-                    let ahead = topo.read(p + PREFETCH).j as usize;
-                    prefetch(sp.state.as_ptr().add(ahead));
-                }
                 let t = topo.read(p);
                 let j = t.j as usize;
-                // the partner's column sum, which the scatter adds to at the
-                // flush, a batch later (without, its reads stalled the
-                // scatter: 9 % of this function on 8 000 spheres)
-                prefetch(self.load_c.as_ptr().add(j));
                 if self.prefetch {
-                    // in a large bed also the column sum's second line (an
-                    // entry may straddle two) and the partner body's angular
-                    // velocity and mass, which the batch gather reads: the
-                    // partner body can lie far away in memory (at 10⁶
-                    // spheres its ω was the top stall, 11 % of this
-                    // function); the partner's state line, with its owner,
-                    // was prefetched a few pairs ago
-                    prefetch((self.load_c.as_ptr().add(j) as *const u8).add(47));
+                    // in a bed larger than the caches: the partner a few
+                    // pairs ahead, its packed state line, which may lie far
+                    // away in memory (Morton neighbours across a coarse
+                    // cell boundary); and the current partner body's column
+                    // sum, angular velocity and mass, which the batch
+                    // gather and scatter read (at 10⁶ spheres the partner
+                    // body's ω was the top stall, 11 % of this function);
+                    // the partner's state line, with its owner, was
+                    // prefetched a few pairs ago
+                    if p + PREFETCH < np {
+                        let ahead = topo.read(p + PREFETCH).j as usize;
+                        prefetch(sp.state.as_ptr().add(ahead));
+                    }
                     let bj = self.sphere(j).body as usize;
+                    prefetch(self.col_load.as_ptr().add(bj));
+                    prefetch((self.col_load.as_ptr().add(bj) as *const u8).add(47));
                     prefetch(self.b.angular_velocity.as_ptr().add(bj));
                     prefetch(self.b.mass.as_ptr().add(bj));
+                    prefetch(self.b.position.as_ptr().add(bj));
                 }
                 let d = xi - self.partner_position(j, t.shift);
                 let rsum = ri + self.sphere(j).radius;
@@ -193,15 +192,12 @@ impl RowCtx<'_> {
                     batch.len = len;
                     self.contacts(batch, stats);
                     len = 0;
-                    // the rows before i are complete
-                    self.sum_bodies(&mut next, bodies.end, i, run_start);
                 }
             }
         }
         self.clear_pairs(&batch.clear[..n_clear]);
         batch.len = len;
         self.contacts(batch, stats);
-        self.sum_bodies(&mut next, bodies.end, spheres.end, run_start);
     }
 
     /// Clears what a contact left on the pairs `ps`, which no longer touch:
@@ -216,32 +212,7 @@ impl RowCtx<'_> {
             self.topo.get(p).live = false;
             *self.tangential.get(p) = DVec3::ZERO;
             *self.rolling.get(p) = DVec3::ZERO;
-            *self.load_j.get(p) = PairLoad::default();
-        }
-    }
-
-    /// Sums the pair loads of the bodies from `*next` (before `end`) whose
-    /// rows all lie before sphere `done` (see [`Self::evaluate`]).
-    #[inline(never)]
-    unsafe fn sum_bodies(&self, next: &mut usize, end: usize, done: usize, run_start: usize) {
-        let (sp, first) = (self.sp, &self.sp.body_first);
-        while *next < end && at(first, *next + 1) as usize <= done {
-            let b = *next;
-            let spheres = at(first, b) as usize..at(first, b + 1) as usize;
-            let ready = at(self.first_feed, b) as usize >= run_start;
-            *self.body_ready.get(b) = ready;
-            if ready {
-                // the column sums this run accumulated, read and reset
-                let column = |s: usize| std::mem::take(self.load_c.get(s));
-                *self.body_load.get(b) = body_load(
-                    self.load_i.as_ptr(),
-                    column,
-                    &sp.state,
-                    spheres,
-                    at(&self.b.position, b),
-                );
-            }
-            *next += 1;
+            *self.load_j.get(p) = BodyLoad::default();
         }
     }
 
@@ -290,6 +261,11 @@ impl RowCtx<'_> {
             let (bi, bj) = (si.body as usize, sj.body as usize);
             let (wi, wj) = (at(&b.angular_velocity, bi), at(&b.angular_velocity, bj));
             let h = self.tangential.read(p);
+            batch.body[k] = [bi as u32, bj as u32];
+            // the lever arms from each body's centre of mass to its sphere
+            // (each sphere's own position: the same for any periodic image)
+            l.set3(IN_CI, k, si.position - at(&b.position, bi));
+            l.set3(IN_CJ, k, sj.position - at(&b.position, bj));
             l.set3(IN_D, k, d);
             l.set3(IN_DV, k, dv);
             l.set3(IN_WI, k, wi);
@@ -350,23 +326,24 @@ impl RowCtx<'_> {
                 }
             }
         }
-        // The row sum of the current row and the statistics of the current
-        // chunk are carried in registers and stored when the row or chunk
-        // changes (rows and chunks ascend in the batch). Accumulating in
+        // The row sum of the current body and the statistics of the current
+        // chunk are carried in registers and stored when the body or chunk
+        // changes (bodies and chunks ascend in the batch). Accumulating in
         // place chained every contact through a store and a reload. Same
         // additions in the same order, so the same bits.
-        let mut row = batch.row[0] as usize;
-        let mut li = *self.load_i.get(row);
-        let mut chunk = self.sphere(row).body as usize / BODY_CHUNK;
+        let single_run = batch.run_start == 0 && batch.run_end == self.sp.len();
+        let mut body = batch.body[0][0] as usize;
+        let mut li = *self.row_load.get(body);
+        let mut chunk = body / BODY_CHUNK;
         let mut stat = *stats.get(chunk);
         for k in 0..len {
             let p = batch.pair[k] as usize;
-            let i = batch.row[k] as usize;
-            if i != row {
-                *self.load_i.get(row) = li;
-                row = i;
-                li = *self.load_i.get(row);
-                let c = self.sphere(row).body as usize / BODY_CHUNK;
+            let [bi, bj] = batch.body[k].map(|x| x as usize);
+            if bi != body {
+                *self.row_load.get(body) = li;
+                body = bi;
+                li = *self.row_load.get(body);
+                let c = body / BODY_CHUNK;
                 if c != chunk {
                     *stats.get(chunk) = stat;
                     chunk = c;
@@ -376,21 +353,20 @@ impl RowCtx<'_> {
             let f = l.get3(OUT_F, k);
             li.force += f;
             li.torque += l.get3(OUT_TI, k);
-            // the j side: added to j's column sum when j's body is complete
-            // in this run (then every pair feeding it is evaluated here, in
-            // ascending order), else recorded for the gather
-            let side = PairLoad {
+            // the j side: added to the column sum of j's body when that body
+            // is complete in this run (then every pair feeding it is
+            // evaluated here, in ascending order), else recorded for the
+            // gather
+            let side = BodyLoad {
                 force: -f,
                 torque: l.get3(OUT_TJ, k),
             };
             let j = self.topo.read(p).j as usize;
             // one run (one thread): every body is complete in it
-            let direct = batch.run_start == 0 && batch.run_end == self.sp.len() || {
-                let bj = self.sphere(j).body as usize;
-                j < batch.run_end && at(self.first_feed, bj) as usize >= batch.run_start
-            };
+            let direct = single_run
+                || (j < batch.run_end && at(self.first_feed, bj) as usize >= batch.run_start);
             if direct {
-                let c = self.load_c.get(j);
+                let c = self.col_load.get(bj);
                 c.force += side.force;
                 c.torque += side.torque;
             } else {
@@ -411,11 +387,12 @@ impl RowCtx<'_> {
                 // the two spheres' storage indices: the gather turns them
                 // into body ids, once per chunk (looking the ids up here
                 // missed the cache in large beds: 7 % of this function)
+                let i = batch.row[k] as usize;
                 stat.max_overlap_bodies = [i as u64, j as u64];
                 stat.max_overlap_wall = 0;
             }
         }
-        *self.load_i.get(row) = li;
+        *self.row_load.get(body) = li;
         *stats.get(chunk) = stat;
     }
 
@@ -512,6 +489,8 @@ pub(super) struct Batch {
     /// at the count is scratch, like `pair`'s).
     clear: [u32; BATCH],
     row: [u32; BATCH],
+    /// Bodies of the pair's spheres `i` and `j`.
+    body: [[u32; 2]; BATCH],
     model: [u32; BATCH],
     len: usize,
     lanes: Lanes,
@@ -525,6 +504,7 @@ impl Default for Batch {
             run_end: 0,
             clear: [0; BATCH],
             row: [0; BATCH],
+            body: [[0; 2]; BATCH],
             model: [0; BATCH],
             len: 0,
             lanes: Lanes {
@@ -558,9 +538,9 @@ const IN_SCALE: usize = 19;
 // Outputs:
 /// Force on `i`, scaled (3), N.
 const OUT_F: usize = 20;
-/// Torque on sphere `i` about its centre (3), N m.
+/// Torque on `i`'s body about its centre of mass (3), N m.
 const OUT_TI: usize = 23;
-/// Torque on sphere `j` about its centre (3), N m.
+/// Torque on `j`'s body about its centre of mass (3), N m.
 const OUT_TJ: usize = 26;
 /// Unit normal, `j` → `i` (3).
 const OUT_N: usize = 29;
@@ -576,8 +556,12 @@ const OUT_KN: usize = 35;
 const OUT_RSTAR: usize = 36;
 /// `m*`, kg.
 const OUT_MSTAR: usize = 37;
+/// Lever arm `x_i − r_cm` of sphere `i` in its body (3), m.
+const IN_CI: usize = 38;
+/// Lever arm `x_j − r_cm` of sphere `j` in its body (3), m.
+const IN_CJ: usize = 41;
 // Per-lane law (when the batch mixes models):
-const LAW: usize = 38;
+const LAW: usize = 44;
 /// Number of rows.
 const NV: usize = LAW + 8;
 
@@ -630,7 +614,11 @@ impl Lanes {
     }
 
     /// Contact `k`: normal, overlap, contact-point velocities, `R*`, `m*`,
-    /// the law, and the torques of its force about the two sphere centres.
+    /// the law, and the torques of its force about the two bodies' centres
+    /// of mass: the contact point is `x_c = x_i − a_i n = x_j + a_j n`, so
+    /// `(x_c − r_cm,i) × f = c_i × f − a_i (n × f)` on `i`'s body and
+    /// `(x_c − r_cm,j) × (−f) = −c_j × f − a_j (n × f)` on `j`'s (seed
+    /// eq. 4.88), with the lever arms `c = x_s − r_cm`.
     #[inline(always)]
     fn contact(&mut self, k: usize, law: &SlidingLaw, dt: f64) {
         let d = self.get3(IN_D, k);
@@ -651,10 +639,11 @@ impl Lanes {
         let scale = self.v[IN_SCALE][k];
         let f = out.force * scale;
         let g = nrm.cross(f);
+        let (ci, cj) = (self.get3(IN_CI, k), self.get3(IN_CJ, k));
         self.set3(IO_XI, k, xi);
         self.set3(OUT_F, k, f);
-        self.set3(OUT_TI, k, DVec3::ZERO - g * ai);
-        self.set3(OUT_TJ, k, -DVec3::ZERO - g * aj);
+        self.set3(OUT_TI, k, ci.cross(f) - g * ai);
+        self.set3(OUT_TJ, k, -cj.cross(f) - g * aj);
         self.set3(OUT_N, k, nrm);
         let v = &mut self.v;
         v[OUT_OVERLAP][k] = overlap;
