@@ -293,7 +293,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                                 let k = walls[wi].shape.contacts(
                                     meshes,
                                     sp.position(s),
-                                    sp.radius[s],
+                                    sp.state[s].radius,
                                     0.0,
                                     &mut buf,
                                 );
@@ -336,9 +336,13 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                         let mut used = [false; WALL_SLOTS];
                         for wi in cand {
                             let wall = &walls[wi];
-                            let k =
-                                wall.shape
-                                    .contacts(meshes, sp.position(s), sp.radius[s], 0.0, buf);
+                            let k = wall.shape.contacts(
+                                meshes,
+                                sp.position(s),
+                                sp.state[s].radius,
+                                0.0,
+                                buf,
+                            );
                             let is_mesh = matches!(wall.shape, WallShape::Mesh { .. });
                             for touch in &buf[..k] {
                                 let (slot_key, old) = if is_mesh {
@@ -369,7 +373,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                                 load.torque -= tw * scale;
                                 stat.wall_contacts += 1;
                                 stat.elastic_energy += energy * scale;
-                                let ratio = touch.overlap / sp.radius[s];
+                                let ratio = touch.overlap / sp.state[s].radius;
                                 if ratio > stat.max_overlap_ratio {
                                     stat.max_overlap_ratio = ratio;
                                     stat.max_overlap_bodies = [b.id[bi], 0];
@@ -570,7 +574,7 @@ impl WallCtx<'_> {
         h: &mut ContactHistory,
     ) -> (DVec3, DVec3, DVec3, f64) {
         let wall = &self.walls[wi];
-        let r = self.sp.radius[s];
+        let r = self.sp.state[s].radius;
         let n = touch.normal;
         let xc = self.sp.position(s) - n * (r - 0.5 * touch.overlap);
         let bi = self.bi;
@@ -588,7 +592,7 @@ impl WallCtx<'_> {
             mass: self.b.mass[bi],
             dt: self.dt,
         };
-        let model = self.table.get(self.sp.material[s], wall.material);
+        let model = self.table.get(self.sp.state[s].material, wall.material);
         let out = model.evaluate(&input, h);
         let m_body = (xc - self.com).cross(out.force) + out.torque;
         let m_wall_from_body = (xc - wall.motion.center).cross(out.force) + out.torque;
