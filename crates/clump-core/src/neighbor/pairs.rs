@@ -64,6 +64,11 @@ pub struct PairList {
     pub row_start: Vec<u32>,
     /// Partner of each pair.
     pub topo: Vec<PairTopo>,
+    /// Row of each pair (its sphere `i`; parallel to `topo`): the pair
+    /// kernel walks the pairs in one flat loop, without a loop per row
+    /// whose exit, after a varying 0–4 candidates, was a mispredicted
+    /// branch per sphere.
+    pub row: Vec<u32>,
     /// Tangential spring of each pair (parallel to `topo`), world frame, m,
     /// oriented from `i` to `j` ([`ContactHistory::tangential`]).
     pub tangential: Vec<DVec3>,
@@ -284,6 +289,13 @@ impl PairList {
             self.topo.extend_from_slice(b);
         }
         debug_assert_eq!(self.topo.len(), acc);
+        self.row.clear();
+        self.row.reserve(acc);
+        for i in 0..n {
+            let len = self.row_start[i + 1] - self.row_start[i];
+            self.row
+                .extend(std::iter::repeat(i as u32).take(len as usize));
+        }
 
         // 5. restore the history of pairs that persist (stored from the lower
         //    to the higher global id; pairs here run from i to j > i)

@@ -67,6 +67,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         b: &w.bodies,
         table: &w.contact_table,
         row_start: &pairs.row_start,
+        row: &pairs.row,
         topo: SharedMut::new(&mut pairs.topo),
         scale: &pairs.scale,
         tangential: SharedMut::new(&mut pairs.tangential),

@@ -49,6 +49,8 @@ pub(super) struct RowCtx<'a> {
     pub table: &'a crate::world::ContactTable,
     /// Row offsets of the half list, one per sphere plus one.
     pub row_start: &'a [u32],
+    /// Row (sphere `i`) of each pair.
+    pub row: &'a [u32],
     /// Partner, periodic image and live flag of each pair (the flag is
     /// written).
     pub topo: SharedMut<crate::neighbor::pairs::PairTopo>,
@@ -82,8 +84,8 @@ pub(super) struct RowCtx<'a> {
     pub body_ready: SharedMut<bool>,
     /// The law loop may use AVX2 ([`avx2`]).
     pub avx2: bool,
-    /// The detect pass prefetches partner data (beds beyond the caches,
-    /// see [`PREFETCH_MIN_SPHERES`]).
+    /// The detect pass prefetches the partner body's data (beds beyond the
+    /// caches, see [`PREFETCH_MIN_SPHERES`]).
     pub prefetch: bool,
 }
 
@@ -140,59 +142,57 @@ impl RowCtx<'_> {
         // the batch length lives in a register during the detect pass
         let mut len = 0usize;
         let mut n_clear = 0usize;
-        for i in spheres.clone() {
+        // one flat loop over the pairs of the run's rows
+        let pairs =
+            at(self.row_start, spheres.start) as usize..at(self.row_start, spheres.end) as usize;
+        for p in pairs {
+            let t = topo.read(p);
+            let (i, j) = (at(self.row, p) as usize, t.j as usize);
+            // the partner a few pairs ahead: its packed state line, the
+            // top stall of this loop (it misses the per-core cache even at
+            // 8 000 spheres, where the pair stage streams about 1.3 MB, and
+            // in a large bed it may lie far away in memory: Morton
+            // neighbours across a coarse cell boundary)
+            if p + PREFETCH < np {
+                let ahead = topo.read(p + PREFETCH).j as usize;
+                prefetch(sp.state.as_ptr().add(ahead));
+            }
+            if self.prefetch {
+                // in a bed larger than the caches: the current partner
+                // body's column sum, angular velocity, mass and centre,
+                // which the batch gather and scatter read (at 10⁶ spheres
+                // the partner body's ω was the top stall, 11 % of this
+                // function); the partner's state line, with its owner, was
+                // prefetched a few pairs ago
+                let bj = self.sphere(j).body as usize;
+                prefetch(self.col_load.as_ptr().add(bj));
+                prefetch((self.col_load.as_ptr().add(bj) as *const u8).add(47));
+                prefetch(self.b.angular_velocity.as_ptr().add(bj));
+                prefetch(self.b.mass.as_ptr().add(bj));
+                prefetch(self.b.position.as_ptr().add(bj));
+            }
             let si = self.sphere(i);
-            let (xi, ri) = (si.position, si.radius);
-            let (p0, p1) = (
-                at(self.row_start, i) as usize,
-                at(self.row_start, i + 1) as usize,
-            );
-            for p in p0..p1 {
-                let t = topo.read(p);
-                let j = t.j as usize;
-                if self.prefetch {
-                    // in a bed larger than the caches: the partner a few
-                    // pairs ahead, its packed state line, which may lie far
-                    // away in memory (Morton neighbours across a coarse
-                    // cell boundary); and the current partner body's column
-                    // sum, angular velocity and mass, which the batch
-                    // gather and scatter read (at 10⁶ spheres the partner
-                    // body's ω was the top stall, 11 % of this function);
-                    // the partner's state line, with its owner, was
-                    // prefetched a few pairs ago
-                    if p + PREFETCH < np {
-                        let ahead = topo.read(p + PREFETCH).j as usize;
-                        prefetch(sp.state.as_ptr().add(ahead));
-                    }
-                    let bj = self.sphere(j).body as usize;
-                    prefetch(self.col_load.as_ptr().add(bj));
-                    prefetch((self.col_load.as_ptr().add(bj) as *const u8).add(47));
-                    prefetch(self.b.angular_velocity.as_ptr().add(bj));
-                    prefetch(self.b.mass.as_ptr().add(bj));
-                    prefetch(self.b.position.as_ptr().add(bj));
-                }
-                let d = xi - self.partner_position(j, t.shift);
-                let rsum = ri + self.sphere(j).radius;
-                let touching = d.length_squared() < rsum * rsum;
-                // branch-free compaction: the slot is always written, kept
-                // only when touching (len < BATCH here)
-                debug_assert!(len < BATCH);
-                *batch.pair.get_unchecked_mut(len) = p as u32;
-                *batch.row.get_unchecked_mut(len) = i as u32;
-                len += touching as usize;
-                // pairs that stopped touching are compacted the same way
-                // and cleared at the flush: a branch on `!touching && live`
-                // here went on `touching` (or on `live`), as good as random
-                // in a dense bed, where half the candidates touch
-                *batch.clear.get_unchecked_mut(n_clear) = p as u32;
-                n_clear += (!touching & t.live) as usize;
-                if len == BATCH || n_clear == BATCH {
-                    self.clear_pairs(&batch.clear[..n_clear]);
-                    n_clear = 0;
-                    batch.len = len;
-                    self.contacts(batch, stats);
-                    len = 0;
-                }
+            let d = si.position - self.partner_position(j, t.shift);
+            let rsum = si.radius + self.sphere(j).radius;
+            let touching = d.length_squared() < rsum * rsum;
+            // branch-free compaction: the slot is always written, kept
+            // only when touching (len < BATCH here)
+            debug_assert!(len < BATCH);
+            *batch.pair.get_unchecked_mut(len) = p as u32;
+            *batch.row.get_unchecked_mut(len) = i as u32;
+            len += touching as usize;
+            // pairs that stopped touching are compacted the same way and
+            // cleared at the flush: a branch on `!touching && live` here
+            // went on `touching` (or on `live`), as good as random in a
+            // dense bed, where half the candidates touch
+            *batch.clear.get_unchecked_mut(n_clear) = p as u32;
+            n_clear += (!touching & t.live) as usize;
+            if len == BATCH || n_clear == BATCH {
+                self.clear_pairs(&batch.clear[..n_clear]);
+                n_clear = 0;
+                batch.len = len;
+                self.contacts(batch, stats);
+                len = 0;
             }
         }
         self.clear_pairs(&batch.clear[..n_clear]);
@@ -453,11 +453,13 @@ fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
 /// data.
 const PREFETCH: usize = 16;
 
-/// Spheres from which the detect pass prefetches: from about 1 MiB of
-/// packed sphere state (64 B each), a typical per-core L2. Measured on
-/// settled tetra beds, one thread: at 40 000 spheres prefetching cuts the
-/// pair stage from 115 to 96 ns per sphere-step; at 8 000, whose data fit,
-/// it costs about 8 % (the extra instructions then buy nothing).
+/// Spheres from which the detect pass prefetches the partner body's data
+/// (the partner's state line is prefetched at every size): from about
+/// 1 MiB of packed sphere state (64 B each), a typical per-core L2.
+/// Measured on settled tetra beds, one thread: at 40 000 spheres
+/// prefetching cuts the pair stage from 115 to 96 ns per sphere-step; at
+/// 8 000, whose data fit, it costs about 8 % (the extra instructions then
+/// buy nothing).
 pub(super) const PREFETCH_MIN_SPHERES: usize = 16_384;
 
 /// Asks the processor to bring the cache line at `x` into L1 (a hint; no
