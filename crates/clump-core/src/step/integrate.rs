@@ -285,6 +285,13 @@ impl HalfKick {
         ff: crate::body::AxisFlags,
         tf: crate::body::AxisFlags,
     ) {
+        // a free body (every axis kicked, the common case): plain vector
+        // additions, without building the masks (4 % of the gather)
+        if ff == [true; 3] && tf == [true; 3] {
+            *v += self.dtfm * force;
+            *l += self.dtt * torque;
+            return;
+        }
         // whole-vector selects, not per-component stores: the integration
         // reads `v` and `l` back as vectors at once, and a vector load of
         // three separate scalar stores cannot be forwarded (a stall measured
