@@ -18,7 +18,7 @@ pub fn sphere_gid(body_id: u64, index_in_template: u32) -> u64 {
 
 /// The spheres of all bodies, structure of arrays. Topology (owner, index,
 /// radius, material) changes only when bodies are added, removed or
-/// re-sorted; positions and velocities are recomputed every step.
+/// re-sorted; positions are recomputed every step.
 #[derive(Debug, Clone, Default)]
 pub struct Spheres {
     /// Storage index of the owner body.
@@ -38,13 +38,15 @@ pub struct Spheres {
     pub body_first: Vec<u32>,
 }
 
-/// What the contact kernels read of a sphere, packed into one 64-byte cache
-/// line: the pair kernel fetches a partner sphere (often far away in
-/// memory in a large bed) with a single cache miss instead of one per
-/// array. Position and velocity live only here; radius, owner and material
-/// are copies of the topology arrays of [`Spheres`], written with them
-/// whenever the topology is rebuilt.
-#[repr(C, align(64))]
+/// What the pair kernel's detect pass reads of a sphere, packed into 32
+/// bytes (two spheres per cache line): centre and radius. The position
+/// lives only here; the radius is a copy of [`Spheres::radius`], written
+/// with it whenever the topology is rebuilt. Velocities are not stored per
+/// sphere: the contact kernels take them from the owner's velocity and
+/// angular velocity (`v + ω × (x − r_cm)`), so the first half step writes
+/// only the centres, and the detect pass streams half the bytes it did
+/// with the 64-byte state (centre, radius, velocity, owner, material).
+#[repr(C, align(32))]
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SphereState {
     /// Centre, world frame, m. Not wrapped: it is the owner's centre of mass
@@ -52,12 +54,6 @@ pub struct SphereState {
     pub position: DVec3,
     /// Radius, m.
     pub radius: f64,
-    /// Velocity of the centre, world frame, m/s.
-    pub velocity: DVec3,
-    /// Storage index of the owner body.
-    pub body: u32,
-    /// Material index.
-    pub material: u16,
 }
 
 impl Spheres {
@@ -65,12 +61,6 @@ impl Spheres {
     #[inline(always)]
     pub fn position(&self, s: usize) -> DVec3 {
         self.state[s].position
-    }
-
-    /// Velocity of the centre of sphere `s`, world frame, m/s.
-    #[inline(always)]
-    pub fn velocity(&self, s: usize) -> DVec3 {
-        self.state[s].velocity
     }
 
     /// Centres of all spheres in storage order, world frame, m.

@@ -593,7 +593,7 @@ impl WallCtx<'_> {
             mass: self.b.mass[bi],
             dt: self.dt,
         };
-        let model = self.table.get(self.sp.state[s].material, wall.material);
+        let model = self.table.get(self.sp.material[s], wall.material);
         let out = model.evaluate(&input, h);
         let m_body = (xc - self.com).cross(out.force) + out.torque;
         let m_wall_from_body = (xc - wall.motion.center).cross(out.force) + out.torque;

@@ -5,7 +5,7 @@
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
 use super::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};
-use super::kinematics::sphere_state;
+use super::kinematics::sphere_position;
 use super::shared::{at, SharedMut};
 use crate::neighbor::skin;
 use crate::rotation::{inverse_inertia, omega_world, omega_world_rot};
@@ -178,10 +178,8 @@ impl<'a> Drift<'a> {
             let (s0, s1) = (self.first.read(i) as usize, self.first.read(i + 1) as usize);
             for (k, s) in (s0..s1).enumerate() {
                 let off = at(self.toff, o0 + k);
-                let (px, pv) = sphere_state(*x, &rot, *v, *om, off);
-                let st = self.sst.get(s);
-                st.position = px;
-                st.velocity = pv;
+                let px = sphere_position(*x, &rot, off);
+                self.sst.get(s).position = px;
                 stale |= skin::moved_too_far(px, at(self.xref, s), self.limit2);
             }
         }

@@ -4,8 +4,9 @@
 //!    mass, free-rotation drift of the orientation (the chosen rotation scheme);
 //!    walls move.
 //! 2. Sphere kinematics ([`kinematics`]), in the same pass over each body:
-//!    sphere positions and velocities from the body pose, r = r_cm + Aᵀ r_b,
-//!    v = v_cm + ω × (r − r_cm), and the Verlet-skin check.
+//!    sphere positions from the body pose, r = r_cm + Aᵀ r_b, and the
+//!    Verlet-skin check (a sphere's velocity, v = v_cm + ω × (r − r_cm), is
+//!    evaluated where a contact needs it, from its body's).
 //! 3. Neighbour search ([`rebuild`]), only when a sphere moved more than half
 //!    the skin. Bodies are wrapped, lost bodies removed and the rest Morton-sorted
 //!    here. A future MPI layer exchanges ghost spheres at this stage.
@@ -43,7 +44,7 @@ use thiserror::Error;
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StageTimes {
     /// Initial integrate: half kicks, drift and rotation of the bodies, their
-    /// spheres' positions and velocities with the skin check, walls.
+    /// spheres' positions with the skin check, walls.
     pub initial: f64,
     /// Neighbour-list rebuilds (sorting, pair list, wall lists).
     pub neighbor: f64,

@@ -7,7 +7,8 @@
 //!    batch (the common non-touching pair costs one distance test; stale
 //!    state is cleared only when a pair stops touching);
 //! 2. *gather*: each touching pair's inputs (world frame: centre
-//!    separation, sphere velocities, body angular velocities, radii, body
+//!    separation, lever arms from the bodies' centres of mass, body
+//!    velocities and angular velocities, radii, body
 //!    masses, tangential history) are copied into per-quantity arrays;
 //! 3. *law*: the contact geometry and the normal–tangential law
 //!    ([`SlidingLaw::evaluate`], the same function the scalar contact law
@@ -41,9 +42,10 @@ pub(super) struct RowCtx<'a> {
     pub domain: crate::boundary::Domain,
     /// Some axis of the domain is periodic.
     pub any_periodic: bool,
-    /// Sphere state (centres, m; velocities, m/s; radii, m; owners).
+    /// Spheres (centres and radii, m; owners; materials).
     pub sp: &'a crate::sphere::Spheres,
-    /// Body state (angular velocities, rad/s; masses, kg).
+    /// Body state (centres of mass, m; velocities, m/s; angular
+    /// velocities, rad/s; masses, kg).
     pub b: &'a crate::body::Bodies,
     /// Contact models per material pair.
     pub table: &'a crate::world::ContactTable,
@@ -159,17 +161,18 @@ impl RowCtx<'_> {
             }
             if self.prefetch {
                 // in a bed larger than the caches: the current partner
-                // body's column sum, angular velocity, mass and centre,
-                // which the batch gather and scatter read (at 10⁶ spheres
-                // the partner body's ω was the top stall, 11 % of this
-                // function); the partner's state line, with its owner, was
+                // body's column sum, angular velocity, mass, centre and
+                // velocity, which the batch gather and scatter read (at
+                // 10⁶ spheres the partner body's ω was the top stall, 11 %
+                // of this function); the partner's state line was
                 // prefetched a few pairs ago
-                let bj = self.sphere(j).body as usize;
+                let bj = at(&sp.body, j) as usize;
                 prefetch(self.col_load.as_ptr().add(bj));
                 prefetch((self.col_load.as_ptr().add(bj) as *const u8).add(47));
                 prefetch(self.b.angular_velocity.as_ptr().add(bj));
                 prefetch(self.b.mass.as_ptr().add(bj));
                 prefetch(self.b.position.as_ptr().add(bj));
+                prefetch(self.b.velocity.as_ptr().add(bj));
             }
             let si = self.sphere(i);
             let d = si.position - self.partner_position(j, t.shift);
@@ -257,8 +260,7 @@ impl RowCtx<'_> {
             let j = t.j as usize;
             let (si, sj) = (self.sphere(i), self.sphere(j));
             let d = si.position - self.partner_position(j, t.shift);
-            let dv = si.velocity - sj.velocity;
-            let (bi, bj) = (si.body as usize, sj.body as usize);
+            let (bi, bj) = (at(&self.sp.body, i) as usize, at(&self.sp.body, j) as usize);
             let (wi, wj) = (at(&b.angular_velocity, bi), at(&b.angular_velocity, bj));
             let h = self.tangential.read(p);
             batch.body[k] = [bi as u32, bj as u32];
@@ -267,7 +269,8 @@ impl RowCtx<'_> {
             l.set3(IN_CI, k, si.position - at(&b.position, bi));
             l.set3(IN_CJ, k, sj.position - at(&b.position, bj));
             l.set3(IN_D, k, d);
-            l.set3(IN_DV, k, dv);
+            l.set3(IN_VI, k, at(&b.velocity, bi));
+            l.set3(IN_VJ, k, at(&b.velocity, bj));
             l.set3(IN_WI, k, wi);
             l.set3(IN_WJ, k, wj);
             l.set3(IO_XI, k, h);
@@ -401,7 +404,7 @@ impl RowCtx<'_> {
     unsafe fn model_index(&self, i: usize, p: usize) -> u32 {
         let j = self.topo.read(p).j as usize;
         self.table
-            .index(self.sphere(i).material, self.sphere(j).material)
+            .index(at(&self.sp.material, i), at(&self.sp.material, j))
     }
 }
 
@@ -454,8 +457,8 @@ fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
 const PREFETCH: usize = 16;
 
 /// Spheres from which the detect pass prefetches the partner body's data
-/// (the partner's state line is prefetched at every size): from about
-/// 1 MiB of packed sphere state (64 B each), a typical per-core L2.
+/// (the partner's state line is prefetched at every size): about where the
+/// pair stage's data outgrow a typical 1 MiB per-core L2.
 /// Measured on settled tetra beds, one thread: at 40 000 spheres
 /// prefetching cuts the pair stage from 115 to 96 ns per sphere-step; at
 /// 8 000, whose data fit, it costs about 8 % (the extra instructions then
@@ -519,8 +522,8 @@ impl Default for Batch {
 // Rows of `Lanes::v` (world frame, SI units). Inputs:
 /// `x_i − x_j` (3 rows), m.
 const IN_D: usize = 0;
-/// `v_i − v_j` of the sphere centres (3), m/s.
-const IN_DV: usize = 3;
+/// Velocity of `i`'s body (3), m/s.
+const IN_VI: usize = 3;
 /// `ω` of `i`'s body (3), rad/s.
 const IN_WI: usize = 6;
 /// `ω` of `j`'s body (3), rad/s.
@@ -562,8 +565,10 @@ const OUT_MSTAR: usize = 37;
 const IN_CI: usize = 38;
 /// Lever arm `x_j − r_cm` of sphere `j` in its body (3), m.
 const IN_CJ: usize = 41;
+/// Velocity of `j`'s body (3), m/s.
+const IN_VJ: usize = 44;
 // Per-lane law (when the batch mixes models):
-const LAW: usize = 44;
+const LAW: usize = 47;
 /// Number of rows.
 const NV: usize = LAW + 8;
 
@@ -615,7 +620,8 @@ impl Lanes {
         }
     }
 
-    /// Contact `k`: normal, overlap, contact-point velocities, `R*`, `m*`,
+    /// Contact `k`: normal, overlap, contact-point velocities (from the
+    /// bodies' velocities and angular velocities), `R*`, `m*`,
     /// the law, and the torques of its force about the two bodies' centres
     /// of mass: the contact point is `x_c = x_i − a_i n = x_j + a_j n`, so
     /// `(x_c − r_cm,i) × f = c_i × f − a_i (n × f)` on `i`'s body and
@@ -631,8 +637,11 @@ impl Lanes {
         let overlap = rsum - dist;
         let (ai, aj) = (ri - 0.5 * overlap, rj - 0.5 * overlap);
         let (wi, wj) = (self.get3(IN_WI, k), self.get3(IN_WJ, k));
-        // contact-point velocities: x_c − x_i = −a_i n, x_c − x_j = a_j n
-        let vrel = self.get3(IN_DV, k) - (wi * ai + wj * aj).cross(nrm);
+        let (ci, cj) = (self.get3(IN_CI, k), self.get3(IN_CJ, k));
+        // contact-point velocities, v + ω × (x_c − r_cm), with
+        // x_c − r_cm = c_i − a_i n on i's body and c_j + a_j n on j's
+        let vrel = self.get3(IN_VI, k) + wi.cross(ci - nrm * ai)
+            - (self.get3(IN_VJ, k) + wj.cross(cj + nrm * aj));
         let (mi, mj) = (self.v[IN_MI][k], self.v[IN_MJ][k]);
         let radius = ri * rj / rsum;
         let mass = mi * mj / (mi + mj);
@@ -641,7 +650,6 @@ impl Lanes {
         let scale = self.v[IN_SCALE][k];
         let f = out.force * scale;
         let g = nrm.cross(f);
-        let (ci, cj) = (self.get3(IN_CI, k), self.get3(IN_CJ, k));
         self.set3(IO_XI, k, xi);
         self.set3(OUT_F, k, f);
         self.set3(OUT_TI, k, ci.cross(f) - g * ai);

@@ -214,8 +214,6 @@ pub(crate) fn rebuild_sphere_topology(w: &mut World) {
     sp.state.resize(n, Default::default());
     for (s, st) in sp.state.iter_mut().enumerate() {
         st.radius = sp.radius[s];
-        st.body = sp.body[s];
-        st.material = sp.material[s];
     }
     w.wall_key.resize(n, [0; WALL_SLOTS]);
     w.wall_hist
