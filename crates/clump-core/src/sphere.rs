@@ -31,9 +31,11 @@ pub struct Spheres {
     pub radius: Vec<f64>,
     /// Material index.
     pub material: Vec<u16>,
-    /// Centre and velocity of each sphere, with its radius, owner and
-    /// material, one cache line per sphere ([`SphereState`]).
+    /// Centre and radius of each sphere, packed ([`SphereState`]).
     pub state: Vec<SphereState>,
+    /// The material of every sphere, when they all share one (then the
+    /// pair kernel needs no per-pair material lookup).
+    pub single_material: Option<u16>,
     /// First sphere of each body; `body_first[n_bodies]` = number of spheres.
     pub body_first: Vec<u32>,
 }

@@ -251,7 +251,13 @@ impl RowCtx<'_> {
         let b = self.b;
         let len = batch.len.min(BATCH);
         let l = &mut batch.lanes;
-        let first = self.model_index(batch.row[0] as usize, batch.pair[0] as usize);
+        // one material for all spheres (the common case): one model, no
+        // per-pair lookup
+        let single = self.sp.single_material.map(|m| self.table.index(m, m));
+        let first = match single {
+            Some(m) => m,
+            None => self.model_index(batch.row[0] as usize, batch.pair[0] as usize),
+        };
         let mut uniform = true;
         for k in 0..len {
             let p = batch.pair[k] as usize;
@@ -283,7 +289,10 @@ impl RowCtx<'_> {
             } else {
                 at(self.scale, p)
             };
-            let m = self.model_index(i, p);
+            let m = match single {
+                Some(m) => m,
+                None => self.model_index(i, p),
+            };
             batch.model[k] = m;
             uniform &= m == first;
         }

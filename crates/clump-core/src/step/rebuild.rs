@@ -215,6 +215,10 @@ pub(crate) fn rebuild_sphere_topology(w: &mut World) {
     for (s, st) in sp.state.iter_mut().enumerate() {
         st.radius = sp.radius[s];
     }
+    sp.single_material = match sp.material.first() {
+        Some(&m) if sp.material.iter().all(|&x| x == m) => Some(m),
+        _ => None,
+    };
     w.wall_key.resize(n, [0; WALL_SLOTS]);
     w.wall_hist
         .resize(n, [ContactHistory::default(); WALL_SLOTS]);
