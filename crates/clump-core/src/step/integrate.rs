@@ -23,19 +23,30 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// than half the skin since the last neighbour build. Without, the spheres
 /// are left alone and it returns false.
 pub fn initial(w: &mut World, spheres: bool) -> bool {
+    let dt = w.config.dt;
+    let scheme = w.config.rotation;
+    let step = w.step;
     let n = w.bodies.len();
     let limit2 = skin::trigger_distance2(w.skin());
-    let drift = Drift::new(
-        &w.config,
-        limit2,
-        w.step,
-        &w.templates,
-        &mut w.bodies,
-        &mut w.spheres,
-        (&w.template_first, &w.template_offset, &w.reference_position),
-        spheres,
+    let b = &mut w.bodies;
+    let templates = &w.templates;
+    let added = w.config.added_mass;
+    let pos = SharedMut::new(&mut b.position);
+    let vel = SharedMut::new(&mut b.velocity);
+    let quat = SharedMut::new(&mut b.orientation);
+    let angm = SharedMut::new(&mut b.angular_momentum);
+    let omega = SharedMut::new(&mut b.angular_velocity);
+    let (force, torque, mass, inertia) = (&b.force, &b.torque, &b.mass, &b.inertia);
+    let (ff, tf, start, tmpl) = (&b.force_flag, &b.torque_flag, &b.start_step, &b.template);
+    let sp = &mut w.spheres;
+    let spheres = spheres && w.reference_position.len() == sp.len();
+    let sst = SharedMut::new(&mut sp.state);
+    let (first, tfirst, toff, xref) = (
+        &sp.body_first,
+        &w.template_first,
+        &w.template_offset,
+        &w.reference_position,
     );
-    let (force, torque) = (&w.bodies.force, &w.bodies.torque);
     let any_stale = AtomicBool::new(false);
     let cost = body_chunk_cost(&w.body_cost, n, BODY_BLOCK);
     for_each_chunk_with(
@@ -46,9 +57,46 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
         |_, blk| {
             let mut stale = false;
             for i in blk * BODY_BLOCK..((blk + 1) * BODY_BLOCK).min(n) {
-                // SAFETY: each body index is handled by exactly one block;
-                // i < n.
-                stale |= unsafe { drift.body(i, at(force, i), at(torque, i)) };
+                // SAFETY: each body index is handled by exactly one block.
+                let (x, v, q, l, om) = unsafe {
+                    (
+                        pos.get(i),
+                        vel.get(i),
+                        quat.get(i),
+                        angm.get(i),
+                        omega.get(i),
+                    )
+                };
+                // SAFETY (all `at` below): i < n, every body array has n
+                // entries, template indices are valid, and with `spheres` the
+                // sphere topology (body_first, reference positions) is current.
+                let rot = if step < unsafe { at(start, i) } {
+                    *x += *v * dt;
+                    DMat3::from_quat(*q)
+                } else {
+                    let t = unsafe { at(tmpl, i) } as usize;
+                    let fa = mass_factor(added, templates[t].density);
+                    let kick = HalfKick::new(dt, unsafe { at(mass, i) }, fa);
+                    let (fi, ti) = unsafe { (at(force, i), at(torque, i)) };
+                    kick.apply(v, l, fi, ti, unsafe { at(ff, i) }, unsafe { at(tf, i) });
+                    *x += *v * dt;
+                    let inertia_i = unsafe { at(inertia, i) };
+                    *q = scheme.drift(*q, *l, inertia_i, dt);
+                    let rot = DMat3::from_quat(*q);
+                    *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
+                    rot
+                };
+                if spheres {
+                    let o0 = unsafe { at(tfirst, at(tmpl, i) as usize) } as usize;
+                    let (s0, s1) = unsafe { (at(first, i) as usize, at(first, i + 1) as usize) };
+                    for (k, s) in (s0..s1).enumerate() {
+                        let off = unsafe { at(toff, o0 + k) };
+                        let px = sphere_position(*x, &rot, off);
+                        // SAFETY: the spheres of body i are written by its block only.
+                        unsafe { sst.get(s) }.position = px;
+                        stale |= skin::moved_too_far(px, unsafe { at(xref, s) }, limit2);
+                    }
+                }
             }
             if stale {
                 any_stale.store(true, Ordering::Relaxed);
@@ -56,135 +104,6 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
         },
     );
     any_stale.into_inner()
-}
-
-/// The first half of a step ([`initial`]) for one body at a time: the
-/// separate pass runs it over all bodies, and the gather of the previous
-/// step runs it on each body right after that body's final kick, when the
-/// two steps follow each other with nothing in between (see
-/// [`World::run`]). Same arithmetic either way, so the same bits.
-pub(crate) struct Drift<'a> {
-    dt: f64,
-    /// The step whose first half this is.
-    step: u64,
-    scheme: crate::rotation::RotationScheme,
-    /// Square of the skin trigger distance, m².
-    limit2: f64,
-    added: crate::world::AddedMass,
-    templates: &'a [crate::shape::ClumpTemplate],
-    pos: SharedMut<DVec3>,
-    vel: SharedMut<DVec3>,
-    quat: SharedMut<glam::DQuat>,
-    angm: SharedMut<DVec3>,
-    omega: SharedMut<DVec3>,
-    mass: SharedMut<f64>,
-    inertia: SharedMut<DVec3>,
-    ff: SharedMut<crate::body::AxisFlags>,
-    tf: SharedMut<crate::body::AxisFlags>,
-    start: SharedMut<u64>,
-    tmpl: SharedMut<u32>,
-    /// Sphere state (written), when `spheres`.
-    sst: SharedMut<crate::sphere::SphereState>,
-    first: SharedMut<u32>,
-    tfirst: &'a [u32],
-    toff: &'a [DVec3],
-    xref: &'a [DVec3],
-    /// The spheres move with their bodies (the sphere topology is current).
-    spheres: bool,
-}
-
-impl<'a> Drift<'a> {
-    /// The first half of step `step` of the bodies `b` and their spheres
-    /// `sp` (moved too when `spheres` and the sphere topology is current:
-    /// `xref`, the reference positions of the last build, has one entry per
-    /// sphere); `limit2` is the square of the skin trigger distance, m².
-    /// Holds raw pointers into the body and sphere arrays: they must not be
-    /// resized or moved while it is in use.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn new(
-        config: &crate::world::WorldConfig,
-        limit2: f64,
-        step: u64,
-        templates: &'a [crate::shape::ClumpTemplate],
-        b: &mut crate::body::Bodies,
-        sp: &mut crate::sphere::Spheres,
-        (tfirst, toff, xref): (&'a [u32], &'a [DVec3], &'a [DVec3]),
-        spheres: bool,
-    ) -> Self {
-        Drift {
-            dt: config.dt,
-            step,
-            scheme: config.rotation,
-            limit2,
-            added: config.added_mass,
-            templates,
-            pos: SharedMut::new(&mut b.position),
-            vel: SharedMut::new(&mut b.velocity),
-            quat: SharedMut::new(&mut b.orientation),
-            angm: SharedMut::new(&mut b.angular_momentum),
-            omega: SharedMut::new(&mut b.angular_velocity),
-            mass: SharedMut::new(&mut b.mass),
-            inertia: SharedMut::new(&mut b.inertia),
-            ff: SharedMut::new(&mut b.force_flag),
-            tf: SharedMut::new(&mut b.torque_flag),
-            start: SharedMut::new(&mut b.start_step),
-            tmpl: SharedMut::new(&mut b.template),
-            spheres: spheres && xref.len() == sp.len(),
-            sst: SharedMut::new(&mut sp.state),
-            first: SharedMut::new(&mut sp.body_first),
-            tfirst,
-            toff,
-            xref,
-        }
-    }
-
-    /// Body `i`'s first half step under the force `f` (N) and torque `m`
-    /// (N m about its centre of mass), both world frame, and its spheres'
-    /// update; true when one of them moved beyond the skin trigger.
-    ///
-    /// # Safety
-    /// `i` is a body index, and no other thread touches body `i` or its
-    /// spheres during the call. Unchecked in release builds.
-    #[inline(always)]
-    pub(crate) unsafe fn body(&self, i: usize, f: DVec3, m: DVec3) -> bool {
-        let dt = self.dt;
-        let (x, v, q, l, om) = (
-            self.pos.get(i),
-            self.vel.get(i),
-            self.quat.get(i),
-            self.angm.get(i),
-            self.omega.get(i),
-        );
-        let t = self.tmpl.read(i) as usize;
-        let rot = if self.step < self.start.read(i) {
-            *x += *v * dt;
-            DMat3::from_quat(*q)
-        } else {
-            let fa = mass_factor(self.added, self.templates[t].density);
-            let kick = HalfKick::new(dt, self.mass.read(i), fa);
-            kick.apply(v, l, f, m, self.ff.read(i), self.tf.read(i));
-            *x += *v * dt;
-            let inertia_i = self.inertia.read(i);
-            *q = self.scheme.drift(*q, *l, inertia_i, dt);
-            let rot = DMat3::from_quat(*q);
-            *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
-            rot
-        };
-        let mut stale = false;
-        if self.spheres {
-            // SAFETY: the sphere topology (body_first, template offsets,
-            // reference positions) is current, so every index is in range.
-            let o0 = at(self.tfirst, t) as usize;
-            let (s0, s1) = (self.first.read(i) as usize, self.first.read(i + 1) as usize);
-            for (k, s) in (s0..s1).enumerate() {
-                let off = at(self.toff, o0 + k);
-                let px = sphere_position(*x, &rot, off);
-                self.sst.get(s).position = px;
-                stale |= skin::moved_too_far(px, at(self.xref, s), self.limit2);
-            }
-        }
-        stale
-    }
 }
 
 /// Bodies per block of the first half step: the gather's chunk, so that a
