@@ -9,6 +9,7 @@
 
 use crate::body::Bodies;
 use crate::contact::ContactHistory;
+use crate::neighbor::walls::WallList;
 use crate::step::{rebuild, StepError};
 use crate::wall::{Wall, WallLoad};
 use crate::world::{ContactStats, World, WorldConfig, WALL_SLOTS};
@@ -59,6 +60,7 @@ impl World {
         let mut pair_history: Vec<_> = map.drain().collect();
         pair_history.sort_by_key(|e| e.0);
         self.history_map = map;
+        let (wall_key, wall_hist) = self.wall_list.per_sphere(self.spheres.len());
         Ok(WorldState {
             config: self.config,
             step: self.step,
@@ -72,8 +74,8 @@ impl World {
             stats: self.stats,
             reference_pose: self.reference_pose.clone(),
             pair_history,
-            wall_key: self.wall_key.clone(),
-            wall_hist: self.wall_hist.clone(),
+            wall_key,
+            wall_hist,
         })
     }
 
@@ -164,8 +166,7 @@ impl World {
         self.stats = s.stats;
         self.reference_pose = s.reference_pose;
         self.history_map = s.pair_history.into_iter().collect();
-        self.wall_key = s.wall_key;
-        self.wall_hist = s.wall_hist;
+        self.wall_list = WallList::from_per_sphere(&s.wall_key, &s.wall_hist);
         rebuild::rebuild(self, false).map_err(|e| e.to_string())?;
         self.rebuilds = self.rebuilds.saturating_sub(1);
         self.forces_ready = true;

@@ -2,7 +2,7 @@
 
 use crate::body::{Bodies, BodyInit};
 use crate::boundary::Domain;
-use crate::contact::{ContactHistory, ContactModel, Material, PairProperties};
+use crate::contact::{ContactModel, Material, PairProperties};
 use crate::multi_contact::MultiContact;
 use crate::neighbor::{CellGrid, PairList};
 use crate::rotation::RotationScheme;
@@ -223,12 +223,12 @@ pub struct World {
     pub(crate) next_id: u64,
     pub(crate) spheres: Spheres,
     pub(crate) pairs: PairList,
-    pub(crate) wall_key: Vec<[u32; WALL_SLOTS]>,
-    /// Per sphere (storage order): bit `w` set when wall `w` (< 64) lay within
-    /// the skin of the sphere at the last neighbour build (the wall Verlet list).
-    pub(crate) wall_near: Vec<u64>,
-    /// Walls (< 64) that have not moved since the last neighbour build: only
-    /// these may be skipped for spheres whose `wall_near` bit is clear.
+    /// The wall Verlet list: the spheres with a wall to test, and their
+    /// sphere–wall contact slots.
+    pub(crate) wall_list: crate::neighbor::walls::WallList,
+    /// Walls (< 64) that have not moved since the wall list was built: only
+    /// these may be left out of a sphere's entry (when one starts to move,
+    /// the list is built again).
     pub(crate) wall_cull: u64,
     /// Cumulative per-body cost estimate of the gather (one unit per sphere,
     /// more for a sphere with a wall nearby), `len = bodies + 1`; built with
@@ -238,7 +238,6 @@ pub struct World {
     /// How the first half step, the pair loop and the gather share their
     /// chunks between threads (learned; never affects results).
     pub(crate) balance: [crate::step::affinity::Balance; 3],
-    pub(crate) wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
     pub(crate) template_first: Vec<u32>,
     pub(crate) template_offset: Vec<DVec3>,
     pub(crate) template_radius: Vec<f64>,
@@ -250,11 +249,13 @@ pub struct World {
     pub(crate) forces_ready: bool,
     pub(crate) scratch_perm: Vec<u32>,
     /// Rebuild scratch (reused, so rebuilds do not allocate once warm): which
-    /// bodies stay, the permuted bodies, and the permuted wall-contact slots.
+    /// bodies stay, the permuted bodies, the previous wall list, and per
+    /// sphere the entry of that list whose contact slots it continues.
     pub(crate) scratch_keep: Vec<bool>,
     pub(crate) scratch_bodies: Bodies,
-    pub(crate) scratch_wall_key: Vec<[u32; WALL_SLOTS]>,
-    pub(crate) scratch_wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
+    pub(crate) scratch_wall_list: crate::neighbor::walls::WallList,
+    pub(crate) scratch_wall_carry: Vec<u32>,
+    pub(crate) scratch_wall_live: Vec<u32>,
     pub(crate) scratch_keys: Vec<(u64, u64, u32)>,
     pub(crate) chunk_stats: Vec<ContactStats>,
     pub(crate) chunk_pair_stats: Vec<ContactStats>,
@@ -286,12 +287,10 @@ impl World {
             next_id: 1,
             spheres: Spheres::default(),
             pairs: PairList::default(),
-            wall_key: Vec::new(),
-            wall_near: Vec::new(),
+            wall_list: Default::default(),
             wall_cull: 0,
             body_cost: Vec::new(),
             balance: Default::default(),
-            wall_hist: Vec::new(),
             template_first: vec![0],
             template_offset: Vec::new(),
             template_radius: Vec::new(),
@@ -304,8 +303,9 @@ impl World {
             scratch_perm: Vec::new(),
             scratch_keep: Vec::new(),
             scratch_bodies: Bodies::default(),
-            scratch_wall_key: Vec::new(),
-            scratch_wall_hist: Vec::new(),
+            scratch_wall_list: Default::default(),
+            scratch_wall_carry: Vec::new(),
+            scratch_wall_live: Vec::new(),
             scratch_keys: Vec::new(),
             chunk_stats: Vec::new(),
             chunk_pair_stats: Vec::new(),

@@ -296,6 +296,50 @@ fn moving_plane_launches_sphere_at_one_plus_e_times_u() {
     }
 }
 
+/// Regression for the wall Verlet list: a plane that is at rest when the
+/// list is built, far from a sphere (so the sphere has no wall to test), and
+/// starts to move towards it between two neighbour builds must still hit
+/// it, and launch it at (1 + e) u like a piston moving from the start.
+#[test]
+fn wall_that_starts_moving_between_builds_hits_a_far_sphere() {
+    let (r, u, e) = (0.01, 0.3, 0.6);
+    let mut w = world(soft(), props(e, 0.0), 1e-6, open_domain(1.0), DVec3::ZERO);
+    let t = w.add_template(sphere_template(r, 2500.0), 0).unwrap();
+    let id = w
+        .add_body(&BodyInit::at_rest(
+            t,
+            DVec3::new(0.0, 0.0, 3.0 * r),
+            DQuat::IDENTITY,
+        ))
+        .unwrap();
+    w.add_wall(plane(DVec3::ZERO, DVec3::Z, MultiContact::Sum))
+        .unwrap();
+    w.run(10).unwrap();
+    let rebuilds = w.rebuilds;
+    w.walls[0].motion.velocity = DVec3::new(0.0, 0.0, u);
+    // the wall covers the gap of 2r in about 2r/u
+    let mut first_contact_rebuilds = None;
+    for _ in 0..(4.0 * r / u / w.config.dt) as usize {
+        w.step().unwrap();
+        if w.stats.wall_contacts > 0 {
+            first_contact_rebuilds = Some(w.rebuilds);
+            break;
+        }
+    }
+    assert_eq!(
+        first_contact_rebuilds,
+        Some(rebuilds),
+        "the moving wall must touch the sphere, with no neighbour build in between"
+    );
+    run_wall_impact(&mut w, 1_000_000);
+    let vz = w.bodies.velocity[w.body_index(id).unwrap()].z;
+    eprintln!(
+        "wall started between builds: sphere leaves at {vz:.6} (theory {:.6})",
+        (1.0 + e) * u
+    );
+    assert!(rel(vz, (1.0 + e) * u) < 0.01);
+}
+
 /// A floor spinning about its own normal (a turntable; the geometry is
 /// invariant, only the surface moves at ω × x). A sphere with frozen rotation
 /// resting at distance d from the axis is dragged along the surface velocity

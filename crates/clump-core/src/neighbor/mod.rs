@@ -10,11 +10,14 @@
 //! - [`skin`]: the rebuild trigger: any sphere displaced by more than half the
 //!   skin since the last build, which counts rotation because it measures the
 //!   sphere centres themselves.
+//! - [`walls`]: the wall Verlet list, the spheres with a wall to test and
+//!   their sphere–wall contact slots.
 
 pub mod grid;
 pub mod pairs;
 pub mod skin;
 pub mod sort;
+pub mod walls;
 
 pub use grid::CellGrid;
 pub use pairs::{BodyLoad, PairList, PairTopo};

@@ -15,7 +15,6 @@
 
 use super::affinity::{body_chunk_cost, for_each_chunk_with, for_each_run, GATHER_LOOP, PAIR_LOOP};
 use super::integrate::FinalKick;
-use super::pair_kernel::prefetch;
 use super::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput};
 use crate::multi_contact::{MultiContact, PartnerCounts};
@@ -31,9 +30,6 @@ use rayon::prelude::*;
 /// chunked reductions of wall loads and statistics are the same for any
 /// number of threads.
 pub const BODY_CHUNK: usize = 32;
-
-/// Bodies ahead whose wall spheres the gather prefetches (large beds).
-const GATHER_PREFETCH: usize = 4;
 
 /// Computes all contact forces and the total force and torque on every body.
 pub fn compute(w: &mut World) {
@@ -174,10 +170,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
         walls,
         meshes,
         contact_table: table,
-        wall_key,
-        wall_near,
-        wall_cull,
-        wall_hist,
+        wall_list,
         body_cost,
         body_ready,
         balance,
@@ -206,28 +199,28 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
     let vel = SharedMut::new(&mut bodies.velocity);
     let angm = SharedMut::new(&mut bodies.angular_momentum);
     let omega = SharedMut::new(&mut bodies.angular_velocity);
-    let keys = SharedMut::new(wall_key);
-    let hists = SharedMut::new(wall_hist);
+    let keys = SharedMut::new(&mut wall_list.key);
+    let hists = SharedMut::new(&mut wall_list.hist);
+    let (entry_sphere, entry_mask, chunk_entries) =
+        (&wall_list.sphere, &wall_list.mask, &wall_list.chunk_start);
     let loads = SharedMut::new(chunk_wall_loads);
     let b = &*bodies;
     let kick = kick.then(|| FinalKick::new(dt, *step, config.added_mass, templates, b));
     let col_load = SharedMut::new(&mut pairs.col_load);
     let pairs = &*pairs;
-    // Walls to test for sphere `s`, in ascending order: of the first 64, the
-    // active ones that are near it or have moved since the last rebuild (the
-    // wall Verlet list, see `rebuild::build_wall_lists`); then every active
-    // wall beyond 64.
+    // Walls to test for entry `e` of the wall list, in ascending order: of
+    // the first 64, the active ones of its mask (near its sphere, or moving;
+    // see `neighbor::walls`); then every active wall beyond 64.
     let mut active_lo = 0u64;
     for (wi, wall) in walls.iter().enumerate().take(64) {
         active_lo |= (wall.active as u64) << wi;
     }
-    let moved = !*wall_cull;
-    let candidates = |s: usize| {
-        let lo = BitIter((moved | wall_near[s]) & active_lo);
+    // SAFETY (both closures): e is an entry of the list, one mask per entry.
+    let candidates = |e: usize| {
+        let lo = BitIter(unsafe { at(entry_mask, e) } & active_lo);
         lo.chain((64..nw).filter(|&wi| walls[wi].active))
     };
     let stats_out = SharedMut::new(chunk_stats);
-    let ahead_wall = sp.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES;
     for_each_chunk_with(
         nchunks,
         body_chunk_cost(body_cost, nb, BODY_CHUNK),
@@ -243,32 +236,17 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
             let stat = unsafe { stats_out.get(c) };
             let b0 = c * BODY_CHUNK;
             let b1 = (b0 + BODY_CHUNK).min(nb);
+            // the chunk's entries of the wall list, ascending with its bodies
+            let (mut e, e_end) = (chunk_entries[c] as usize, chunk_entries[c + 1] as usize);
             for bi in b0..b1 {
-                if ahead_wall {
-                    // the spheres a few bodies ahead that have a wall to
-                    // test: their state lines and wall histories, which the
-                    // pair stage has pushed out of the cache by now in a
-                    // large bed (the wall spheres' reads were a third of
-                    // this pass at 40 000 spheres); within the chunk, as
-                    // the slots beyond are another thread's
-                    let ahead = sp.of_body((bi + GATHER_PREFETCH).min(b1 - 1));
-                    for s in ahead {
-                        // SAFETY: s is a sphere of this chunk (one mask and
-                        // slot per sphere), which no other thread touches.
-                        unsafe {
-                            if (moved | at(wall_near, s)) & active_lo != 0 {
-                                // prefetches only: reading the slot key
-                                // here to skip an empty history was itself
-                                // a miss (10 % of this pass at 40 000)
-                                prefetch(sp.state.as_ptr().add(s));
-                                prefetch(keys.as_ptr().add(s));
-                                prefetch(hists.as_ptr().add(s));
-                            }
-                        }
-                    }
-                }
                 let com = b.position[bi];
-                let spheres = sp.of_body(bi);
+                // the body's entries: e0..e
+                let e0 = e;
+                let s_end = sp.of_body(bi).end;
+                // SAFETY: e < e_end ≤ the number of entries.
+                while e < e_end && (unsafe { at(entry_sphere, e) } as usize) < s_end {
+                    e += 1;
+                }
                 // --- sphere–sphere contacts: summed by the pair stage, or
                 // here for a body on the seam between two threads' runs
                 let row = pairs.row_load[bi];
@@ -287,12 +265,13 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                 let mut f = b.mass[bi] * gravity + pl.force;
                 let mut m = pl.torque;
                 // --- sphere–wall contacts
-                if nw > 0 {
+                if e > e0 {
                     if walls_average {
                         wcounts.clear();
                         let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
-                        for s in spheres.clone() {
-                            for wi in candidates(s) {
+                        for q in e0..e {
+                            let s = entry_sphere[q] as usize;
+                            for wi in candidates(q) {
                                 let k = walls[wi].shape.contacts(
                                     meshes,
                                     sp.position(s),
@@ -316,16 +295,13 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                         com,
                     };
                     let buf = &mut *touch_buf;
-                    for s in spheres {
-                        // SAFETY: sphere s belongs to body bi, handled by this chunk only.
-                        let (key, hist) = unsafe { (keys.get(s), hists.get(s)) };
-                        // most spheres have no wall to test: decide that from
-                        // the mask alone, without building the iterator
-                        // SAFETY: the wall lists have one mask per sphere.
-                        let near = unsafe { at(wall_near, s) };
-                        let none_near = nw <= 64 && (moved | near) & active_lo == 0;
-                        let mut cand = candidates(s).peekable();
-                        if none_near || cand.peek().is_none() {
+                    for q in e0..e {
+                        // SAFETY: entry q is of body bi, handled by this
+                        // chunk only.
+                        let (s, key, hist) =
+                            unsafe { (at(entry_sphere, q) as usize, keys.get(q), hists.get(q)) };
+                        let mut cand = candidates(q).peekable();
+                        if cand.peek().is_none() {
                             // no wall to test: only clear what a contact left
                             if key[0] != 0 {
                                 *key = [0; WALL_SLOTS];

@@ -113,11 +113,15 @@ impl World {
         for w in &mut self.walls {
             w.advance(dt);
         }
-        self.wall_cull &= rebuild::static_walls(&self.walls);
+        // a wall that starts to move may come near any sphere
+        let wall_started = self.wall_cull & !rebuild::static_walls(&self.walls) != 0;
         lap(&mut times.initial, &mut t);
         let stale = self.topology_dirty || moved_out;
         if stale {
             rebuild::rebuild(self, true)?;
+            lap(&mut times.neighbor, &mut t);
+        } else if wall_started {
+            rebuild::refresh_wall_list(self);
             lap(&mut times.neighbor, &mut t);
         }
         force::pair_forces(self);

@@ -2,14 +2,14 @@
 //! left the domain, Morton-sort the bodies, rebuild the sphere topology and
 //! the pair list (history carried by global sphere ids).
 
+use super::force::BODY_CHUNK;
 use super::kinematics::update_spheres;
 use super::StepError;
-use crate::contact::ContactHistory;
 use crate::neighbor::pairs::BuildInput;
+use crate::neighbor::walls::NO_ENTRY;
 use crate::neighbor::{sort, CellGrid};
 use crate::sphere::sphere_gid;
-use crate::wall::{WallTouch, MAX_TOUCHES_PER_WALL};
-use crate::world::{World, WALL_SLOTS};
+use crate::world::World;
 
 /// Rebuilds the neighbour list. With `reorganize`, bodies are first wrapped,
 /// filtered and re-sorted (this is what a normal rebuild does); without, the
@@ -43,27 +43,22 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
             &mut w.scratch_keys,
         );
         w.lost_bodies += (n - w.scratch_perm.len()) as u64;
-        // carry wall-contact slots along with their spheres; bodies added
-        // since the last build (indices ≥ old count) start with empty slots
+        // carry wall-contact slots along with their spheres: per sphere in
+        // the new order, the entry of the old wall list it continues; bodies
+        // added since the last build (indices ≥ old count) start empty
         let old_n = w.spheres.body_first.len().saturating_sub(1);
-        std::mem::swap(&mut w.wall_key, &mut w.scratch_wall_key);
-        std::mem::swap(&mut w.wall_hist, &mut w.scratch_wall_hist);
-        w.wall_key.clear();
-        w.wall_hist.clear();
-        let (old_key, old_hist) = (&w.scratch_wall_key, &w.scratch_wall_hist);
+        let live = &mut w.scratch_wall_live;
+        w.wall_list.live_entries(w.spheres.len(), live);
+        let carry = &mut w.scratch_wall_carry;
+        carry.clear();
         for &ob in &w.scratch_perm {
             let ob = ob as usize;
             if ob < old_n {
-                let r = w.spheres.of_body(ob);
-                w.wall_key.extend_from_slice(&old_key[r.clone()]);
-                w.wall_hist.extend_from_slice(&old_hist[r]);
+                carry.extend_from_slice(&live[w.spheres.of_body(ob)]);
             } else {
                 let t = w.bodies.template[ob] as usize;
                 let ns = (w.template_first[t + 1] - w.template_first[t]) as usize;
-                w.wall_key
-                    .extend(std::iter::repeat([0; WALL_SLOTS]).take(ns));
-                w.wall_hist
-                    .extend(std::iter::repeat([ContactHistory::default(); WALL_SLOTS]).take(ns));
+                carry.extend(std::iter::repeat(NO_ENTRY).take(ns));
             }
         }
         w.bodies
@@ -85,6 +80,9 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     } else {
         // positions at the last build, recomputed from the stored poses
         rebuild_sphere_topology(w);
+        // the spheres keep their order: each continues its own slots
+        let n = w.spheres.len();
+        w.wall_list.live_entries(n, &mut w.scratch_wall_carry);
         let current: Vec<_> = w
             .bodies
             .position
@@ -124,47 +122,57 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     Ok(())
 }
 
-/// The wall Verlet list: for every sphere, which of the first 64 walls lie
-/// within its radius plus the skin at its reference position. Until the next
-/// rebuild a sphere moves less than half the skin, so a wall that has not
-/// moved meanwhile and was not near cannot touch it ([`World::wall_cull`]
-/// says which walls stayed put). Skipping such walls is exact: it removes
-/// only tests that would find no contact.
-fn build_wall_lists(w: &mut World) {
-    use rayon::prelude::*;
+/// Builds the wall Verlet list ([`crate::neighbor::walls`]) at the
+/// spheres' reference positions, each sphere continuing the contact slots of
+/// the entry `scratch_wall_carry` names in the previous list, and the
+/// per-body cost estimate of the gather. Also called between neighbour
+/// builds when a wall starts to move (the list must then hold every
+/// sphere); that leaves the forces unchanged, as only walls that cannot
+/// touch a sphere are ever left out of its entry.
+pub(crate) fn build_wall_lists(w: &mut World) {
+    std::mem::swap(&mut w.wall_list, &mut w.scratch_wall_list);
+    w.wall_cull = static_walls(&w.walls);
+    let low = if w.walls.len() >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << w.walls.len()) - 1
+    };
     let skin = w.skin();
-    let (walls, meshes) = (&w.walls, &w.meshes);
-    let (pos, rad) = (&w.reference_position, &w.spheres.radius);
-    w.wall_near.resize(pos.len(), 0);
-    w.wall_near
-        .par_iter_mut()
-        .enumerate()
-        .with_min_len(1024)
-        .for_each(|(s, near)| {
-            let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
-            let mut m = 0u64;
-            for (wi, wall) in walls.iter().enumerate().take(64) {
-                if wall.shape.contacts(meshes, pos[s], rad[s], skin, &mut buf) > 0 {
-                    m |= 1 << wi;
-                }
-            }
-            *near = m;
-        });
-    w.wall_cull = static_walls(walls);
     let sp = &w.spheres;
+    w.wall_list.build(
+        &w.walls,
+        &w.meshes,
+        &w.reference_position,
+        &sp.radius,
+        skin,
+        !w.wall_cull & low,
+        &w.scratch_wall_carry,
+        &w.scratch_wall_list,
+        &sp.body_first,
+        BODY_CHUNK,
+    );
     w.body_cost.clear();
     w.body_cost.push(0);
+    let list = &w.wall_list.sphere;
+    let mut e = 0;
     let mut total = 0u64;
     for b in 0..w.bodies.len() {
-        for s in sp.of_body(b) {
-            total += if w.wall_near[s] != 0 {
-                WALL_SPHERE_COST
-            } else {
-                1
-            };
+        let r = sp.of_body(b);
+        total += r.len() as u64;
+        while e < list.len() && (list[e] as usize) < r.end {
+            total += WALL_SPHERE_COST - 1;
+            e += 1;
         }
         w.body_cost.push(total);
     }
+}
+
+/// Builds the wall list again between neighbour builds, the spheres keeping
+/// their order and slots (see [`build_wall_lists`]).
+pub(crate) fn refresh_wall_list(w: &mut World) {
+    let n = w.spheres.len();
+    w.wall_list.live_entries(n, &mut w.scratch_wall_carry);
+    build_wall_lists(w);
 }
 
 /// Gather cost of a sphere with a wall nearby (it is tested against the
@@ -219,7 +227,4 @@ pub(crate) fn rebuild_sphere_topology(w: &mut World) {
         Some(&m) if sp.material.iter().all(|&x| x == m) => Some(m),
         _ => None,
     };
-    w.wall_key.resize(n, [0; WALL_SLOTS]);
-    w.wall_hist
-        .resize(n, [ContactHistory::default(); WALL_SLOTS]);
 }

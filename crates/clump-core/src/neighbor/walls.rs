@@ -1,0 +1,182 @@
+//! The wall Verlet list: the spheres that have a wall to test, each with
+//! the walls to test and its sphere–wall contact slots.
+//!
+//! Built with the pair list, from the spheres' reference positions: a sphere
+//! gets an entry when a wall (< 64) lies within its radius plus the skin, when
+//! a wall moves (it may come near any sphere before the next build), when the
+//! world has more than 64 walls (those beyond 64 are tested for every
+//! sphere), or when it carries a contact history. Until the next build a
+//! sphere moves less than half the skin, so skipping the spheres without an
+//! entry removes only tests that would find no contact.
+//!
+//! Only the entries hold contact slots (a key and a history per slot), in
+//! ascending sphere order, so the gather streams through them instead of
+//! visiting the slots of every sphere: in a settled bed about one sphere in
+//! ten is near a wall.
+
+use crate::contact::ContactHistory;
+use crate::wall::{Wall, WallTouch, MAX_TOUCHES_PER_WALL};
+use crate::world::WALL_SLOTS;
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Marks a sphere without a carried entry in [`WallList::build`]'s `carry`.
+pub const NO_ENTRY: u32 = u32::MAX;
+
+/// Entries of the wall Verlet list (structure of arrays, ascending sphere).
+#[derive(Debug, Default, Clone)]
+pub struct WallList {
+    /// Sphere (storage index) of each entry.
+    pub sphere: Vec<u32>,
+    /// Walls (< 64) to test for the entry's sphere: bit `w` for wall `w`.
+    pub mask: Vec<u64>,
+    /// Slot keys of the entry's wall contacts (0 = empty; see
+    /// `step::force`), slots in use first.
+    pub key: Vec<[u32; WALL_SLOTS]>,
+    /// Contact histories of the slots (world frame).
+    pub hist: Vec<[ContactHistory; WALL_SLOTS]>,
+    /// First entry of each chunk of `chunk` bodies, `len = chunks + 1`.
+    pub chunk_start: Vec<u32>,
+    /// Per sphere: the walls (< 64) near it at the build (build scratch).
+    near: Vec<u64>,
+}
+
+impl WallList {
+    /// Number of entries.
+    pub fn len(&self) -> usize {
+        self.sphere.len()
+    }
+
+    /// Whether the list has no entry.
+    pub fn is_empty(&self) -> bool {
+        self.sphere.is_empty()
+    }
+
+    /// Removes every entry (the slots with them).
+    pub fn clear(&mut self) {
+        self.sphere.clear();
+        self.mask.clear();
+        self.key.clear();
+        self.hist.clear();
+        self.chunk_start.clear();
+    }
+
+    /// The entry of each sphere (storage index) whose slots hold a contact,
+    /// else [`NO_ENTRY`]: `out` gets one value per sphere of `n`.
+    pub fn live_entries(&self, n: usize, out: &mut Vec<u32>) {
+        out.clear();
+        out.resize(n, NO_ENTRY);
+        for (e, (&s, key)) in self.sphere.iter().zip(&self.key).enumerate() {
+            if key[0] != 0 && (s as usize) < n {
+                out[s as usize] = e as u32;
+            }
+        }
+    }
+
+    /// The slots of every sphere (storage order, `n` spheres): empty for a
+    /// sphere without an entry (the checkpoint form).
+    pub fn per_sphere(
+        &self,
+        n: usize,
+    ) -> (Vec<[u32; WALL_SLOTS]>, Vec<[ContactHistory; WALL_SLOTS]>) {
+        let mut key = vec![[0; WALL_SLOTS]; n];
+        let mut hist = vec![[ContactHistory::default(); WALL_SLOTS]; n];
+        for (e, &s) in self.sphere.iter().enumerate() {
+            key[s as usize] = self.key[e];
+            hist[s as usize] = self.hist[e];
+        }
+        (key, hist)
+    }
+
+    /// A list holding the given per-sphere slots (the checkpoint form),
+    /// one entry per sphere with a contact; no walls to test until the next
+    /// [`build`](Self::build).
+    pub fn from_per_sphere(
+        key: &[[u32; WALL_SLOTS]],
+        hist: &[[ContactHistory; WALL_SLOTS]],
+    ) -> Self {
+        let mut l = WallList::default();
+        for (s, (k, h)) in key.iter().zip(hist).enumerate() {
+            if k[0] != 0 {
+                l.sphere.push(s as u32);
+                l.mask.push(0);
+                l.key.push(*k);
+                l.hist.push(*h);
+            }
+        }
+        l
+    }
+
+    /// Builds the list for spheres at `position` (m, world) with `radius`
+    /// (m) and skin `skin` (m); `moving` has the bits of the walls (< 64)
+    /// that move. Sphere `s` continues the slots of entry `carry[s]` of
+    /// `old` (or starts empty: [`NO_ENTRY`]). `body_first` gives each body's
+    /// first sphere (`len = bodies + 1`); the chunk starts are for chunks of
+    /// `chunk` bodies.
+    #[allow(clippy::too_many_arguments)]
+    pub fn build(
+        &mut self,
+        walls: &[Wall],
+        meshes: &[crate::wall::TriMesh],
+        position: &[DVec3],
+        radius: &[f64],
+        skin: f64,
+        moving: u64,
+        carry: &[u32],
+        old: &WallList,
+        body_first: &[u32],
+        chunk: usize,
+    ) {
+        let n = position.len();
+        self.clear();
+        self.near.resize(n, 0);
+        self.near
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(1024)
+            .for_each(|(s, near)| {
+                let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
+                let mut m = 0u64;
+                for (wi, wall) in walls.iter().enumerate().take(64) {
+                    if wall
+                        .shape
+                        .contacts(meshes, position[s], radius[s], skin, &mut buf)
+                        > 0
+                    {
+                        m |= 1 << wi;
+                    }
+                }
+                *near = m;
+            });
+        let all = walls.len() > 64;
+        for s in 0..n {
+            let mask = self.near[s] | moving;
+            let from = carry.get(s).copied().unwrap_or(NO_ENTRY);
+            if mask == 0 && !all && from == NO_ENTRY {
+                continue;
+            }
+            self.sphere.push(s as u32);
+            self.mask.push(mask);
+            match old.key.get(from as usize) {
+                Some(k) => {
+                    self.key.push(*k);
+                    self.hist.push(old.hist[from as usize]);
+                }
+                None => {
+                    self.key.push([0; WALL_SLOTS]);
+                    self.hist.push([ContactHistory::default(); WALL_SLOTS]);
+                }
+            }
+        }
+        let nb = body_first.len().saturating_sub(1);
+        let mut e = 0usize;
+        for c in 0..nb.div_ceil(chunk) {
+            let s0 = body_first[c * chunk];
+            while e < self.sphere.len() && self.sphere[e] < s0 {
+                e += 1;
+            }
+            self.chunk_start.push(e as u32);
+        }
+        self.chunk_start.push(self.sphere.len() as u32);
+    }
+}
