@@ -154,34 +154,32 @@ pub(crate) fn for_each_run(
         *c = start(t);
     }
     let cuts = &cuts[..=runs];
-    run_parts(0, runs, cuts, &balance.time, &f);
-    balance.learn(|r| cost(cuts[r + 1]) - cost(cuts[r]));
-}
-
-/// Runs the runs `t0..t1` (chunks `cuts[t]..cuts[t + 1]`), timing each,
-/// splitting the range in halves with `rayon::join` (which does not
-/// allocate, unlike a broadcast): the calling thread keeps the first half
-/// and an idle thread takes the second, so with two threads each keeps its
-/// run from one loop to the next.
-fn run_parts(
-    t0: usize,
-    t1: usize,
-    cuts: &[usize],
-    time: &[std::sync::atomic::AtomicU64],
-    f: &(impl Fn(std::ops::Range<usize>) + Sync),
-) {
-    if t1 - t0 == 1 {
+    let time = &balance.time;
+    // one run per thread of the persistent team, or through rayon when the
+    // team is busy with another world's loop
+    let timed = |t: usize| {
         let clock = std::time::Instant::now();
-        f(cuts[t0]..cuts[t1]);
-        time[t0].store(
+        f(cuts[t]..cuts[t + 1]);
+        time[t].store(
             clock.elapsed().as_nanos() as u64,
             std::sync::atomic::Ordering::Relaxed,
         );
+    };
+    if !super::team::run(runs, &timed) {
+        run_parts(0, runs, &timed);
+    }
+    balance.learn(|r| cost(cuts[r + 1]) - cost(cuts[r]));
+}
+
+/// Runs the runs `t0..t1` through `timed` (see [`for_each_run`]), splitting
+/// the range in halves with `rayon::join` (which does not allocate, unlike a
+/// broadcast): the calling thread keeps the first half and an idle thread
+/// takes the second.
+fn run_parts(t0: usize, t1: usize, timed: &(impl Fn(usize) + Sync)) {
+    if t1 - t0 == 1 {
+        timed(t0);
         return;
     }
     let mid = (t0 + t1) / 2;
-    rayon::join(
-        || run_parts(t0, mid, cuts, time, f),
-        || run_parts(mid, t1, cuts, time, f),
-    );
+    rayon::join(|| run_parts(t0, mid, timed), || run_parts(mid, t1, timed));
 }

@@ -33,6 +33,7 @@ pub mod kinematics;
 mod pair_kernel;
 pub mod rebuild;
 pub(crate) mod shared;
+mod team;
 
 use crate::world::World;
 use std::time::Instant;
