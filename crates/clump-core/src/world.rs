@@ -259,7 +259,7 @@ pub struct World {
     pub(crate) scratch_keys: Vec<(u64, u64, u32)>,
     pub(crate) chunk_stats: Vec<ContactStats>,
     pub(crate) chunk_pair_stats: Vec<ContactStats>,
-    /// Per body: the pair stage summed its column (`PairList::col_load`)
+    /// Per body: the pair stage summed its column (`PairBody::col`)
     /// this step.
     pub(crate) body_ready: Vec<bool>,
     pub(crate) chunk_wall_loads: Vec<WallLoad>,

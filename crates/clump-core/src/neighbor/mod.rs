@@ -20,4 +20,4 @@ pub mod sort;
 pub mod walls;
 
 pub use grid::CellGrid;
-pub use pairs::{BodyLoad, PairList, PairTopo};
+pub use pairs::{BodyLoad, PairBody, PairList, PairTopo};

@@ -52,6 +52,31 @@ impl BodyLoad {
     }
 }
 
+/// What the pair stage reads and writes of one body, packed into two cache
+/// lines: the state its contacts read (a copy of the body's, written by the
+/// first half step each step and by [`PairList::refresh_bodies`]) and its
+/// column sum. Read as the partner of a contact, a body is one or two
+/// cache misses instead of five in separate arrays (centre, velocity,
+/// angular velocity, mass, column sum).
+#[repr(C, align(64))]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PairBody {
+    /// Centre of mass, world frame, m.
+    pub position: DVec3,
+    /// Velocity of the centre of mass, world frame, m/s.
+    pub velocity: DVec3,
+    /// Angular velocity, world frame, rad/s.
+    pub angular_velocity: DVec3,
+    /// Mass, kg.
+    pub mass: f64,
+    /// The `j` sides of the pairs in the columns of the body's spheres,
+    /// summed in ascending pair order by the pair kernel as it evaluates
+    /// them, when all of them lie in the same thread's run as the body
+    /// (always on one thread). The gather reads it and sets it back to
+    /// zero, so it is zero between steps.
+    pub col: BodyLoad,
+}
+
 /// The half pair list, stored by rows: the candidate partners `j > i` of
 /// sphere `i` (storage order, other bodies only) are
 /// `topo[row_start[i]..row_start[i + 1]]`. Each pair is oriented by storage
@@ -80,22 +105,19 @@ pub struct PairList {
     /// What each pair contributes to the body of its sphere `j` (parallel
     /// to `topo`; torque about that body's centre of mass), recorded only
     /// when that body is on a seam between two threads' runs (see
-    /// `col_load`), and zero for a pair that does not touch: the gather sums
+    /// `body`), and zero for a pair that does not touch: the gather sums
     /// such a body's column through `col_pair` ([`column_sum`]).
     pub load_j: Vec<BodyLoad>,
     /// Per body: the `i` sides of the pairs in the rows of its spheres
     /// (torque about its centre of mass), summed in pair order. A body's
     /// spheres are contiguous, so its rows are one run of pairs.
     pub row_load: Vec<BodyLoad>,
-    /// Per body: the `j` sides of the pairs in the columns of its spheres,
-    /// summed in ascending pair order by the pair kernel as it evaluates
-    /// them, when all of them lie in the same thread's run as the body
-    /// (always on one thread). The gather reads it and sets it back to
-    /// zero, so it is all zero between steps. (Summed per body rather than
-    /// per sphere, the lever arms are applied per contact in the vectorised
-    /// law, and the per-sphere sums, 96 bytes a sphere read and written
-    /// every step, are gone.)
-    pub col_load: Vec<BodyLoad>,
+    /// Per body: its state as the contacts read it, and its column sum
+    /// ([`PairBody::col`]). (Summed per body rather than per sphere, the
+    /// lever arms are applied per contact in the vectorised law, and the
+    /// per-sphere sums, 96 bytes a sphere read and written every step, are
+    /// gone.)
+    pub body: Vec<PairBody>,
     /// Multi-contact scale of each pair's force (`1/n` under `average`,
     /// parallel to `topo`; empty under `sum`).
     pub scale: Vec<f64>,
@@ -122,7 +144,7 @@ pub struct PairList {
 /// The column sum of body `b` from the pairs' own records: the `j` sides
 /// `load_j` of the pairs in its column, added in ascending pair order from
 /// zero, the order in which the pair kernel accumulates
-/// [`PairList::col_load`]. Either way the body's pair load is
+/// [`PairBody::col`]. Either way the body's pair load is
 /// `row_load + column`, with the same bits, so the results do not depend
 /// on which thread summed it.
 ///
@@ -161,6 +183,18 @@ pub struct BuildInput<'a> {
 }
 
 impl PairList {
+    /// Copies the bodies' centres, velocities, angular velocities and
+    /// masses into [`PairList::body`] (built for `b`'s bodies), keeping the
+    /// column sums.
+    pub fn refresh_bodies(&mut self, b: &crate::body::Bodies) {
+        for (i, pb) in self.body.iter_mut().enumerate().take(b.len()) {
+            pb.position = b.position[i];
+            pb.velocity = b.velocity[i];
+            pb.angular_velocity = b.angular_velocity[i];
+            pb.mass = b.mass[i];
+        }
+    }
+
     /// Number of candidate pairs.
     pub fn len(&self) -> usize {
         self.topo.len()
@@ -340,8 +374,8 @@ impl PairList {
         let nb = inp.body.last().map_or(0, |&b| b as usize + 1);
         self.row_load.clear();
         self.row_load.resize(nb, BodyLoad::default());
-        self.col_load.clear();
-        self.col_load.resize(nb, BodyLoad::default());
+        self.body.clear();
+        self.body.resize(nb, PairBody::default());
         self.col_start.clear();
         self.col_start.resize(nb + 1, 0);
         for t in &self.topo {

@@ -37,13 +37,16 @@ const ENTRY_PREFETCH: usize = 4;
 
 /// Computes all contact forces and the total force and torque on every body.
 pub fn compute(w: &mut World) {
+    // the pair stage reads the bodies' state from its packed copy, which a
+    // step's first half writes; here it comes from the bodies as they are
+    w.pairs.refresh_bodies(&w.bodies);
     pair_forces(w);
     gather(w, false);
 }
 
 /// Evaluates every candidate sphere pair, row by row: pairs that do not touch
 /// get zero force and their history is reset. Writes each body's row sum
-/// (`row_load`) and column sum (`col_load`), or each pair's contribution to
+/// (`row_load`) and column sum (`PairBody::col`), or each pair's contribution to
 /// a seam body (`load_j`), and the pair statistics per chunk of rows.
 pub(crate) fn pair_forces(w: &mut World) {
     use super::pair_kernel::{Batch, RowCtx};
@@ -64,7 +67,6 @@ pub(crate) fn pair_forces(w: &mut World) {
         domain: w.config.domain,
         any_periodic: w.config.domain.periodic.iter().any(|&p| p),
         sp: &w.spheres,
-        b: &w.bodies,
         table: &w.contact_table,
         row_start: &pairs.row_start,
         row: &pairs.row,
@@ -74,7 +76,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         rolling: SharedMut::new(&mut pairs.rolling),
         load_j: SharedMut::new(&mut pairs.load_j),
         row_load: SharedMut::new(&mut pairs.row_load),
-        col_load: SharedMut::new(&mut pairs.col_load),
+        body: SharedMut::new(&mut pairs.body),
         first_feed: &pairs.first_feed,
         body_ready: SharedMut::new(&mut w.body_ready),
         avx2: super::pair_kernel::avx2(),
@@ -210,7 +212,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
     let loads = SharedMut::new(chunk_wall_loads);
     let b = &*bodies;
     let kick = kick.then(|| FinalKick::new(dt, *step, config.added_mass, templates, b));
-    let col_load = SharedMut::new(&mut pairs.col_load);
+    let pair_body = SharedMut::new(&mut pairs.body);
     let pairs = &*pairs;
     // Walls to test for entry `e` of the wall list, in ascending order: of
     // the first 64, the active ones of its mask (near its sphere, or moving;
@@ -270,7 +272,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                 let pl = if body_ready[bi] {
                     // SAFETY: body bi is handled by this chunk only; its
                     // column sum is read and reset for the next step.
-                    row.add(std::mem::take(unsafe { col_load.get(bi) }))
+                    row.add(std::mem::take(unsafe { &mut (*pair_body.ptr(bi)).col }))
                 } else {
                     // SAFETY: the pair list was built for these bodies (a
                     // rebuild precedes every gather after a change), and the

@@ -47,6 +47,10 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
         &w.template_offset,
         &w.reference_position,
     );
+    // the pair stage's packed copy of the bodies' state (when built for
+    // these bodies; else the rebuild that follows fills it)
+    let packed = w.pairs.body.len() == n;
+    let pair_body = SharedMut::new(&mut w.pairs.body);
     let any_stale = AtomicBool::new(false);
     let cost = body_chunk_cost(&w.body_cost, n, BODY_BLOCK);
     for_each_chunk_with(
@@ -86,6 +90,16 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
                     *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
                     rot
                 };
+                if packed {
+                    // SAFETY: body i is handled by this block only; its
+                    // column sum is not touched.
+                    unsafe {
+                        let pb = pair_body.ptr(i);
+                        (*pb).position = *x;
+                        (*pb).velocity = *v;
+                        (*pb).angular_velocity = *om;
+                    }
+                }
                 if spheres {
                     let o0 = unsafe { at(tfirst, at(tmpl, i) as usize) } as usize;
                     let (s0, s1) = unsafe { (at(first, i) as usize, at(first, i + 1) as usize) };

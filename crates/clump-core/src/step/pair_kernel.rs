@@ -30,7 +30,7 @@
 use super::force::BODY_CHUNK;
 use super::shared::{at, SharedMut};
 use crate::contact::{ContactInput, SlidingLaw};
-use crate::neighbor::pairs::BodyLoad;
+use crate::neighbor::pairs::{BodyLoad, PairBody};
 use crate::world::ContactStats;
 use glam::DVec3;
 
@@ -44,9 +44,6 @@ pub(super) struct RowCtx<'a> {
     pub any_periodic: bool,
     /// Spheres (centres and radii, m; owners; materials).
     pub sp: &'a crate::sphere::Spheres,
-    /// Body state (centres of mass, m; velocities, m/s; angular
-    /// velocities, rad/s; masses, kg).
-    pub b: &'a crate::body::Bodies,
     /// Contact models per material pair.
     pub table: &'a crate::world::ContactTable,
     /// Row offsets of the half list, one per sphere plus one.
@@ -68,11 +65,10 @@ pub(super) struct RowCtx<'a> {
     ///
     /// [`PairList::load_j`]: crate::neighbor::PairList::load_j
     pub load_j: SharedMut<BodyLoad>,
-    /// Column sums per body, for the bodies complete in their thread's run
-    /// ([`PairList::col_load`]; written).
-    ///
-    /// [`PairList::col_load`]: crate::neighbor::PairList::col_load
-    pub col_load: SharedMut<BodyLoad>,
+    /// Per body: centre of mass (m), velocity (m/s), angular velocity
+    /// (rad/s), mass (kg), and the column sum, written for the bodies
+    /// complete in their thread's run ([`PairBody`]).
+    pub body: SharedMut<PairBody>,
     /// Row sums per body ([`PairList::row_load`]; written).
     ///
     /// [`PairList::row_load`]: crate::neighbor::PairList::row_load
@@ -81,7 +77,7 @@ pub(super) struct RowCtx<'a> {
     ///
     /// [`PairList::first_feed`]: crate::neighbor::PairList::first_feed
     pub first_feed: &'a [u32],
-    /// Per body: whether `col_load` holds its column sum this step
+    /// Per body: whether its [`PairBody::col`] holds its column sum this step
     /// (written; false: the gather sums it from `load_j`).
     pub body_ready: SharedMut<bool>,
     /// The law loop may use AVX2 ([`avx2`]).
@@ -173,12 +169,9 @@ impl RowCtx<'_> {
                 // prefetched above (read for the current pair, it missed:
                 // 6 % at 40 000 spheres)
                 let bj = at(&sp.body, topo.read(p + PREFETCH / 2).j as usize) as usize;
-                prefetch(self.col_load.as_ptr().add(bj));
-                prefetch((self.col_load.as_ptr().add(bj) as *const u8).add(47));
-                prefetch(self.b.angular_velocity.as_ptr().add(bj));
-                prefetch(self.b.mass.as_ptr().add(bj));
-                prefetch(self.b.position.as_ptr().add(bj));
-                prefetch(self.b.velocity.as_ptr().add(bj));
+                let line = self.body.as_ptr().add(bj) as *const u8;
+                prefetch(line);
+                prefetch(line.add(64));
             }
             let si = self.sphere(i);
             let d = si.position - self.partner_position(j, t.shift);
@@ -254,7 +247,6 @@ impl RowCtx<'_> {
         if batch.len == 0 {
             return;
         }
-        let b = self.b;
         let len = batch.len.min(BATCH);
         let l = &mut batch.lanes;
         // one material for all spheres (the common case): one model, no
@@ -273,23 +265,26 @@ impl RowCtx<'_> {
             let (si, sj) = (self.sphere(i), self.sphere(j));
             let d = si.position - self.partner_position(j, t.shift);
             let (bi, bj) = (at(&self.sp.body, i) as usize, at(&self.sp.body, j) as usize);
-            let (wi, wj) = (at(&b.angular_velocity, bi), at(&b.angular_velocity, bj));
+            // the two bodies' packed state: read through raw pointers, as
+            // another thread may be writing their column sums
+            let (pi, pj) = (self.body.as_ptr().add(bi), self.body.as_ptr().add(bj));
+            let (wi, wj) = ((*pi).angular_velocity, (*pj).angular_velocity);
             let h = self.tangential.read(p);
             batch.body[k] = [bi as u32, bj as u32];
             // the lever arms from each body's centre of mass to its sphere
             // (each sphere's own position: the same for any periodic image)
-            l.set3(IN_CI, k, si.position - at(&b.position, bi));
-            l.set3(IN_CJ, k, sj.position - at(&b.position, bj));
+            l.set3(IN_CI, k, si.position - (*pi).position);
+            l.set3(IN_CJ, k, sj.position - (*pj).position);
             l.set3(IN_D, k, d);
-            l.set3(IN_VI, k, at(&b.velocity, bi));
-            l.set3(IN_VJ, k, at(&b.velocity, bj));
+            l.set3(IN_VI, k, (*pi).velocity);
+            l.set3(IN_VJ, k, (*pj).velocity);
             l.set3(IN_WI, k, wi);
             l.set3(IN_WJ, k, wj);
             l.set3(IO_XI, k, h);
             l.v[IN_RI][k] = si.radius;
             l.v[IN_RJ][k] = sj.radius;
-            l.v[IN_MI][k] = at(&b.mass, bi);
-            l.v[IN_MJ][k] = at(&b.mass, bj);
+            l.v[IN_MI][k] = (*pi).mass;
+            l.v[IN_MJ][k] = (*pj).mass;
             l.v[IN_SCALE][k] = if self.scale.is_empty() {
                 1.0
             } else {
@@ -384,7 +379,9 @@ impl RowCtx<'_> {
             let direct = single_run
                 || (j < batch.run_end && at(self.first_feed, bj) as usize >= batch.run_start);
             if direct {
-                let c = self.col_load.get(bj);
+                // the column sum only (the other fields may be read by the
+                // other thread as a partner's state)
+                let c = &mut *std::ptr::addr_of_mut!((*self.body.ptr(bj)).col);
                 c.force += side.force;
                 c.torque += side.torque;
             } else {

@@ -117,6 +117,7 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     w.pairs
         .build(&w.grid, &w.config.domain, &inp, &w.history_map);
     w.history_map.clear();
+    w.pairs.refresh_bodies(&w.bodies);
     build_wall_lists(w);
     w.rebuilds += 1;
     Ok(())

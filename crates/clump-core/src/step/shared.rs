@@ -37,6 +37,17 @@ impl<T> SharedMut<T> {
         *self.0.add(i)
     }
 
+    /// Pointer to element `i`, for access to one field of it through raw
+    /// pointers (no reference to the whole element is formed).
+    ///
+    /// # Safety
+    /// `i` is in range.
+    #[inline(always)]
+    pub(crate) unsafe fn ptr(&self, i: usize) -> *mut T {
+        debug_assert!(i < self.1);
+        self.0.add(i)
+    }
+
     /// The start of the slice, for reads through raw pointers.
     pub(crate) fn as_ptr(&self) -> *const T {
         self.0
