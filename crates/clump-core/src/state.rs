@@ -47,6 +47,13 @@ pub struct WorldState {
     pub wall_key: Vec<[u32; WALL_SLOTS]>,
     /// Sphere–wall contact histories, per sphere in storage order.
     pub wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
+    /// The skin (m) the last neighbour build chose for the motion (0: none
+    /// yet; absent from checkpoints of earlier versions).
+    #[serde(default)]
+    pub adapted_skin: f64,
+    /// Step of the last neighbour build.
+    #[serde(default)]
+    pub built_step: u64,
 }
 
 impl World {
@@ -76,6 +83,8 @@ impl World {
             pair_history,
             wall_key,
             wall_hist,
+            adapted_skin: self.adapted_skin,
+            built_step: self.built_step,
         })
     }
 
@@ -154,7 +163,15 @@ impl World {
         if s.reference_pose.len() != nb || s.wall_key.len() != ns || s.wall_hist.len() != ns {
             return Err("checkpoint arrays have inconsistent lengths".into());
         }
+        if !(s.adapted_skin >= 0.0 && s.adapted_skin.is_finite()) || s.built_step > s.step {
+            return Err(format!(
+                "checkpoint skin {} m (must be finite and >= 0) or last build step {} (at most the step {}) is invalid",
+                s.adapted_skin, s.built_step, s.step
+            ));
+        }
         self.config = s.config;
+        self.adapted_skin = s.adapted_skin;
+        self.built_step = s.built_step;
         self.step = s.step;
         self.time = s.time;
         self.lost_bodies = s.lost_bodies;

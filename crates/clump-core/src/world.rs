@@ -37,8 +37,8 @@ pub struct WorldConfig {
     pub rotation: RotationScheme,
     /// Added-mass model.
     pub added_mass: AddedMass,
-    /// Verlet skin, m. `None`: 10 % of the smallest sphere diameter... at
-    /// least; see [`World::skin`].
+    /// Verlet skin, m. `None`: adapted to the motion at every neighbour
+    /// build; see [`World::skin`].
     pub skin: Option<f64>,
     /// Several-contact treatment between two bodies.
     pub multi_contact: MultiContact,
@@ -230,6 +230,11 @@ pub struct World {
     /// these may be left out of a sphere's entry (when one starts to move,
     /// the list is built again).
     pub(crate) wall_cull: u64,
+    /// The skin (m) the last neighbour build chose for the motion (0: none
+    /// yet); used unless the configuration fixes the skin.
+    pub(crate) adapted_skin: f64,
+    /// Step of the last neighbour build.
+    pub(crate) built_step: u64,
     /// Cumulative per-body cost estimate of the gather (one unit per sphere,
     /// more for a sphere with a wall nearby), `len = bodies + 1`; built with
     /// the wall lists. Splits the per-body loops between threads (see
@@ -289,6 +294,8 @@ impl World {
             pairs: PairList::default(),
             wall_list: Default::default(),
             wall_cull: 0,
+            adapted_skin: 0.0,
+            built_step: 0,
             body_cost: Vec::new(),
             balance: Default::default(),
             template_first: vec![0],
@@ -386,21 +393,33 @@ impl World {
         Ok(id)
     }
 
-    /// The Verlet skin in use, m: the configured one, or by default 20 % of
-    /// the smallest sphere radius... of any template (never zero).
+    /// The Verlet skin in use, m: the configured one; by default the one
+    /// the last neighbour build chose for the motion
+    /// ([`crate::neighbor::skin::adapted_skin`]), and before the first build
+    /// [`crate::neighbor::skin::SKIN_DEFAULT`] times the smallest sphere
+    /// radius of any template (never zero).
     pub fn skin(&self) -> f64 {
         self.config.skin.unwrap_or_else(|| {
-            let rmin = self
-                .template_radius
-                .iter()
-                .cloned()
-                .fold(f64::INFINITY, f64::min);
-            if rmin.is_finite() {
-                0.2 * rmin
+            if self.adapted_skin > 0.0 {
+                self.adapted_skin
             } else {
-                1e-3
+                crate::neighbor::skin::SKIN_DEFAULT * self.min_radius()
             }
         })
+    }
+
+    /// Smallest sphere radius of any template, m (1 mm without templates).
+    pub fn min_radius(&self) -> f64 {
+        let r = self
+            .template_radius
+            .iter()
+            .cloned()
+            .fold(f64::INFINITY, f64::min);
+        if r.is_finite() {
+            r
+        } else {
+            1e-3
+        }
     }
 
     /// Largest sphere radius of any template, m.

@@ -16,6 +16,10 @@ use crate::world::World;
 /// list is rebuilt from the stored reference poses only (used on restart so
 /// that a resumed run matches an uninterrupted one bit for bit).
 pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
+    if reorganize {
+        adapt_skin(w);
+        w.built_step = w.step;
+    }
     let min_cell = 2.0 * w.max_radius() + w.skin();
     if reorganize {
         w.pairs.save_history(&w.spheres.gid, &mut w.history_map);
@@ -121,6 +125,27 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     build_wall_lists(w);
     w.rebuilds += 1;
     Ok(())
+}
+
+/// Chooses the skin of the new lists from the motion since the last build
+/// (unless the configuration fixes it): the largest displacement of a
+/// sphere from its reference position, over the steps since that build
+/// ([`crate::neighbor::skin::adapted_skin`]). Keeps the current skin when
+/// the spheres' positions do not match the last build (bodies were added
+/// or removed since).
+fn adapt_skin(w: &mut World) {
+    if w.config.skin.is_some() {
+        return;
+    }
+    let sp = &w.spheres;
+    if w.topology_dirty || w.reference_position.len() != sp.len() || w.step <= w.built_step {
+        return;
+    }
+    let d2 = (0..sp.len())
+        .map(|s| sp.position(s).distance_squared(w.reference_position[s]))
+        .fold(0.0f64, f64::max);
+    w.adapted_skin =
+        crate::neighbor::skin::adapted_skin(w.min_radius(), d2.sqrt(), w.step - w.built_step);
 }
 
 /// Builds the wall Verlet list ([`crate::neighbor::walls`]) at the

@@ -104,7 +104,8 @@ pub struct RawSimulation {
     pub duration: Option<f64>,
     /// Steps of the single implicit stage when there is no `[[stage]]`.
     pub steps: Option<u64>,
-    /// Verlet skin, m (default 20 % of the smallest sphere radius).
+    /// Verlet skin, m (default: adapted to the motion at every neighbour
+    /// build, `clump_core::neighbor::skin::adapted_skin`).
     pub skin: Option<f64>,
     /// Several-contact treatment between two bodies (default `"sum"`).
     pub multi_contact: Option<MultiContact>,
