@@ -42,16 +42,6 @@ pub struct WallList {
 }
 
 impl WallList {
-    /// Number of entries.
-    pub fn len(&self) -> usize {
-        self.sphere.len()
-    }
-
-    /// Whether the list has no entry.
-    pub fn is_empty(&self) -> bool {
-        self.sphere.is_empty()
-    }
-
     /// Removes every entry (the slots with them).
     pub fn clear(&mut self) {
         self.sphere.clear();

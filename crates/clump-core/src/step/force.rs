@@ -221,7 +221,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
     for (wi, wall) in walls.iter().enumerate().take(64) {
         active_lo |= (wall.active as u64) << wi;
     }
-    // SAFETY (both closures): e is an entry of the list, one mask per entry.
+    // SAFETY: e is an entry of the list, one mask per entry.
     let candidates = |e: usize| {
         let lo = BitIter(unsafe { at(entry_mask, e) } & active_lo);
         lo.chain((64..nw).filter(|&wi| walls[wi].active))

@@ -84,9 +84,6 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     } else {
         // positions at the last build, recomputed from the stored poses
         rebuild_sphere_topology(w);
-        // the spheres keep their order: each continues its own slots
-        let n = w.spheres.len();
-        w.wall_list.live_entries(n, &mut w.scratch_wall_carry);
         let current: Vec<_> = w
             .bodies
             .position
@@ -122,7 +119,12 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         .build(&w.grid, &w.config.domain, &inp, &w.history_map);
     w.history_map.clear();
     w.pairs.refresh_bodies(&w.bodies);
-    build_wall_lists(w);
+    if reorganize {
+        build_wall_lists(w);
+    } else {
+        // the spheres kept their order: each continues its own slots
+        refresh_wall_list(w);
+    }
     w.rebuilds += 1;
     Ok(())
 }
@@ -193,8 +195,9 @@ pub(crate) fn build_wall_lists(w: &mut World) {
     }
 }
 
-/// Builds the wall list again between neighbour builds, the spheres keeping
-/// their order and slots (see [`build_wall_lists`]).
+/// Builds the wall list again for spheres that kept their order, each
+/// continuing its own slots (see [`build_wall_lists`]): between neighbour
+/// builds when a wall starts to move, and on a restart.
 pub(crate) fn refresh_wall_list(w: &mut World) {
     let n = w.spheres.len();
     w.wall_list.live_entries(n, &mut w.scratch_wall_carry);

@@ -38,8 +38,8 @@ struct Job {
 
 /// What the master and one helper share.
 struct Slot {
-    /// Incremented by the master to post a job; `u64::MAX` asks the helper
-    /// to exit (never sent: helpers live as long as the process).
+    /// Incremented by the master to post a job (helpers live as long as
+    /// the process).
     posted: AtomicU64,
     /// The last job number the helper finished.
     done: AtomicU64,
@@ -191,9 +191,6 @@ fn helper_loop(slot: &Slot) {
                 since = Instant::now();
             }
         };
-        if next == u64::MAX {
-            return;
-        }
         seen = next;
         // SAFETY: the master wrote the job before posting `next` (acquire
         // above) and does not touch it until `done` reaches `next`.
