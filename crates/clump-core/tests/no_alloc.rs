@@ -37,6 +37,16 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
+/// The counter is process-wide, and libtest runs the tests of this binary on
+/// parallel threads: a test that builds worlds while another one counts would
+/// show up as "allocations per step" (seen in CI on a 2-core machine). Every
+/// test here holds this lock for its whole body.
+static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn serial() -> std::sync::MutexGuard<'static, ()> {
+    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 fn bed(nx: usize) -> World {
     let mat = Material {
         youngs_modulus: 5e6,
@@ -96,6 +106,7 @@ fn bed(nx: usize) -> World {
 
 #[test]
 fn no_heap_allocation_per_step_after_warm_up() {
+    let _serial = serial();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()
@@ -139,6 +150,7 @@ fn no_heap_allocation_per_step_after_warm_up() {
 
 #[test]
 fn memory_is_linear_in_the_number_of_bodies() {
+    let _serial = serial();
     let measure = |nx: usize| {
         let mut w = bed(nx);
         w.run(200).unwrap();
