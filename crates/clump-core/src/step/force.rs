@@ -79,7 +79,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         body: SharedMut::new(&mut pairs.body),
         first_feed: &pairs.first_feed,
         body_ready: SharedMut::new(&mut w.body_ready),
-        avx2: super::pair_kernel::avx2(),
+        simd: super::pair_kernel::simd(),
         prefetch: w.spheres.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
     };
     let stats = SharedMut::new(stats);

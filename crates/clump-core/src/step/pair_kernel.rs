@@ -80,23 +80,48 @@ pub(super) struct RowCtx<'a> {
     /// Per body: whether its [`PairBody::col`] holds its column sum this step
     /// (written; false: the gather sums it from `load_j`).
     pub body_ready: SharedMut<bool>,
-    /// The law loop may use AVX2 ([`avx2`]).
-    pub avx2: bool,
+    /// The vector instructions the law loop may use ([`simd`]).
+    pub simd: Simd,
     /// The detect pass prefetches the partner body's data (beds beyond the
     /// caches, see [`PREFETCH_MIN_SPHERES`]).
     pub prefetch: bool,
 }
 
-/// Whether this processor has AVX2 (the law loop then runs 4 contacts per
-/// vector instruction). Detected once, then cached.
-pub(super) fn avx2() -> bool {
+/// The widest vector instruction set the law loop is compiled for that this
+/// processor has. Every level gives the same bits: the law's arithmetic is
+/// the same IEEE operations in the same order (no contraction into FMA),
+/// only the number of contacts per instruction differs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Simd {
+    /// The build's baseline (SSE2 on x86-64; any other architecture).
+    Baseline,
+    /// AVX2: 4 doubles per vector.
+    Avx2,
+    /// AVX-512 (F, VL, DQ): 8 doubles per vector, mask registers for the
+    /// lane selects.
+    Avx512,
+}
+
+/// The [`Simd`] level of this processor, detected once, then cached.
+pub(super) fn simd() -> Simd {
     #[cfg(target_arch = "x86_64")]
     {
-        static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-        *AVX2.get_or_init(|| std::arch::is_x86_feature_detected!("avx2"))
+        static LEVEL: std::sync::OnceLock<Simd> = std::sync::OnceLock::new();
+        *LEVEL.get_or_init(|| {
+            if std::arch::is_x86_feature_detected!("avx512f")
+                && std::arch::is_x86_feature_detected!("avx512vl")
+                && std::arch::is_x86_feature_detected!("avx512dq")
+            {
+                Simd::Avx512
+            } else if std::arch::is_x86_feature_detected!("avx2") {
+                Simd::Avx2
+            } else {
+                Simd::Baseline
+            }
+        })
     }
     #[cfg(not(target_arch = "x86_64"))]
-    false
+    Simd::Baseline
 }
 
 impl RowCtx<'_> {
@@ -306,7 +331,7 @@ impl RowCtx<'_> {
             }
             None
         };
-        run_law(l, len, law.as_ref(), self.dt, self.avx2);
+        run_law(l, len, law.as_ref(), self.dt, self.simd);
         if table.any_rolling() {
             for k in 0..len {
                 let model = table.by_index(batch.model[k]);
@@ -423,15 +448,26 @@ impl RowCtx<'_> {
 /// Runs [`law_lanes`] over the first `len` lanes, with AVX2 where the
 /// processor has it.
 #[inline(always)]
-fn run_law(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64, avx2: bool) {
+fn run_law(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64, simd: Simd) {
     #[cfg(target_arch = "x86_64")]
-    if avx2 {
-        // SAFETY: the caller detected AVX2 on this processor.
-        unsafe { law_lanes_avx2(l, len, law, dt) };
-        return;
+    match simd {
+        // SAFETY: `simd` was detected on this processor.
+        Simd::Avx512 => return unsafe { law_lanes_avx512(l, len, law, dt) },
+        Simd::Avx2 => return unsafe { law_lanes_avx2(l, len, law, dt) },
+        Simd::Baseline => {}
     }
-    let _ = avx2;
+    let _ = simd;
     law_lanes(l, len, law, dt);
+}
+
+/// [`law_lanes`] compiled for AVX-512 (8 doubles per vector).
+///
+/// # Safety
+/// The processor supports AVX-512 F, VL and DQ.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512dq")]
+unsafe fn law_lanes_avx512(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
+    law_lanes(l, len, law, dt)
 }
 
 /// [`law_lanes`] compiled for AVX2 (4 doubles per vector).
@@ -674,5 +710,122 @@ impl Lanes {
         v[OUT_KN][k] = out.kn;
         v[OUT_RSTAR][k] = radius;
         v[OUT_MSTAR][k] = mass;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::{ContactModel, Material, NormalLaw, PairProperties};
+
+    /// Lanes of contacts with overlaps of 0 to 20 % of the radius, sliding
+    /// and sticking springs, random velocities; `mixed`: every lane its own
+    /// law (Hertz and linear, clamped and tensile).
+    fn lanes(seed: u64, laws: &[SlidingLaw], mixed: bool) -> Lanes {
+        let mut s = seed;
+        let mut u = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut l = Lanes {
+            v: [[0.0; BATCH]; NV],
+        };
+        for k in 0..BATCH {
+            fn v3(u: &mut impl FnMut() -> f64, a: f64) -> DVec3 {
+                DVec3::new(u() - 0.5, u() - 0.5, u() - 0.5) * a
+            }
+            let (ri, rj) = (1e-3 * (0.5 + u()), 1e-3 * (0.5 + u()));
+            let n = v3(&mut u, 2.0).normalize();
+            let d = n * (ri + rj) * (1.0 - 0.1 * u());
+            l.set3(IN_D, k, d);
+            l.set3(IN_VI, k, v3(&mut u, 0.2));
+            l.set3(IN_VJ, k, v3(&mut u, 0.2));
+            l.set3(IN_WI, k, v3(&mut u, 50.0));
+            l.set3(IN_WJ, k, v3(&mut u, 50.0));
+            l.set3(IN_CI, k, v3(&mut u, 1e-3));
+            l.set3(IN_CJ, k, v3(&mut u, 1e-3));
+            // springs from far inside the Coulomb cone to far outside
+            l.set3(IO_XI, k, {
+                let a = 1e-4 * u() * u();
+                v3(&mut u, a)
+            });
+            l.v[IN_RI][k] = ri;
+            l.v[IN_RJ][k] = rj;
+            l.v[IN_MI][k] = 1e-5 * (0.5 + u());
+            l.v[IN_MJ][k] = 1e-5 * (0.5 + u());
+            l.v[IN_SCALE][k] = if k % 5 == 0 { 0.5 } else { 1.0 };
+            if mixed {
+                l.set_law(k, &laws[k % laws.len()]);
+            }
+        }
+        l
+    }
+
+    /// The law loop gives the same bits compiled for every vector
+    /// instruction set this processor has (the engine picks the widest at
+    /// run time; results must not depend on the machine's choice).
+    #[test]
+    fn law_lanes_same_bits_at_every_simd_level() {
+        let mat = Material {
+            youngs_modulus: 5e6,
+            poisson_ratio: 0.3,
+            density: 2500.0,
+        };
+        let mut laws = vec![];
+        for normal in [NormalLaw::Hertz, NormalLaw::Linear { kn: 2e3, kt: 1e3 }] {
+            for tensile in [false, true] {
+                let p = PairProperties {
+                    normal,
+                    tensile,
+                    ..PairProperties::default()
+                };
+                laws.push(*ContactModel::new(&mat, &mat, &p).unwrap().sliding_law());
+            }
+        }
+        let mut levels = vec![Simd::Baseline];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx2") {
+                levels.push(Simd::Avx2);
+            }
+            if simd() == Simd::Avx512 {
+                levels.push(Simd::Avx512);
+            }
+        }
+        eprintln!("levels on this processor: {levels:?}");
+        for (case, law) in [None, Some(&laws[0]), Some(&laws[3])]
+            .into_iter()
+            .enumerate()
+        {
+            for len in [BATCH, 13] {
+                let base = lanes(case as u64 + 7, &laws, law.is_none());
+                let mut want = base.v;
+                {
+                    let mut l = Lanes { v: base.v };
+                    law_lanes(&mut l, len, law, 1e-5);
+                    want.copy_from_slice(&l.v);
+                }
+                // the loop did something: a stiffness on every evaluated lane,
+                // a force on most (a clamped lane separating fast has none)
+                assert!((0..len).all(|k| want[OUT_KN][k] > 0.0));
+                let pushed = (0..len).filter(|&k| want[OUT_F][k] != 0.0).count();
+                assert!(2 * pushed > len, "{pushed} of {len} lanes with a force");
+                for &level in &levels {
+                    let mut l = Lanes { v: base.v };
+                    run_law(&mut l, len, law, 1e-5, level);
+                    for q in 0..NV {
+                        for k in 0..BATCH {
+                            assert_eq!(
+                                l.v[q][k].to_bits(),
+                                want[q][k].to_bits(),
+                                "{level:?}, case {case}, len {len}: row {q} lane {k}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
     }
 }

@@ -211,7 +211,6 @@ fn helper_loop(slot: &Slot) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::ops::Range;
     use std::sync::atomic::AtomicUsize;
 
     /// Every range is run exactly once, also after the helpers have parked.
