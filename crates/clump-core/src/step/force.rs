@@ -33,7 +33,11 @@ use rayon::prelude::*;
 pub const BODY_CHUNK: usize = 32;
 
 /// Entries of the wall list ahead whose sphere's state the gather prefetches.
-const ENTRY_PREFETCH: usize = 4;
+const ENTRY_PREFETCH: usize = 8;
+
+/// Bodies ahead whose column sum ([`crate::neighbor::PairBody::col`]) the
+/// gather prefetches.
+const BODY_PREFETCH: usize = 4;
 
 /// Computes all contact forces and the total force and torque on every body.
 pub fn compute(w: &mut World) {
@@ -81,6 +85,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         body_ready: SharedMut::new(&mut w.body_ready),
         simd: super::pair_kernel::simd(),
         prefetch: w.spheres.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
+        ahead: super::pair_kernel::prefetch_distance(w.spheres.len()),
     };
     let stats = SharedMut::new(stats);
     // the chunks are the gather's body chunks, so that a body's rows never
@@ -244,21 +249,32 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
             let b1 = (b0 + BODY_CHUNK).min(nb);
             // the chunk's entries of the wall list, ascending with its bodies
             let (mut e, e_end) = (chunk_entries[c] as usize, chunk_entries[c + 1] as usize);
+            // the next entry whose sphere is to be prefetched
+            let mut e_pf = e;
             for bi in b0..b1 {
                 let com = b.position[bi];
                 // the body's entries: e0..e
                 let e0 = e;
-                // the sphere of an entry a few ahead: its state line, which
-                // the pair stage has pushed out of the cache by now in a
-                // large bed (read here, it was 10 % of this pass at 40 000
-                // spheres); within the chunk, as later entries are another
-                // thread's
-                if e + ENTRY_PREFETCH < e_end {
+                // the spheres of the entries up to a few ahead of this
+                // body's first: their state lines, which the pair stage has
+                // pushed out of the cache by now in a large bed (read here,
+                // they were 10 % of this pass at 40 000 spheres, 16 % at
+                // 10⁶ when only one entry was prefetched per body, as a body
+                // at a wall has up to four); within the chunk, as later
+                // entries are another thread's
+                let pf_end = (e + ENTRY_PREFETCH).min(e_end);
+                while e_pf < pf_end {
                     // SAFETY: the entry and its sphere exist (a prefetch
                     // never faults anyway).
+                    unsafe { prefetch(sp.state.as_ptr().add(at(entry_sphere, e_pf) as usize)) };
+                    e_pf += 1;
+                }
+                // the column sum of a body a few ahead (the pair stage wrote
+                // it; 7 % of this pass at 10⁶ spheres, read here)
+                if bi + BODY_PREFETCH < b1 {
+                    // SAFETY: a body of this chunk; a prefetch never faults.
                     unsafe {
-                        let s = at(entry_sphere, e + ENTRY_PREFETCH) as usize;
-                        prefetch(sp.state.as_ptr().add(s));
+                        prefetch(std::ptr::addr_of!((*pair_body.ptr(bi + BODY_PREFETCH)).col));
                     }
                 }
                 let s_end = sp.of_body(bi).end;

@@ -85,6 +85,9 @@ pub(super) struct RowCtx<'a> {
     /// The detect pass prefetches the partner body's data (beds beyond the
     /// caches, see [`PREFETCH_MIN_SPHERES`]).
     pub prefetch: bool,
+    /// How many pairs ahead the detect pass prefetches the partner's
+    /// state ([`prefetch_distance`]).
+    pub ahead: usize,
 }
 
 /// The widest vector instruction set the law loop is compiled for that this
@@ -179,13 +182,13 @@ impl RowCtx<'_> {
             // read half-way (below); and the pair's tangential spring,
             // which the batch gathers once the pair is found touching
             // (read there, it was 7 % of this function at 40 000 spheres)
-            if p + PREFETCH < np {
-                let ahead = topo.read(p + PREFETCH).j as usize;
+            if p + self.ahead < np {
+                let ahead = topo.read(p + self.ahead).j as usize;
                 prefetch(sp.state.as_ptr().add(ahead));
                 prefetch(sp.body.as_ptr().add(ahead));
-                prefetch(self.tangential.as_ptr().add(p + PREFETCH));
+                prefetch(self.tangential.as_ptr().add(p + self.ahead));
             }
-            if self.prefetch && p + PREFETCH / 2 < np {
+            if self.prefetch && p + PREFETCH_BODY < np {
                 // in a bed larger than the caches: the partner body's
                 // column sum, angular velocity, mass, centre and velocity
                 // of the pair half-way ahead, which the batch gather and
@@ -193,7 +196,7 @@ impl RowCtx<'_> {
                 // top stall, 11 % of this function); its body index was
                 // prefetched above (read for the current pair, it missed:
                 // 6 % at 40 000 spheres)
-                let bj = at(&sp.body, topo.read(p + PREFETCH / 2).j as usize) as usize;
+                let bj = at(&sp.body, topo.read(p + PREFETCH_BODY).j as usize) as usize;
                 let line = self.body.as_ptr().add(bj) as *const u8;
                 prefetch(line);
                 prefetch(line.add(64));
@@ -500,9 +503,24 @@ fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
     }
 }
 
-/// How many candidate pairs ahead the detect pass prefetches the partner's
-/// data.
-const PREFETCH: usize = 16;
+/// How many candidate pairs ahead the detect pass prefetches the partner
+/// sphere's state, body index and the pair's spring: in a bed whose data
+/// fit the caches ([`PREFETCH_MIN_SPHERES`]) 16; beyond, where the line
+/// comes from memory, LARGE_AHEAD (at 10⁶ spheres 16 pairs ahead left the
+/// partner's state the top stall of the detect pass).
+pub(super) fn prefetch_distance(spheres: usize) -> usize {
+    if spheres >= PREFETCH_MIN_SPHERES {
+        LARGE_AHEAD
+    } else {
+        16
+    }
+}
+const LARGE_AHEAD: usize = 32;
+
+/// How many candidate pairs ahead the detect pass of a large bed prefetches
+/// the partner body's packed record (its body index was prefetched
+/// [`prefetch_distance`] pairs ahead).
+const PREFETCH_BODY: usize = 8;
 
 /// Spheres from which the detect pass prefetches the partner body's data
 /// (the partner's state line is prefetched at every size): about where the
