@@ -85,7 +85,6 @@ pub(crate) fn pair_forces(w: &mut World) {
         body_ready: SharedMut::new(&mut w.body_ready),
         simd: super::pair_kernel::simd(),
         prefetch: w.spheres.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
-        ahead: super::pair_kernel::prefetch_distance(w.spheres.len()),
     };
     let stats = SharedMut::new(stats);
     // the chunks are the gather's body chunks, so that a body's rows never

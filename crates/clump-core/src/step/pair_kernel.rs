@@ -82,12 +82,10 @@ pub(super) struct RowCtx<'a> {
     pub body_ready: SharedMut<bool>,
     /// The vector instructions the law loop may use ([`simd`]).
     pub simd: Simd,
-    /// The detect pass prefetches the partner body's data (beds beyond the
-    /// caches, see [`PREFETCH_MIN_SPHERES`]).
+    /// A bed beyond the caches ([`PREFETCH_MIN_SPHERES`]): the detect pass
+    /// prefetches further ahead ([`LARGE_AHEAD`]) and also the partner
+    /// body's data.
     pub prefetch: bool,
-    /// How many pairs ahead the detect pass prefetches the partner's
-    /// state ([`prefetch_distance`]).
-    pub ahead: usize,
 }
 
 /// The widest vector instruction set the law loop is compiled for that this
@@ -171,6 +169,11 @@ impl RowCtx<'_> {
         // one flat loop over the pairs of the run's rows
         let pairs =
             at(self.row_start, spheres.start) as usize..at(self.row_start, spheres.end) as usize;
+        let ahead = if self.prefetch {
+            LARGE_AHEAD
+        } else {
+            SMALL_AHEAD
+        };
         for p in pairs {
             let t = topo.read(p);
             let (i, j) = (at(self.row, p) as usize, t.j as usize);
@@ -182,11 +185,11 @@ impl RowCtx<'_> {
             // read half-way (below); and the pair's tangential spring,
             // which the batch gathers once the pair is found touching
             // (read there, it was 7 % of this function at 40 000 spheres)
-            if p + self.ahead < np {
-                let ahead = topo.read(p + self.ahead).j as usize;
-                prefetch(sp.state.as_ptr().add(ahead));
-                prefetch(sp.body.as_ptr().add(ahead));
-                prefetch(self.tangential.as_ptr().add(p + self.ahead));
+            if p + ahead < np {
+                let partner = topo.read(p + ahead).j as usize;
+                prefetch(sp.state.as_ptr().add(partner));
+                prefetch(sp.body.as_ptr().add(partner));
+                prefetch(self.tangential.as_ptr().add(p + ahead));
             }
             if self.prefetch && p + PREFETCH_BODY < np {
                 // in a bed larger than the caches: the partner body's
@@ -448,8 +451,8 @@ impl RowCtx<'_> {
     }
 }
 
-/// Runs [`law_lanes`] over the first `len` lanes, with AVX2 where the
-/// processor has it.
+/// Runs [`law_lanes`] over the first `len` lanes, compiled for the vector
+/// instructions `simd` (detected on this processor by [`simd`]).
 #[inline(always)]
 fn run_law(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64, simd: Simd) {
     #[cfg(target_arch = "x86_64")]
@@ -504,22 +507,18 @@ fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
 }
 
 /// How many candidate pairs ahead the detect pass prefetches the partner
-/// sphere's state, body index and the pair's spring: in a bed whose data
-/// fit the caches ([`PREFETCH_MIN_SPHERES`]) 16; beyond, where the line
-/// comes from memory, LARGE_AHEAD (at 10⁶ spheres 16 pairs ahead left the
-/// partner's state the top stall of the detect pass).
-pub(super) fn prefetch_distance(spheres: usize) -> usize {
-    if spheres >= PREFETCH_MIN_SPHERES {
-        LARGE_AHEAD
-    } else {
-        16
-    }
-}
+/// sphere's state, body index and the pair's spring in a bed whose data fit
+/// the caches ([`PREFETCH_MIN_SPHERES`]).
+const SMALL_AHEAD: usize = 16;
+
+/// The same beyond the caches, where the line comes from memory (at 10⁶
+/// spheres [`SMALL_AHEAD`] left the partner's state the top stall of the
+/// detect pass).
 const LARGE_AHEAD: usize = 32;
 
 /// How many candidate pairs ahead the detect pass of a large bed prefetches
 /// the partner body's packed record (its body index was prefetched
-/// [`prefetch_distance`] pairs ahead).
+/// [`LARGE_AHEAD`] pairs ahead).
 const PREFETCH_BODY: usize = 8;
 
 /// Spheres from which the detect pass prefetches the partner body's data
