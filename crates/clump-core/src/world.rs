@@ -251,6 +251,10 @@ pub struct World {
     pub(crate) history_map: crate::neighbor::pairs::HistoryMap,
     pub(crate) grid: CellGrid,
     pub(crate) topology_dirty: bool,
+    /// The first half of the current step is done (fused into the previous
+    /// step's gather, inside [`World::run`]), with whether a sphere then
+    /// moved more than half the skin. None between public calls.
+    pub(crate) first_half_done: Option<bool>,
     pub(crate) forces_ready: bool,
     pub(crate) scratch_perm: Vec<u32>,
     /// Rebuild scratch (reused, so rebuilds do not allocate once warm): which
@@ -306,6 +310,7 @@ impl World {
             history_map: Default::default(),
             grid: CellGrid::default(),
             topology_dirty: true,
+            first_half_done: None,
             forces_ready: false,
             scratch_perm: Vec::new(),
             scratch_keep: Vec::new(),

@@ -69,11 +69,15 @@ pub struct PairBody {
     pub angular_velocity: DVec3,
     /// Mass, kg.
     pub mass: f64,
-    /// The `j` sides of the pairs in the columns of the body's spheres,
-    /// summed in ascending pair order by the pair kernel as it evaluates
-    /// them, when all of them lie in the same thread's run as the body
-    /// (always on one thread). The gather reads it and sets it back to
-    /// zero, so it is zero between steps.
+    /// The body's pair load (world frame; torque about its centre of mass),
+    /// built by the pair kernel: first the `j` sides of the pairs in the
+    /// columns of the body's spheres, summed in ascending pair order as it
+    /// evaluates them, when all of them lie in the same thread's run as the
+    /// body (always on one thread); then, once the rows of its spheres are
+    /// done, their `i` sides (summed in pair order) are added (`row + col`).
+    /// For a body on a seam it holds the row sum alone ([`column_sum`] adds
+    /// the rest). The gather reads it and sets it back to zero, so it is zero
+    /// between steps.
     pub col: BodyLoad,
 }
 
@@ -108,10 +112,6 @@ pub struct PairList {
     /// `body`), and zero for a pair that does not touch: the gather sums
     /// such a body's column through `col_pair` ([`column_sum`]).
     pub load_j: Vec<BodyLoad>,
-    /// Per body: the `i` sides of the pairs in the rows of its spheres
-    /// (torque about its centre of mass), summed in pair order. A body's
-    /// spheres are contiguous, so its rows are one run of pairs.
-    pub row_load: Vec<BodyLoad>,
     /// Per body: its state as the contacts read it, and its column sum
     /// ([`PairBody::col`]). (Summed per body rather than per sphere, the
     /// lever arms are applied per contact in the vectorised law, and the
@@ -145,7 +145,7 @@ pub struct PairList {
 /// `load_j` of the pairs in its column, added in ascending pair order from
 /// zero, the order in which the pair kernel accumulates
 /// [`PairBody::col`]. Either way the body's pair load is
-/// `row_load + column`, with the same bits, so the results do not depend
+/// `row sum + column`, with the same bits, so the results do not depend
 /// on which thread summed it.
 ///
 /// # Safety
@@ -372,8 +372,6 @@ impl PairList {
         //    ascending; a body's spheres are contiguous: its first sphere is
         //    the first with its owner index
         let nb = inp.body.last().map_or(0, |&b| b as usize + 1);
-        self.row_load.clear();
-        self.row_load.resize(nb, BodyLoad::default());
         self.body.clear();
         self.body.resize(nb, PairBody::default());
         self.col_start.clear();

@@ -4,7 +4,8 @@
 //! added to the row sum of its body while its row is evaluated, sphere `j`'s
 //! side to the column sum of `j`'s body, or recorded with the pair when
 //! that body is on a seam between two threads' runs,
-//! `neighbor::pairs::column_sum`), then a per-body gather in a fixed order
+//! `neighbor::pairs::column_sum`; a body's row and column sums meet in
+//! `PairBody::col`), then a per-body gather in a fixed order
 //! with sphere–wall contacts and gravity, which also applies the final kick.
 //!
 //! Body force and torque (seed eq. 4.87–4.88), world frame:
@@ -14,7 +15,7 @@
 //! `Σ (x_c − r_cm) × f` over the contacts.
 
 use super::affinity::{body_chunk_cost, for_each_chunk_with, for_each_run, GATHER_LOOP, PAIR_LOOP};
-use super::integrate::FinalKick;
+use super::integrate::{FinalKick, FirstHalf};
 use super::pair_kernel::prefetch;
 use super::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput};
@@ -25,6 +26,7 @@ use crate::wall::{WallLoad, WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::{ContactStats, World, WALL_SLOTS};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Bodies per chunk of the pair stage (the rows of their spheres) and of
 /// the gather. Fixed (never derived from the thread count) so that the
@@ -45,13 +47,14 @@ pub fn compute(w: &mut World) {
     // step's first half writes; here it comes from the bodies as they are
     w.pairs.refresh_bodies(&w.bodies);
     pair_forces(w);
-    gather(w, false);
+    gather(w, false, None);
 }
 
 /// Evaluates every candidate sphere pair, row by row: pairs that do not touch
-/// get zero force and their history is reset. Writes each body's row sum
-/// (`row_load`) and column sum (`PairBody::col`), or each pair's contribution to
-/// a seam body (`load_j`), and the pair statistics per chunk of rows.
+/// get zero force and their history is reset. Writes each body's pair load
+/// (row sum plus column sum, `PairBody::col`; the row sum alone for a body on
+/// a seam, with each pair's contribution to it in `load_j`), and the pair
+/// statistics per chunk of rows.
 pub(crate) fn pair_forces(w: &mut World) {
     use super::pair_kernel::{Batch, RowCtx};
     if w.config.multi_contact == MultiContact::Average {
@@ -79,7 +82,6 @@ pub(crate) fn pair_forces(w: &mut World) {
         tangential: SharedMut::new(&mut pairs.tangential),
         rolling: SharedMut::new(&mut pairs.rolling),
         load_j: SharedMut::new(&mut pairs.load_j),
-        row_load: SharedMut::new(&mut pairs.row_load),
         body: SharedMut::new(&mut pairs.body),
         first_feed: &pairs.first_feed,
         body_ready: SharedMut::new(&mut w.body_ready),
@@ -108,8 +110,9 @@ pub(crate) fn pair_forces(w: &mut World) {
         }
         let mut batch = Batch::default();
         // SAFETY: this run owns the rows of bodies b0..b1 of the half list,
-        // their row sums and its chunks' statistics slots, no other run's;
-        // the column sums it writes are of bodies complete in it.
+        // their bodies' pair loads and its chunks' statistics slots, no
+        // other run's; the column sums it adds to are of bodies complete in
+        // it.
         unsafe {
             rows.evaluate(b0..b1, first[b0] as usize, &mut batch, &stats);
         }
@@ -170,7 +173,12 @@ fn average_scales(w: &mut World) {
 /// kick ([`FinalKick`]) in the same pass. Bodies are processed in fixed
 /// chunks; wall loads and statistics are summed per chunk and then over
 /// chunks in order (the pair chunks first).
-pub(crate) fn gather(w: &mut World, kick: bool) {
+///
+/// With `next` (which implies `kick`), each body then also takes the first
+/// half of the next step ([`FirstHalf`]) in the same pass, while its state is
+/// in the cache; the result is then whether a sphere moved more than half
+/// the skin (else false).
+pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool {
     let World {
         bodies,
         templates,
@@ -204,6 +212,8 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
     let walls_average = walls
         .iter()
         .any(|x| x.multi_contact == MultiContact::Average);
+    let any_stale = AtomicBool::new(false);
+    let next = next.as_ref();
     let force = SharedMut::new(&mut bodies.force);
     let torque = SharedMut::new(&mut bodies.torque);
     let vel = SharedMut::new(&mut bodies.velocity);
@@ -214,8 +224,12 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
     let (entry_sphere, entry_mask, chunk_entries) =
         (&wall_list.sphere, &wall_list.mask, &wall_list.chunk_start);
     let loads = SharedMut::new(chunk_wall_loads);
+    let pos = SharedMut::new(&mut bodies.position);
+    // SAFETY: the gather resizes nothing, and writes no orientation (the
+    // first half of the next step writes its body's, after its kick).
+    let kick =
+        kick.then(|| unsafe { FinalKick::new(dt, *step, config.added_mass, templates, bodies) });
     let b = &*bodies;
-    let kick = kick.then(|| FinalKick::new(dt, *step, config.added_mass, templates, b));
     let pair_body = SharedMut::new(&mut pairs.body);
     let pairs = &*pairs;
     // Walls to test for entry `e` of the wall list, in ascending order: of
@@ -250,8 +264,10 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
             let (mut e, e_end) = (chunk_entries[c] as usize, chunk_entries[c + 1] as usize);
             // the next entry whose sphere is to be prefetched
             let mut e_pf = e;
+            let mut stale = false;
             for bi in b0..b1 {
-                let com = b.position[bi];
+                // SAFETY: body bi is handled by this chunk only.
+                let com = unsafe { pos.read(bi) };
                 // the body's entries: e0..e
                 let e0 = e;
                 // the spheres of the entries up to a few ahead of this
@@ -283,16 +299,16 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                 }
                 // --- sphere–sphere contacts: summed by the pair stage, or
                 // here for a body on the seam between two threads' runs
-                let row = pairs.row_load[bi];
+                // SAFETY: body bi is handled by this chunk only; its sum
+                // is read and reset for the next step.
+                let own = std::mem::take(unsafe { &mut (*pair_body.ptr(bi)).col });
                 let pl = if body_ready[bi] {
-                    // SAFETY: body bi is handled by this chunk only; its
-                    // column sum is read and reset for the next step.
-                    row.add(std::mem::take(unsafe { &mut (*pair_body.ptr(bi)).col }))
+                    own
                 } else {
                     // SAFETY: the pair list was built for these bodies (a
                     // rebuild precedes every gather after a change), and the
                     // pair stage is over.
-                    row.add(unsafe {
+                    own.add(unsafe {
                         column_sum(pairs.load_j.as_ptr(), &pairs.col_start, &pairs.col_pair, bi)
                     })
                 };
@@ -413,20 +429,18 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                 // SAFETY: body bi is handled by this chunk only.
                 let (mut v, mut l, mut om) =
                     unsafe { (vel.read(bi), angm.read(bi), omega.read(bi)) };
-                // SAFETY: body bi is handled by this chunk only.
-                unsafe {
-                    *force.get(bi) = f;
-                    *torque.get(bi) = m;
+                // the force and torque are kept for the next step's first
+                // half, unless it takes them now
+                if next.is_none() {
+                    // SAFETY: body bi is handled by this chunk only.
+                    unsafe {
+                        *force.get(bi) = f;
+                        *torque.get(bi) = m;
+                    }
                 }
                 if let Some(k) = &kick {
                     // SAFETY: bi < nb.
                     unsafe { k.apply(bi, &mut v, &mut l, &mut om, f, m) };
-                    // SAFETY: body bi is handled by this chunk only.
-                    unsafe {
-                        *vel.get(bi) = v;
-                        *angm.get(bi) = l;
-                        *omega.get(bi) = om;
-                    }
                 }
                 // --- health statistics (folded into this pass: no extra
                 // sweep): the kinetic energy at the end of the step, after
@@ -444,6 +458,21 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
                 {
                     stat.non_finite_body = b.id[bi];
                 }
+                if let Some(h) = next {
+                    // SAFETY: body bi (and its spheres) is handled by this
+                    // chunk only; it stores the body's state.
+                    stale |= unsafe { h.apply(bi, &mut v, &mut l, &mut om, f, m) };
+                } else if kick.is_some() {
+                    // SAFETY: body bi is handled by this chunk only.
+                    unsafe {
+                        *vel.get(bi) = v;
+                        *angm.get(bi) = l;
+                        *omega.get(bi) = om;
+                    }
+                }
+            }
+            if stale {
+                any_stale.store(true, Ordering::Relaxed);
             }
         },
     );
@@ -469,6 +498,7 @@ pub(crate) fn gather(w: &mut World, kick: bool) {
         }
         *load = l;
     }
+    any_stale.into_inner()
 }
 
 /// The indices of the set bits of a mask, ascending.

@@ -23,34 +23,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// than half the skin since the last neighbour build. Without, the spheres
 /// are left alone and it returns false.
 pub fn initial(w: &mut World, spheres: bool) -> bool {
-    let dt = w.config.dt;
-    let scheme = w.config.rotation;
-    let step = w.step;
     let n = w.bodies.len();
-    let limit2 = skin::trigger_distance2(w.skin());
-    let b = &mut w.bodies;
-    let templates = &w.templates;
-    let added = w.config.added_mass;
-    let pos = SharedMut::new(&mut b.position);
-    let vel = SharedMut::new(&mut b.velocity);
-    let quat = SharedMut::new(&mut b.orientation);
-    let angm = SharedMut::new(&mut b.angular_momentum);
-    let omega = SharedMut::new(&mut b.angular_velocity);
-    let (force, torque, mass, inertia) = (&b.force, &b.torque, &b.mass, &b.inertia);
-    let (ff, tf, start, tmpl) = (&b.force_flag, &b.torque_flag, &b.start_step, &b.template);
-    let sp = &mut w.spheres;
-    let spheres = spheres && w.reference_position.len() == sp.len();
-    let sst = SharedMut::new(&mut sp.state);
-    let (first, tfirst, toff, xref) = (
-        &sp.body_first,
-        &w.template_first,
-        &w.template_offset,
-        &w.reference_position,
-    );
-    // the pair stage's packed copy of the bodies' state (when built for
-    // these bodies; else the rebuild that follows fills it)
-    let packed = w.pairs.body.len() == n;
-    let pair_body = SharedMut::new(&mut w.pairs.body);
+    // SAFETY: the arrays stay put during the loop, and each body is moved
+    // by one block only.
+    let half = unsafe { FirstHalf::new(w, w.step, spheres) };
+    let (force, torque) = (&w.bodies.force, &w.bodies.torque);
     let any_stale = AtomicBool::new(false);
     let cost = body_chunk_cost(&w.body_cost, n, BODY_BLOCK);
     for_each_chunk_with(
@@ -61,55 +38,12 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
         |_, blk| {
             let mut stale = false;
             for i in blk * BODY_BLOCK..((blk + 1) * BODY_BLOCK).min(n) {
-                // SAFETY: each body index is handled by exactly one block.
-                let (x, v, q, l, om) = unsafe {
-                    (
-                        pos.get(i),
-                        vel.get(i),
-                        quat.get(i),
-                        angm.get(i),
-                        omega.get(i),
-                    )
-                };
-                // SAFETY (all `at` below): i < n, every body array has n
-                // entries, template indices are valid, and with `spheres` the
-                // sphere topology (body_first, reference positions) is current.
-                let rot = if step < unsafe { at(start, i) } {
-                    *x += *v * dt;
-                    DMat3::from_quat(*q)
-                } else {
-                    let t = unsafe { at(tmpl, i) } as usize;
-                    let fa = mass_factor(added, templates[t].density);
-                    let kick = HalfKick::new(dt, unsafe { at(mass, i) }, fa);
-                    let (fi, ti) = unsafe { (at(force, i), at(torque, i)) };
-                    kick.apply(v, l, fi, ti, unsafe { at(ff, i) }, unsafe { at(tf, i) });
-                    *x += *v * dt;
-                    let inertia_i = unsafe { at(inertia, i) };
-                    *q = scheme.drift(*q, *l, inertia_i, dt);
-                    let rot = DMat3::from_quat(*q);
-                    *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
-                    rot
-                };
-                if packed {
-                    // SAFETY: body i is handled by this block only; its
-                    // column sum is not touched.
-                    unsafe {
-                        let pb = pair_body.ptr(i);
-                        (*pb).position = *x;
-                        (*pb).velocity = *v;
-                        (*pb).angular_velocity = *om;
-                    }
-                }
-                if spheres {
-                    let o0 = unsafe { at(tfirst, at(tmpl, i) as usize) } as usize;
-                    let (s0, s1) = unsafe { (at(first, i) as usize, at(first, i + 1) as usize) };
-                    for (k, s) in (s0..s1).enumerate() {
-                        let off = unsafe { at(toff, o0 + k) };
-                        let px = sphere_position(*x, &rot, off);
-                        // SAFETY: the spheres of body i are written by its block only.
-                        unsafe { sst.get(s) }.position = px;
-                        stale |= skin::moved_too_far(px, unsafe { at(xref, s) }, limit2);
-                    }
+                // SAFETY: each body index is handled by exactly one block;
+                // i < n.
+                unsafe {
+                    let (mut v, mut l, mut om) =
+                        (half.vel.read(i), half.angm.read(i), half.omega.read(i));
+                    stale |= half.apply(i, &mut v, &mut l, &mut om, at(force, i), at(torque, i));
                 }
             }
             if stale {
@@ -118,6 +52,129 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
         },
     );
     any_stale.into_inner()
+}
+
+/// The first half step of one body at a time (see [`initial`]): the pass of
+/// its own, or fused into the gather of the step before
+/// ([`super::force::gather`]), which applies it to each body right after that
+/// body's final kick while its state is still in the cache. Holds pointers
+/// into the world's body, sphere and pair-body arrays.
+pub(crate) struct FirstHalf {
+    kicks: Kicks,
+    /// The step this first half begins.
+    step: u64,
+    scheme: crate::rotation::RotationScheme,
+    pos: SharedMut<DVec3>,
+    pub(crate) vel: SharedMut<DVec3>,
+    quat: SharedMut<glam::DQuat>,
+    pub(crate) angm: SharedMut<DVec3>,
+    pub(crate) omega: SharedMut<DVec3>,
+    inertia: SharedMut<DVec3>,
+    /// The spheres' state, to move with their bodies (None: left alone).
+    sst: Option<SharedMut<crate::sphere::SphereState>>,
+    first: SharedMut<u32>,
+    tfirst: SharedMut<u32>,
+    toff: SharedMut<DVec3>,
+    xref: SharedMut<DVec3>,
+    limit2: f64,
+    /// The pair stage's packed copy of the bodies' state, when built for
+    /// these bodies (else the rebuild that follows fills it).
+    pair_body: Option<SharedMut<crate::neighbor::PairBody>>,
+}
+
+impl FirstHalf {
+    /// The first half of step `step` of `w`'s bodies; with `spheres` (and
+    /// a current sphere topology), their spheres move along and are checked
+    /// against the skin.
+    ///
+    /// # Safety
+    /// While the result is in use, `w`'s body, sphere, template and pair-body
+    /// arrays are neither resized nor moved, and each body (with its spheres)
+    /// is accessed by one thread at a time, through the result only.
+    pub(crate) unsafe fn new(w: &mut World, step: u64, spheres: bool) -> Self {
+        let spheres = spheres && w.reference_position.len() == w.spheres.len();
+        let limit2 = skin::trigger_distance2(w.skin());
+        let n = w.bodies.len();
+        let b = &mut w.bodies;
+        FirstHalf {
+            kicks: Kicks::new(w.config.dt, w.config.added_mass, &mut w.templates, b),
+            step,
+            scheme: w.config.rotation,
+            pos: SharedMut::new(&mut b.position),
+            vel: SharedMut::new(&mut b.velocity),
+            quat: SharedMut::new(&mut b.orientation),
+            angm: SharedMut::new(&mut b.angular_momentum),
+            omega: SharedMut::new(&mut b.angular_velocity),
+            inertia: SharedMut::new(&mut b.inertia),
+            sst: spheres.then(|| SharedMut::new(&mut w.spheres.state)),
+            first: SharedMut::new(&mut w.spheres.body_first),
+            tfirst: SharedMut::new(&mut w.template_first),
+            toff: SharedMut::new(&mut w.template_offset),
+            xref: SharedMut::new(&mut w.reference_position),
+            limit2,
+            pair_body: (w.pairs.body.len() == n).then(|| SharedMut::new(&mut w.pairs.body)),
+        }
+    }
+
+    /// Applies the first half step to body `i`, whose velocity `v`,
+    /// angular momentum `l` and angular velocity `om` (world frame) are
+    /// given as values and stored here, under the force `f` (N) and torque
+    /// `m` (N m) of the step before (world frame). Returns true when one of
+    /// its spheres moved more than half the skin since the last build.
+    ///
+    /// # Safety
+    /// `i < n`, and body `i` is written by this thread only meanwhile.
+    #[inline(always)]
+    pub(crate) unsafe fn apply(
+        &self,
+        i: usize,
+        v: &mut DVec3,
+        l: &mut DVec3,
+        om: &mut DVec3,
+        f: DVec3,
+        m: DVec3,
+    ) -> bool {
+        let dt = self.kicks.dt;
+        let (mut x, mut q) = (self.pos.read(i), self.quat.read(i));
+        // (all reads: i < n, every body array has n entries, template
+        // indices are valid, and with spheres the sphere topology, first
+        // spheres and reference positions, is current)
+        let rot = if self.kicks.kick(self.step, i, v, l, f, m) {
+            x += *v * dt;
+            let inertia_i = self.inertia.read(i);
+            q = self.scheme.drift(q, *l, inertia_i, dt);
+            let rot = DMat3::from_quat(q);
+            *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
+            rot
+        } else {
+            // before its start step: ballistic, forces ignored
+            x += *v * dt;
+            DMat3::from_quat(q)
+        };
+        *self.pos.get(i) = x;
+        *self.quat.get(i) = q;
+        *self.vel.get(i) = *v;
+        *self.angm.get(i) = *l;
+        *self.omega.get(i) = *om;
+        if let Some(pb) = &self.pair_body {
+            // its column sum is not touched
+            let pb = pb.ptr(i);
+            (*pb).position = x;
+            (*pb).velocity = *v;
+            (*pb).angular_velocity = *om;
+        }
+        let mut stale = false;
+        if let Some(sst) = &self.sst {
+            let o0 = self.tfirst.read(self.kicks.tmpl.read(i) as usize) as usize;
+            let (s0, s1) = (self.first.read(i) as usize, self.first.read(i + 1) as usize);
+            for (k, s) in (s0..s1).enumerate() {
+                let px = sphere_position(x, &rot, self.toff.read(o0 + k));
+                (*sst.ptr(s)).position = px;
+                stale |= skin::moved_too_far(px, self.xref.read(s), self.limit2);
+            }
+        }
+        stale
+    }
 }
 
 /// Bodies per block of the first half step: the gather's chunk, so that a
@@ -131,29 +188,31 @@ const BODY_BLOCK: usize = super::force::BODY_CHUNK;
 /// force and torque are summed, in the same pass (one sweep over the bodies
 /// and one parallel loop fewer per step). A body before its start step is
 /// left alone.
-pub(crate) struct FinalKick<'a> {
-    dt: f64,
+pub(crate) struct FinalKick {
+    kicks: Kicks,
     step: u64,
-    added: crate::world::AddedMass,
-    templates: &'a [crate::shape::ClumpTemplate],
-    b: &'a crate::body::Bodies,
+    quat: SharedMut<glam::DQuat>,
+    inertia: SharedMut<DVec3>,
 }
 
-impl<'a> FinalKick<'a> {
-    /// The kick of the current step of `w`'s bodies `b`.
-    pub(crate) fn new(
+impl FinalKick {
+    /// The kick of step `step` of the bodies `b`.
+    ///
+    /// # Safety
+    /// As [`Kicks::new`]; the orientations are written by no other path
+    /// while the result is in use.
+    pub(crate) unsafe fn new(
         dt: f64,
         step: u64,
         added: crate::world::AddedMass,
-        templates: &'a [crate::shape::ClumpTemplate],
-        b: &'a crate::body::Bodies,
+        templates: &mut [crate::shape::ClumpTemplate],
+        b: &mut crate::body::Bodies,
     ) -> Self {
         FinalKick {
-            dt,
+            kicks: Kicks::new(dt, added, templates, b),
             step,
-            added,
-            templates,
-            b,
+            quat: SharedMut::new(&mut b.orientation),
+            inertia: SharedMut::new(&mut b.inertia),
         }
     }
 
@@ -173,16 +232,70 @@ impl<'a> FinalKick<'a> {
         f: DVec3,
         m: DVec3,
     ) {
-        let b = self.b;
-        if self.step < unsafe { at(&b.start_step, i) } {
-            return;
+        if self.kicks.kick(self.step, i, v, l, f, m) {
+            *om = omega_world(self.quat.read(i), *l, self.inertia.read(i));
         }
-        let t = unsafe { at(&b.template, i) } as usize;
-        let fa = mass_factor(self.added, self.templates[t].density);
-        let (ff, tf) = unsafe { (at(&b.force_flag, i), at(&b.torque_flag, i)) };
-        HalfKick::new(self.dt, unsafe { at(&b.mass, i) }, fa).apply(v, l, f, m, ff, tf);
-        let (q, inertia) = unsafe { (at(&b.orientation, i), at(&b.inertia, i)) };
-        *om = omega_world(q, *l, inertia);
+    }
+}
+
+/// What a half kick of a body reads (pointers into the world's body and
+/// template arrays, which it never writes).
+struct Kicks {
+    dt: f64,
+    added: crate::world::AddedMass,
+    templates: SharedMut<crate::shape::ClumpTemplate>,
+    mass: SharedMut<f64>,
+    ff: SharedMut<crate::body::AxisFlags>,
+    tf: SharedMut<crate::body::AxisFlags>,
+    start: SharedMut<u64>,
+    tmpl: SharedMut<u32>,
+}
+
+impl Kicks {
+    /// # Safety
+    /// The arrays are neither resized nor moved while the result is in use.
+    unsafe fn new(
+        dt: f64,
+        added: crate::world::AddedMass,
+        templates: &mut [crate::shape::ClumpTemplate],
+        b: &mut crate::body::Bodies,
+    ) -> Self {
+        Kicks {
+            dt,
+            added,
+            templates: SharedMut::new(templates),
+            mass: SharedMut::new(&mut b.mass),
+            ff: SharedMut::new(&mut b.force_flag),
+            tf: SharedMut::new(&mut b.torque_flag),
+            start: SharedMut::new(&mut b.start_step),
+            tmpl: SharedMut::new(&mut b.template),
+        }
+    }
+
+    /// Half kick of body `i` in step `step` (velocity `v`, angular momentum
+    /// `l`, world frame, under force `f` and torque `m`); false, leaving
+    /// them alone, for a body before its start step.
+    ///
+    /// # Safety
+    /// `i` is a body index.
+    #[inline(always)]
+    unsafe fn kick(
+        &self,
+        step: u64,
+        i: usize,
+        v: &mut DVec3,
+        l: &mut DVec3,
+        f: DVec3,
+        m: DVec3,
+    ) -> bool {
+        if step < self.start.read(i) {
+            return false;
+        }
+        let t = self.tmpl.read(i) as usize;
+        let fa = mass_factor(self.added, (*self.templates.ptr(t)).density);
+        let kick = HalfKick::new(self.dt, self.mass.read(i), fa);
+        kick.apply(v, l, f, m, self.ff.read(i), self.tf.read(i));
+        true
     }
 }
 

@@ -102,6 +102,14 @@ impl World {
 
     /// Advances the simulation by one time step.
     pub fn step(&mut self) -> Result<(), StepError> {
+        self.step_fused(false)
+    }
+
+    /// One step; with `fuse_next`, the gather at its end also takes the
+    /// first half of the next step ([`integrate::FirstHalf`]), body by body
+    /// in the same pass, and the world is left between the two halves of
+    /// that step: only another `step_fused` may follow (see [`World::run`]).
+    fn step_fused(&mut self, fuse_next: bool) -> Result<(), StepError> {
         if !self.forces_ready {
             self.prepare()?;
         }
@@ -109,8 +117,12 @@ impl World {
         let mut times = self.stage_times;
         let mut t = Instant::now();
         // the spheres move with their bodies in the same pass unless the
-        // topology changed (then the rebuild below recomputes them)
-        let moved_out = integrate::initial(self, !self.topology_dirty);
+        // topology changed (then the rebuild below recomputes them); the
+        // gather of the step before may have done it already
+        let moved_out = match self.first_half_done.take() {
+            Some(stale) => stale,
+            None => integrate::initial(self, !self.topology_dirty),
+        };
         for w in &mut self.walls {
             w.advance(dt);
         }
@@ -127,7 +139,14 @@ impl World {
         }
         force::pair_forces(self);
         lap(&mut times.pair, &mut t);
-        force::gather(self, true);
+        let fuse = fuse_next && !self.topology_dirty;
+        // SAFETY: the gather touches each body in one chunk only, and
+        // resizes no array.
+        let next = fuse.then(|| unsafe { integrate::FirstHalf::new(self, self.step + 1, true) });
+        let next_stale = force::gather(self, true, next);
+        if fuse {
+            self.first_half_done = Some(next_stale);
+        }
         lap(&mut times.gather, &mut t);
         self.stage_times = times;
         self.step += 1;
@@ -137,8 +156,10 @@ impl World {
 
     /// Advances by `n` steps.
     pub fn run(&mut self, n: u64) -> Result<(), StepError> {
-        for _ in 0..n {
-            self.step()?;
+        for k in 0..n {
+            // each step but the last takes the next one's first half in
+            // its gather (same bits; one sweep over the bodies fewer)
+            self.step_fused(k + 1 < n)?;
         }
         Ok(())
     }

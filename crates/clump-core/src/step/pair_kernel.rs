@@ -22,7 +22,10 @@
 //!    `j`'s body (or recorded with the pair when `j`'s body is on a seam
 //!    between two threads' runs), in pair order. The law loop has already
 //!    turned each side's torque into the torque about its body's centre of
-//!    mass, so these sums are the bodies' pair loads.
+//!    mass, so these sums are the bodies' pair loads. Once a body's rows
+//!    are done its row sum joins its column sum in [`PairBody::col`] (its
+//!    column is complete by then: every pair feeding it lies in an earlier
+//!    row).
 //!
 //! The batch keeps pair order, so every sum is taken in ascending pair order
 //! and the results do not depend on the thread count.
@@ -69,10 +72,6 @@ pub(super) struct RowCtx<'a> {
     /// (rad/s), mass (kg), and the column sum, written for the bodies
     /// complete in their thread's run ([`PairBody`]).
     pub body: SharedMut<PairBody>,
-    /// Row sums per body ([`PairList::row_load`]; written).
-    ///
-    /// [`PairList::row_load`]: crate::neighbor::PairList::row_load
-    pub row_load: SharedMut<BodyLoad>,
     /// First row feeding each body's columns ([`PairList::first_feed`]).
     ///
     /// [`PairList::first_feed`]: crate::neighbor::PairList::first_feed
@@ -160,9 +159,9 @@ impl RowCtx<'_> {
         debug_assert!(spheres.end <= n);
         (batch.run_start, batch.run_end) = (run_start, spheres.end);
         for b in bodies.clone() {
-            *self.row_load.get(b) = BodyLoad::default();
             *self.body_ready.get(b) = at(self.first_feed, b) as usize >= run_start;
         }
+        batch.carry = None;
         // the batch length lives in a register during the detect pass
         let mut len = 0usize;
         let mut n_clear = 0usize;
@@ -231,6 +230,29 @@ impl RowCtx<'_> {
         self.clear_pairs(&batch.clear[..n_clear]);
         batch.len = len;
         self.contacts(batch, stats);
+        if let Some((b, li)) = batch.carry.take() {
+            self.finish_row(b, li);
+        }
+    }
+
+    /// Body `b`'s rows are all evaluated, their `i` sides summing to `li`:
+    /// its pair load goes to its [`PairBody::col`], `li + column` when its
+    /// column sum is complete there (`body_ready`; all feeding rows come
+    /// before its own), else `li` alone (the gather adds the column from the
+    /// pairs' records). A body without touching pairs in its rows keeps its
+    /// column sum as it is: the same bits as `0 + column`, as a column sum
+    /// starts from +0 and so never is −0.
+    ///
+    /// # Safety
+    /// `b` is a body of this thread's run.
+    #[inline(always)]
+    unsafe fn finish_row(&self, b: usize, li: BodyLoad) {
+        let c = &mut *std::ptr::addr_of_mut!((*self.body.ptr(b)).col);
+        *c = if *self.body_ready.get(b) {
+            li.add(*c)
+        } else {
+            li
+        };
     }
 
     /// Clears what a contact left on the pairs `ps`, which no longer touch:
@@ -372,21 +394,29 @@ impl RowCtx<'_> {
         }
         // The row sum of the current body and the statistics of the current
         // chunk are carried in registers and stored when the body or chunk
-        // changes (bodies and chunks ascend in the batch). Accumulating in
+        // changes (bodies and chunks ascend in the batch; a body whose rows
+        // go on in the next batch is carried over to it). Accumulating in
         // place chained every contact through a store and a reload. Same
         // additions in the same order, so the same bits.
         let single_run = batch.run_start == 0 && batch.run_end == self.sp.len();
         let mut body = batch.body[0][0] as usize;
-        let mut li = *self.row_load.get(body);
+        let mut li = match batch.carry.take() {
+            Some((b, li)) if b == body => li,
+            Some((b, li)) => {
+                self.finish_row(b, li);
+                BodyLoad::default()
+            }
+            None => BodyLoad::default(),
+        };
         let mut chunk = body / BODY_CHUNK;
         let mut stat = *stats.get(chunk);
         for k in 0..len {
             let p = batch.pair[k] as usize;
             let [bi, bj] = batch.body[k].map(|x| x as usize);
             if bi != body {
-                *self.row_load.get(body) = li;
+                self.finish_row(body, li);
                 body = bi;
-                li = *self.row_load.get(body);
+                li = BodyLoad::default();
                 let c = body / BODY_CHUNK;
                 if c != chunk {
                     *stats.get(chunk) = stat;
@@ -438,7 +468,7 @@ impl RowCtx<'_> {
                 stat.max_overlap_wall = 0;
             }
         }
-        *self.row_load.get(body) = li;
+        batch.carry = Some((body, li));
         *stats.get(chunk) = stat;
     }
 
@@ -563,6 +593,9 @@ pub(super) struct Batch {
     body: [[u32; 2]; BATCH],
     model: [u32; BATCH],
     len: usize,
+    /// The body of the last row evaluated and its row sum so far, when its
+    /// rows may go on in the next batch.
+    carry: Option<(usize, BodyLoad)>,
     lanes: Lanes,
 }
 
@@ -577,6 +610,7 @@ impl Default for Batch {
             body: [[0; 2]; BATCH],
             model: [0; BATCH],
             len: 0,
+            carry: None,
             lanes: Lanes {
                 v: [[0.0; BATCH]; NV],
             },
