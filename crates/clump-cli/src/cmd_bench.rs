@@ -52,8 +52,8 @@ pub struct BenchArgs {
     /// sphere counts, e.g. `10000,100000,1000000`. Each size is a dense
     /// periodic bed of tetra clumps: a tile of about 10⁴ spheres (`--layers`
     /// deep) settled for `--settle` steps and copied side by side to the
-    /// size, timed for `--steps` steps, in a child process of its own
-    /// (clean peak RSS).
+    /// size, the sizes timed in turns of `--steps` steps (see
+    /// `--scaling-rounds`).
     #[arg(long, value_delimiter = ',', value_name = "SPHERES")]
     pub scaling: Vec<usize>,
     /// Scaling study: lattice layers of the bed.
@@ -66,15 +66,12 @@ pub struct BenchArgs {
     /// Scaling study: timed steps per round.
     #[arg(long, default_value_t = 300)]
     pub steps: u64,
-    /// Scaling study: timed rounds per size (of `--steps` steps each, one
-    /// after the other on the same bed). The row gives the best round (the
-    /// cost with the least interference from the rest of the machine) and
-    /// the median; the stage times are the best round's.
-    #[arg(long, default_value_t = 3)]
+    /// Scaling study: timed rounds per size (of `--steps` steps each), the
+    /// sizes taking turns. The row gives the best round (the cost with the
+    /// least interference from the rest of the machine) and the median; the
+    /// stage times are the best round's.
+    #[arg(long, default_value_t = 5)]
     pub scaling_rounds: usize,
-    /// Scaling study, internal: run one size in this process and print one row.
-    #[arg(long, hide = true)]
-    pub scaling_one: Option<usize>,
 }
 
 /// Figures of one timed run.
@@ -88,9 +85,6 @@ struct Figures {
 
 /// Runs the benchmark.
 pub fn run(args: &BenchArgs) -> Result<()> {
-    if let Some(n) = args.scaling_one {
-        return scaling_one(args, n);
-    }
     if !args.scaling.is_empty() {
         return scaling(args);
     }
@@ -318,11 +312,21 @@ fn cpu_seconds() -> f64 {
 
 /// Peak resident set size of this process so far, MB (Linux VmHWM).
 fn peak_rss_mb() -> f64 {
+    proc_status_mb("VmHWM:")
+}
+
+/// Resident memory of this process now, MB (Linux; NaN elsewhere).
+fn current_rss_mb() -> f64 {
+    proc_status_mb("VmRSS:")
+}
+
+/// A memory figure of `/proc/self/status` (its line `key`), MB.
+fn proc_status_mb(key: &str) -> f64 {
     std::fs::read_to_string("/proc/self/status")
         .ok()
         .and_then(|s| {
             s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
+                .find(|l| l.starts_with(key))
                 .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
         })
         .map_or(f64::NAN, |kb| kb / 1024.0)
@@ -427,15 +431,78 @@ fn run_liggghts(args: &BenchArgs, bin: &Path, na: u64, nb: u64) -> Result<Figure
     })
 }
 
-/// The scaling study: one child process per size, a table row each.
+/// Spheres in the settled tile of the scaling study (about 10⁴).
+const SCALING_TILE_SPHERES: f64 = 1e4;
+
+/// Untimed steps of a scaling bed before each of its timed rounds.
+const SCALING_WARM_STEPS: u64 = 20;
+
+/// One bed of the scaling study, with its timed rounds.
+struct ScalingBed {
+    /// Copies of the tile along x and y.
+    k: usize,
+    world: clump_core::world::World,
+    /// Resident memory added by building and warming up this bed, MB.
+    rss_mb: f64,
+    /// Seconds and stage times of each round.
+    rounds: Vec<(f64, clump_core::step::StageTimes)>,
+}
+
+/// The scaling study. A periodic tile of about 10⁴ spheres (`--layers`
+/// lattice layers deep) is settled into a dense bed for `--settle` steps,
+/// then copied side by side ([`clump_core::testbed::tile_xy`]) to each
+/// size, and each bed runs 200 steps to rebuild its lists and contact
+/// histories: every size times the same dense bed. The beds are then timed
+/// in alternation, one round of `--steps` steps each per turn (after
+/// [`SCALING_WARM_STEPS`] untimed ones), so that all sizes see the same
+/// state of the machine (its speed drifts by tens of per cent over
+/// minutes); each row gives the best and the median round,
+/// and the last line the cost of the largest bed over the smallest's,
+/// round by round. Memory per sphere is the resident memory that building
+/// and warming up the bed added.
 fn scaling(args: &BenchArgs) -> Result<()> {
-    let exe = std::env::current_exe()?;
     println!(
-        "scaling: dense periodic tetra beds (a ~1e4-sphere tile of {} layers settled {} steps, copied side by side), timed {} rounds of {} steps, threads {}",
+        "scaling: dense periodic tetra beds (a ~1e4-sphere tile of {} layers settled {} steps, copied side by side), {} alternating rounds of {} steps, threads {}",
         args.layers, args.settle, args.scaling_rounds.max(1), args.steps, args.threads
     );
+    let nz = args.layers.max(1);
+    let nx = ((SCALING_TILE_SPHERES / (4.0 * nz as f64)).sqrt().round() as usize).max(4);
+    let tile_spheres = 4 * nx * nx * nz;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build()?;
+    let mut beds = pool.install(|| -> Result<Vec<ScalingBed>> {
+        let mut tile = clump_core::testbed::tetra_lattice_bed(nx, nx, nz, args.skin);
+        tile.run(args.settle)?;
+        let mut beds = Vec::new();
+        for &n in &args.scaling {
+            let k = ((n as f64 / tile_spheres as f64).sqrt().round() as usize).max(1);
+            let r0 = current_rss_mb();
+            let mut world = clump_core::testbed::tile_xy(&tile, k, k);
+            world.run(200)?;
+            beds.push(ScalingBed {
+                k,
+                world,
+                rss_mb: current_rss_mb() - r0,
+                rounds: Vec::new(),
+            });
+        }
+        for _ in 0..args.scaling_rounds.max(1) {
+            for bed in beds.iter_mut() {
+                let w = &mut bed.world;
+                // a few untimed steps first: the bed's data back in the
+                // caches after the other beds' turns
+                w.run(SCALING_WARM_STEPS)?;
+                w.stage_times = Default::default();
+                let t0 = Instant::now();
+                w.run(args.steps)?;
+                bed.rounds.push((t0.elapsed().as_secs_f64(), w.stage_times));
+            }
+        }
+        Ok(beds)
+    })?;
     println!(
-        "{:>9} {:>8} {:>20} {:>14} {:>11} {:>13} {:>12} {:>12} {:>13}   ns/sph-step by stage (best round): initial, neighbour, pair, gather",
+        "{:>9} {:>8} {:>20} {:>14} {:>11} {:>13} {:>12} {:>9} {:>13}   ns/sph-step by stage (best round): initial, neighbour, pair, gather",
         "spheres",
         "clumps",
         "bed",
@@ -443,88 +510,47 @@ fn scaling(args: &BenchArgs) -> Result<()> {
         "ns/sph-step",
         "(median ns)",
         "contacts/sph",
-        "peak RSS MB",
+        "RSS MB",
         "RSS B/sphere"
     );
-    for &n in &args.scaling {
-        let out = std::process::Command::new(&exe)
-            .args(["bench", "--scaling-one", &n.to_string()])
-            .args(["--layers", &args.layers.to_string()])
-            .args(["--settle", &args.settle.to_string()])
-            .args(["--steps", &args.steps.to_string()])
-            .args(["--scaling-rounds", &args.scaling_rounds.to_string()])
-            .args(["--threads", &args.threads.to_string()])
-            .args(
-                args.skin
-                    .map(|s| vec!["--skin".to_string(), s.to_string()])
-                    .unwrap_or_default(),
-            )
-            .output()?;
-        if !out.status.success() {
-            bail!(
-                "scaling run of {n} spheres failed: {}",
-                String::from_utf8_lossy(&out.stderr)
-            );
-        }
-        print!("{}", String::from_utf8_lossy(&out.stdout));
-    }
-    Ok(())
-}
-
-/// Spheres in the settled tile of the scaling study (about 10⁴).
-const SCALING_TILE_SPHERES: f64 = 1e4;
-
-/// One size of the scaling study, in this process: a periodic tile of about
-/// 10⁴ spheres (`--layers` lattice layers deep) is settled into a dense bed
-/// for `--settle` steps, then copied side by side
-/// ([`clump_core::testbed::tile_xy`]) to about `target_spheres`, run 200
-/// steps to rebuild its lists and contact histories, and timed for
-/// `--scaling-rounds` rounds of `--steps` steps. Every size thus times the
-/// same dense bed.
-fn scaling_one(args: &BenchArgs, target_spheres: usize) -> Result<()> {
-    let nz = args.layers.max(1);
-    let nx = ((SCALING_TILE_SPHERES / (4.0 * nz as f64)).sqrt().round() as usize).max(4);
-    let tile_spheres = 4 * nx * nx * nz;
-    let k = ((target_spheres as f64 / tile_spheres as f64).sqrt().round() as usize).max(1);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads)
-        .build()?;
-    pool.install(|| {
-        let mut tile = clump_core::testbed::tetra_lattice_bed(nx, nx, nz, args.skin);
-        tile.run(args.settle)?;
-        let mut w = clump_core::testbed::tile_xy(&tile, k, k);
-        drop(tile);
-        w.run(200)?;
+    // ns per sphere-step of each round of each bed
+    let mut costs = Vec::new();
+    for bed in beds.iter_mut() {
+        let w = &bed.world;
         let ns = w.spheres().len();
         let per = 1e9 / (ns as f64 * args.steps as f64);
-        // (seconds, stage times) of each round
-        let mut rounds = Vec::new();
-        for _ in 0..args.scaling_rounds.max(1) {
-            w.stage_times = Default::default();
-            let t0 = Instant::now();
-            w.run(args.steps)?;
-            rounds.push((t0.elapsed().as_secs_f64(), w.stage_times));
-        }
-        rounds.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let (best, times) = rounds[0];
-        let median = rounds[rounds.len() / 2].0;
+        costs.push(bed.rounds.iter().map(|r| r.0 * per).collect::<Vec<_>>());
+        bed.rounds.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let (best, times) = bed.rounds[0];
+        let median = bed.rounds[bed.rounds.len() / 2].0;
         let stages = times.rows().map(|(_, t)| format!("{:.1}", t * per));
-        let th = w.thermo();
         let rate = ns as f64 * args.steps as f64 / best;
-        let rss = peak_rss_mb();
         println!(
-            "{:>9} {:>8} {:>20} {:>14.3} {:>11.1} {:>13.1} {:>12.2} {:>12.0} {:>13.0}",
+            "{:>9} {:>8} {:>20} {:>14.3} {:>11.1} {:>13.1} {:>12.2} {:>9.0} {:>13.0}",
             ns,
             w.bodies.len(),
-            format!("{k}x{k} of {nx}x{nx}x{nz}"),
+            format!("{}x{} of {nx}x{nx}x{nz}", bed.k, bed.k),
             rate / 1e6,
             1e9 / rate,
             median * per,
-            2.0 * th.pair_contacts as f64 / ns as f64,
-            rss,
-            rss * 1024.0 * 1024.0 / ns as f64
+            2.0 * w.thermo().pair_contacts as f64 / ns as f64,
+            bed.rss_mb,
+            bed.rss_mb * 1024.0 * 1024.0 / ns as f64
         );
         println!("{:>118}", stages.join(", "));
-        Ok(())
-    })
+    }
+    if let (Some(small), Some(large)) = (costs.first(), costs.last()) {
+        if costs.len() > 1 {
+            let mut ratios: Vec<f64> = small.iter().zip(large).map(|(a, b)| b / a).collect();
+            let shown: Vec<String> = ratios.iter().map(|r| format!("{r:.3}")).collect();
+            ratios.sort_by(f64::total_cmp);
+            println!(
+                "cost per sphere-step, largest bed / smallest, per round: {}; median {:.3}",
+                shown.join(", "),
+                ratios[ratios.len() / 2]
+            );
+        }
+    }
+    println!("process peak RSS {:.0} MB", peak_rss_mb());
+    Ok(())
 }

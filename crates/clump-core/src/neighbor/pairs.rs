@@ -75,7 +75,7 @@ pub struct PairBody {
     /// evaluates them, when all of them lie in the same thread's run as the
     /// body (always on one thread); then, once the rows of its spheres are
     /// done, their `i` sides (summed in pair order) are added (`row + col`).
-    /// For a body on a seam it holds the row sum alone ([`column_sum`] adds
+    /// For a body on a seam it holds the row sum alone (`column_sum` adds
     /// the rest). The gather reads it and sets it back to zero, so it is zero
     /// between steps.
     pub col: BodyLoad,

@@ -20,6 +20,14 @@
 //!    the gather to each body as soon as its force and torque are summed
 //!    (same pass).
 //!
+//! Inside [`World::run`], the gather of every step but the last also applies
+//! stage 1 and 2 of the next step to each body right after its final kick
+//! (`integrate::FirstHalf`), while the body's state is in the cache: one
+//! sweep over the bodies per step instead of two, which counts in beds
+//! larger than the caches. The order of operations on each body is
+//! unchanged, so are the results; between public calls the world is always
+//! at a step boundary.
+//!
 //! Every parallel loop writes disjoint outputs and every reduction runs over
 //! fixed-size chunks in a fixed order, so the results are bit-identical for
 //! any thread count. Each loop gives every thread one contiguous run of
@@ -45,14 +53,17 @@ use thiserror::Error;
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StageTimes {
     /// Initial integrate: half kicks, drift and rotation of the bodies, their
-    /// spheres' positions with the skin check, walls.
+    /// spheres' positions with the skin check, walls. Inside [`World::run`]
+    /// only the first step's (and the walls'): every later step's first half
+    /// is done by the gather of the step before, and timed there.
     pub initial: f64,
     /// Neighbour-list rebuilds (sorting, pair list, wall lists).
     pub neighbor: f64,
     /// Sphere–sphere pair forces.
     pub pair: f64,
     /// Per-body gather with sphere–wall contacts and gravity, and the final
-    /// integrate (second half kick) of each body in the same pass.
+    /// integrate (second half kick) of each body in the same pass; inside
+    /// [`World::run`] also the first half of the next step (see `initial`).
     pub gather: f64,
 }
 
@@ -63,7 +74,10 @@ impl StageTimes {
             ("initial integrate", self.initial),
             ("neighbour build", self.neighbor),
             ("pair forces", self.pair),
-            ("gather, walls, final integrate", self.gather),
+            (
+                "gather, walls, final integrate (+ next initial)",
+                self.gather,
+            ),
         ]
     }
 
