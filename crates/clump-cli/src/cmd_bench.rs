@@ -63,7 +63,10 @@ pub struct BenchArgs {
     /// default lets 8 lattice layers fall and settle into a dense bed).
     #[arg(long, default_value_t = 20000)]
     pub settle: u64,
-    /// Scaling study: timed steps per round.
+    /// Scaling study: timed steps per round. A smaller bed times the same
+    /// steps several times over (from the state saved at the round's start)
+    /// up to the largest bed's sphere-steps, so that every bed's round spans
+    /// the same stretch of the simulation and lasts about as long.
     #[arg(long, default_value_t = 300)]
     pub steps: u64,
     /// Scaling study: timed rounds per size (of `--steps` steps each), the
@@ -444,8 +447,14 @@ struct ScalingBed {
     world: clump_core::world::World,
     /// Resident memory added by building and warming up this bed, MB.
     rss_mb: f64,
+    /// Repetitions per round of the same `--steps` steps (from the state
+    /// saved at the round's start), so that every bed's round holds about as
+    /// many sphere-steps as the largest bed's.
+    reps: u64,
     /// Seconds and stage times of each round.
     rounds: Vec<(f64, clump_core::step::StageTimes)>,
+    /// Neighbour rebuilds during the timed rounds.
+    rebuilds: u64,
 }
 
 /// The scaling study. A periodic tile of about 10⁴ spheres (`--layers`
@@ -453,16 +462,23 @@ struct ScalingBed {
 /// then copied side by side ([`clump_core::testbed::tile_xy`]) to each
 /// size, and each bed runs 200 steps to rebuild its lists and contact
 /// histories: every size times the same dense bed. The beds are then timed
-/// in alternation, one round of `--steps` steps each per turn (after
-/// [`SCALING_WARM_STEPS`] untimed ones), so that all sizes see the same
-/// state of the machine (its speed drifts by tens of per cent over
-/// minutes); each row gives the best and the median round,
+/// in alternation, one round each per turn (after [`SCALING_WARM_STEPS`]
+/// untimed steps), so that all sizes see the same state of the machine (its
+/// speed drifts by tens of per cent over minutes). A round is `--steps`
+/// steps of every bed; a smaller bed repeats them from the state saved at
+/// the round's start ([`World::save_state`], bit-identical repetitions) up
+/// to the largest bed's sphere-steps. So every bed's round covers the same
+/// stretch of simulated time (the beds keep settling, and a bed that ran
+/// longer would rebuild its lists less often) and lasts about as long on
+/// the clock (a short round of a small bed would often miss the slow spells
+/// that a long round of the large bed always contains). Each row gives the
+/// best and the median round,
 /// and the last line the cost of the largest bed over the smallest's,
 /// round by round. Memory per sphere is the resident memory that building
 /// and warming up the bed added.
 fn scaling(args: &BenchArgs) -> Result<()> {
     println!(
-        "scaling: dense periodic tetra beds (a ~1e4-sphere tile of {} layers settled {} steps, copied side by side), {} alternating rounds of {} steps, threads {}",
+        "scaling: dense periodic tetra beds (a ~1e4-sphere tile of {} layers settled {} steps, copied side by side), {} alternating rounds of {} steps (repeated from the same state by the smaller beds up to the largest's sphere-steps), threads {}",
         args.layers, args.settle, args.scaling_rounds.max(1), args.steps, args.threads
     );
     let nz = args.layers.max(1);
@@ -484,32 +500,61 @@ fn scaling(args: &BenchArgs) -> Result<()> {
                 k,
                 world,
                 rss_mb: current_rss_mb() - r0,
+                reps: 1,
                 rounds: Vec::new(),
+                rebuilds: 0,
             });
+        }
+        let largest = beds
+            .iter()
+            .map(|b| b.world.spheres().len())
+            .max()
+            .unwrap_or(1);
+        for bed in beds.iter_mut() {
+            let ns = bed.world.spheres().len().max(1);
+            bed.reps = (largest as f64 / ns as f64).round().max(1.0) as u64;
         }
         for _ in 0..args.scaling_rounds.max(1) {
             for bed in beds.iter_mut() {
                 let w = &mut bed.world;
-                // a few untimed steps first: the bed's data back in the
-                // caches after the other beds' turns
-                w.run(SCALING_WARM_STEPS)?;
-                w.stage_times = Default::default();
-                let t0 = Instant::now();
-                w.run(args.steps)?;
-                bed.rounds.push((t0.elapsed().as_secs_f64(), w.stage_times));
+                let saved = if bed.reps > 1 {
+                    Some(w.save_state()?)
+                } else {
+                    None
+                };
+                let (mut secs, mut times) = (0.0, clump_core::step::StageTimes::default());
+                for rep in 0..bed.reps {
+                    if let (Some(s), true) = (&saved, rep > 0) {
+                        w.restore_state(s.clone()).map_err(|e| anyhow::anyhow!(e))?;
+                    }
+                    // a few untimed steps first: the bed's data back in the
+                    // caches after the other beds' turns (and the lists
+                    // rebuilt after a restore)
+                    w.run(SCALING_WARM_STEPS)?;
+                    w.stage_times = Default::default();
+                    let (t0, r0) = (Instant::now(), w.rebuilds);
+                    w.run(args.steps)?;
+                    secs += t0.elapsed().as_secs_f64();
+                    times += w.stage_times;
+                    bed.rebuilds += w.rebuilds - r0;
+                }
+                bed.rounds.push((secs, times));
             }
         }
         Ok(beds)
     })?;
     println!(
-        "{:>9} {:>8} {:>20} {:>14} {:>11} {:>13} {:>12} {:>9} {:>13}   ns/sph-step by stage (best round): initial, neighbour, pair, gather",
+        "{:>9} {:>8} {:>20} {:>12} {:>14} {:>11} {:>13} {:>12} {:>13} {:>7} {:>9} {:>13}   ns/sph-step by stage (best round): initial, neighbour, pair, gather",
         "spheres",
         "clumps",
         "bed",
+        "timed steps",
         "M sph-steps/s",
         "ns/sph-step",
         "(median ns)",
         "contacts/sph",
+        "steps/rebuild",
+        "skin/r",
         "RSS MB",
         "RSS B/sphere"
     );
@@ -518,26 +563,30 @@ fn scaling(args: &BenchArgs) -> Result<()> {
     for bed in beds.iter_mut() {
         let w = &bed.world;
         let ns = w.spheres().len();
-        let per = 1e9 / (ns as f64 * args.steps as f64);
+        let steps = args.steps * bed.reps;
+        let per = 1e9 / (ns as f64 * steps as f64);
         costs.push(bed.rounds.iter().map(|r| r.0 * per).collect::<Vec<_>>());
         bed.rounds.sort_by(|a, b| a.0.total_cmp(&b.0));
         let (best, times) = bed.rounds[0];
         let median = bed.rounds[bed.rounds.len() / 2].0;
         let stages = times.rows().map(|(_, t)| format!("{:.1}", t * per));
-        let rate = ns as f64 * args.steps as f64 / best;
+        let rate = ns as f64 * steps as f64 / best;
         println!(
-            "{:>9} {:>8} {:>20} {:>14.3} {:>11.1} {:>13.1} {:>12.2} {:>9.0} {:>13.0}",
+            "{:>9} {:>8} {:>20} {:>12} {:>14.3} {:>11.1} {:>13.1} {:>12.2} {:>13.0} {:>7.3} {:>9.0} {:>13.0}",
             ns,
             w.bodies.len(),
             format!("{}x{} of {nx}x{nx}x{nz}", bed.k, bed.k),
+            format!("{}x{}", bed.reps, args.steps),
             rate / 1e6,
             1e9 / rate,
             median * per,
             2.0 * w.thermo().pair_contacts as f64 / ns as f64,
+            (steps * bed.rounds.len() as u64) as f64 / bed.rebuilds.max(1) as f64,
+            w.skin() / w.min_radius(),
             bed.rss_mb,
             bed.rss_mb * 1024.0 * 1024.0 / ns as f64
         );
-        println!("{:>118}", stages.join(", "));
+        println!("{:>153}", stages.join(", "));
     }
     if let (Some(small), Some(large)) = (costs.first(), costs.last()) {
         if costs.len() > 1 {

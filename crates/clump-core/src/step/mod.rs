@@ -87,6 +87,16 @@ impl StageTimes {
     }
 }
 
+impl std::ops::AddAssign for StageTimes {
+    /// Adds another span's times, stage by stage.
+    fn add_assign(&mut self, o: StageTimes) {
+        self.initial += o.initial;
+        self.neighbor += o.neighbor;
+        self.pair += o.pair;
+        self.gather += o.gather;
+    }
+}
+
 /// Adds the time since `*t` to `acc` and restarts `t`.
 #[inline(always)]
 fn lap(acc: &mut f64, t: &mut Instant) {
