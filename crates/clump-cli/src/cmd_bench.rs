@@ -88,6 +88,9 @@ struct Figures {
 
 /// Runs the benchmark.
 pub fn run(args: &BenchArgs) -> Result<()> {
+    if args.threads == 0 {
+        bail!("--threads: the bench needs at least 1 thread (got 0)");
+    }
     if !args.scaling.is_empty() {
         return scaling(args);
     }
@@ -477,6 +480,12 @@ struct ScalingBed {
 /// round by round. Memory per sphere is the resident memory that building
 /// and warming up the bed added.
 fn scaling(args: &BenchArgs) -> Result<()> {
+    if args.steps == 0 {
+        bail!("--steps: the scaling study needs at least 1 timed step per round (got 0)");
+    }
+    if let Some(n) = args.scaling.iter().find(|&&n| n == 0) {
+        bail!("--scaling: sphere counts must be positive (got {n})");
+    }
     println!(
         "scaling: dense periodic tetra beds (a ~1e4-sphere tile of {} layers settled {} steps, copied side by side), {} alternating rounds of {} steps (repeated from the same state by the smaller beds up to the largest's sphere-steps), threads {}",
         args.layers, args.settle, args.scaling_rounds.max(1), args.steps, args.threads
