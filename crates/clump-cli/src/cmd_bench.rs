@@ -581,7 +581,7 @@ fn scaling(args: &BenchArgs) -> Result<()> {
         let stages = times.rows().map(|(_, t)| format!("{:.1}", t * per));
         let rate = ns as f64 * steps as f64 / best;
         println!(
-            "{:>9} {:>8} {:>20} {:>12} {:>14.3} {:>11.1} {:>13.1} {:>12.2} {:>13.0} {:>7.3} {:>9.0} {:>13.0}",
+            "{:>9} {:>8} {:>20} {:>12} {:>14.3} {:>11.1} {:>13.1} {:>12.2} {:>13} {:>7.3} {:>9.0} {:>13.0}",
             ns,
             w.bodies.len(),
             format!("{}x{} of {nx}x{nx}x{nz}", bed.k, bed.k),
@@ -590,7 +590,11 @@ fn scaling(args: &BenchArgs) -> Result<()> {
             1e9 / rate,
             median * per,
             2.0 * w.thermo().pair_contacts as f64 / ns as f64,
-            (steps * bed.rounds.len() as u64) as f64 / bed.rebuilds.max(1) as f64,
+            // none during the timed steps: more than all of them
+            match bed.rebuilds {
+                0 => format!(">{}", steps * bed.rounds.len() as u64),
+                r => format!("{:.0}", (steps * bed.rounds.len() as u64) as f64 / r as f64),
+            },
             w.skin() / w.min_radius(),
             bed.rss_mb,
             bed.rss_mb * 1024.0 * 1024.0 / ns as f64

@@ -207,26 +207,33 @@ fn bed_state(threads: usize, stepwise: bool) -> (Vec<u64>, u64, u64) {
             w.run(11_000).unwrap();
             w.run(1000).unwrap();
         }
-        let b = &w.bodies;
-        let mut bits = Vec::new();
-        for i in 0..b.len() {
-            bits.push(b.id[i]);
-            for v in [
-                b.position[i],
-                b.velocity[i],
-                b.angular_momentum[i],
-                b.force[i],
-                b.torque[i],
-            ] {
-                bits.extend(v.to_array().map(f64::to_bits));
-            }
-            bits.extend(b.orientation[i].to_array().map(f64::to_bits));
-        }
-        // the chunked sums of the statistics too
-        let st = &w.stats;
-        bits.extend([st.elastic_energy, st.kinetic_energy, st.max_overlap_ratio].map(f64::to_bits));
+        let bits = state_bits(&w);
         (bits, w.stats.pair_contacts, w.stats.wall_contacts)
     })
+}
+
+/// The bits of every body's id, position, velocity, angular momentum, force,
+/// torque and orientation, and of the summed statistics.
+fn state_bits(w: &World) -> Vec<u64> {
+    let b = &w.bodies;
+    let mut bits = Vec::new();
+    for i in 0..b.len() {
+        bits.push(b.id[i]);
+        for v in [
+            b.position[i],
+            b.velocity[i],
+            b.angular_momentum[i],
+            b.force[i],
+            b.torque[i],
+        ] {
+            bits.extend(v.to_array().map(f64::to_bits));
+        }
+        bits.extend(b.orientation[i].to_array().map(f64::to_bits));
+    }
+    // the chunked sums of the statistics too
+    let st = &w.stats;
+    bits.extend([st.elastic_energy, st.kinetic_energy, st.max_overlap_ratio].map(f64::to_bits));
+    bits
 }
 
 /// Bit-identical body states for 1, 2 and 3 threads after 1000 steps of a
@@ -383,4 +390,20 @@ fn dimer_dropped_flat_sum_and_average() {
             assert!((sum_h - sum_h_theory).abs() < 0.01);
         }
     }
+}
+
+/// A state saved with `World::save_state` and restored into the same world,
+/// after it has moved on, repeats the same steps bit for bit (`clump bench
+/// --scaling` times repetitions of a round this way).
+#[test]
+fn restore_into_the_same_world_repeats_the_steps() {
+    let mut w = settle_world(400, 11);
+    w.run(11_000).unwrap();
+    let saved = w.save_state().unwrap();
+    w.run(1000).unwrap();
+    let first = state_bits(&w);
+    assert!(w.stats.pair_contacts > 500, "the bed is not dense");
+    w.restore_state(saved).unwrap();
+    w.run(1000).unwrap();
+    assert!(first == state_bits(&w), "the repetition differs");
 }
