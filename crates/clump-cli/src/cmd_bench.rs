@@ -253,6 +253,7 @@ fn run_clump(args: &BenchArgs, na: u64, nb: u64) -> Result<Figures> {
             th.kinetic_translational + th.kinetic_rotational,
             w.rebuilds
         );
+        eprintln!("clump: state fingerprint {:016x}", state_fingerprint(&w));
         if let Some(p) = &args.dump {
             write_dump(&w, p)?;
         }
@@ -263,6 +264,25 @@ fn run_clump(args: &BenchArgs, na: u64, nb: u64) -> Result<Figures> {
             peak_rss_mb: peak_rss_mb(),
         })
     })
+}
+
+/// FNV-1a hash of every body's position, velocity, angular momentum and
+/// orientation bits (storage order): equal fingerprints mean the same state
+/// bit for bit, to compare builds and thread counts.
+pub fn state_fingerprint(w: &World) -> u64 {
+    let mut h = 0xcbf29ce484222325u64;
+    let b = &w.bodies;
+    let mut mix = |x: f64| {
+        h ^= x.to_bits();
+        h = h.wrapping_mul(0x100000001b3);
+    };
+    for i in 0..b.len() {
+        for v in [b.position[i], b.velocity[i], b.angular_momentum[i]] {
+            v.to_array().into_iter().for_each(&mut mix);
+        }
+        b.orientation[i].to_array().into_iter().for_each(&mut mix);
+    }
+    h
 }
 
 /// Final sphere centres in the LIGGGHTS/LAMMPS dump format, ordered by body id.
