@@ -475,7 +475,7 @@ struct ScalingBed {
     /// many sphere-steps as the largest bed's.
     reps: u64,
     /// Seconds and stage times of each round.
-    rounds: Vec<(f64, clump_core::step::StageTimes)>,
+    rounds: Vec<(f64, clump_core::stats::StageTimes)>,
     /// Neighbour rebuilds during the timed rounds.
     rebuilds: u64,
 }
@@ -551,7 +551,7 @@ fn scaling(args: &BenchArgs) -> Result<()> {
                 } else {
                     None
                 };
-                let (mut secs, mut times) = (0.0, clump_core::step::StageTimes::default());
+                let (mut secs, mut times) = (0.0, clump_core::stats::StageTimes::default());
                 for rep in 0..bed.reps {
                     if let (Some(s), true) = (&saved, rep > 0) {
                         w.restore_state(s.clone()).map_err(|e| anyhow::anyhow!(e))?;

@@ -1,5 +1,5 @@
 //! Instability detection: a cheap per-step check of the statistics the force
-//! stage already gathers ([`crate::world::ContactStats`]: non-finite body
+//! stage already gathers ([`crate::stats::ContactStats`]: non-finite body
 //! state, the largest overlap, the kinetic energy), and a diagnosis of the
 //! likely cause from the contact time scales.
 //!
@@ -10,6 +10,7 @@
 //! serializable and belongs in checkpoints).
 
 use crate::contact::time_scale::rayleigh_time;
+use crate::stats::ContactStats;
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -169,14 +170,14 @@ impl HealthMonitor {
     /// Checks the state after a step from the world's statistics of the last
     /// force evaluation. O(1): reads [`World::stats`] only.
     pub fn check(&mut self, w: &World) -> Result<(), Instability> {
-        let s = &w.stats;
-        let fail = |kind| {
-            Err(Instability {
-                step: w.step,
-                time: w.time,
-                kind,
-            })
-        };
+        self.check_step(w.step, w.time, &w.stats)
+    }
+
+    /// [`Self::check`] from a step's statistics (as the run loop reports
+    /// them after every step, [`crate::step::run::StepReport`]): `step` and
+    /// `time` (s) after the step.
+    pub fn check_step(&mut self, step: u64, time: f64, s: &ContactStats) -> Result<(), Instability> {
+        let fail = |kind| Err(Instability { step, time, kind });
         if s.non_finite_body != 0 || !s.kinetic_energy.is_finite() {
             return fail(InstabilityKind::NonFinite {
                 body: s.non_finite_body,
@@ -203,14 +204,14 @@ impl HealthMonitor {
                         body: s.max_kinetic_body,
                     });
                 }
-                if w.step >= self.reference_step + KINETIC_WINDOW {
+                if step >= self.reference_step + KINETIC_WINDOW {
                     self.reference_energy = Some(ke);
-                    self.reference_step = w.step;
+                    self.reference_step = step;
                 }
             }
             None => {
                 self.reference_energy = Some(ke);
-                self.reference_step = w.step;
+                self.reference_step = step;
             }
         }
         Ok(())

@@ -12,7 +12,9 @@ use crate::contact::ContactHistory;
 use crate::neighbor::walls::WallList;
 use crate::step::{rebuild, StepError};
 use crate::wall::{Wall, WallLoad};
-use crate::world::{ContactStats, World, WorldConfig, WALL_SLOTS};
+use crate::world::{World, WorldConfig};
+use crate::stats::ContactStats;
+use crate::neighbor::walls::WALL_SLOTS;
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 

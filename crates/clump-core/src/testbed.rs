@@ -17,7 +17,8 @@ use crate::contact::{DampingLaw, Material, PairProperties};
 use crate::multi_contact::MultiContact;
 use crate::shape::{ClumpTemplate, Sphere};
 use crate::wall::{Wall, WallMotion, WallShape};
-use crate::world::{AddedMass, ContactTable, World, WorldConfig};
+use crate::world::{AddedMass, World, WorldConfig};
+use crate::contact::ContactTable;
 use glam::{DQuat, DVec3};
 
 /// Lattice pitch, m: just above the clump's bounding diameter (3.47 mm), so

@@ -2,7 +2,8 @@
 
 use crate::body::{Bodies, BodyInit};
 use crate::boundary::Domain;
-use crate::contact::{ContactModel, Material, PairProperties};
+use crate::contact::{ContactTable, Material};
+use crate::stats::ContactStats;
 use crate::multi_contact::MultiContact;
 use crate::neighbor::{CellGrid, PairList};
 use crate::rotation::RotationScheme;
@@ -44,66 +45,6 @@ pub struct WorldConfig {
     pub multi_contact: MultiContact,
 }
 
-/// Contact models for every pair of materials (symmetric table).
-#[derive(Debug, Clone, Default)]
-pub struct ContactTable {
-    n: usize,
-    models: Vec<ContactModel>,
-    /// Some model has a rolling couple.
-    rolling: bool,
-}
-
-impl ContactTable {
-    /// Builds the table; `props(a, b)` gives the pair properties of materials `a`, `b`.
-    pub fn new(
-        materials: &[Material],
-        mut props: impl FnMut(usize, usize) -> PairProperties,
-    ) -> Result<Self, WorldError> {
-        let n = materials.len();
-        let mut models = Vec::with_capacity(n * n);
-        for a in 0..n {
-            for b in 0..n {
-                let (lo, hi) = (a.min(b), a.max(b));
-                let (mut ma, mut mb) = (materials[lo], materials[hi]);
-                if ma.youngs_modulus.is_infinite() && mb.youngs_modulus.is_infinite() {
-                    // Two rigid (wall) materials never touch each other; the
-                    // entry only fills the table.
-                    ma.youngs_modulus = 1.0;
-                    mb.youngs_modulus = 1.0;
-                }
-                let m = ContactModel::new(&ma, &mb, &props(lo, hi))
-                    .map_err(|e| WorldError::Contact(format!("materials {lo} and {hi}: {e}")))?;
-                models.push(m);
-            }
-        }
-        let rolling = models.iter().any(|m| m.has_rolling());
-        Ok(Self { n, models, rolling })
-    }
-
-    /// The model for materials `a` and `b`.
-    #[inline(always)]
-    pub fn get(&self, a: u16, b: u16) -> &ContactModel {
-        &self.models[a as usize * self.n + b as usize]
-    }
-
-    /// Index of the model for materials `a` and `b` (see [`Self::by_index`]).
-    #[inline(always)]
-    pub fn index(&self, a: u16, b: u16) -> u32 {
-        (a as usize * self.n + b as usize) as u32
-    }
-
-    /// The model at `index` (from [`Self::index`]).
-    #[inline(always)]
-    pub fn by_index(&self, index: u32) -> &ContactModel {
-        &self.models[index as usize]
-    }
-
-    /// Whether some model has a rolling couple.
-    pub fn any_rolling(&self) -> bool {
-        self.rolling
-    }
-}
-
 /// Errors while setting up a world.
 #[derive(Debug, Error)]
 pub enum WorldError {
@@ -113,78 +54,13 @@ pub enum WorldError {
     /// A reference to a missing template or material.
     #[error("{0}")]
     BadReference(String),
+    /// A value given to a steering method is out of range.
+    #[error("{0}")]
+    BadValue(String),
     /// The neighbour grid could not be built.
     #[error("neighbour grid: {0}")]
     Grid(String),
 }
-
-/// Aggregates from the last force evaluation (for thermo output).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
-pub struct ContactStats {
-    /// Touching sphere–sphere pairs.
-    pub pair_contacts: u64,
-    /// Touching sphere–wall contacts.
-    pub wall_contacts: u64,
-    /// Elastic energy in all contacts, J.
-    pub elastic_energy: f64,
-    /// Largest overlap divided by the smaller radius of the contact.
-    pub max_overlap_ratio: f64,
-    /// Global ids of the two bodies of the contact with the largest overlap
-    /// ratio (lower storage chunk first on ties); for a sphere–wall contact
-    /// the second entry is 0 and [`ContactStats::max_overlap_wall`] names the wall.
-    #[serde(default)]
-    pub max_overlap_bodies: [u64; 2],
-    /// Wall index + 1 of the contact with the largest overlap ratio when it is
-    /// a sphere–wall contact, 0 when it is a sphere–sphere contact (or none).
-    #[serde(default)]
-    pub max_overlap_wall: u32,
-    /// Kinetic energy of all bodies at the end of the step, Σ ½ m v·v + ½ ω·L
-    /// (after the second half kick, which the gather applies; world frame),
-    /// J. Not finite when some body's state is not finite.
-    #[serde(default)]
-    pub kinetic_energy: f64,
-    /// Total mass of the bodies, kg.
-    #[serde(default)]
-    pub total_mass: f64,
-    /// Largest kinetic energy of a single body at the end of the step, J.
-    #[serde(default)]
-    pub max_body_kinetic_energy: f64,
-    /// Global id of the body with the largest kinetic energy (0 = no bodies).
-    #[serde(default)]
-    pub max_kinetic_body: u64,
-    /// Global id of the first body (storage order) whose position, velocity,
-    /// angular momentum, force or torque is NaN or infinite; 0 when all are finite.
-    #[serde(default)]
-    pub non_finite_body: u64,
-}
-
-impl ContactStats {
-    /// Folds the statistics of the next chunk (in chunk order) into `self`:
-    /// counts and energies add up, maxima keep the earlier chunk on ties and
-    /// the first non-finite body is kept. Deterministic for a fixed chunking.
-    pub fn merge(&mut self, s: &ContactStats) {
-        self.pair_contacts += s.pair_contacts;
-        self.wall_contacts += s.wall_contacts;
-        self.elastic_energy += s.elastic_energy;
-        self.kinetic_energy += s.kinetic_energy;
-        self.total_mass += s.total_mass;
-        if s.max_overlap_ratio > self.max_overlap_ratio {
-            self.max_overlap_ratio = s.max_overlap_ratio;
-            self.max_overlap_bodies = s.max_overlap_bodies;
-            self.max_overlap_wall = s.max_overlap_wall;
-        }
-        if s.max_body_kinetic_energy > self.max_body_kinetic_energy {
-            self.max_body_kinetic_energy = s.max_body_kinetic_energy;
-            self.max_kinetic_body = s.max_kinetic_body;
-        }
-        if self.non_finite_body == 0 {
-            self.non_finite_body = s.non_finite_body;
-        }
-    }
-}
-
-/// Per-sphere wall-contact slots (history carried while a contact persists).
-pub const WALL_SLOTS: usize = 4;
 
 /// The state of one simulation.
 pub struct World {
@@ -219,7 +95,7 @@ pub struct World {
     pub rebuilds: u64,
     /// Wall-clock time spent in each stage of the step pipeline so far (a
     /// profiling breakdown; not part of the simulated state).
-    pub stage_times: crate::step::StageTimes,
+    pub stage_times: crate::stats::StageTimes,
     pub(crate) next_id: u64,
     pub(crate) spheres: Spheres,
     pub(crate) pairs: PairList,
@@ -238,11 +114,11 @@ pub struct World {
     /// Cumulative per-body cost estimate of the gather (one unit per sphere,
     /// more for a sphere with a wall nearby), `len = bodies + 1`; built with
     /// the wall lists. Splits the per-body loops between threads (see
-    /// `step::affinity`).
+    /// `par::affinity`).
     pub(crate) body_cost: Vec<u64>,
     /// How the first half step, the pair loop and the gather share their
     /// chunks between threads (learned; never affects results).
-    pub(crate) balance: [crate::step::affinity::Balance; 3],
+    pub(crate) balance: [crate::par::affinity::Balance; 3],
     pub(crate) template_first: Vec<u32>,
     pub(crate) template_offset: Vec<DVec3>,
     pub(crate) template_radius: Vec<f64>,
@@ -272,6 +148,8 @@ pub struct World {
     /// this step.
     pub(crate) body_ready: Vec<bool>,
     pub(crate) chunk_wall_loads: Vec<WallLoad>,
+    /// Per-contact records of the last step asked to keep them.
+    pub(crate) contact_records: crate::contacts::ContactRecords,
 }
 
 impl World {
@@ -323,6 +201,7 @@ impl World {
             chunk_pair_stats: Vec::new(),
             body_ready: Vec::new(),
             chunk_wall_loads: Vec::new(),
+            contact_records: Default::default(),
         }
     }
 
@@ -364,10 +243,10 @@ impl World {
                 )));
             }
         }
-        if self.walls.len() >= crate::step::force::MAX_WALLS {
+        if self.walls.len() >= crate::wall::MAX_WALLS {
             return Err(WorldError::BadReference(format!(
                 "too many walls (at most {})",
-                crate::step::force::MAX_WALLS
+                crate::wall::MAX_WALLS
             )));
         }
         self.walls.push(wall);

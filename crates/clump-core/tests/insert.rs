@@ -12,7 +12,8 @@ use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::RotationScheme;
 use clump_core::shape::{self, ClumpTemplate};
 use clump_core::wall::{Wall, WallMotion, WallShape};
-use clump_core::world::{AddedMass, ContactTable, World, WorldConfig};
+use clump_core::world::{AddedMass, World, WorldConfig};
+use clump_core::contact::ContactTable;
 use glam::{DQuat, DVec3};
 
 fn world_with(domain: Domain, gravity: DVec3) -> World {

@@ -14,7 +14,8 @@ use clump_core::contact::{
 };
 use clump_core::multi_contact::MultiContact;
 use clump_core::shape::{ClumpTemplate, Sphere};
-use clump_core::world::{ContactTable, World};
+use clump_core::world::World;
+use clump_core::contact::ContactTable;
 use common::Lcg;
 use glam::DVec3;
 use std::collections::HashMap;

@@ -84,7 +84,8 @@ fn trajectory_rows() {
     use clump_core::multi_contact::MultiContact;
     use clump_core::rotation::RotationScheme;
     use clump_core::shape::{self, ClumpTemplate};
-    use clump_core::world::{AddedMass, ContactTable, World, WorldConfig};
+    use clump_core::world::{AddedMass, World, WorldConfig};
+use clump_core::contact::ContactTable;
     use clump_io::trajectory::{TrajectoryWriter, TRAJECTORY_HEADER};
     use glam::DQuat;
 

@@ -63,11 +63,10 @@ fn incline(g: &mut Group, dir: &Path) -> Result<(), String> {
     let kappa = ia / (soft().density * v * R * R);
     let a_exp = G * theta.sin() / (1.0 + kappa);
     let mut hist = Vec::new();
-    for k in 1..=25_000 {
-        w.step().map_err(|e| e.to_string())?;
-        if k % 50 == 0 {
-            hist.push((w.time, motion(&w, id)?.0.x));
-        }
+    // 25 000 steps, sampled every 50 (the run loop stops at each sample)
+    for _ in 0..500 {
+        w.run(50).map_err(|e| e.to_string())?;
+        hist.push((w.time, motion(&w, id)?.0.x));
     }
     let fit: Vec<(f64, f64)> = hist.iter().copied().filter(|p| p.0 >= 0.01).collect();
     let a = slope(&fit);
@@ -117,13 +116,12 @@ fn slip_to_roll(g: &mut Group, dir: &Path) -> Result<(), String> {
         4e-6,
     )?;
     let (mut hv, mut hw) = (Vec::new(), Vec::new());
-    for k in 1..=40_000 {
-        w.step().map_err(|e| e.to_string())?;
-        if k % 400 == 0 {
-            let (v, om) = motion(&w, id)?;
-            hv.push((w.time, v.x));
-            hw.push((w.time, om.y * R));
-        }
+    // 40 000 steps, sampled every 400 (the run loop stops at each sample)
+    for _ in 0..100 {
+        w.run(400).map_err(|e| e.to_string())?;
+        let (v, om) = motion(&w, id)?;
+        hv.push((w.time, v.x));
+        hw.push((w.time, om.y * R));
     }
     let (v, om) = motion(&w, id)?;
     let vf = v0 / (1.0 + 0.4);

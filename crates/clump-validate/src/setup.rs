@@ -9,7 +9,8 @@ use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::RotationScheme;
 use clump_core::shape::{ClumpTemplate, Sphere};
 use clump_core::wall::{Wall, WallMotion, WallShape};
-use clump_core::world::{AddedMass, ContactTable, World, WorldConfig};
+use clump_core::world::{AddedMass, World, WorldConfig};
+use clump_core::contact::ContactTable;
 use glam::{DQuat, DVec3};
 
 /// Material index of the particles in worlds built by [`world`].
@@ -165,7 +166,8 @@ pub fn run_impact(w: &mut World, id: u64, radius: f64, max_steps: usize) -> Resu
     let mut imp = Impact::default();
     let mut steps_in_contact = 0usize;
     for _ in 0..max_steps {
-        w.step().map_err(|e| e.to_string())?;
+        // every step's contact count is read: an event at every step
+        w.run(1).map_err(|e| e.to_string())?;
         let t = w.thermo();
         if t.pair_contacts + t.wall_contacts == 0 {
             if steps_in_contact > 0 {

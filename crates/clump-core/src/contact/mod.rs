@@ -60,6 +60,7 @@ pub mod material;
 pub mod model;
 pub mod normal;
 pub mod rolling;
+pub mod table;
 pub mod tangential;
 pub mod time_scale;
 
@@ -68,6 +69,7 @@ pub use material::Material;
 pub use model::{ContactModel, PairProperties, SlidingLaw, SlidingOutput};
 pub use normal::NormalLaw;
 pub use rolling::RollingLaw;
+pub use table::ContactTable;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};

@@ -198,13 +198,7 @@ impl StreamInserter {
         if t < self.spec.start {
             return Ok(0);
         }
-        let t_eff = self.spec.end.map_or(t, |e| t.min(e));
-        let due = (self.body_rate * (t_eff - self.spec.start) * (1.0 + 1e-12) + 1e-9).floor();
-        let due = if due.is_finite() && due > 0.0 {
-            due as u64
-        } else {
-            0
-        };
+        let due = self.due_at(t);
         if due > self.scheduled {
             self.backlog += due - self.scheduled;
             self.scheduled = due;
@@ -265,5 +259,48 @@ impl StreamInserter {
             n += 1;
         }
         Ok(n)
+    }
+
+    /// Bodies due by time `t` (s) since the stream began.
+    fn due_at(&self, t: f64) -> u64 {
+        if t < self.spec.start {
+            return 0;
+        }
+        let t_eff = self.spec.end.map_or(t, |e| t.min(e));
+        let due = (self.body_rate * (t_eff - self.spec.start) * (1.0 + 1e-12) + 1e-9).floor();
+        if due.is_finite() && due > 0.0 {
+            due as u64
+        } else {
+            0
+        }
+    }
+
+    /// The first step after `step` at which [`Self::insert_due`] has bodies
+    /// to place, for a world whose time at step `k` is `k · dt`; `u64::MAX`
+    /// when no more are due. A run loop may step to there without calling
+    /// `insert_due` in between: the steps skipped would insert nothing.
+    pub fn next_due_step(&self, step: u64, dt: f64) -> u64 {
+        if self.backlog > 0 {
+            return step.saturating_add(1);
+        }
+        let due = |k: u64| self.due_at(k as f64 * dt);
+        let horizon = self.spec.end.unwrap_or(f64::INFINITY);
+        if self.body_rate <= 0.0 || (horizon.is_finite() && self.due_at(horizon) <= self.scheduled)
+        {
+            return u64::MAX;
+        }
+        // the time the count passes `scheduled`, from the inverse of
+        // `due_at`, then the exact step by the same formula
+        let t = self.spec.start
+            + ((self.scheduled + 1) as f64 - 1e-9) / (self.body_rate * (1.0 + 1e-12));
+        let guess = (t / dt).floor() - 2.0;
+        if !(guess < 1e18) {
+            return u64::MAX;
+        }
+        let mut k = (guess.max(0.0) as u64).max(step.saturating_add(1));
+        while due(k) <= self.scheduled {
+            k += 1;
+        }
+        k
     }
 }

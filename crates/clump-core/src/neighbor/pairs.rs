@@ -158,7 +158,7 @@ pub(crate) unsafe fn column_sum(
     col_pair: &[u32],
     b: usize,
 ) -> BodyLoad {
-    use crate::step::shared::at;
+    use crate::par::shared::at;
     let mut l = BodyLoad::default();
     let (c0, c1) = (at(col_start, b) as usize, at(col_start, b + 1) as usize);
     debug_assert!(c0 <= c1);
@@ -289,7 +289,7 @@ impl PairList {
         self.counts.clear();
         self.counts.resize(n, 0);
         {
-            let counts = crate::step::shared::SharedMut::new(&mut self.counts);
+            let counts = crate::par::shared::SharedMut::new(&mut self.counts);
             self.block_topo[..nblocks]
                 .par_iter_mut()
                 .enumerate()
@@ -342,9 +342,9 @@ impl PairList {
         self.load_j.resize(acc, BodyLoad::default());
         self.scale.clear();
         if !history.is_empty() {
-            let tan = crate::step::shared::SharedMut::new(&mut self.tangential);
-            let rol = crate::step::shared::SharedMut::new(&mut self.rolling);
-            let topo = crate::step::shared::SharedMut::new(&mut self.topo);
+            let tan = crate::par::shared::SharedMut::new(&mut self.tangential);
+            let rol = crate::par::shared::SharedMut::new(&mut self.rolling);
+            let topo = crate::par::shared::SharedMut::new(&mut self.topo);
             let rows = &self.row_start;
             (0..n).into_par_iter().with_min_len(BLOCK).for_each(|i| {
                 for p in rows[i] as usize..rows[i + 1] as usize {

@@ -16,9 +16,11 @@
 
 use crate::contact::ContactHistory;
 use crate::wall::{Wall, WallTouch, MAX_TOUCHES_PER_WALL};
-use crate::world::WALL_SLOTS;
 use glam::DVec3;
 use rayon::prelude::*;
+
+/// Per-sphere wall-contact slots (history carried while a contact persists).
+pub const WALL_SLOTS: usize = 4;
 
 /// Marks a sphere without a carried entry in [`WallList::build`]'s `carry`.
 pub const NO_ENTRY: u32 = u32::MAX;

@@ -14,16 +14,19 @@
 //! about the sphere centre, `Σ (x_c − x_s) × f + couples`. This equals
 //! `Σ (x_c − r_cm) × f` over the contacts.
 
-use super::affinity::{body_chunk_cost, for_each_chunk_with, for_each_run, GATHER_LOOP, PAIR_LOOP};
+use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, for_each_run, GATHER_LOOP, PAIR_LOOP};
 use super::integrate::{FinalKick, FirstHalf};
-use super::pair_kernel::prefetch;
-use super::shared::{at, SharedMut};
+use crate::par::prefetch::prefetch;
+use crate::par::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput};
+use crate::contacts::WallRecord;
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::column_sum;
 use crate::sphere::{point_velocity, SPHERE_ID_BITS};
 use crate::wall::{WallLoad, WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
-use crate::world::{ContactStats, World, WALL_SLOTS};
+use crate::world::World;
+use crate::stats::ContactStats;
+use crate::neighbor::walls::WALL_SLOTS;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -69,6 +72,13 @@ pub(crate) fn pair_forces(w: &mut World) {
     stats.resize(nchunks, ContactStats::default());
     w.body_ready.resize(nb, false);
     let pairs = &mut w.pairs;
+    let records = &mut w.contact_records;
+    if records.recording {
+        records.pair.resize(pairs.topo.len(), Default::default());
+    }
+    let record = records
+        .recording
+        .then(|| SharedMut::new(&mut records.pair));
     let rows = RowCtx {
         dt: w.config.dt,
         domain: w.config.domain,
@@ -85,7 +95,8 @@ pub(crate) fn pair_forces(w: &mut World) {
         body: SharedMut::new(&mut pairs.body),
         first_feed: &pairs.first_feed,
         body_ready: SharedMut::new(&mut w.body_ready),
-        simd: super::pair_kernel::simd(),
+        record,
+        simd: crate::par::simd::simd(),
         prefetch: w.spheres.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
     };
     let stats = SharedMut::new(stats);
@@ -198,6 +209,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         config,
         wall_loads,
         stats,
+        contact_records,
         ..
     } = w;
     let nb = bodies.len();
@@ -245,6 +257,14 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         lo.chain((64..nw).filter(|&wi| walls[wi].active))
     };
     let stats_out = SharedMut::new(chunk_stats);
+    // this step keeps its contacts (crate::contacts): each chunk its own list
+    let recording = contact_records.recording;
+    if recording {
+        contact_records.wall.resize_with(nchunks, Vec::new);
+        contact_records.wall.truncate(nchunks);
+        contact_records.wall.iter_mut().for_each(Vec::clear);
+    }
+    let wall_records = SharedMut::new(&mut contact_records.wall);
     for_each_chunk_with(
         nchunks,
         body_chunk_cost(body_cost, nb, BODY_CHUNK),
@@ -374,13 +394,15 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                             );
                             let is_mesh = matches!(wall.shape, WallShape::Mesh { .. });
                             for touch in &buf[..k] {
-                                let (slot_key, old) = if is_mesh {
-                                    let slot_key = slot_key(wi, oct_encode(touch.normal));
-                                    (slot_key, match_mesh_slot(key, &used, wi, touch.normal))
+                                let (patch, old) = if is_mesh {
+                                    let patch = oct_encode(touch.normal);
+                                    (patch, match_mesh_slot(key, &used, wi, touch.normal))
                                 } else {
-                                    let slot_key = slot_key(wi, touch.face as u16);
-                                    (slot_key, key.iter().position(|&x| x == slot_key))
+                                    let patch = touch.face as u16;
+                                    let slot_key = slot_key(wi, patch);
+                                    (patch, key.iter().position(|&x| x == slot_key))
                                 };
+                                let slot_key = slot_key(wi, patch);
                                 let mut h = match old {
                                     Some(o) => {
                                         used[o] = true;
@@ -393,7 +415,20 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                                 } else {
                                     1.0
                                 };
-                                let (fw, mw, tw, energy) = ctx.evaluate(s, wi, touch, &mut h);
+                                let (fw, mw, tw, energy, fn_w) = ctx.evaluate(s, wi, touch, &mut h);
+                                if recording {
+                                    // SAFETY: chunk c's list is written by chunk c only.
+                                    unsafe { wall_records.get(c) }.push(WallRecord {
+                                        sphere: s as u32,
+                                        wall: wi as u32,
+                                        patch,
+                                        normal: touch.normal,
+                                        overlap: touch.overlap,
+                                        force: fw * scale,
+                                        normal_force: fn_w * scale,
+                                        spring: h.tangential,
+                                    });
+                                }
                                 f += fw * scale;
                                 m += mw * scale;
                                 // SAFETY: row c of the chunk loads belongs to this chunk only.
@@ -517,9 +552,6 @@ impl Iterator for BitIter {
     }
 }
 
-/// Most walls a world may have: a sphere–wall contact slot key holds the wall
-/// index in 16 bits.
-pub const MAX_WALLS: usize = 0xFFFF;
 
 /// Largest angle (rad) between a mesh contact's normal and the normal stored
 /// with a slot of the previous step for the contact to continue that slot's
@@ -597,7 +629,7 @@ pub fn oct_decode(k: u16) -> glam::DVec3 {
 struct WallCtx<'a> {
     sp: &'a crate::sphere::Spheres,
     b: &'a crate::body::Bodies,
-    table: &'a crate::world::ContactTable,
+    table: &'a crate::contact::ContactTable,
     walls: &'a [crate::wall::Wall],
     dt: f64,
     bi: usize,
@@ -607,7 +639,8 @@ struct WallCtx<'a> {
 impl WallCtx<'_> {
     /// One sphere–wall contact: returns (force on the body, torque on the body
     /// about its centre of mass, torque on the wall about its motion centre
-    /// *from the body's side* i.e. of the force on the body, elastic energy).
+    /// *from the body's side* i.e. of the force on the body, elastic energy,
+    /// signed normal force on the body).
     #[inline]
     fn evaluate(
         &self,
@@ -615,7 +648,7 @@ impl WallCtx<'_> {
         wi: usize,
         touch: &WallTouch,
         h: &mut ContactHistory,
-    ) -> (DVec3, DVec3, DVec3, f64) {
+    ) -> (DVec3, DVec3, DVec3, f64, f64) {
         let wall = &self.walls[wi];
         let r = self.sp.state[s].radius;
         let n = touch.normal;
@@ -639,7 +672,13 @@ impl WallCtx<'_> {
         let out = model.evaluate(&input, h);
         let m_body = (xc - self.com).cross(out.force) + out.torque;
         let m_wall_from_body = (xc - wall.motion.center).cross(out.force) + out.torque;
-        (out.force, m_body, m_wall_from_body, out.elastic_energy)
+        (
+            out.force,
+            m_body,
+            m_wall_from_body,
+            out.elastic_energy,
+            out.normal_force,
+        )
     }
 }
 

@@ -4,9 +4,9 @@
 //! factor; a full drift of the centre of mass; and a free-rotation drift of
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
-use super::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};
+use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};
 use super::kinematics::sphere_position;
-use super::shared::{at, SharedMut};
+use crate::par::shared::{at, SharedMut};
 use crate::neighbor::skin;
 use crate::rotation::{inverse_inertia, omega_world, omega_world_rot};
 use crate::world::World;
@@ -179,7 +179,7 @@ impl FirstHalf {
 
 /// Bodies per block of the first half step: the gather's chunk, so that a
 /// thread moves the bodies whose forces it gathers (see
-/// [`super::affinity`]); any size gives the same results.
+/// [`crate::par::affinity`]); any size gives the same results.
 const BODY_BLOCK: usize = super::force::BODY_CHUNK;
 
 /// The second half kick, `v += F dt/(2 m')`, `L += M dt/(2 f_a)`, ω from L

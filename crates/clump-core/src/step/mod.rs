@@ -34,68 +34,16 @@
 //! chunks (`affinity`), balanced by measured time; the cuts never change
 //! the results.
 
-pub(crate) mod affinity;
 pub mod force;
 pub mod integrate;
 pub mod kinematics;
 mod pair_kernel;
 pub mod rebuild;
-pub(crate) mod shared;
-mod team;
+pub mod run;
 
 use crate::world::World;
 use std::time::Instant;
 use thiserror::Error;
-
-/// Wall-clock seconds spent in each stage of [`World::step`], accumulated
-/// over all steps (like LAMMPS' Pair/Neigh/Modify breakdown). Reading the
-/// clock costs about 0.1 µs per stage, negligible against a step.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct StageTimes {
-    /// Initial integrate: half kicks, drift and rotation of the bodies, their
-    /// spheres' positions with the skin check, walls. Inside [`World::run`]
-    /// only the first step's (and the walls'): every later step's first half
-    /// is done by the gather of the step before, and timed there.
-    pub initial: f64,
-    /// Neighbour-list rebuilds (sorting, pair list, wall lists).
-    pub neighbor: f64,
-    /// Sphere–sphere pair forces.
-    pub pair: f64,
-    /// Per-body gather with sphere–wall contacts and gravity, and the final
-    /// integrate (second half kick) of each body in the same pass; inside
-    /// [`World::run`] also the first half of the next step (see `initial`).
-    pub gather: f64,
-}
-
-impl StageTimes {
-    /// The stages as (name, seconds), in pipeline order.
-    pub fn rows(&self) -> [(&'static str, f64); 4] {
-        [
-            ("initial integrate", self.initial),
-            ("neighbour build", self.neighbor),
-            ("pair forces", self.pair),
-            (
-                "gather, walls, final integrate (+ next initial)",
-                self.gather,
-            ),
-        ]
-    }
-
-    /// Sum over the stages, s.
-    pub fn total(&self) -> f64 {
-        self.rows().iter().map(|r| r.1).sum()
-    }
-}
-
-impl std::ops::AddAssign for StageTimes {
-    /// Adds another span's times, stage by stage.
-    fn add_assign(&mut self, o: StageTimes) {
-        self.initial += o.initial;
-        self.neighbor += o.neighbor;
-        self.pair += o.pair;
-        self.gather += o.gather;
-    }
-}
 
 /// Adds the time since `*t` to `acc` and restarts `t`.
 #[inline(always)]
@@ -111,6 +59,14 @@ pub enum StepError {
     /// The neighbour grid could not be built (e.g. a periodic box too small).
     #[error("neighbour search: {0}")]
     Neighbor(String),
+    /// A driver of [`World::run_driven`] named an event that is not ahead.
+    #[error("the driver's next event (step {event}) is not after the current step {step}")]
+    Event {
+        /// The world's step.
+        step: u64,
+        /// The event's step.
+        event: u64,
+    },
 }
 
 impl World {
@@ -133,7 +89,7 @@ impl World {
     /// first half of the next step ([`integrate::FirstHalf`]), body by body
     /// in the same pass, and the world is left between the two halves of
     /// that step: only another `step_fused` may follow (see [`World::run`]).
-    fn step_fused(&mut self, fuse_next: bool) -> Result<(), StepError> {
+    pub(crate) fn step_fused(&mut self, fuse_next: bool) -> Result<(), StepError> {
         if !self.forces_ready {
             self.prepare()?;
         }
@@ -175,16 +131,10 @@ impl World {
         self.stage_times = times;
         self.step += 1;
         self.time = self.step as f64 * dt;
+        let rec = &mut self.contact_records;
+        rec.step = rec.recording.then_some(self.step);
+        rec.recording = false;
         Ok(())
     }
 
-    /// Advances by `n` steps.
-    pub fn run(&mut self, n: u64) -> Result<(), StepError> {
-        for k in 0..n {
-            // each step but the last takes the next one's first half in
-            // its gather (same bits; one sweep over the bodies fewer)
-            self.step_fused(k + 1 < n)?;
-        }
-        Ok(())
-    }
 }

@@ -31,10 +31,12 @@
 //! and the results do not depend on the thread count.
 
 use super::force::BODY_CHUNK;
-use super::shared::{at, SharedMut};
+use crate::par::prefetch::prefetch;
+use crate::par::shared::{at, SharedMut};
+use crate::par::simd::Simd;
 use crate::contact::{ContactInput, SlidingLaw};
 use crate::neighbor::pairs::{BodyLoad, PairBody};
-use crate::world::ContactStats;
+use crate::stats::ContactStats;
 use glam::DVec3;
 
 /// What the pair-force rows read and write (world frame, SI units).
@@ -48,7 +50,7 @@ pub(super) struct RowCtx<'a> {
     /// Spheres (centres and radii, m; owners; materials).
     pub sp: &'a crate::sphere::Spheres,
     /// Contact models per material pair.
-    pub table: &'a crate::world::ContactTable,
+    pub table: &'a crate::contact::ContactTable,
     /// Row offsets of the half list, one per sphere plus one.
     pub row_start: &'a [u32],
     /// Row (sphere `i`) of each pair.
@@ -79,49 +81,15 @@ pub(super) struct RowCtx<'a> {
     /// Per body: whether its [`PairBody::col`] holds its column sum this step
     /// (written; false: the gather sums it from `load_j`).
     pub body_ready: SharedMut<bool>,
+    /// Per pair: the contact's record, when this step keeps them
+    /// ([`crate::contacts`]).
+    pub record: Option<SharedMut<crate::contacts::PairRecord>>,
     /// The vector instructions the law loop may use ([`simd`]).
     pub simd: Simd,
     /// A bed beyond the caches ([`PREFETCH_MIN_SPHERES`]): the detect pass
     /// prefetches further ahead ([`LARGE_AHEAD`]) and also the partner
     /// body's data.
     pub prefetch: bool,
-}
-
-/// The widest vector instruction set the law loop is compiled for that this
-/// processor has. Every level gives the same bits: the law's arithmetic is
-/// the same IEEE operations in the same order (no contraction into FMA),
-/// only the number of contacts per instruction differs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Simd {
-    /// The build's baseline (SSE2 on x86-64; any other architecture).
-    Baseline,
-    /// AVX2: 4 doubles per vector.
-    Avx2,
-    /// AVX-512 (F, VL, DQ): 8 doubles per vector, mask registers for the
-    /// lane selects.
-    Avx512,
-}
-
-/// The [`Simd`] level of this processor, detected once, then cached.
-pub(super) fn simd() -> Simd {
-    #[cfg(target_arch = "x86_64")]
-    {
-        static LEVEL: std::sync::OnceLock<Simd> = std::sync::OnceLock::new();
-        *LEVEL.get_or_init(|| {
-            if std::arch::is_x86_feature_detected!("avx512f")
-                && std::arch::is_x86_feature_detected!("avx512vl")
-                && std::arch::is_x86_feature_detected!("avx512dq")
-            {
-                Simd::Avx512
-            } else if std::arch::is_x86_feature_detected!("avx2") {
-                Simd::Avx2
-            } else {
-                Simd::Baseline
-            }
-        })
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    Simd::Baseline
 }
 
 impl RowCtx<'_> {
@@ -449,6 +417,14 @@ impl RowCtx<'_> {
                 *self.load_j.get(p) = side;
             }
             *self.tangential.get(p) = l.get3(IO_XI, k);
+            if let Some(r) = &self.record {
+                *r.get(p) = crate::contacts::PairRecord {
+                    normal: l.get3(OUT_N, k),
+                    overlap: l.v[OUT_OVERLAP][k],
+                    force: f,
+                    normal_force: l.v[OUT_FN][k] * l.v[IN_SCALE][k],
+                };
+            }
             let t = self.topo.get(p);
             if !t.live {
                 t.live = true;
@@ -559,19 +535,6 @@ const PREFETCH_BODY: usize = 8;
 /// 8 000, whose data fit, it costs about 8 % (the extra instructions then
 /// buy nothing).
 pub(super) const PREFETCH_MIN_SPHERES: usize = 16_384;
-
-/// Asks the processor to bring the cache line at `x` into L1 (a hint; no
-/// effect on results, and none on other architectures).
-#[inline(always)]
-pub(super) fn prefetch<T>(x: *const T) {
-    #[cfg(target_arch = "x86_64")]
-    // SAFETY: a prefetch never faults, whatever the address.
-    unsafe {
-        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(x as *const i8)
-    };
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = x;
-}
 
 /// Touching pairs per batch (stack arrays; no allocation).
 pub(super) const BATCH: usize = 64;
@@ -767,6 +730,7 @@ impl Lanes {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::par::simd::simd;
     use crate::contact::{ContactModel, Material, NormalLaw, PairProperties};
 
     /// Lanes of contacts with overlaps of 0 to 20 % of the radius, sliding

@@ -12,6 +12,10 @@ mod shape;
 pub use mesh::{MeshError, TriMesh};
 pub use shape::{WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
 
+/// Most walls a world may have: a sphere–wall contact slot key holds the wall
+/// index in 16 bits.
+pub const MAX_WALLS: usize = 0xFFFF;
+
 use crate::multi_contact::MultiContact;
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};

@@ -34,6 +34,7 @@ use clump_core::health::{HealthMonitor, Instability};
 use clump_core::insert::{pack, StreamInserter};
 use clump_core::shape::ClumpTemplate;
 use clump_core::state::WorldState;
+use clump_core::step::run::{Event, Flow, StepHook, StepReport};
 use clump_core::thermo::Thermo;
 use clump_core::world::World;
 use glam::DVec3;
@@ -347,6 +348,71 @@ struct Outputs {
     last_checkpoint: Option<PathBuf>,
 }
 
+/// When the last progress line was reported.
+struct ProgressClock {
+    at: Instant,
+    step: u64,
+}
+
+/// What the runner checks after every step, fused or not: the health of
+/// the state (from the step's statistics), the stage's step count, the
+/// progress line and the interrupt flag.
+struct StepChecks<'a, 'p> {
+    health: &'a mut HealthMonitor,
+    step_in_stage: &'a mut u64,
+    pre_step_done: &'a mut bool,
+    stage: &'a str,
+    interrupt: Option<&'a AtomicUsize>,
+    progress: Option<&'a mut (dyn FnMut(&Progress) + 'p)>,
+    interval: Duration,
+    clock: &'a mut ProgressClock,
+    end_step: u64,
+    dt: f64,
+    sphere_steps: &'a mut f64,
+    /// The instability found, which ended the steps.
+    tripped: Option<Instability>,
+}
+
+impl StepHook for StepChecks<'_, '_> {
+    fn end_of_step(&mut self, r: &StepReport) -> Flow {
+        if let Err(inst) = self.health.check_step(r.step, r.time, r.stats) {
+            self.tripped = Some(inst);
+            return Flow::Stop;
+        }
+        *self.sphere_steps += r.spheres as f64;
+        *self.step_in_stage += 1;
+        *self.pre_step_done = false;
+        if let Some(cb) = self.progress.as_mut() {
+            if r.step % 16 == 0 || r.step == self.end_step {
+                let now = Instant::now();
+                let el = now.duration_since(self.clock.at);
+                if el >= self.interval || r.step == self.end_step {
+                    let sps = (r.step - self.clock.step) as f64 / el.as_secs_f64().max(1e-9);
+                    self.clock.at = now;
+                    self.clock.step = r.step;
+                    cb(&Progress {
+                        time: r.time,
+                        end_time: self.end_step as f64 * self.dt,
+                        step: r.step,
+                        end_step: self.end_step,
+                        steps_per_second: sps,
+                        bodies: r.bodies,
+                        spheres: r.spheres,
+                        contacts: r.stats.pair_contacts + r.stats.wall_contacts,
+                        stage: self.stage.to_string(),
+                    });
+                }
+            }
+        }
+        Flow::Continue
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.interrupt
+            .is_some_and(|f| f.load(Ordering::Relaxed) != 0)
+    }
+}
+
 /// A simulation ready to run (fresh or resumed).
 pub struct Runner {
     scenario: Scenario,
@@ -496,17 +562,22 @@ impl Runner {
     }
 
     /// Runs until all stages are done, the step limit is reached or an
-    /// interrupt is requested.
+    /// interrupt is requested. The steps between two events (a stage
+    /// change, an insertion, output or a checkpoint due, the step limit) run
+    /// fused in the engine's run loop ([`World::advance`]); the health check
+    /// and the progress line see every step's statistics.
     pub fn run(&mut self, mut opts: RunOptions) -> Result<RunSummary, RunError> {
         let t_start = Instant::now();
         let first_step = self.world.step;
         let total = self.scenario.total_steps();
         let end_step = opts.max_steps.map_or(total, |m| m.min(total));
-        let dt = self.world.config.dt;
         let mut sphere_steps = 0.0;
-        let mut last_report = Instant::now();
-        let mut last_report_step = self.world.step;
+        let mut clock = ProgressClock {
+            at: Instant::now(),
+            step: self.world.step,
+        };
         let status = loop {
+            // --- at a step boundary
             if !self.st.pre_step_done {
                 let finished = self.pre_step()?;
                 self.st.pre_step_done = true;
@@ -535,15 +606,35 @@ impl Runner {
                 self.st.next_checkpoint = self.world.step.saturating_add(every);
                 self.write_checkpoint()?;
             }
-            self.world
-                .step()
-                .map_err(rt(&format!("step {}", self.world.step)))?;
+            // --- the steps to the next event
+            let event = Event::at(self.next_event(opts.max_steps));
             let limits = self.scenario.stability;
-            let health = self
-                .st
-                .health
-                .get_or_insert_with(|| HealthMonitor::new(limits));
-            if let Err(inst) = health.check(&self.world) {
+            let mut hook = StepChecks {
+                health: self
+                    .st
+                    .health
+                    .get_or_insert_with(|| HealthMonitor::new(limits)),
+                step_in_stage: &mut self.st.step_in_stage,
+                pre_step_done: &mut self.st.pre_step_done,
+                stage: self
+                    .scenario
+                    .stages
+                    .get(self.st.stage)
+                    .map_or("", |s| s.name.as_str()),
+                interrupt: opts.interrupt.as_deref(),
+                progress: opts.progress.as_deref_mut(),
+                interval: opts.progress_interval,
+                clock: &mut clock,
+                end_step,
+                dt: self.world.config.dt,
+                sphere_steps: &mut sphere_steps,
+                tripped: None,
+            };
+            let at = self.world.step;
+            self.world
+                .advance(event, &mut hook)
+                .map_err(rt(&format!("step {at}")))?;
+            if let Some(inst) = hook.tripped.take() {
                 let partial = RunSummary {
                     status: RunStatus::Completed,
                     first_step,
@@ -556,23 +647,6 @@ impl Runner {
                     checkpoint: self.out.last_checkpoint.clone(),
                 };
                 return Err(self.unstable(inst, &partial, opts.threads));
-            }
-            sphere_steps += self.world.spheres().len() as f64;
-            self.st.step_in_stage += 1;
-            self.st.pre_step_done = false;
-            if let Some(cb) = opts.progress.as_mut() {
-                if self.world.step % 16 == 0 || self.world.step == end_step {
-                    let now = Instant::now();
-                    let el = now.duration_since(last_report);
-                    if el >= opts.progress_interval || self.world.step == end_step {
-                        let sps = (self.world.step - last_report_step) as f64
-                            / el.as_secs_f64().max(1e-9);
-                        last_report = now;
-                        last_report_step = self.world.step;
-                        let p = self.progress(end_step, sps, dt);
-                        cb(&p);
-                    }
-                }
             }
         };
         let wall_time = t_start.elapsed().as_secs_f64();
@@ -594,22 +668,30 @@ impl Runner {
         Ok(summary)
     }
 
-    fn progress(&self, end_step: u64, sps: f64, dt: f64) -> Progress {
-        Progress {
-            time: self.world.time,
-            end_time: end_step as f64 * dt,
-            step: self.world.step,
-            end_step,
-            steps_per_second: sps,
-            bodies: self.world.bodies.len(),
-            spheres: self.world.spheres().len(),
-            contacts: self.world.stats.pair_contacts + self.world.stats.wall_contacts,
-            stage: self
-                .scenario
-                .stages
-                .get(self.st.stage)
-                .map_or_else(String::new, |s| s.name.clone()),
+    /// The step of the next event: the end of the current stage, the next
+    /// insertion of a stream, the next output row or frame, the next
+    /// checkpoint, the step limit; at least one step ahead.
+    fn next_event(&self, max_steps: Option<u64>) -> u64 {
+        let (st, step) = (&self.st, self.world.step);
+        let o = &self.scenario.output;
+        let dt = self.world.config.dt;
+        let mut e = max_steps.unwrap_or(u64::MAX).min(st.next_checkpoint);
+        if let Some(stage) = self.scenario.stages.get(st.stage) {
+            e = e.min(step.saturating_add(stage.steps.saturating_sub(st.step_in_stage)));
         }
+        for s in st.streams.iter().flatten() {
+            e = e.min(s.next_due_step(step, dt));
+        }
+        if o.vtk.is_some() && self.out.vtk.is_some() {
+            e = e.min(st.next_vtk);
+        }
+        if o.thermo.is_some() && self.out.thermo.is_some() {
+            e = e.min(st.next_thermo);
+        }
+        if o.trajectory.is_some() && self.out.trajectory.is_some() {
+            e = e.min(st.next_trajectory);
+        }
+        e.max(step + 1)
     }
 
     /// Stage changes, insertion and output before a step. Returns true when

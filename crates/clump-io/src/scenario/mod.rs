@@ -23,7 +23,8 @@ pub use diag::{Diagnostic, Location, ScenarioError, Severity};
 pub use model::*;
 pub use source::{Seg, Source};
 
-use clump_core::world::{ContactTable, World};
+use clump_core::world::World;
+use clump_core::contact::ContactTable;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 

@@ -1,0 +1,248 @@
+//! The run loop's hooks and the contact iterator, checked against what the
+//! engine sums itself: the wall loads and the body forces are built from the
+//! same contacts, in other orders, so the contacts must add up to them to
+//! round-off; and observing or steering must not change the physics.
+
+use clump_core::contacts::{Contact, Partner};
+use clump_core::step::run::{Driver, Event, Flow, StepHook, StepReport};
+use clump_core::testbed::tetra_lattice_bed;
+use clump_core::world::World;
+use clump_core::DVec3;
+
+/// A bed of 6×6×3 tetrahedra falling onto the floor (wall 0), run far
+/// enough that every body rests on the floor or on others.
+fn bed() -> World {
+    let mut w = tetra_lattice_bed(6, 6, 3, None);
+    w.run(1500).unwrap();
+    w
+}
+
+fn bits(w: &World) -> Vec<u64> {
+    let b = &w.bodies;
+    (0..b.len())
+        .flat_map(|i| {
+            let (x, v, l, q) = (
+                b.position[i],
+                b.velocity[i],
+                b.angular_momentum[i],
+                b.orientation[i],
+            );
+            [x.x, x.y, x.z, v.x, v.y, v.z, l.x, l.y, l.z, q.x, q.y, q.z, q.w].map(f64::to_bits)
+        })
+        .collect()
+}
+
+/// Observes the contacts every `every` steps: the floor's load from the
+/// contacts, compared with the engine's wall load, and every body's force
+/// rebuilt from its contacts plus gravity, compared with the engine's.
+struct Observer {
+    end: u64,
+    every: u64,
+    checked: usize,
+    wall_contacts: usize,
+    pair_contacts: usize,
+}
+
+impl StepHook for Observer {}
+
+impl Driver for Observer {
+    fn at_boundary(&mut self, w: &mut World) -> Flow {
+        if w.step >= self.end {
+            return Flow::Stop;
+        }
+        if w.step % self.every != 0 || w.step == 0 {
+            return Flow::Continue;
+        }
+        let contacts: Vec<Contact> = w.contacts().expect("recorded").collect();
+        // the floor: the load it feels is minus the sum of its contacts' forces
+        let floor: DVec3 = contacts
+            .iter()
+            .filter(|c| matches!(c.partner, Partner::Wall { wall: 0, .. }))
+            .map(|c| -c.force())
+            .sum();
+        let load = w.wall_loads[0].force;
+        assert!(load.z < 0.0, "the bed rests on the floor: {load}");
+        assert!(
+            (floor - load).length() <= 1e-12 * load.length(),
+            "step {}: floor load from contacts {floor} vs engine {load}",
+            w.step
+        );
+        // every body: Σ contact forces on its spheres + m g = its force
+        let mut f = vec![DVec3::ZERO; w.bodies.len()];
+        let index = |id: u64| w.body_index(id).unwrap();
+        for c in &contacts {
+            f[index(c.body_id)] += c.force();
+            if let Partner::Sphere { body_id, .. } = c.partner {
+                f[index(body_id)] -= c.force();
+            }
+            assert!(c.overlap > 0.0 && (c.normal.length() - 1.0).abs() < 1e-12);
+            assert!(
+                c.force_normal.cross(c.normal).length() <= 1e-9 * c.force_normal.length(),
+                "normal force along the normal"
+            );
+            assert!(
+                c.force_tangential.dot(c.normal).abs() <= 1e-9 * c.force().length() + 1e-300,
+                "tangential force in the tangent plane"
+            );
+        }
+        let scale = w.bodies.mass[0] * 9.81;
+        for (i, fi) in f.iter().enumerate() {
+            let expect = w.bodies.force[i];
+            let got = *fi + w.bodies.mass[i] * w.config.gravity;
+            assert!(
+                (got - expect).length() <= 1e-9 * scale,
+                "step {}: body {} force from contacts {got} vs engine {expect}",
+                w.step,
+                w.bodies.id[i]
+            );
+        }
+        self.checked += 1;
+        self.wall_contacts += contacts
+            .iter()
+            .filter(|c| matches!(c.partner, Partner::Wall { .. }))
+            .count();
+        self.pair_contacts += contacts
+            .iter()
+            .filter(|c| matches!(c.partner, Partner::Sphere { .. }))
+            .count();
+        Flow::Continue
+    }
+
+    fn next_event(&mut self, w: &World) -> Event {
+        let next = (w.step / self.every + 1) * self.every;
+        Event {
+            step: next.min(self.end),
+            contacts: true,
+        }
+    }
+}
+
+#[test]
+fn contacts_add_up_to_the_floor_load_and_the_body_forces() {
+    let mut w = bed();
+    let start = w.step;
+    let mut obs = Observer {
+        end: start + 300,
+        every: 7,
+        checked: 0,
+        wall_contacts: 0,
+        pair_contacts: 0,
+    };
+    w.run_driven(&mut obs).unwrap();
+    assert!(obs.checked >= 40, "{} boundaries checked", obs.checked);
+    assert!(
+        obs.wall_contacts > 100 && obs.pair_contacts > 100,
+        "{} wall and {} pair contacts seen",
+        obs.wall_contacts,
+        obs.pair_contacts
+    );
+    // the same steps without observing give the same bits
+    let mut plain = bed();
+    plain.run(300).unwrap();
+    assert!(bits(&plain) == bits(&w), "observing changed the run");
+}
+
+#[test]
+fn contacts_are_refused_when_the_step_did_not_record_them() {
+    let mut w = bed();
+    assert!(w.contacts().is_err());
+    w.run(1).unwrap();
+    assert!(w.contacts().is_err());
+}
+
+/// Sets one body's velocity at a given step.
+struct Kick {
+    at: u64,
+    end: u64,
+    id: u64,
+    v: DVec3,
+    omega: DVec3,
+    steps_seen: u64,
+}
+
+impl StepHook for Kick {
+    fn end_of_step(&mut self, _r: &StepReport) -> Flow {
+        self.steps_seen += 1;
+        Flow::Continue
+    }
+}
+
+impl Driver for Kick {
+    fn at_boundary(&mut self, w: &mut World) -> Flow {
+        if w.step == self.at {
+            w.set_body_velocity(self.id, self.v).unwrap();
+            w.set_body_angular_velocity(self.id, self.omega).unwrap();
+        }
+        if w.step >= self.end {
+            Flow::Stop
+        } else {
+            Flow::Continue
+        }
+    }
+
+    fn next_event(&mut self, w: &World) -> Event {
+        Event::at(if w.step < self.at { self.at } else { self.end })
+    }
+}
+
+#[test]
+fn steering_at_a_boundary_equals_stopping_there_and_setting_the_state() {
+    let (v, omega) = (DVec3::new(0.3, -0.1, 0.5), DVec3::new(4.0, 0.0, -2.0));
+    let mut a = tetra_lattice_bed(4, 4, 2, None);
+    let id = a.bodies.id[5];
+    let mut k = Kick {
+        at: 400,
+        end: 900,
+        id,
+        v,
+        omega,
+        steps_seen: 0,
+    };
+    a.run_driven(&mut k).unwrap();
+    assert_eq!(k.steps_seen, 900);
+    let mut b = tetra_lattice_bed(4, 4, 2, None);
+    for _ in 0..400 {
+        b.step().unwrap();
+    }
+    b.set_body_velocity(id, v).unwrap();
+    b.set_body_angular_velocity(id, omega).unwrap();
+    for _ in 400..900 {
+        b.step().unwrap();
+    }
+    assert!(bits(&a) == bits(&b), "steered run differs from stepwise");
+    assert!(a.set_body_velocity(id, DVec3::NAN).is_err());
+    assert!(a.set_body_velocity(u64::MAX, DVec3::ZERO).is_err());
+}
+
+#[test]
+fn a_removed_body_is_gone_and_the_rest_run_on() {
+    let mut w = tetra_lattice_bed(4, 4, 2, None);
+    w.run(200).unwrap();
+    let n = w.bodies.len();
+    let id = w.bodies.id[3];
+    w.remove_body(id).unwrap();
+    assert_eq!(w.bodies.len(), n - 1);
+    assert!(w.body_index(id).is_none());
+    w.run(200).unwrap();
+    assert_eq!(w.bodies.len(), n - 1);
+    assert!(w.spheres().len() == (n - 1) * 4);
+    assert!(w.remove_body(id).is_err());
+}
+
+/// A driver whose event is not ahead is an error, not a hang.
+struct Stuck;
+impl StepHook for Stuck {}
+impl Driver for Stuck {
+    fn at_boundary(&mut self, _w: &mut World) -> Flow {
+        Flow::Continue
+    }
+    fn next_event(&mut self, w: &World) -> Event {
+        Event::at(w.step)
+    }
+}
+
+#[test]
+fn an_event_that_is_not_ahead_is_an_error() {
+    let mut w = tetra_lattice_bed(2, 2, 1, None);
+    assert!(w.run_driven(&mut Stuck).is_err());
+}
