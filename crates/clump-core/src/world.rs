@@ -149,7 +149,7 @@ pub struct World {
     pub(crate) body_ready: Vec<bool>,
     pub(crate) chunk_wall_loads: Vec<WallLoad>,
     /// Per-contact records of the last step asked to keep them.
-    pub(crate) contact_records: crate::contacts::ContactRecords,
+    pub(crate) contact_records: crate::contact::record::ContactRecords,
 }
 
 impl World {

@@ -58,6 +58,7 @@
 pub mod damping;
 pub mod material;
 pub mod model;
+pub mod record;
 pub mod normal;
 pub mod rolling;
 pub mod table;

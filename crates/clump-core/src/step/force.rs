@@ -19,7 +19,7 @@ use super::integrate::{FinalKick, FirstHalf};
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
 use crate::contact::{ContactHistory, ContactInput};
-use crate::contacts::WallRecord;
+use crate::contact::record::WallRecord;
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::column_sum;
 use crate::sphere::{point_velocity, SPHERE_ID_BITS};

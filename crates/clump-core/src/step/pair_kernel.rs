@@ -83,7 +83,7 @@ pub(super) struct RowCtx<'a> {
     pub body_ready: SharedMut<bool>,
     /// Per pair: the contact's record, when this step keeps them
     /// ([`crate::contacts`]).
-    pub record: Option<SharedMut<crate::contacts::PairRecord>>,
+    pub record: Option<SharedMut<crate::contact::record::PairRecord>>,
     /// The vector instructions the law loop may use ([`simd`]).
     pub simd: Simd,
     /// A bed beyond the caches ([`PREFETCH_MIN_SPHERES`]): the detect pass
@@ -418,7 +418,7 @@ impl RowCtx<'_> {
             }
             *self.tangential.get(p) = l.get3(IO_XI, k);
             if let Some(r) = &self.record {
-                *r.get(p) = crate::contacts::PairRecord {
+                *r.get(p) = crate::contact::record::PairRecord {
                     normal: l.get3(OUT_N, k),
                     overlap: l.v[OUT_OVERLAP][k],
                     force: f,
