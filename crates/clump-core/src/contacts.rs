@@ -15,6 +15,7 @@
 //! ascending per sphere). It depends only on the state, never on the thread
 //! count.
 
+use crate::contact::geometry::contact_point;
 use crate::sphere::SPHERE_ID_BITS;
 use crate::world::World;
 use glam::DVec3;
@@ -100,8 +101,8 @@ impl Iterator for Contacts<'_> {
     fn next(&mut self) -> Option<Contact> {
         let w = self.world;
         let sp = &w.spheres;
-        let pairs = &w.pairs;
-        let rec = &w.contact_records;
+        let pairs = &w.neighbors.pairs;
+        let rec = &w.neighbors.records;
         while self.pair < pairs.topo.len() {
             let p = self.pair;
             self.pair += 1;
@@ -113,7 +114,6 @@ impl Iterator for Contacts<'_> {
             let i = pairs.row[p] as usize;
             let j = t.j as usize;
             let fnv = r.normal * r.normal_force;
-            let a_i = sp.radius[i] - 0.5 * r.overlap;
             return Some(Contact {
                 sphere_id: sp.gid[i],
                 body_id: sp.gid[i] >> SPHERE_ID_BITS,
@@ -121,7 +121,7 @@ impl Iterator for Contacts<'_> {
                     sphere_id: sp.gid[j],
                     body_id: sp.gid[j] >> SPHERE_ID_BITS,
                 },
-                point: sp.position(i) - r.normal * a_i,
+                point: contact_point(sp.position(i), r.normal, sp.radius[i], r.overlap),
                 normal: r.normal,
                 overlap: r.overlap,
                 force_normal: fnv,
@@ -147,7 +147,7 @@ impl Iterator for Contacts<'_> {
                     wall: r.wall as usize,
                     patch: r.patch,
                 },
-                point: sp.position(s) - r.normal * (sp.radius[s] - 0.5 * r.overlap),
+                point: contact_point(sp.position(s), r.normal, sp.radius[s], r.overlap),
                 normal: r.normal,
                 overlap: r.overlap,
                 force_normal: fnv,
@@ -163,7 +163,7 @@ impl World {
     /// The touching contacts of the step that ended at the current step
     /// boundary, when that step recorded them (see the module docs).
     pub fn contacts(&self) -> Result<Contacts<'_>, ContactsError> {
-        if self.contact_records.step != Some(self.step) || self.topology_dirty {
+        if self.neighbors.records.step != Some(self.step) || self.phase.topology_dirty {
             return Err(ContactsError::NotRecorded { step: self.step });
         }
         Ok(Contacts {

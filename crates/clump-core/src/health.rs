@@ -223,7 +223,7 @@ impl HealthMonitor {
 pub fn smallest_rayleigh_time(w: &World) -> Option<(f64, f64, usize)> {
     let mut best: Option<(f64, f64, usize)> = None;
     for (t, tmpl) in w.templates.iter().enumerate() {
-        let m = &w.materials[w.template_material[t] as usize];
+        let m = &w.materials[w.templates.material(t) as usize];
         for s in &tmpl.spheres {
             let tr = rayleigh_time(m, s.radius);
             if tr.is_finite() && best.map_or(true, |b| tr < b.0) {
@@ -378,7 +378,7 @@ impl World {
                 .iter()
                 .map(|s| s.radius)
                 .fold(f64::INFINITY, f64::min);
-            (self.template_material[t], r, b.mass[i])
+            (self.templates.material(t), r, b.mass[i])
         };
         let mut out = Vec::new();
         match (idx, wall) {

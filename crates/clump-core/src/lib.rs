@@ -33,6 +33,7 @@ pub mod state;
 pub mod steer;
 pub mod stats;
 pub mod step;
+#[cfg(any(test, feature = "testbed"))]
 pub mod testbed;
 pub mod thermo;
 pub mod wall;

@@ -1,9 +1,13 @@
 //! Spheres: the contact elements of the bodies, derived from the body poses.
 //!
-//! Following Chrono DEM-Engine, a sphere stores only its owner body and its
-//! index in the owner's template; its radius and material are cached from the
-//! template for the contact kernels. A body's spheres are contiguous and in
-//! template order: sphere `s` of body `b` is `body_first[b] + k`.
+//! As in Chrono DEM-Engine, a sphere is defined by its owner body and its
+//! index in the owner's template; everything else is derived. For the
+//! contact kernels the set also keeps, per sphere, its global id, its
+//! radius and material (copied from the template at each neighbour build)
+//! and its centre (recomputed from the body pose every step; it is the only
+//! per-sphere state that changes between builds). A body's spheres are
+//! contiguous and in template order: sphere `k` of body `b` is
+//! `body_first[b] + k`.
 
 use glam::{DQuat, DVec3};
 

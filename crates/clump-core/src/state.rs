@@ -61,15 +61,15 @@ pub struct WorldState {
 impl World {
     /// Captures the dynamic state. Call between steps.
     pub fn save_state(&mut self) -> Result<WorldState, StepError> {
-        if !self.forces_ready {
+        if !self.phase.forces_ready {
             self.prepare()?;
         }
-        let mut map = std::mem::take(&mut self.history_map);
-        self.pairs.save_history(&self.spheres.gid, &mut map);
+        let mut map = std::mem::take(&mut self.neighbors.history_map);
+        self.neighbors.pairs.save_history(&self.spheres.gid, &mut map);
         let mut pair_history: Vec<_> = map.drain().collect();
         pair_history.sort_by_key(|e| e.0);
-        self.history_map = map;
-        let (wall_key, wall_hist) = self.wall_list.per_sphere(self.spheres.len());
+        self.neighbors.history_map = map;
+        let (wall_key, wall_hist) = self.neighbors.wall_list.per_sphere(self.spheres.len());
         Ok(WorldState {
             config: self.config,
             step: self.step,
@@ -78,15 +78,15 @@ impl World {
             rebuilds: self.rebuilds,
             next_id: self.next_id,
             bodies: self.bodies.clone(),
-            walls: self.walls.clone(),
-            wall_loads: self.wall_loads.clone(),
+            walls: self.walls.to_vec(),
+            wall_loads: self.walls.loads.clone(),
             stats: self.stats,
-            reference_pose: self.reference_pose.clone(),
+            reference_pose: self.neighbors.reference_pose.clone(),
             pair_history,
             wall_key,
             wall_hist,
-            adapted_skin: self.adapted_skin,
-            built_step: self.built_step,
+            adapted_skin: self.neighbors.adapted_skin,
+            built_step: self.neighbors.built_step,
         })
     }
 
@@ -172,23 +172,23 @@ impl World {
             ));
         }
         self.config = s.config;
-        self.adapted_skin = s.adapted_skin;
-        self.built_step = s.built_step;
+        self.neighbors.adapted_skin = s.adapted_skin;
+        self.neighbors.built_step = s.built_step;
         self.step = s.step;
         self.time = s.time;
         self.lost_bodies = s.lost_bodies;
         self.rebuilds = s.rebuilds;
         self.next_id = s.next_id;
         self.bodies = s.bodies;
-        self.walls = s.walls;
-        self.wall_loads = s.wall_loads;
+        self.walls.list = s.walls;
+        self.walls.loads = s.wall_loads;
         self.stats = s.stats;
-        self.reference_pose = s.reference_pose;
-        self.history_map = s.pair_history.into_iter().collect();
-        self.wall_list = WallList::from_per_sphere(&s.wall_key, &s.wall_hist);
+        self.neighbors.reference_pose = s.reference_pose;
+        self.neighbors.history_map = s.pair_history.into_iter().collect();
+        self.neighbors.wall_list = WallList::from_per_sphere(&s.wall_key, &s.wall_hist);
         rebuild::rebuild(self, false).map_err(|e| e.to_string())?;
         self.rebuilds = self.rebuilds.saturating_sub(1);
-        self.forces_ready = true;
+        self.phase.forces_ready = true;
         Ok(())
     }
 }

@@ -74,8 +74,8 @@ impl World {
             .filter(|&k| k as usize != i)
             .collect();
         self.bodies.permute(&keep);
-        self.topology_dirty = true;
-        self.forces_ready = false;
+        self.phase.topology_dirty = true;
+        self.phase.forces_ready = false;
         Ok(())
     }
 }

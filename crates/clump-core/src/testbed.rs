@@ -140,7 +140,7 @@ pub fn tile_xy(w: &World, kx: usize, ky: usize) -> World {
     config.domain.hi.x = dom.lo.x + kx as f64 * period.x;
     config.domain.hi.y = dom.lo.y + ky as f64 * period.y;
     let mut out = World::new(config, w.materials.clone(), w.contact_table.clone());
-    for (t, m) in w.templates.iter().zip(&w.template_material) {
+    for (t, m) in w.templates.iter().zip(w.templates.materials()) {
         out.add_template(t.clone(), *m)
             .expect("the template's material exists");
     }

@@ -58,7 +58,7 @@ impl World {
             potential: pe,
             max_overlap_ratio: self.stats.max_overlap_ratio,
             lost_bodies: self.lost_bodies,
-            wall_loads: self.wall_loads.clone(),
+            wall_loads: self.walls.loads.clone(),
         }
     }
 }

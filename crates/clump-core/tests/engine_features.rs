@@ -197,7 +197,7 @@ fn run_wall_impact(w: &mut World, max_steps: usize) -> DVec3 {
     for _ in 0..max_steps {
         w.step().unwrap();
         let dt = w.config.dt;
-        for l in &w.wall_loads {
+        for l in w.walls.loads() {
             impulse += l.force * dt;
         }
         if w.stats.wall_contacts > 0 {
@@ -365,8 +365,8 @@ fn rotating_floor_drags_sphere_and_records_torque() {
     let mut mean_torque = DVec3::ZERO;
     for _ in 0..n {
         w.step().unwrap();
-        mean_load += w.wall_loads[0].force / n as f64;
-        mean_torque += w.wall_loads[0].torque / n as f64;
+        mean_load += w.walls.loads()[0].force / n as f64;
+        mean_torque += w.walls.loads()[0].torque / n as f64;
     }
     let b = w.body_index(id).unwrap();
     let v = w.bodies.velocity[b];

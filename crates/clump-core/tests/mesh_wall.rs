@@ -280,12 +280,12 @@ fn rolling_on_triangulated_floor_matches_analytic_plane() {
                 rel_vec(wa, wb, wa.length()) < 1e-9,
                 "step {step}: {wa} vs {wb}"
             );
-            let (fa, fb) = (a.wall_loads[0].force, b.wall_loads[0].force);
+            let (fa, fb) = (a.walls.loads()[0].force, b.walls.loads()[0].force);
             assert!(
                 rel_vec(fa, fb, fa.length().max(1e-3)) < 1e-9,
                 "step {step}: wall force {fa} vs {fb}"
             );
-            let (ta, tb) = (a.wall_loads[0].torque, b.wall_loads[0].torque);
+            let (ta, tb) = (a.walls.loads()[0].torque, b.walls.loads()[0].torque);
             assert!(
                 rel_vec(ta, tb, ta.length().max(1e-6)) < 1e-9,
                 "step {step}: wall torque {ta} vs {tb}"
@@ -344,7 +344,7 @@ fn history_carries_across_triangles() {
             let b = w.body_index(id).unwrap();
             let f_contact = w.bodies.force[b] - mass * w.config.gravity;
             let x = w.bodies.position[b];
-            let n = (x - w.meshes[0].closest_point(x).1).normalize();
+            let n = (x - w.walls.meshes()[0].closest_point(x).1).normalize();
             let fn_ = f_contact.dot(n);
             let ft = (f_contact - fn_ * n).length();
             worst = worst.min(ft / (mu * fn_.abs()));

@@ -60,7 +60,7 @@ impl Driver for Observer {
             .filter(|c| matches!(c.partner, Partner::Wall { wall: 0, .. }))
             .map(|c| -c.force())
             .sum();
-        let load = w.wall_loads[0].force;
+        let load = w.walls.loads()[0].force;
         assert!(load.z < 0.0, "the bed rests on the floor: {load}");
         assert!(
             (floor - load).length() <= 1e-12 * load.length(),

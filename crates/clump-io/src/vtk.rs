@@ -396,7 +396,7 @@ pub fn walls_vtp(world: &World) -> Vec<u8> {
                 position,
                 orientation,
             } => {
-                if let Some(m) = world.meshes.get(mesh as usize) {
+                if let Some(m) = world.walls.meshes().get(mesh as usize) {
                     let base = pts.len() as i64;
                     pts.extend(m.vertices_at(position, orientation));
                     for t in m.triangles() {

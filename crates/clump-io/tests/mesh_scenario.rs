@@ -238,7 +238,7 @@ velocity = [0.0, 0.3, 0.0]
         assert_eq!(a.bodies.position[i], b.bodies.position[i]);
         assert_eq!(a.bodies.velocity[i], b.bodies.velocity[i]);
     }
-    assert_eq!(a.walls, b.walls);
+    assert_eq!(a.walls[..], b.walls[..]);
     // the paddle rotated 20 rad/s for stage a, then slid 0.3 m/s for stage b
     let dt = 2e-6;
     let (_, pos, q) = b.walls[1].shape.mesh_pose().unwrap();

@@ -56,6 +56,7 @@
 //! calibrated for whichever rule the pair uses (see [`damping`]).
 
 pub mod damping;
+pub mod geometry;
 pub mod material;
 pub mod model;
 pub mod record;

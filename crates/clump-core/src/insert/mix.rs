@@ -377,7 +377,7 @@ impl TemplateCache {
             return Ok(idx);
         }
         let t: ClumpTemplate = world.templates[base as usize].scaled(scale);
-        let material = world.template_material[base as usize];
+        let material = world.templates.material(base as usize);
         let idx = world.add_template(t, material)?;
         self.entries.push((base, bits, idx));
         self.index.insert((base, bits), idx);

@@ -18,7 +18,7 @@
 //! base template's material, one per distinct scale value. A checkpoint stores
 //! only the dynamic [`crate::state::WorldState`]: a run layer that resumes
 //! must re-add the world's templates beyond those of its scenario
-//! (`world.templates[n..]` with `world.template_material[n..]`), in order,
+//! (`world.templates[n..]` with `world.templates.material(n..)`), in order,
 //! before restoring the state.
 
 mod error;

@@ -141,6 +141,6 @@ pub(crate) fn fits(
     spheres.iter().all(|&(c, r)| region.contains_sphere(c, r))
         && !spheres
             .iter()
-            .any(|&(c, r)| touches_walls(&world.walls, &world.meshes, c, r))
+            .any(|&(c, r)| touches_walls(&world.walls, &world.walls.meshes, c, r))
         && !spheres.iter().any(|&(c, r)| occ.overlaps(c, r))
 }

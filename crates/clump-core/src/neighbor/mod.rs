@@ -17,7 +17,9 @@ pub mod grid;
 pub mod pairs;
 pub mod skin;
 pub mod sort;
+mod state;
 pub mod walls;
 
 pub use grid::CellGrid;
 pub use pairs::{BodyLoad, PairBody, PairList, PairTopo};
+pub(crate) use state::NeighborState;

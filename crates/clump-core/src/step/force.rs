@@ -18,6 +18,7 @@ use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, for_each_run, G
 use super::integrate::{FinalKick, FirstHalf};
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
+use crate::contact::geometry::contact_point;
 use crate::contact::{ContactHistory, ContactInput};
 use crate::contact::record::WallRecord;
 use crate::multi_contact::{MultiContact, PartnerCounts};
@@ -48,7 +49,7 @@ const BODY_PREFETCH: usize = 4;
 pub fn compute(w: &mut World) {
     // the pair stage reads the bodies' state from its packed copy, which a
     // step's first half writes; here it comes from the bodies as they are
-    w.pairs.refresh_bodies(&w.bodies);
+    w.neighbors.pairs.refresh_bodies(&w.bodies);
     pair_forces(w);
     gather(w, false, None);
 }
@@ -63,16 +64,16 @@ pub(crate) fn pair_forces(w: &mut World) {
     if w.config.multi_contact == MultiContact::Average {
         average_scales(w);
     } else {
-        w.pairs.scale.clear();
+        w.neighbors.pairs.scale.clear();
     }
     let nb = w.bodies.len();
     let nchunks = nb.div_ceil(BODY_CHUNK);
-    let stats = &mut w.chunk_pair_stats;
+    let stats = &mut w.scratch.chunk_pair_stats;
     stats.clear();
     stats.resize(nchunks, ContactStats::default());
-    w.body_ready.resize(nb, false);
-    let pairs = &mut w.pairs;
-    let records = &mut w.contact_records;
+    w.scratch.body_ready.resize(nb, false);
+    let pairs = &mut w.neighbors.pairs;
+    let records = &mut w.neighbors.records;
     if records.recording {
         records.pair.resize(pairs.topo.len(), Default::default());
     }
@@ -94,7 +95,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         load_j: SharedMut::new(&mut pairs.load_j),
         body: SharedMut::new(&mut pairs.body),
         first_feed: &pairs.first_feed,
-        body_ready: SharedMut::new(&mut w.body_ready),
+        body_ready: SharedMut::new(&mut w.scratch.body_ready),
         record,
         simd: crate::par::simd::simd(),
         prefetch: w.spheres.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
@@ -110,7 +111,7 @@ pub(crate) fn pair_forces(w: &mut World) {
             .map_or(0, |&s| s as usize);
         row_start.get(s).map_or(0, |&p| p as u64) + s as u64
     };
-    let balance = &mut w.balance[PAIR_LOOP];
+    let balance = &mut w.scratch.balance[PAIR_LOOP];
     // one run of chunks per thread, one batch per run: a batch may span
     // chunks (the statistics go to each pair's own chunk, in pair order)
     for_each_run(nchunks, cost, balance, |run| {
@@ -138,7 +139,7 @@ fn average_scales(w: &mut World) {
     let domain = w.config.domain;
     let any_periodic = domain.periodic.iter().any(|&p| p);
     let sp = &w.spheres;
-    let pairs = &mut w.pairs;
+    let pairs = &mut w.neighbors.pairs;
     pairs.scale.clear();
     pairs.scale.resize(pairs.topo.len(), 1.0);
     let (rows, topo) = (&pairs.row_start, &pairs.topo);
@@ -195,23 +196,34 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         templates,
         step,
         spheres: sp,
-        pairs,
-        walls,
-        meshes,
+        neighbors,
+        walls: wall_set,
         contact_table: table,
+        scratch,
+        config,
+        stats,
+        ..
+    } = w;
+    let crate::neighbor::NeighborState {
+        pairs,
         wall_list,
+        records: contact_records,
+        ..
+    } = neighbors;
+    let crate::wall::WallSet {
+        list: walls,
+        meshes,
+        loads: wall_loads,
+    } = wall_set;
+    let crate::world::Scratch {
         body_cost,
         body_ready,
         balance,
         chunk_stats,
         chunk_pair_stats,
         chunk_wall_loads,
-        config,
-        wall_loads,
-        stats,
-        contact_records,
         ..
-    } = w;
+    } = scratch;
     let nb = bodies.len();
     let nw = walls.len();
     let nchunks = nb.div_ceil(BODY_CHUNK);
@@ -240,7 +252,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     // SAFETY: the gather resizes nothing, and writes no orientation (the
     // first half of the next step writes its body's, after its kick).
     let kick =
-        kick.then(|| unsafe { FinalKick::new(dt, *step, config.added_mass, templates, bodies) });
+        kick.then(|| unsafe { FinalKick::new(dt, *step, config.added_mass, templates.as_mut_slice(), bodies) });
     let b = &*bodies;
     let pair_body = SharedMut::new(&mut pairs.body);
     let pairs = &*pairs;
@@ -652,7 +664,7 @@ impl WallCtx<'_> {
         let wall = &self.walls[wi];
         let r = self.sp.state[s].radius;
         let n = touch.normal;
-        let xc = self.sp.position(s) - n * (r - 0.5 * touch.overlap);
+        let xc = contact_point(self.sp.position(s), n, r, touch.overlap);
         let bi = self.bi;
         let wb = self.b.angular_velocity[bi];
         let v_body = point_velocity(self.com, self.b.velocity[bi], wb, xc);
@@ -700,7 +712,7 @@ mod tests {
             pool.install(|| {
                 let mut w = tetra_lattice_bed(8, 8, 4, None);
                 w.run(3000).unwrap();
-                let ready = w.body_ready.clone();
+                let ready = w.scratch.body_ready.clone();
                 let forces: Vec<u64> = (0..w.bodies.len())
                     .flat_map(|i| {
                         let (f, m) = (w.bodies.force[i], w.bodies.torque[i]);

@@ -29,11 +29,11 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
     let half = unsafe { FirstHalf::new(w, w.step, spheres) };
     let (force, torque) = (&w.bodies.force, &w.bodies.torque);
     let any_stale = AtomicBool::new(false);
-    let cost = body_chunk_cost(&w.body_cost, n, BODY_BLOCK);
+    let cost = body_chunk_cost(&w.scratch.body_cost, n, BODY_BLOCK);
     for_each_chunk_with(
         n.div_ceil(BODY_BLOCK),
         cost,
-        &mut w.balance[INITIAL_LOOP],
+        &mut w.scratch.balance[INITIAL_LOOP],
         || (),
         |_, blk| {
             let mut stale = false;
@@ -92,12 +92,12 @@ impl FirstHalf {
     /// arrays are neither resized nor moved, and each body (with its spheres)
     /// is accessed by one thread at a time, through the result only.
     pub(crate) unsafe fn new(w: &mut World, step: u64, spheres: bool) -> Self {
-        let spheres = spheres && w.reference_position.len() == w.spheres.len();
+        let spheres = spheres && w.neighbors.reference_position.len() == w.spheres.len();
         let limit2 = skin::trigger_distance2(w.skin());
         let n = w.bodies.len();
         let b = &mut w.bodies;
         FirstHalf {
-            kicks: Kicks::new(w.config.dt, w.config.added_mass, &mut w.templates, b),
+            kicks: Kicks::new(w.config.dt, w.config.added_mass, w.templates.as_mut_slice(), b),
             step,
             scheme: w.config.rotation,
             pos: SharedMut::new(&mut b.position),
@@ -108,11 +108,11 @@ impl FirstHalf {
             inertia: SharedMut::new(&mut b.inertia),
             sst: spheres.then(|| SharedMut::new(&mut w.spheres.state)),
             first: SharedMut::new(&mut w.spheres.body_first),
-            tfirst: SharedMut::new(&mut w.template_first),
-            toff: SharedMut::new(&mut w.template_offset),
-            xref: SharedMut::new(&mut w.reference_position),
+            tfirst: SharedMut::new(&mut w.templates.first),
+            toff: SharedMut::new(&mut w.templates.offset),
+            xref: SharedMut::new(&mut w.neighbors.reference_position),
             limit2,
-            pair_body: (w.pairs.body.len() == n).then(|| SharedMut::new(&mut w.pairs.body)),
+            pair_body: (w.neighbors.pairs.body.len() == n).then(|| SharedMut::new(&mut w.neighbors.pairs.body)),
         }
     }
 

@@ -22,7 +22,7 @@ pub fn sphere_position(com: DVec3, rot: &DMat3, offset: DVec3) -> DVec3 {
 pub fn update_spheres(w: &mut World) {
     let b = &w.bodies;
     let sp = &mut w.spheres;
-    let (tf, toff) = (&w.template_first, &w.template_offset);
+    let (tf, toff) = (&w.templates.first, &w.templates.offset);
     sp.state
         .par_iter_mut()
         .zip(sp.index_in_template.par_iter())

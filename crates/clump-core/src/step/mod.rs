@@ -76,7 +76,7 @@ impl World {
     pub fn prepare(&mut self) -> Result<(), StepError> {
         rebuild::rebuild(self, true)?;
         force::compute(self);
-        self.forces_ready = true;
+        self.phase.forces_ready = true;
         Ok(())
     }
 
@@ -90,7 +90,7 @@ impl World {
     /// in the same pass, and the world is left between the two halves of
     /// that step: only another `step_fused` may follow (see [`World::run`]).
     pub(crate) fn step_fused(&mut self, fuse_next: bool) -> Result<(), StepError> {
-        if !self.forces_ready {
+        if !self.phase.forces_ready {
             self.prepare()?;
         }
         let dt = self.config.dt;
@@ -99,17 +99,17 @@ impl World {
         // the spheres move with their bodies in the same pass unless the
         // topology changed (then the rebuild below recomputes them); the
         // gather of the step before may have done it already
-        let moved_out = match self.first_half_done.take() {
+        let moved_out = match self.phase.first_half_done.take() {
             Some(stale) => stale,
-            None => integrate::initial(self, !self.topology_dirty),
+            None => integrate::initial(self, !self.phase.topology_dirty),
         };
         for w in &mut self.walls {
             w.advance(dt);
         }
         // a wall that starts to move may come near any sphere
-        let wall_started = self.wall_cull & !rebuild::static_walls(&self.walls) != 0;
+        let wall_started = self.neighbors.wall_cull & !rebuild::static_walls(&self.walls) != 0;
         lap(&mut times.initial, &mut t);
-        let stale = self.topology_dirty || moved_out;
+        let stale = self.phase.topology_dirty || moved_out;
         if stale {
             rebuild::rebuild(self, true)?;
             lap(&mut times.neighbor, &mut t);
@@ -119,19 +119,19 @@ impl World {
         }
         force::pair_forces(self);
         lap(&mut times.pair, &mut t);
-        let fuse = fuse_next && !self.topology_dirty;
+        let fuse = fuse_next && !self.phase.topology_dirty;
         // SAFETY: the gather touches each body in one chunk only, and
         // resizes no array.
         let next = fuse.then(|| unsafe { integrate::FirstHalf::new(self, self.step + 1, true) });
         let next_stale = force::gather(self, true, next);
         if fuse {
-            self.first_half_done = Some(next_stale);
+            self.phase.first_half_done = Some(next_stale);
         }
         lap(&mut times.gather, &mut t);
         self.stage_times = times;
         self.step += 1;
         self.time = self.step as f64 * dt;
-        let rec = &mut self.contact_records;
+        let rec = &mut self.neighbors.records;
         rec.step = rec.recording.then_some(self.step);
         rec.recording = false;
         Ok(())

@@ -18,14 +18,14 @@ use crate::world::World;
 pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     if reorganize {
         adapt_skin(w);
-        w.built_step = w.step;
+        w.neighbors.built_step = w.step;
     }
     let min_cell = 2.0 * w.max_radius() + w.skin();
     if reorganize {
-        w.pairs.save_history(&w.spheres.gid, &mut w.history_map);
+        w.neighbors.pairs.save_history(&w.spheres.gid, &mut w.neighbors.history_map);
         let domain = w.config.domain;
         let n = w.bodies.len();
-        let keep = &mut w.scratch_keep;
+        let keep = &mut w.scratch.keep;
         keep.clear();
         keep.resize(n, true);
         for b in 0..n {
@@ -42,45 +42,45 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
             &grid,
             &w.bodies.position,
             &w.bodies.id,
-            &w.scratch_keep,
-            &mut w.scratch_perm,
-            &mut w.scratch_keys,
+            &w.scratch.keep,
+            &mut w.scratch.perm,
+            &mut w.scratch.keys,
         );
-        w.lost_bodies += (n - w.scratch_perm.len()) as u64;
+        w.lost_bodies += (n - w.scratch.perm.len()) as u64;
         // carry wall-contact slots along with their spheres: per sphere in
         // the new order, the entry of the old wall list it continues; bodies
         // added since the last build (indices ≥ old count) start empty
         let old_n = w.spheres.body_first.len().saturating_sub(1);
-        let live = &mut w.scratch_wall_live;
-        w.wall_list.live_entries(w.spheres.len(), live);
-        let carry = &mut w.scratch_wall_carry;
+        let live = &mut w.scratch.wall_live;
+        w.neighbors.wall_list.live_entries(w.spheres.len(), live);
+        let carry = &mut w.scratch.wall_carry;
         carry.clear();
-        for &ob in &w.scratch_perm {
+        for &ob in &w.scratch.perm {
             let ob = ob as usize;
             if ob < old_n {
                 carry.extend_from_slice(&live[w.spheres.of_body(ob)]);
             } else {
                 let t = w.bodies.template[ob] as usize;
-                let ns = (w.template_first[t + 1] - w.template_first[t]) as usize;
+                let ns = (w.templates.first[t + 1] - w.templates.first[t]) as usize;
                 carry.extend(std::iter::repeat(NO_ENTRY).take(ns));
             }
         }
         w.bodies
-            .permute_into(&w.scratch_perm, &mut w.scratch_bodies);
-        std::mem::swap(&mut w.bodies, &mut w.scratch_bodies);
+            .permute_into(&w.scratch.perm, &mut w.scratch.bodies);
+        std::mem::swap(&mut w.bodies, &mut w.scratch.bodies);
         rebuild_sphere_topology(w);
         update_spheres(w);
-        w.reference_pose.clear();
-        w.reference_pose.extend(
+        w.neighbors.reference_pose.clear();
+        w.neighbors.reference_pose.extend(
             w.bodies
                 .position
                 .iter()
                 .zip(&w.bodies.orientation)
                 .map(|(&x, &q)| (x, q)),
         );
-        w.reference_position.clear();
-        w.reference_position.extend(w.spheres.positions());
-        w.topology_dirty = false;
+        w.neighbors.reference_position.clear();
+        w.neighbors.reference_position.extend(w.spheres.positions());
+        w.phase.topology_dirty = false;
     } else {
         // positions at the last build, recomputed from the stored poses
         rebuild_sphere_topology(w);
@@ -91,34 +91,34 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
             .zip(&w.bodies.orientation)
             .map(|(&x, &q)| (x, q))
             .collect();
-        for (b, &(x, q)) in w.reference_pose.iter().enumerate() {
+        for (b, &(x, q)) in w.neighbors.reference_pose.iter().enumerate() {
             w.bodies.position[b] = x;
             w.bodies.orientation[b] = q;
         }
         update_spheres(w);
-        w.reference_position.clear();
-        w.reference_position.extend(w.spheres.positions());
+        w.neighbors.reference_position.clear();
+        w.neighbors.reference_position.extend(w.spheres.positions());
         for (b, (x, q)) in current.into_iter().enumerate() {
             w.bodies.position[b] = x;
             w.bodies.orientation[b] = q;
         }
         update_spheres(w);
-        w.topology_dirty = false;
+        w.phase.topology_dirty = false;
     }
-    w.grid = CellGrid::new(&w.config.domain, &w.reference_position, min_cell)
+    w.neighbors.grid = CellGrid::new(&w.config.domain, &w.neighbors.reference_position, min_cell)
         .map_err(StepError::Neighbor)?;
     let sp = &w.spheres;
     let inp = BuildInput {
-        position: &w.reference_position,
+        position: &w.neighbors.reference_position,
         radius: &sp.radius,
         body: &sp.body,
         gid: &sp.gid,
         skin: w.skin(),
     };
-    w.pairs
-        .build(&w.grid, &w.config.domain, &inp, &w.history_map);
-    w.history_map.clear();
-    w.pairs.refresh_bodies(&w.bodies);
+    w.neighbors.pairs
+        .build(&w.neighbors.grid, &w.config.domain, &inp, &w.neighbors.history_map);
+    w.neighbors.history_map.clear();
+    w.neighbors.pairs.refresh_bodies(&w.bodies);
     if reorganize {
         build_wall_lists(w);
     } else {
@@ -140,14 +140,14 @@ fn adapt_skin(w: &mut World) {
         return;
     }
     let sp = &w.spheres;
-    if w.topology_dirty || w.reference_position.len() != sp.len() || w.step <= w.built_step {
+    if w.phase.topology_dirty || w.neighbors.reference_position.len() != sp.len() || w.step <= w.neighbors.built_step {
         return;
     }
     let d2 = (0..sp.len())
-        .map(|s| sp.position(s).distance_squared(w.reference_position[s]))
+        .map(|s| sp.position(s).distance_squared(w.neighbors.reference_position[s]))
         .fold(0.0f64, f64::max);
-    w.adapted_skin =
-        crate::neighbor::skin::adapted_skin(w.min_radius(), d2.sqrt(), w.step - w.built_step);
+    w.neighbors.adapted_skin =
+        crate::neighbor::skin::adapted_skin(w.min_radius(), d2.sqrt(), w.step - w.neighbors.built_step);
 }
 
 /// Builds the wall Verlet list ([`crate::neighbor::walls`]) at the
@@ -158,8 +158,8 @@ fn adapt_skin(w: &mut World) {
 /// sphere); that leaves the forces unchanged, as only walls that cannot
 /// touch a sphere are ever left out of its entry.
 pub(crate) fn build_wall_lists(w: &mut World) {
-    std::mem::swap(&mut w.wall_list, &mut w.scratch_wall_list);
-    w.wall_cull = static_walls(&w.walls);
+    std::mem::swap(&mut w.neighbors.wall_list, &mut w.scratch.wall_list);
+    w.neighbors.wall_cull = static_walls(&w.walls);
     let low = if w.walls.len() >= 64 {
         u64::MAX
     } else {
@@ -167,21 +167,21 @@ pub(crate) fn build_wall_lists(w: &mut World) {
     };
     let skin = w.skin();
     let sp = &w.spheres;
-    w.wall_list.build(
+    w.neighbors.wall_list.build(
         &w.walls,
-        &w.meshes,
-        &w.reference_position,
+        &w.walls.meshes,
+        &w.neighbors.reference_position,
         &sp.radius,
         skin,
-        !w.wall_cull & low,
-        &w.scratch_wall_carry,
-        &w.scratch_wall_list,
+        !w.neighbors.wall_cull & low,
+        &w.scratch.wall_carry,
+        &w.scratch.wall_list,
         &sp.body_first,
         BODY_CHUNK,
     );
-    w.body_cost.clear();
-    w.body_cost.push(0);
-    let list = &w.wall_list.sphere;
+    w.scratch.body_cost.clear();
+    w.scratch.body_cost.push(0);
+    let list = &w.neighbors.wall_list.sphere;
     let mut e = 0;
     let mut total = 0u64;
     for b in 0..w.bodies.len() {
@@ -191,7 +191,7 @@ pub(crate) fn build_wall_lists(w: &mut World) {
             total += WALL_SPHERE_COST - 1;
             e += 1;
         }
-        w.body_cost.push(total);
+        w.scratch.body_cost.push(total);
     }
 }
 
@@ -200,7 +200,7 @@ pub(crate) fn build_wall_lists(w: &mut World) {
 /// builds when a wall starts to move, and on a restart.
 pub(crate) fn refresh_wall_list(w: &mut World) {
     let n = w.spheres.len();
-    w.wall_list.live_entries(n, &mut w.scratch_wall_carry);
+    w.neighbors.wall_list.live_entries(n, &mut w.scratch.wall_carry);
     build_wall_lists(w);
 }
 
@@ -235,15 +235,15 @@ pub(crate) fn rebuild_sphere_topology(w: &mut World) {
     for (b, (&t, &id)) in w.bodies.template.iter().zip(&w.bodies.id).enumerate() {
         sp.body_first.push(sp.body.len() as u32);
         let (s0, s1) = (
-            w.template_first[t as usize],
-            w.template_first[t as usize + 1],
+            w.templates.first[t as usize],
+            w.templates.first[t as usize + 1],
         );
         for k in 0..(s1 - s0) {
             sp.body.push(b as u32);
             sp.index_in_template.push(k);
             sp.gid.push(sphere_gid(id, k));
-            sp.radius.push(w.template_radius[(s0 + k) as usize]);
-            sp.material.push(w.template_material[t as usize]);
+            sp.radius.push(w.templates.radius[(s0 + k) as usize]);
+            sp.material.push(w.templates.material(t as usize));
         }
     }
     sp.body_first.push(sp.body.len() as u32);

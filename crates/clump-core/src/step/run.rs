@@ -177,11 +177,11 @@ impl World {
         }
         while self.step < event.step {
             let interrupt = hook.stop_requested();
-            if interrupt && self.first_half_done.is_none() {
+            if interrupt && self.phase.first_half_done.is_none() {
                 return Ok(Advance::Interrupted);
             }
             let last = self.step + 1 == event.step;
-            self.contact_records.set_recording(last && event.contacts);
+            self.neighbors.records.set_recording(last && event.contacts);
             self.step_fused(!last && !interrupt)?;
             let report = StepReport {
                 step: self.step,

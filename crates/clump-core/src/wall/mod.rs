@@ -7,9 +7,11 @@
 //! each wall are recorded every step ([`WallLoad`]).
 
 pub mod mesh;
+mod set;
 mod shape;
 
 pub use mesh::{MeshError, TriMesh};
+pub use set::WallSet;
 pub use shape::{WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
 
 /// Most walls a world may have: a sphere–wall contact slot key holds the wall

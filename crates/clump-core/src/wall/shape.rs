@@ -72,7 +72,7 @@ pub struct WallTouch {
 impl WallShape {
     /// Like [`WallShape::contacts`] without the mesh table: a
     /// [`WallShape::Mesh`] reports no touch here. Use `contacts` with
-    /// `&world.meshes` wherever mesh walls may occur.
+    /// `&world.walls.meshes` wherever mesh walls may occur.
     pub fn touches(
         &self,
         x: DVec3,

@@ -750,6 +750,17 @@ impl Runner {
                 w.motion.surface_velocity = v;
             }
         }
+        for (j, c) in stage.bodies.iter().enumerate() {
+            let bad = |e: clump_core::world::WorldError| {
+                RunError::Input(self.scenario.stage_body_error(si, j, e.to_string()))
+            };
+            if let Some(v) = c.velocity {
+                self.world.set_body_velocity(c.id, v).map_err(bad)?;
+            }
+            if let Some(v) = c.angular_velocity {
+                self.world.set_body_angular_velocity(c.id, v).map_err(bad)?;
+            }
+        }
         for k in 0..self.scenario.inserts.len() {
             let ins = &self.scenario.inserts[k];
             if ins.stage != si {
@@ -831,7 +842,7 @@ impl Runner {
             .map(|i| {
                 (
                     self.world.templates[i].clone(),
-                    self.world.template_material[i],
+                    self.world.templates.material(i),
                 )
             })
             .collect();

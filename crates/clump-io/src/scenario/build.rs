@@ -627,6 +627,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             first_step: 0,
             gravity: None,
             walls: Vec::new(),
+            bodies: Vec::new(),
         });
     } else {
         if sim.duration.is_some() || sim.steps.is_some() {
@@ -674,6 +675,25 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
                     surface_velocity: opt(cx, "surface_velocity", c.surface_velocity)?,
                 });
             }
+            let mut bodies = Vec::new();
+            for (j, c) in s.body.iter().enumerate() {
+                let cp = |k: &'static str| [K("stage"), I(i), K("body"), I(j), K(k)];
+                let ct = [K("stage"), I(i), K("body"), I(j)];
+                let id = c.id.ok_or_else(|| {
+                    cx.missing(&ct, "[[stage.body]]", "id", "the global id of a body (1-based)")
+                })?;
+                if id == 0 {
+                    return Err(cx.err(&cp("id"), "body ids start at 1"));
+                }
+                let opt = |cx: &Cx, k: &'static str, v: Option<[f64; 3]>| -> R<Option<DVec3>> {
+                    v.map(|a| cx.vec3(&cp(k), a, k)).transpose()
+                };
+                bodies.push(BodyChange {
+                    id,
+                    velocity: opt(cx, "velocity", c.velocity)?,
+                    angular_velocity: opt(cx, "angular_velocity", c.angular_velocity)?,
+                });
+            }
             names.push(name.clone());
             stages.push(StageDef {
                 name,
@@ -681,6 +701,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
                 first_step: first,
                 gravity,
                 walls: changes,
+                bodies,
             });
             first += steps;
         }

@@ -155,4 +155,12 @@ impl Scenario {
         };
         ScenarioError::one(src.error_at(&[Seg::K("insert"), Seg::I(index), Seg::K(key)], message))
     }
+
+    /// An error at `[[stage]]` `stage`'s `[[stage.body]]` entry `index`
+    /// (its `id`), for problems found when the stage begins.
+    pub fn stage_body_error(&self, stage: usize, index: usize, message: impl Into<String>) -> ScenarioError {
+        let src = Source::new(&self.path, self.text.clone());
+        let at = [Seg::K("stage"), Seg::I(stage), Seg::K("body"), Seg::I(index), Seg::K("id")];
+        ScenarioError::one(src.error_at(&at, message))
+    }
 }

@@ -152,6 +152,17 @@ pub struct WallChange {
     pub surface_velocity: Option<DVec3>,
 }
 
+/// A change to one body at the start of a stage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyChange {
+    /// Global body id.
+    pub id: u64,
+    /// New centre-of-mass velocity, world frame, m/s.
+    pub velocity: Option<DVec3>,
+    /// New angular velocity, world frame, rad/s.
+    pub angular_velocity: Option<DVec3>,
+}
+
 /// One stage.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StageDef {
@@ -165,6 +176,8 @@ pub struct StageDef {
     pub gravity: Option<DVec3>,
     /// Wall changes applied at the start.
     pub walls: Vec<WallChange>,
+    /// Body changes applied at the start (after the wall changes).
+    pub bodies: Vec<BodyChange>,
 }
 
 /// Trajectory output.

@@ -528,6 +528,18 @@ pub struct RawWallChange {
     pub surface_velocity: Option<[f64; 3]>,
 }
 
+/// `[[stage.body]]`: a change to one body at the start of a stage.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBodyChange {
+    /// Global body id (1-based, in insertion order).
+    pub id: Option<u64>,
+    /// New centre-of-mass velocity, m/s.
+    pub velocity: Option<[f64; 3]>,
+    /// New angular velocity (world frame), rad/s.
+    pub angular_velocity: Option<[f64; 3]>,
+}
+
 /// `[[stage]]`.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -543,6 +555,9 @@ pub struct RawStage {
     /// Wall changes.
     #[serde(default)]
     pub wall: Vec<RawWallChange>,
+    /// Body changes.
+    #[serde(default)]
+    pub body: Vec<RawBodyChange>,
 }
 
 /// An output interval.

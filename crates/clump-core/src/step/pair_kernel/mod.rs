@@ -10,12 +10,16 @@
 //!    separation, lever arms from the bodies' centres of mass, body
 //!    velocities and angular velocities, radii, body
 //!    masses, tangential history) are copied into per-quantity arrays;
+//!    the bodies' state comes from their packed record ([`PairBody`]), which
+//!    the step derives from the bodies in its first half and never exposes;
 //! 3. *law*: the contact geometry and the normal–tangential law
 //!    ([`SlidingLaw::evaluate`], the same function the scalar contact law
 //!    runs) over those arrays. This loop has no branches and no indirect
-//!    access, so the compiler turns it into vector instructions (4 contacts
-//!    per instruction with AVX2, chosen at run time; 2 with the baseline
-//!    SSE2); vector and scalar IEEE arithmetic give the same bits;
+//!    access, so the compiler turns it into vector instructions: 8
+//!    contacts per instruction with AVX-512 (F, VL, DQ), 4 with AVX2, 2
+//!    with the baseline SSE2, the widest the processor has chosen at run
+//!    time (`crate::par::simd`); vector and scalar IEEE arithmetic give the
+//!    same bits;
 //! 4. *scatter*: rolling couples (for laws that have one), then each pair's
 //!    history is stored (and the pair marked live), its `i` side is added
 //!    to the row sum of `i`'s body and its `j` side to the column sum of
@@ -28,16 +32,21 @@
 //!    row).
 //!
 //! The batch keeps pair order, so every sum is taken in ascending pair order
-//! and the results do not depend on the thread count.
+//! and the results do not depend on the thread count. When the step keeps
+//! contact records ([`crate::contacts`]), the scatter also stores each
+//! pair's normal, overlap and forces.
 
 use super::force::BODY_CHUNK;
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
 use crate::par::simd::Simd;
-use crate::contact::{ContactInput, SlidingLaw};
+use lanes::{get3, run_law, set3, Lanes};
+use crate::contact::ContactInput;
 use crate::neighbor::pairs::{BodyLoad, PairBody};
 use crate::stats::ContactStats;
 use glam::DVec3;
+
+mod lanes;
 
 /// What the pair-force rows read and write (world frame, SI units).
 pub(super) struct RowCtx<'a> {
@@ -294,19 +303,19 @@ impl RowCtx<'_> {
             batch.body[k] = [bi as u32, bj as u32];
             // the lever arms from each body's centre of mass to its sphere
             // (each sphere's own position: the same for any periodic image)
-            l.set3(IN_CI, k, si.position - (*pi).position);
-            l.set3(IN_CJ, k, sj.position - (*pj).position);
-            l.set3(IN_D, k, d);
-            l.set3(IN_VI, k, (*pi).velocity);
-            l.set3(IN_VJ, k, (*pj).velocity);
-            l.set3(IN_WI, k, wi);
-            l.set3(IN_WJ, k, wj);
-            l.set3(IO_XI, k, h);
-            l.v[IN_RI][k] = si.radius;
-            l.v[IN_RJ][k] = sj.radius;
-            l.v[IN_MI][k] = (*pi).mass;
-            l.v[IN_MJ][k] = (*pj).mass;
-            l.v[IN_SCALE][k] = if self.scale.is_empty() {
+            set3(&mut l.arm_i, k, si.position - (*pi).position);
+            set3(&mut l.arm_j, k, sj.position - (*pj).position);
+            set3(&mut l.separation, k, d);
+            set3(&mut l.velocity_i, k, (*pi).velocity);
+            set3(&mut l.velocity_j, k, (*pj).velocity);
+            set3(&mut l.omega_i, k, wi);
+            set3(&mut l.omega_j, k, wj);
+            set3(&mut l.spring, k, h);
+            l.radius_i[k] = si.radius;
+            l.radius_j[k] = sj.radius;
+            l.mass_i[k] = (*pi).mass;
+            l.mass_j[k] = (*pj).mass;
+            l.scale[k] = if self.scale.is_empty() {
                 1.0
             } else {
                 at(self.scale, p)
@@ -338,25 +347,26 @@ impl RowCtx<'_> {
                 // the rolling laws read the normal, the relative angular
                 // velocity, R*, m* and dt (not the sliding velocity)
                 let input = ContactInput {
-                    normal: l.get3(OUT_N, k),
-                    overlap: l.v[OUT_OVERLAP][k],
+                    normal: get3(&l.normal, k),
+                    overlap: l.overlap[k],
                     rel_velocity: DVec3::ZERO,
-                    rel_omega: l.get3(IN_WI, k) - l.get3(IN_WJ, k),
-                    radius: l.v[OUT_RSTAR][k],
-                    mass: l.v[OUT_MSTAR][k],
+                    rel_omega: get3(&l.omega_i, k) - get3(&l.omega_j, k),
+                    radius: l.r_star[k],
+                    mass: l.m_star[k],
                     dt: self.dt,
                 };
                 let (couple, e_r) = model.rolling_couple(
                     &input,
-                    l.v[OUT_FN][k],
-                    l.v[OUT_KN][k],
+                    l.normal_force[k],
+                    l.kn[k],
                     self.rolling.get(p),
                 );
-                let couple = couple * l.v[IN_SCALE][k];
-                l.set3(OUT_TI, k, l.get3(OUT_TI, k) + couple);
-                l.set3(OUT_TJ, k, l.get3(OUT_TJ, k) - couple);
+                let couple = couple * l.scale[k];
+                let (ti, tj) = (get3(&l.torque_i, k), get3(&l.torque_j, k));
+                set3(&mut l.torque_i, k, ti + couple);
+                set3(&mut l.torque_j, k, tj - couple);
                 if let Some(e) = e_r {
-                    l.v[OUT_ENERGY][k] += e;
+                    l.energy[k] += e;
                 }
             }
         }
@@ -392,16 +402,16 @@ impl RowCtx<'_> {
                     stat = *stats.get(chunk);
                 }
             }
-            let f = l.get3(OUT_F, k);
+            let f = get3(&l.force, k);
             li.force += f;
-            li.torque += l.get3(OUT_TI, k);
+            li.torque += get3(&l.torque_i, k);
             // the j side: added to the column sum of j's body when that body
             // is complete in this run (then every pair feeding it is
             // evaluated here, in ascending order), else recorded for the
             // gather
             let side = BodyLoad {
                 force: -f,
-                torque: l.get3(OUT_TJ, k),
+                torque: get3(&l.torque_j, k),
             };
             let j = self.topo.read(p).j as usize;
             // one run (one thread): every body is complete in it
@@ -416,24 +426,24 @@ impl RowCtx<'_> {
             } else {
                 *self.load_j.get(p) = side;
             }
-            *self.tangential.get(p) = l.get3(IO_XI, k);
+            *self.tangential.get(p) = get3(&l.spring, k);
             if let Some(r) = &self.record {
                 *r.get(p) = crate::contact::record::PairRecord {
-                    normal: l.get3(OUT_N, k),
-                    overlap: l.v[OUT_OVERLAP][k],
+                    normal: get3(&l.normal, k),
+                    overlap: l.overlap[k],
                     force: f,
-                    normal_force: l.v[OUT_FN][k] * l.v[IN_SCALE][k],
+                    normal_force: l.normal_force[k] * l.scale[k],
                 };
             }
             let t = self.topo.get(p);
             if !t.live {
                 t.live = true;
             }
-            let overlap = l.v[OUT_OVERLAP][k];
+            let overlap = l.overlap[k];
             // the statistics of the pair's chunk (a batch may span chunks)
             stat.pair_contacts += 1;
-            stat.elastic_energy += l.v[OUT_ENERGY][k] * l.v[IN_SCALE][k];
-            let rmin = l.v[IN_RI][k].min(l.v[IN_RJ][k]);
+            stat.elastic_energy += l.energy[k] * l.scale[k];
+            let rmin = l.radius_i[k].min(l.radius_j[k]);
             if overlap > stat.max_overlap_ratio * rmin {
                 stat.max_overlap_ratio = overlap / rmin;
                 // the two spheres' storage indices: the gather turns them
@@ -457,60 +467,6 @@ impl RowCtx<'_> {
     }
 }
 
-/// Runs [`law_lanes`] over the first `len` lanes, compiled for the vector
-/// instructions `simd` (detected on this processor by [`simd`]).
-#[inline(always)]
-fn run_law(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64, simd: Simd) {
-    #[cfg(target_arch = "x86_64")]
-    match simd {
-        // SAFETY: `simd` was detected on this processor.
-        Simd::Avx512 => return unsafe { law_lanes_avx512(l, len, law, dt) },
-        Simd::Avx2 => return unsafe { law_lanes_avx2(l, len, law, dt) },
-        Simd::Baseline => {}
-    }
-    let _ = simd;
-    law_lanes(l, len, law, dt);
-}
-
-/// [`law_lanes`] compiled for AVX-512 (8 doubles per vector).
-///
-/// # Safety
-/// The processor supports AVX-512 F, VL and DQ.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f,avx512vl,avx512dq")]
-unsafe fn law_lanes_avx512(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
-    law_lanes(l, len, law, dt)
-}
-
-/// [`law_lanes`] compiled for AVX2 (4 doubles per vector).
-///
-/// # Safety
-/// The processor supports AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn law_lanes_avx2(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
-    law_lanes(l, len, law, dt)
-}
-
-/// The contact geometry and the law over lanes `0..len`: `law` is the model
-/// of every lane, or `None` when the lanes carry their own
-/// ([`Lanes::set_law`]).
-#[inline(always)]
-fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
-    match law {
-        Some(law) => {
-            for k in 0..len.min(BATCH) {
-                l.contact(k, law, dt);
-            }
-        }
-        None => {
-            for k in 0..len.min(BATCH) {
-                let law = l.law(k);
-                l.contact(k, &law, dt);
-            }
-        }
-    }
-}
 
 /// How many candidate pairs ahead the detect pass prefetches the partner
 /// sphere's state, body index and the pair's spring in a bed whose data fit
@@ -574,273 +530,8 @@ impl Default for Batch {
             model: [0; BATCH],
             len: 0,
             carry: None,
-            lanes: Lanes {
-                v: [[0.0; BATCH]; NV],
-            },
+            lanes: Lanes::zeroed(),
         }
     }
 }
 
-// Rows of `Lanes::v` (world frame, SI units). Inputs:
-/// `x_i − x_j` (3 rows), m.
-const IN_D: usize = 0;
-/// Velocity of `i`'s body (3), m/s.
-const IN_VI: usize = 3;
-/// `ω` of `i`'s body (3), rad/s.
-const IN_WI: usize = 6;
-/// `ω` of `j`'s body (3), rad/s.
-const IN_WJ: usize = 9;
-/// Tangential spring `ξ` (3), m: input, and output after the law.
-const IO_XI: usize = 12;
-/// Radius of `i`, m.
-const IN_RI: usize = 15;
-/// Radius of `j`, m.
-const IN_RJ: usize = 16;
-/// Mass of `i`'s body, kg.
-const IN_MI: usize = 17;
-/// Mass of `j`'s body, kg.
-const IN_MJ: usize = 18;
-/// Multi-contact scale of the force.
-const IN_SCALE: usize = 19;
-// Outputs:
-/// Force on `i`, scaled (3), N.
-const OUT_F: usize = 20;
-/// Torque on `i`'s body about its centre of mass (3), N m.
-const OUT_TI: usize = 23;
-/// Torque on `j`'s body about its centre of mass (3), N m.
-const OUT_TJ: usize = 26;
-/// Unit normal, `j` → `i` (3).
-const OUT_N: usize = 29;
-/// Overlap, m.
-const OUT_OVERLAP: usize = 32;
-/// Elastic energy, unscaled, J.
-const OUT_ENERGY: usize = 33;
-/// Signed normal force, unscaled, N.
-const OUT_FN: usize = 34;
-/// Normal stiffness, N/m.
-const OUT_KN: usize = 35;
-/// `R*`, m.
-const OUT_RSTAR: usize = 36;
-/// `m*`, kg.
-const OUT_MSTAR: usize = 37;
-/// Lever arm `x_i − r_cm` of sphere `i` in its body (3), m.
-const IN_CI: usize = 38;
-/// Lever arm `x_j − r_cm` of sphere `j` in its body (3), m.
-const IN_CJ: usize = 41;
-/// Velocity of `j`'s body (3), m/s.
-const IN_VJ: usize = 44;
-// Per-lane law (when the batch mixes models):
-const LAW: usize = 47;
-/// Number of rows.
-const NV: usize = LAW + 8;
-
-/// Per-quantity arrays of a batch (structure of arrays: row `q`, lane `k`).
-pub(super) struct Lanes {
-    v: [[f64; BATCH]; NV],
-}
-
-impl Lanes {
-    #[inline(always)]
-    fn set3(&mut self, q: usize, k: usize, x: DVec3) {
-        self.v[q][k] = x.x;
-        self.v[q + 1][k] = x.y;
-        self.v[q + 2][k] = x.z;
-    }
-
-    #[inline(always)]
-    fn get3(&self, q: usize, k: usize) -> DVec3 {
-        DVec3::new(self.v[q][k], self.v[q + 1][k], self.v[q + 2][k])
-    }
-
-    /// Stores lane `k`'s law.
-    #[inline(always)]
-    fn set_law(&mut self, k: usize, law: &SlidingLaw) {
-        let v = &mut self.v;
-        v[LAW][k] = if law.hertz { 1.0 } else { 0.0 };
-        v[LAW + 1][k] = law.fn_floor;
-        v[LAW + 2][k] = law.kn_coef;
-        v[LAW + 3][k] = law.kt_coef;
-        v[LAW + 4][k] = law.gn_coef;
-        v[LAW + 5][k] = law.gt_coef;
-        v[LAW + 6][k] = law.energy_factor;
-        v[LAW + 7][k] = law.friction;
-    }
-
-    /// Lane `k`'s law, as stored by [`Self::set_law`].
-    #[inline(always)]
-    fn law(&self, k: usize) -> SlidingLaw {
-        let v = &self.v;
-        SlidingLaw {
-            hertz: v[LAW][k] != 0.0,
-            fn_floor: v[LAW + 1][k],
-            kn_coef: v[LAW + 2][k],
-            kt_coef: v[LAW + 3][k],
-            gn_coef: v[LAW + 4][k],
-            gt_coef: v[LAW + 5][k],
-            energy_factor: v[LAW + 6][k],
-            friction: v[LAW + 7][k],
-        }
-    }
-
-    /// Contact `k`: normal, overlap, contact-point velocities (from the
-    /// bodies' velocities and angular velocities), `R*`, `m*`,
-    /// the law, and the torques of its force about the two bodies' centres
-    /// of mass: the contact point is `x_c = x_i − a_i n = x_j + a_j n`, so
-    /// `(x_c − r_cm,i) × f = c_i × f − a_i (n × f)` on `i`'s body and
-    /// `(x_c − r_cm,j) × (−f) = −c_j × f − a_j (n × f)` on `j`'s (seed
-    /// eq. 4.88), with the lever arms `c = x_s − r_cm`.
-    #[inline(always)]
-    fn contact(&mut self, k: usize, law: &SlidingLaw, dt: f64) {
-        let d = self.get3(IN_D, k);
-        let (ri, rj) = (self.v[IN_RI][k], self.v[IN_RJ][k]);
-        let rsum = ri + rj;
-        let dist = d.length();
-        let nrm = d * (1.0 / dist);
-        let overlap = rsum - dist;
-        let (ai, aj) = (ri - 0.5 * overlap, rj - 0.5 * overlap);
-        let (wi, wj) = (self.get3(IN_WI, k), self.get3(IN_WJ, k));
-        let (ci, cj) = (self.get3(IN_CI, k), self.get3(IN_CJ, k));
-        // contact-point velocities, v + ω × (x_c − r_cm), with
-        // x_c − r_cm = c_i − a_i n on i's body and c_j + a_j n on j's
-        let vrel = self.get3(IN_VI, k) + wi.cross(ci - nrm * ai)
-            - (self.get3(IN_VJ, k) + wj.cross(cj + nrm * aj));
-        let (mi, mj) = (self.v[IN_MI][k], self.v[IN_MJ][k]);
-        let radius = ri * rj / rsum;
-        let mass = mi * mj / (mi + mj);
-        let mut xi = self.get3(IO_XI, k);
-        let out = law.evaluate(nrm, overlap, vrel, radius, mass, dt, &mut xi);
-        let scale = self.v[IN_SCALE][k];
-        let f = out.force * scale;
-        let g = nrm.cross(f);
-        self.set3(IO_XI, k, xi);
-        self.set3(OUT_F, k, f);
-        self.set3(OUT_TI, k, ci.cross(f) - g * ai);
-        self.set3(OUT_TJ, k, -cj.cross(f) - g * aj);
-        self.set3(OUT_N, k, nrm);
-        let v = &mut self.v;
-        v[OUT_OVERLAP][k] = overlap;
-        v[OUT_ENERGY][k] = out.energy;
-        v[OUT_FN][k] = out.normal_force;
-        v[OUT_KN][k] = out.kn;
-        v[OUT_RSTAR][k] = radius;
-        v[OUT_MSTAR][k] = mass;
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::par::simd::simd;
-    use crate::contact::{ContactModel, Material, NormalLaw, PairProperties};
-
-    /// Lanes of contacts with overlaps of 0 to 20 % of the radius, sliding
-    /// and sticking springs, random velocities; `mixed`: every lane its own
-    /// law (Hertz and linear, clamped and tensile).
-    fn lanes(seed: u64, laws: &[SlidingLaw], mixed: bool) -> Lanes {
-        let mut s = seed;
-        let mut u = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let mut l = Lanes {
-            v: [[0.0; BATCH]; NV],
-        };
-        for k in 0..BATCH {
-            fn v3(u: &mut impl FnMut() -> f64, a: f64) -> DVec3 {
-                DVec3::new(u() - 0.5, u() - 0.5, u() - 0.5) * a
-            }
-            let (ri, rj) = (1e-3 * (0.5 + u()), 1e-3 * (0.5 + u()));
-            let n = v3(&mut u, 2.0).normalize();
-            let d = n * (ri + rj) * (1.0 - 0.1 * u());
-            l.set3(IN_D, k, d);
-            l.set3(IN_VI, k, v3(&mut u, 0.2));
-            l.set3(IN_VJ, k, v3(&mut u, 0.2));
-            l.set3(IN_WI, k, v3(&mut u, 50.0));
-            l.set3(IN_WJ, k, v3(&mut u, 50.0));
-            l.set3(IN_CI, k, v3(&mut u, 1e-3));
-            l.set3(IN_CJ, k, v3(&mut u, 1e-3));
-            // springs from far inside the Coulomb cone to far outside
-            l.set3(IO_XI, k, {
-                let a = 1e-4 * u() * u();
-                v3(&mut u, a)
-            });
-            l.v[IN_RI][k] = ri;
-            l.v[IN_RJ][k] = rj;
-            l.v[IN_MI][k] = 1e-5 * (0.5 + u());
-            l.v[IN_MJ][k] = 1e-5 * (0.5 + u());
-            l.v[IN_SCALE][k] = if k % 5 == 0 { 0.5 } else { 1.0 };
-            if mixed {
-                l.set_law(k, &laws[k % laws.len()]);
-            }
-        }
-        l
-    }
-
-    /// The law loop gives the same bits compiled for every vector
-    /// instruction set this processor has (the engine picks the widest at
-    /// run time; results must not depend on the machine's choice).
-    #[test]
-    fn law_lanes_same_bits_at_every_simd_level() {
-        let mat = Material {
-            youngs_modulus: 5e6,
-            poisson_ratio: 0.3,
-            density: 2500.0,
-        };
-        let mut laws = vec![];
-        for normal in [NormalLaw::Hertz, NormalLaw::Linear { kn: 2e3, kt: 1e3 }] {
-            for tensile in [false, true] {
-                let p = PairProperties {
-                    normal,
-                    tensile,
-                    ..PairProperties::default()
-                };
-                laws.push(*ContactModel::new(&mat, &mat, &p).unwrap().sliding_law());
-            }
-        }
-        let mut levels = vec![Simd::Baseline];
-        #[cfg(target_arch = "x86_64")]
-        {
-            if std::arch::is_x86_feature_detected!("avx2") {
-                levels.push(Simd::Avx2);
-            }
-            if simd() == Simd::Avx512 {
-                levels.push(Simd::Avx512);
-            }
-        }
-        eprintln!("levels on this processor: {levels:?}");
-        for (case, law) in [None, Some(&laws[0]), Some(&laws[3])]
-            .into_iter()
-            .enumerate()
-        {
-            for len in [BATCH, 13] {
-                let base = lanes(case as u64 + 7, &laws, law.is_none());
-                let mut want = base.v;
-                {
-                    let mut l = Lanes { v: base.v };
-                    law_lanes(&mut l, len, law, 1e-5);
-                    want.copy_from_slice(&l.v);
-                }
-                // the loop did something: a stiffness on every evaluated lane,
-                // a force on most (a clamped lane separating fast has none)
-                assert!((0..len).all(|k| want[OUT_KN][k] > 0.0));
-                let pushed = (0..len).filter(|&k| want[OUT_F][k] != 0.0).count();
-                assert!(2 * pushed > len, "{pushed} of {len} lanes with a force");
-                for &level in &levels {
-                    let mut l = Lanes { v: base.v };
-                    run_law(&mut l, len, law, 1e-5, level);
-                    for q in 0..NV {
-                        for k in 0..BATCH {
-                            assert_eq!(
-                                l.v[q][k].to_bits(),
-                                want[q][k].to_bits(),
-                                "{level:?}, case {case}, len {len}: row {q} lane {k}"
-                            );
-                        }
-                    }
-                }
-            }
-        }
-    }
-}

@@ -5,14 +5,17 @@ use crate::boundary::Domain;
 use crate::contact::{ContactTable, Material};
 use crate::stats::ContactStats;
 use crate::multi_contact::MultiContact;
-use crate::neighbor::{CellGrid, PairList};
+use crate::neighbor::NeighborState;
 use crate::rotation::RotationScheme;
-use crate::shape::ClumpTemplate;
+use crate::shape::{ClumpTemplate, TemplateSet};
 use crate::sphere::Spheres;
-use crate::wall::{TriMesh, Wall, WallLoad, WallShape};
-use glam::{DQuat, DVec3};
+use crate::wall::{TriMesh, Wall, WallLoad, WallSet, WallShape};
+use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
+
+mod scratch;
+pub(crate) use scratch::{Scratch, StepPhase};
 
 /// Added-mass model (seed 000): the body's inertia in the kicks is scaled by
 /// `1 + coefficient · fluid_density / body_density`. Gravity still acts on the
@@ -62,7 +65,8 @@ pub enum WorldError {
     Grid(String),
 }
 
-/// The state of one simulation.
+/// The state of one simulation: the sets the step pipeline works on, each
+/// owning its data (see ARCHITECTURE.md for which stage touches which).
 pub struct World {
     /// Global settings.
     pub config: WorldConfig,
@@ -70,19 +74,14 @@ pub struct World {
     pub materials: Vec<Material>,
     /// Contact models per material pair.
     pub contact_table: ContactTable,
-    /// Clump templates (body frame).
-    pub templates: Vec<ClumpTemplate>,
-    /// Material of each template's spheres.
-    pub template_material: Vec<u16>,
-    /// The bodies.
+    /// Clump templates (body frame) with their materials.
+    pub templates: TemplateSet,
+    /// The bodies: the one owner of body state. Read freely; change through
+    /// the world's methods ([`crate::steer`]), which keep what the step
+    /// derives from it consistent.
     pub bodies: Bodies,
-    /// The walls.
-    pub walls: Vec<Wall>,
-    /// Triangle meshes that [`WallShape::Mesh`] walls refer to (static
-    /// geometry from the scenario, mesh frame; not checkpointed).
-    pub meshes: Vec<TriMesh>,
-    /// Load on each wall from the last force evaluation.
-    pub wall_loads: Vec<WallLoad>,
+    /// The walls with their meshes and loads.
+    pub walls: WallSet,
     /// Steps taken.
     pub step: u64,
     /// Simulated time, s.
@@ -96,60 +95,18 @@ pub struct World {
     /// Wall-clock time spent in each stage of the step pipeline so far (a
     /// profiling breakdown; not part of the simulated state).
     pub stage_times: crate::stats::StageTimes,
+    /// Global id of the next body added.
     pub(crate) next_id: u64,
+    /// The spheres, derived from the bodies and templates.
     pub(crate) spheres: Spheres,
-    pub(crate) pairs: PairList,
-    /// The wall Verlet list: the spheres with a wall to test, and their
-    /// sphere–wall contact slots.
-    pub(crate) wall_list: crate::neighbor::walls::WallList,
-    /// Walls (< 64) that have not moved since the wall list was built: only
-    /// these may be left out of a sphere's entry (when one starts to move,
-    /// the list is built again).
-    pub(crate) wall_cull: u64,
-    /// The skin (m) the last neighbour build chose for the motion (0: none
-    /// yet); used unless the configuration fixes the skin.
-    pub(crate) adapted_skin: f64,
-    /// Step of the last neighbour build.
-    pub(crate) built_step: u64,
-    /// Cumulative per-body cost estimate of the gather (one unit per sphere,
-    /// more for a sphere with a wall nearby), `len = bodies + 1`; built with
-    /// the wall lists. Splits the per-body loops between threads (see
-    /// `par::affinity`).
-    pub(crate) body_cost: Vec<u64>,
-    /// How the first half step, the pair loop and the gather share their
-    /// chunks between threads (learned; never affects results).
-    pub(crate) balance: [crate::par::affinity::Balance; 3],
-    pub(crate) template_first: Vec<u32>,
-    pub(crate) template_offset: Vec<DVec3>,
-    pub(crate) template_radius: Vec<f64>,
-    pub(crate) reference_position: Vec<DVec3>,
-    pub(crate) reference_pose: Vec<(DVec3, DQuat)>,
-    pub(crate) history_map: crate::neighbor::pairs::HistoryMap,
-    pub(crate) grid: CellGrid,
-    pub(crate) topology_dirty: bool,
-    /// The first half of the current step is done (fused into the previous
-    /// step's gather, inside [`World::run`]), with whether a sphere then
-    /// moved more than half the skin. None between public calls.
-    pub(crate) first_half_done: Option<bool>,
-    pub(crate) forces_ready: bool,
-    pub(crate) scratch_perm: Vec<u32>,
-    /// Rebuild scratch (reused, so rebuilds do not allocate once warm): which
-    /// bodies stay, the permuted bodies, the previous wall list, and per
-    /// sphere the entry of that list whose contact slots it continues.
-    pub(crate) scratch_keep: Vec<bool>,
-    pub(crate) scratch_bodies: Bodies,
-    pub(crate) scratch_wall_list: crate::neighbor::walls::WallList,
-    pub(crate) scratch_wall_carry: Vec<u32>,
-    pub(crate) scratch_wall_live: Vec<u32>,
-    pub(crate) scratch_keys: Vec<(u64, u64, u32)>,
-    pub(crate) chunk_stats: Vec<ContactStats>,
-    pub(crate) chunk_pair_stats: Vec<ContactStats>,
-    /// Per body: the pair stage summed its column (`PairBody::col`)
-    /// this step.
-    pub(crate) body_ready: Vec<bool>,
-    pub(crate) chunk_wall_loads: Vec<WallLoad>,
-    /// Per-contact records of the last step asked to keep them.
-    pub(crate) contact_records: crate::contact::record::ContactRecords,
+    /// Neighbour lists and the contact store (springs, wall slots,
+    /// history, the records of the last step asked to keep them).
+    pub(crate) neighbors: NeighborState,
+    /// Where the world is in its step (see [`StepPhase`]).
+    pub(crate) phase: StepPhase,
+    /// Working arrays of the step, reused so that steps do not allocate,
+    /// and the learned thread balance; never part of the simulated state.
+    pub(crate) scratch: Scratch,
 }
 
 impl World {
@@ -159,12 +116,9 @@ impl World {
             config,
             materials,
             contact_table,
-            templates: Vec::new(),
-            template_material: Vec::new(),
+            templates: TemplateSet::default(),
             bodies: Bodies::default(),
-            walls: Vec::new(),
-            meshes: Vec::new(),
-            wall_loads: Vec::new(),
+            walls: WallSet::default(),
             step: 0,
             time: 0.0,
             lost_bodies: 0,
@@ -173,35 +127,9 @@ impl World {
             stage_times: Default::default(),
             next_id: 1,
             spheres: Spheres::default(),
-            pairs: PairList::default(),
-            wall_list: Default::default(),
-            wall_cull: 0,
-            adapted_skin: 0.0,
-            built_step: 0,
-            body_cost: Vec::new(),
-            balance: Default::default(),
-            template_first: vec![0],
-            template_offset: Vec::new(),
-            template_radius: Vec::new(),
-            reference_position: Vec::new(),
-            reference_pose: Vec::new(),
-            history_map: Default::default(),
-            grid: CellGrid::default(),
-            topology_dirty: true,
-            first_half_done: None,
-            forces_ready: false,
-            scratch_perm: Vec::new(),
-            scratch_keep: Vec::new(),
-            scratch_bodies: Bodies::default(),
-            scratch_wall_list: Default::default(),
-            scratch_wall_carry: Vec::new(),
-            scratch_wall_live: Vec::new(),
-            scratch_keys: Vec::new(),
-            chunk_stats: Vec::new(),
-            chunk_pair_stats: Vec::new(),
-            body_ready: Vec::new(),
-            chunk_wall_loads: Vec::new(),
-            contact_records: Default::default(),
+            neighbors: NeighborState::default(),
+            phase: StepPhase::default(),
+            scratch: Scratch::default(),
         }
     }
 
@@ -217,14 +145,7 @@ impl World {
                 template.name
             )));
         }
-        for s in &template.spheres {
-            self.template_offset.push(s.center);
-            self.template_radius.push(s.radius);
-        }
-        self.template_first.push(self.template_offset.len() as u32);
-        self.templates.push(template);
-        self.template_material.push(material);
-        Ok(self.templates.len() as u32 - 1)
+        Ok(self.templates.push(template, material))
     }
 
     /// Adds a wall; returns its index.
@@ -236,7 +157,7 @@ impl World {
             )));
         }
         if let WallShape::Mesh { mesh, .. } = wall.shape {
-            if mesh as usize >= self.meshes.len() {
+            if mesh as usize >= self.walls.meshes.len() {
                 return Err(WorldError::BadReference(format!(
                     "wall '{}' uses mesh {mesh}, which does not exist",
                     wall.name
@@ -249,16 +170,16 @@ impl World {
                 crate::wall::MAX_WALLS
             )));
         }
-        self.walls.push(wall);
-        self.wall_loads.push(WallLoad::default());
-        self.forces_ready = false;
+        self.walls.list.push(wall);
+        self.walls.loads.push(WallLoad::default());
+        self.phase.forces_ready = false;
         Ok(self.walls.len() - 1)
     }
 
     /// Adds a triangle mesh for [`WallShape::Mesh`] walls; returns its index.
     pub fn add_mesh(&mut self, mesh: TriMesh) -> u32 {
-        self.meshes.push(mesh);
-        self.meshes.len() as u32 - 1
+        self.walls.meshes.push(mesh);
+        self.walls.meshes.len() as u32 - 1
     }
 
     /// Adds a body; returns its global id.
@@ -272,8 +193,8 @@ impl World {
         let id = self.next_id;
         self.next_id += 1;
         self.bodies.push(id, init, t.mass, t.principal_inertia);
-        self.topology_dirty = true;
-        self.forces_ready = false;
+        self.phase.topology_dirty = true;
+        self.phase.forces_ready = false;
         Ok(id)
     }
 
@@ -284,8 +205,8 @@ impl World {
     /// radius of any template (never zero).
     pub fn skin(&self) -> f64 {
         self.config.skin.unwrap_or_else(|| {
-            if self.adapted_skin > 0.0 {
-                self.adapted_skin
+            if self.neighbors.adapted_skin > 0.0 {
+                self.neighbors.adapted_skin
             } else {
                 crate::neighbor::skin::SKIN_DEFAULT * self.min_radius()
             }
@@ -295,7 +216,8 @@ impl World {
     /// Smallest sphere radius of any template, m (1 mm without templates).
     pub fn min_radius(&self) -> f64 {
         let r = self
-            .template_radius
+            .templates
+            .radius
             .iter()
             .cloned()
             .fold(f64::INFINITY, f64::min);
@@ -308,7 +230,7 @@ impl World {
 
     /// Largest sphere radius of any template, m.
     pub fn max_radius(&self) -> f64 {
-        self.template_radius.iter().cloned().fold(0.0, f64::max)
+        self.templates.radius.iter().cloned().fold(0.0, f64::max)
     }
 
     /// The spheres (derived from the bodies at the current step).
@@ -317,8 +239,8 @@ impl World {
     }
 
     /// Candidate and touching sphere pairs.
-    pub fn pairs(&self) -> &PairList {
-        &self.pairs
+    pub fn pairs(&self) -> &crate::neighbor::PairList {
+        &self.neighbors.pairs
     }
 
     /// Storage index of the body with global id `id`, if present (linear search).

@@ -1,0 +1,79 @@
+//! The templates of a world: each clump template (body frame) with the
+//! material of its spheres, and the flat per-sphere tables the step reads.
+
+use super::ClumpTemplate;
+use glam::DVec3;
+
+/// The clump templates of a world, in the order they were added (a body's
+/// `template` indexes it). Reads like a slice of templates; templates are
+/// added through `World::add_template` and never change.
+#[derive(Debug, Clone)]
+pub struct TemplateSet {
+    list: Vec<ClumpTemplate>,
+    material: Vec<u16>,
+    /// First sphere of each template in [`Self::offset`] and
+    /// [`Self::radius`]; `first[n_templates]` = all spheres.
+    pub(crate) first: Vec<u32>,
+    /// Body-frame offset of each template sphere from its template's centre
+    /// of mass, m.
+    pub(crate) offset: Vec<DVec3>,
+    /// Radius of each template sphere, m.
+    pub(crate) radius: Vec<f64>,
+}
+
+impl Default for TemplateSet {
+    fn default() -> Self {
+        TemplateSet {
+            list: Vec::new(),
+            material: Vec::new(),
+            first: vec![0],
+            offset: Vec::new(),
+            radius: Vec::new(),
+        }
+    }
+}
+
+impl TemplateSet {
+    /// Material index of template `t`'s spheres.
+    pub fn material(&self, t: usize) -> u16 {
+        self.material[t]
+    }
+
+    /// Materials of all templates, in template order.
+    pub fn materials(&self) -> &[u16] {
+        &self.material
+    }
+
+    /// Appends a template (its material checked by the caller); returns its index.
+    pub(crate) fn push(&mut self, template: ClumpTemplate, material: u16) -> u32 {
+        for s in &template.spheres {
+            self.offset.push(s.center);
+            self.radius.push(s.radius);
+        }
+        self.first.push(self.offset.len() as u32);
+        self.list.push(template);
+        self.material.push(material);
+        self.list.len() as u32 - 1
+    }
+
+    /// The templates as a mutable slice, for the step's shared-pointer
+    /// views (which only read them).
+    pub(crate) fn as_mut_slice(&mut self) -> &mut [ClumpTemplate] {
+        &mut self.list
+    }
+}
+
+impl std::ops::Deref for TemplateSet {
+    type Target = [ClumpTemplate];
+    fn deref(&self) -> &[ClumpTemplate] {
+        &self.list
+    }
+}
+
+impl<'a> IntoIterator for &'a TemplateSet {
+    type Item = &'a ClumpTemplate;
+    type IntoIter = std::slice::Iter<'a, ClumpTemplate>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.list.iter()
+    }
+}

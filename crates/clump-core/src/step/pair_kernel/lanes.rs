@@ -1,0 +1,403 @@
+//! The lanes of a batch of touching pairs: one array per quantity, one
+//! element per contact (structure of arrays), and the contact law run over
+//! them. The law loop has no branches and no indirect access, so the
+//! compiler turns it into vector instructions; it is compiled for AVX-512
+//! and AVX2 besides the baseline, and the widest the processor has runs
+//! (`crate::par::simd`). Every level gives the same bits.
+
+use super::BATCH;
+use crate::contact::geometry::sphere_pair;
+use crate::contact::SlidingLaw;
+use crate::par::simd::Simd;
+use glam::DVec3;
+
+/// A 3-vector per lane (x, y and z rows), world frame.
+pub(super) type Rows3 = [[f64; BATCH]; 3];
+
+/// The inputs and outputs of a batch's contacts, lane `k` = contact `k`.
+/// World frame, SI units.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub(super) struct Lanes {
+    // --- inputs
+    /// `x_i − x_j`, m.
+    pub separation: Rows3,
+    /// Velocity of `i`'s body, m/s.
+    pub velocity_i: Rows3,
+    /// `ω` of `i`'s body, rad/s.
+    pub omega_i: Rows3,
+    /// `ω` of `j`'s body, rad/s.
+    pub omega_j: Rows3,
+    /// Tangential spring `ξ`, m: input, and output after the law.
+    pub spring: Rows3,
+    /// Radius of `i`, m.
+    pub radius_i: [f64; BATCH],
+    /// Radius of `j`, m.
+    pub radius_j: [f64; BATCH],
+    /// Mass of `i`'s body, kg.
+    pub mass_i: [f64; BATCH],
+    /// Mass of `j`'s body, kg.
+    pub mass_j: [f64; BATCH],
+    /// Multi-contact scale of the force.
+    pub scale: [f64; BATCH],
+    // --- outputs
+    /// Force on `i`, scaled, N.
+    pub force: Rows3,
+    /// Torque on `i`'s body about its centre of mass, N m.
+    pub torque_i: Rows3,
+    /// Torque on `j`'s body about its centre of mass, N m.
+    pub torque_j: Rows3,
+    /// Unit normal, `j` → `i`.
+    pub normal: Rows3,
+    /// Overlap, m.
+    pub overlap: [f64; BATCH],
+    /// Elastic energy, unscaled, J.
+    pub energy: [f64; BATCH],
+    /// Signed normal force, unscaled, N.
+    pub normal_force: [f64; BATCH],
+    /// Normal stiffness, N/m.
+    pub kn: [f64; BATCH],
+    /// `R*`, m.
+    pub r_star: [f64; BATCH],
+    /// `m*`, kg.
+    pub m_star: [f64; BATCH],
+    // --- more inputs
+    /// Lever arm `x_i − r_cm` of sphere `i` in its body, m.
+    pub arm_i: Rows3,
+    /// Lever arm `x_j − r_cm` of sphere `j` in its body, m.
+    pub arm_j: Rows3,
+    /// Velocity of `j`'s body, m/s.
+    pub velocity_j: Rows3,
+    /// Per-lane law, when the batch mixes models ([`Lanes::set_law`]).
+    pub law: [[f64; BATCH]; 8],
+}
+
+/// Lane `k` of a 3-vector row set.
+#[inline(always)]
+pub(super) fn get3(r: &Rows3, k: usize) -> DVec3 {
+    DVec3::new(r[0][k], r[1][k], r[2][k])
+}
+
+/// Sets lane `k` of a 3-vector row set.
+#[inline(always)]
+pub(super) fn set3(r: &mut Rows3, k: usize, x: DVec3) {
+    r[0][k] = x.x;
+    r[1][k] = x.y;
+    r[2][k] = x.z;
+}
+
+impl Lanes {
+    /// All lanes zero.
+    pub(super) fn zeroed() -> Self {
+        let v = [0.0; BATCH];
+        let v3 = [v; 3];
+        Lanes {
+            separation: v3,
+            velocity_i: v3,
+            omega_i: v3,
+            omega_j: v3,
+            spring: v3,
+            radius_i: v,
+            radius_j: v,
+            mass_i: v,
+            mass_j: v,
+            scale: v,
+            force: v3,
+            torque_i: v3,
+            torque_j: v3,
+            normal: v3,
+            overlap: v,
+            energy: v,
+            normal_force: v,
+            kn: v,
+            r_star: v,
+            m_star: v,
+            arm_i: v3,
+            arm_j: v3,
+            velocity_j: v3,
+            law: [v; 8],
+        }
+    }
+
+    /// Stores lane `k`'s law.
+    #[inline(always)]
+    pub(super) fn set_law(&mut self, k: usize, law: &SlidingLaw) {
+        let v = &mut self.law;
+        v[0][k] = if law.hertz { 1.0 } else { 0.0 };
+        v[1][k] = law.fn_floor;
+        v[2][k] = law.kn_coef;
+        v[3][k] = law.kt_coef;
+        v[4][k] = law.gn_coef;
+        v[5][k] = law.gt_coef;
+        v[6][k] = law.energy_factor;
+        v[7][k] = law.friction;
+    }
+
+    /// Lane `k`'s law, as stored by [`Self::set_law`].
+    #[inline(always)]
+    fn law(&self, k: usize) -> SlidingLaw {
+        let v = &self.law;
+        SlidingLaw {
+            hertz: v[0][k] != 0.0,
+            fn_floor: v[1][k],
+            kn_coef: v[2][k],
+            kt_coef: v[3][k],
+            gn_coef: v[4][k],
+            gt_coef: v[5][k],
+            energy_factor: v[6][k],
+            friction: v[7][k],
+        }
+    }
+
+    /// Contact `k`: the geometry (`crate::contact::geometry`), the
+    /// contact-point velocities from the bodies' velocities and angular
+    /// velocities, `R*`, `m*`, the law, and the torques of its force about
+    /// the two bodies' centres of mass: the contact point is
+    /// `x_c = x_i − a_i n = x_j + a_j n`, so
+    /// `(x_c − r_cm,i) × f = c_i × f − a_i (n × f)` on `i`'s body and
+    /// `(x_c − r_cm,j) × (−f) = −c_j × f − a_j (n × f)` on `j`'s
+    /// (docs/theory.md T-11), with the lever arms `c = x_s − r_cm`.
+    #[inline(always)]
+    fn contact(&mut self, k: usize, law: &SlidingLaw, dt: f64) {
+        let (ri, rj) = (self.radius_i[k], self.radius_j[k]);
+        let g = sphere_pair(get3(&self.separation, k), ri, rj);
+        let (nrm, overlap, ai, aj) = (g.normal, g.overlap, g.arm_i, g.arm_j);
+        let (wi, wj) = (get3(&self.omega_i, k), get3(&self.omega_j, k));
+        let (ci, cj) = (get3(&self.arm_i, k), get3(&self.arm_j, k));
+        // contact-point velocities, v + ω × (x_c − r_cm), with
+        // x_c − r_cm = c_i − a_i n on i's body and c_j + a_j n on j's
+        let vrel = get3(&self.velocity_i, k) + wi.cross(ci - nrm * ai)
+            - (get3(&self.velocity_j, k) + wj.cross(cj + nrm * aj));
+        let (mi, mj) = (self.mass_i[k], self.mass_j[k]);
+        let radius = ri * rj / (ri + rj);
+        let mass = mi * mj / (mi + mj);
+        let mut xi = get3(&self.spring, k);
+        let out = law.evaluate(nrm, overlap, vrel, radius, mass, dt, &mut xi);
+        let scale = self.scale[k];
+        let f = out.force * scale;
+        let nf = nrm.cross(f);
+        set3(&mut self.spring, k, xi);
+        set3(&mut self.force, k, f);
+        set3(&mut self.torque_i, k, ci.cross(f) - nf * ai);
+        set3(&mut self.torque_j, k, -cj.cross(f) - nf * aj);
+        set3(&mut self.normal, k, nrm);
+        self.overlap[k] = overlap;
+        self.energy[k] = out.energy;
+        self.normal_force[k] = out.normal_force;
+        self.kn[k] = out.kn;
+        self.r_star[k] = radius;
+        self.m_star[k] = mass;
+    }
+
+    /// Every row with its field name and row index (to compare batches
+    /// bit for bit).
+    #[cfg(test)]
+    fn rows(&self) -> Vec<(&'static str, usize, &[f64; BATCH])> {
+        let mut out = Vec::new();
+        let v3: [(&'static str, &Rows3); 12] = [
+            ("separation", &self.separation),
+            ("velocity_i", &self.velocity_i),
+            ("omega_i", &self.omega_i),
+            ("omega_j", &self.omega_j),
+            ("spring", &self.spring),
+            ("force", &self.force),
+            ("torque_i", &self.torque_i),
+            ("torque_j", &self.torque_j),
+            ("normal", &self.normal),
+            ("arm_i", &self.arm_i),
+            ("arm_j", &self.arm_j),
+            ("velocity_j", &self.velocity_j),
+        ];
+        for (name, r) in v3 {
+            for (q, x) in r.iter().enumerate() {
+                out.push((name, q, x));
+            }
+        }
+        let v1: [(&'static str, &[f64; BATCH]); 11] = [
+            ("radius_i", &self.radius_i),
+            ("radius_j", &self.radius_j),
+            ("mass_i", &self.mass_i),
+            ("mass_j", &self.mass_j),
+            ("scale", &self.scale),
+            ("overlap", &self.overlap),
+            ("energy", &self.energy),
+            ("normal_force", &self.normal_force),
+            ("kn", &self.kn),
+            ("r_star", &self.r_star),
+            ("m_star", &self.m_star),
+        ];
+        out.extend(v1.into_iter().map(|(n, x)| (n, 0, x)));
+        for (q, x) in self.law.iter().enumerate() {
+            out.push(("law", q, x));
+        }
+        out
+    }
+}
+
+/// Runs [`law_lanes`] over the first `len` lanes, compiled for the vector
+/// instructions `simd` (detected on this processor by [`simd`]).
+#[inline(always)]
+pub(super) fn run_law(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64, simd: Simd) {
+    #[cfg(target_arch = "x86_64")]
+    match simd {
+        // SAFETY: `simd` was detected on this processor.
+        Simd::Avx512 => return unsafe { law_lanes_avx512(l, len, law, dt) },
+        Simd::Avx2 => return unsafe { law_lanes_avx2(l, len, law, dt) },
+        Simd::Baseline => {}
+    }
+    let _ = simd;
+    law_lanes(l, len, law, dt);
+}
+
+/// [`law_lanes`] compiled for AVX-512 (8 doubles per vector).
+///
+/// # Safety
+/// The processor supports AVX-512 F, VL and DQ.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512dq")]
+unsafe fn law_lanes_avx512(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
+    law_lanes(l, len, law, dt)
+}
+
+/// [`law_lanes`] compiled for AVX2 (4 doubles per vector).
+///
+/// # Safety
+/// The processor supports AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn law_lanes_avx2(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
+    law_lanes(l, len, law, dt)
+}
+
+/// The contact geometry and the law over lanes `0..len`: `law` is the model
+/// of every lane, or `None` when the lanes carry their own
+/// ([`Lanes::set_law`]).
+#[inline(always)]
+fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
+    match law {
+        Some(law) => {
+            for k in 0..len.min(BATCH) {
+                l.contact(k, law, dt);
+            }
+        }
+        None => {
+            for k in 0..len.min(BATCH) {
+                let law = l.law(k);
+                l.contact(k, &law, dt);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::par::simd::simd;
+    use crate::par::simd::Simd;
+    use crate::contact::{ContactModel, Material, NormalLaw, PairProperties};
+
+    /// Lanes of contacts with overlaps of 0 to 20 % of the radius, sliding
+    /// and sticking springs, random velocities; `mixed`: every lane its own
+    /// law (Hertz and linear, clamped and tensile).
+    fn lanes(seed: u64, laws: &[SlidingLaw], mixed: bool) -> Lanes {
+        let mut s = seed;
+        let mut u = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut l = Lanes::zeroed();
+        for k in 0..BATCH {
+            fn v3(u: &mut impl FnMut() -> f64, a: f64) -> DVec3 {
+                DVec3::new(u() - 0.5, u() - 0.5, u() - 0.5) * a
+            }
+            let (ri, rj) = (1e-3 * (0.5 + u()), 1e-3 * (0.5 + u()));
+            let n = v3(&mut u, 2.0).normalize();
+            let d = n * (ri + rj) * (1.0 - 0.1 * u());
+            set3(&mut l.separation, k, d);
+            set3(&mut l.velocity_i, k, v3(&mut u, 0.2));
+            set3(&mut l.velocity_j, k, v3(&mut u, 0.2));
+            set3(&mut l.omega_i, k, v3(&mut u, 50.0));
+            set3(&mut l.omega_j, k, v3(&mut u, 50.0));
+            set3(&mut l.arm_i, k, v3(&mut u, 1e-3));
+            set3(&mut l.arm_j, k, v3(&mut u, 1e-3));
+            // springs from far inside the Coulomb cone to far outside
+            set3(&mut l.spring, k, {
+                let a = 1e-4 * u() * u();
+                v3(&mut u, a)
+            });
+            l.radius_i[k] = ri;
+            l.radius_j[k] = rj;
+            l.mass_i[k] = 1e-5 * (0.5 + u());
+            l.mass_j[k] = 1e-5 * (0.5 + u());
+            l.scale[k] = if k % 5 == 0 { 0.5 } else { 1.0 };
+            if mixed {
+                l.set_law(k, &laws[k % laws.len()]);
+            }
+        }
+        l
+    }
+
+    /// The law loop gives the same bits compiled for every vector
+    /// instruction set this processor has (the engine picks the widest at
+    /// run time; results must not depend on the machine's choice).
+    #[test]
+    fn law_lanes_same_bits_at_every_simd_level() {
+        let mat = Material {
+            youngs_modulus: 5e6,
+            poisson_ratio: 0.3,
+            density: 2500.0,
+        };
+        let mut laws = vec![];
+        for normal in [NormalLaw::Hertz, NormalLaw::Linear { kn: 2e3, kt: 1e3 }] {
+            for tensile in [false, true] {
+                let p = PairProperties {
+                    normal,
+                    tensile,
+                    ..PairProperties::default()
+                };
+                laws.push(*ContactModel::new(&mat, &mat, &p).unwrap().sliding_law());
+            }
+        }
+        let mut levels = vec![Simd::Baseline];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx2") {
+                levels.push(Simd::Avx2);
+            }
+            if simd() == Simd::Avx512 {
+                levels.push(Simd::Avx512);
+            }
+        }
+        eprintln!("levels on this processor: {levels:?}");
+        for (case, law) in [None, Some(&laws[0]), Some(&laws[3])]
+            .into_iter()
+            .enumerate()
+        {
+            for len in [BATCH, 13] {
+                let base = lanes(case as u64 + 7, &laws, law.is_none());
+                let mut want = base;
+                law_lanes(&mut want, len, law, 1e-5);
+                // the loop did something: a stiffness on every evaluated lane,
+                // a force on most (a clamped lane separating fast has none)
+                assert!((0..len).all(|k| want.kn[k] > 0.0));
+                let pushed = (0..len).filter(|&k| want.force[0][k] != 0.0).count();
+                assert!(2 * pushed > len, "{pushed} of {len} lanes with a force");
+                for &level in &levels {
+                    let mut l = base;
+                    run_law(&mut l, len, law, 1e-5, level);
+                    for ((name, q, got), (_, _, exp)) in l.rows().into_iter().zip(want.rows()) {
+                        for k in 0..BATCH {
+                            assert_eq!(
+                                got[k].to_bits(),
+                                exp[k].to_bits(),
+                                "{level:?}, case {case}, len {len}: {name}[{q}] lane {k}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
