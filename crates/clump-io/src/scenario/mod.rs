@@ -12,6 +12,7 @@
 mod bodies_file;
 mod build;
 pub mod diag;
+pub mod keys;
 mod model;
 pub mod raw;
 mod source;

@@ -1,0 +1,135 @@
+//! Checkpoints of a run: what they hold ([`Checkpoint`]), writing one from
+//! a [`Runner`], and rebuilding the simulation from one.
+
+use super::error::rt;
+use super::{DriverState, RunError, Runner, VERSION};
+use crate::checkpoint::write_checkpoint;
+use crate::scenario::{self, Files, Scenario};
+use clump_core::shape::ClumpTemplate;
+use clump_core::state::WorldState;
+use clump_core::world::World;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Everything in a checkpoint file (stored as JSON inside the binary
+/// container of [`crate::checkpoint`], so that tagged enums round-trip; f64
+/// values are written in shortest round-trip form and read back exactly).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Checkpoint {
+    /// Clump version that wrote it.
+    pub version: String,
+    /// The scenario file as given when the run started.
+    pub scenario_path: String,
+    /// The scenario text.
+    pub scenario_text: String,
+    /// Files the scenario refers to, keyed as written in the scenario.
+    pub files: BTreeMap<String, Vec<u8>>,
+    /// Output directory of the run.
+    pub outdir: String,
+    /// Templates added during the run (scaled copies), with their material.
+    pub extra_templates: Vec<(ClumpTemplate, u16)>,
+    /// The driver state.
+    pub driver: DriverState,
+    /// The world state.
+    pub world: WorldState,
+}
+impl Runner {
+    /// Writes a checkpoint of the current state into the output directory
+    /// (`checkpoint_<step>.ckpt`); returns its path.
+    pub fn write_checkpoint(&mut self) -> Result<PathBuf, RunError> {
+        let world = self
+            .world
+            .save_state()
+            .map_err(rt("cannot capture the state"))?;
+        let extra: Vec<(ClumpTemplate, u16)> = (self.n_scenario_templates
+            ..self.world.templates.len())
+            .map(|i| {
+                (
+                    self.world.templates[i].clone(),
+                    self.world.templates.material(i),
+                )
+            })
+            .collect();
+        let ck = Checkpoint {
+            version: VERSION.to_string(),
+            scenario_path: self.scenario.path.display().to_string(),
+            scenario_text: self.scenario.text.clone(),
+            files: self.scenario.files.clone(),
+            outdir: self.out.dir.display().to_string(),
+            extra_templates: extra,
+            driver: self.st.clone(),
+            world,
+        };
+        let json = serde_json::to_string(&ck).map_err(rt("cannot encode the checkpoint"))?;
+        let path = self
+            .out
+            .dir
+            .join(format!("checkpoint_{:09}.ckpt", self.world.step));
+        write_checkpoint(&path, &json, self.scenario.fingerprint())
+            .map_err(rt("cannot write the checkpoint"))?;
+        tracing::info!(
+            step = self.world.step,
+            "checkpoint written to {}",
+            path.display()
+        );
+        self.out.last_checkpoint = Some(path.clone());
+        Ok(path)
+    }
+}
+
+/// Decodes checkpoint file bytes (`path` for messages) and rebuilds the
+/// simulation they hold: the scenario (from the stored text and files), the
+/// world with its restored state, and the driver state. Never panics on
+/// bad bytes: every problem is an input error.
+pub fn load_checkpoint(
+    bytes: &[u8],
+    checkpoint: &Path,
+) -> Result<(Scenario, World, DriverState), RunError> {
+    let (json, fingerprint): (String, u64) =
+        crate::checkpoint::decode_checkpoint(bytes, checkpoint)
+            .map_err(|e| RunError::InputMessage(e.to_string()))?;
+    let ck: Checkpoint = serde_json::from_str(&json).map_err(|e| {
+        RunError::InputMessage(format!(
+            "checkpoint {}: cannot decode the state: {e}",
+            checkpoint.display()
+        ))
+    })?;
+    let scenario = scenario::parse(
+        Path::new(&ck.scenario_path),
+        ck.scenario_text.clone(),
+        Files::embedded(ck.files.clone()),
+    )
+    .map_err(RunError::Input)?;
+    if scenario.fingerprint() != fingerprint {
+        return Err(RunError::InputMessage(format!(
+                "checkpoint {}: its scenario fingerprint {fingerprint:016x} does not match the stored scenario ({:016x})",
+                checkpoint.display(),
+                scenario.fingerprint()
+            )));
+    }
+    let mut world = scenario
+        .build_world()
+        .map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
+    for (t, m) in &ck.extra_templates {
+        world
+            .add_template(t.clone(), *m)
+            .map_err(|e| RunError::InputMessage(e.to_string()))?;
+    }
+    let n_ins = scenario.inserts.len();
+    let d = &ck.driver;
+    if d.streams.len() != n_ins || d.inserted.len() != n_ins || d.stage > scenario.stages.len() {
+        return Err(RunError::InputMessage(format!(
+            "checkpoint {}: its driver state does not fit its scenario ({n_ins} insertions, {} stages)",
+            checkpoint.display(),
+            scenario.stages.len()
+        )));
+    }
+    world.restore_state(ck.world).map_err(|e| {
+        RunError::InputMessage(format!(
+            "checkpoint {} does not fit its scenario: {e}",
+            checkpoint.display()
+        ))
+    })?;
+    Ok((scenario, world, ck.driver))
+}

@@ -1,0 +1,162 @@
+//! The output files of a run: VTK series, thermo.csv with the wall columns,
+//! trajectories; opened fresh or resumed, and written at their intervals.
+
+use super::error::rt;
+use super::{RunError, Runner};
+use crate::scenario::Scenario;
+use crate::thermo_csv::{ThermoWriter, WallColumns};
+use crate::trajectory::TrajectoryWriter;
+use crate::vtk::VtkSeries;
+use clump_core::thermo::Thermo;
+use clump_core::world::World;
+use glam::DVec3;
+use std::path::{Path, PathBuf};
+
+/// The thermo columns of every wall: a power column for the walls that move
+/// at the start or are set moving by a stage.
+fn wall_columns(scenario: &Scenario) -> Vec<WallColumns> {
+    let moving = |v: DVec3| v != DVec3::ZERO;
+    scenario
+        .walls
+        .iter()
+        .enumerate()
+        .map(|(i, w)| {
+            let staged = scenario.stages.iter().flat_map(|s| &s.walls).any(|c| {
+                c.wall == i
+                    && (c.velocity.is_some_and(moving) || c.angular_velocity.is_some_and(moving))
+            });
+            WallColumns {
+                name: w.name.clone(),
+                power: staged || moving(w.motion.velocity) || moving(w.motion.angular_velocity),
+            }
+        })
+        .collect()
+}
+
+/// The world's thermo row with each wall's torque taken about its torque
+/// point (`T_P = T_c + (c − P) × F`, world frame), and the power each wall's
+/// rigid motion delivers to the particles, `−(F·v + T_c·ω)` (W).
+fn wall_thermo(world: &World, torque_points: &[Option<DVec3>]) -> (Thermo, Vec<f64>) {
+    let mut t = world.thermo();
+    let mut power = Vec::with_capacity(t.wall_loads.len());
+    for (i, (l, w)) in t.wall_loads.iter_mut().zip(&world.walls).enumerate() {
+        let m = &w.motion;
+        power.push(-(l.force.dot(m.velocity) + l.torque.dot(m.angular_velocity)));
+        if let Some(p) = torque_points.get(i).copied().flatten() {
+            l.torque += (m.center - p).cross(l.force);
+        }
+    }
+    (t, power)
+}
+
+/// The open output files of a run.
+pub(super) struct Outputs {
+    pub(super) dir: PathBuf,
+    pub(super) vtk: Option<VtkSeries>,
+    pub(super) thermo: Option<ThermoWriter>,
+    pub(super) trajectory: Option<TrajectoryWriter>,
+    pub(super) last_checkpoint: Option<PathBuf>,
+}
+
+/// Whether a run starts fresh or resumes from a checkpoint.
+#[derive(Clone, Copy)]
+pub(super) enum Start<'a> {
+    /// A new run: new output files.
+    Fresh,
+    /// A run resumed from `checkpoint`, whose world is at `step` and `time`
+    /// (s): the existing output files are continued from that point.
+    Resume {
+        checkpoint: &'a Path,
+        step: u64,
+        time: f64,
+    },
+}
+
+impl Outputs {
+    /// Creates `outdir` with a copy of the scenario and opens the outputs
+    /// the scenario asks for, new or continued as `start` says.
+    pub(super) fn open(
+        scenario: &Scenario,
+        outdir: &Path,
+        start: Start,
+    ) -> Result<Outputs, RunError> {
+        std::fs::create_dir_all(outdir).map_err(rt(&format!(
+            "cannot create output directory {}",
+            outdir.display()
+        )))?;
+        crate::atomic::write_atomic(outdir.join("scenario.toml"), scenario.text.as_bytes())
+            .map_err(rt("cannot copy the scenario"))?;
+        let o = &scenario.output;
+        let wall_columns = wall_columns(scenario);
+        Ok(Outputs {
+            dir: outdir.to_path_buf(),
+            vtk: match (o.vtk, start) {
+                (None, _) => None,
+                (Some(_), Start::Fresh) => {
+                    Some(VtkSeries::new(outdir).map_err(rt("cannot start VTK output"))?)
+                }
+                (Some(_), Start::Resume { time, .. }) => {
+                    Some(VtkSeries::resume(outdir, time).map_err(rt("cannot resume VTK output"))?)
+                }
+            },
+            thermo: match (o.thermo, start) {
+                (None, _) => None,
+                (Some(_), Start::Fresh) => Some(
+                    ThermoWriter::create_walls(outdir.join("thermo.csv"), &wall_columns)
+                        .map_err(rt("cannot create thermo.csv"))?,
+                ),
+                (Some(_), Start::Resume { step, .. }) => Some(
+                    ThermoWriter::resume_walls(outdir.join("thermo.csv"), &wall_columns, step)
+                        .map_err(rt("cannot resume thermo.csv"))?,
+                ),
+            },
+            trajectory: match (&o.trajectory, start) {
+                (Some(t), Start::Fresh) if !t.bodies.is_empty() => Some(
+                    TrajectoryWriter::create(outdir, &t.bodies)
+                        .map_err(rt("cannot create trajectory files"))?,
+                ),
+                (Some(t), Start::Resume { time, .. }) if !t.bodies.is_empty() => Some(
+                    TrajectoryWriter::resume(outdir, &t.bodies, time)
+                        .map_err(rt("cannot resume trajectory files"))?,
+                ),
+                _ => None,
+            },
+            last_checkpoint: match start {
+                Start::Fresh => None,
+                Start::Resume { checkpoint, .. } => Some(checkpoint.to_path_buf()),
+            },
+        })
+    }
+}
+
+impl Runner {
+    pub(super) fn write_outputs(&mut self, finished: bool) -> Result<(), RunError> {
+        let step = self.world.step;
+        let o = self.scenario.output.clone();
+        if let (Some(every), Some(vtk)) = (o.vtk, self.out.vtk.as_mut()) {
+            if step >= self.st.next_vtk || (finished && self.st.last_vtk != Some(step)) {
+                vtk.write_frame(&self.world, step)
+                    .map_err(rt("cannot write VTK output"))?;
+                self.st.last_vtk = Some(step);
+                self.st.next_vtk = step + every;
+            }
+        }
+        if let (Some(every), Some(th)) = (o.thermo, self.out.thermo.as_mut()) {
+            if step >= self.st.next_thermo || (finished && self.st.last_thermo != Some(step)) {
+                let (thermo, power) = wall_thermo(&self.world, &self.scenario.torque_points);
+                th.write_row(&thermo, &power)
+                    .map_err(rt("cannot write thermo.csv"))?;
+                self.st.last_thermo = Some(step);
+                self.st.next_thermo = step + every;
+            }
+        }
+        if let (Some(t), Some(tw)) = (&o.trajectory, self.out.trajectory.as_mut()) {
+            if step >= self.st.next_trajectory {
+                tw.write(&self.world)
+                    .map_err(rt("cannot write trajectories"))?;
+                self.st.next_trajectory = step + t.every;
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,211 @@
+//! `[contact]` and `[[pair]]`: contact laws and their coefficients.
+
+use super::raw::*;
+use super::source::Seg;
+use super::Seg::{I, K};
+use super::{lookup, Cx, R};
+use clump_core::contact::{NormalLaw, PairProperties, RollingLaw};
+use std::collections::HashMap;
+
+/// The contact properties of every pair of materials, row-major
+/// (`nmat × nmat`): `[contact]`, overridden by `[[pair]]` entries.
+pub(super) fn pair_table(
+    cx: &mut Cx,
+    raw: &RawScenario,
+    material_names: &[String],
+    nmat: usize,
+) -> R<Vec<PairProperties>> {
+    // ---------------- contact properties
+    let default_props = contact_props(
+        cx,
+        &[K("contact")],
+        "[contact]",
+        &ContactFields::from_contact(&raw.contact),
+        &PairProperties::default(),
+    )?;
+    let mut pair_table = vec![default_props; nmat * nmat];
+    let mut pair_set: HashMap<(usize, usize), usize> = HashMap::new();
+    for (i, pr) in raw.pair.iter().enumerate() {
+        let t = [K("pair"), I(i)];
+        let mp = [K("pair"), I(i), K("materials")];
+        let ms = pr
+            .materials
+            .as_ref()
+            .ok_or_else(|| cx.missing(&t, "[[pair]]", "materials", "materials = [\"a\", \"b\"]"))?;
+        if ms.len() != 2 {
+            return Err(cx.err(
+                &mp,
+                format!(
+                    "'materials' must name exactly 2 materials, found {}",
+                    ms.len()
+                ),
+            ));
+        }
+        let a = lookup(
+            cx,
+            &[K("pair"), I(i), K("materials"), I(0)],
+            "material",
+            &ms[0],
+            &material_names,
+        )?;
+        let b = lookup(
+            cx,
+            &[K("pair"), I(i), K("materials"), I(1)],
+            "material",
+            &ms[1],
+            &material_names,
+        )?;
+        let key = (a.min(b), a.max(b));
+        if let Some(prev) = pair_set.insert(key, i) {
+            return Err(cx
+                .err(&mp, format!("pair {} – {} is defined twice", ms[0], ms[1]))
+                .note(format!(
+                    "note: first defined in [[pair]] number {}",
+                    prev + 1
+                )));
+        }
+        let props = contact_props(
+            cx,
+            &t,
+            "[[pair]]",
+            &ContactFields::from_pair(pr),
+            &default_props,
+        )?;
+        pair_table[a * nmat + b] = props;
+        pair_table[b * nmat + a] = props;
+    }
+    Ok(pair_table)
+}
+
+/// Contact keys shared by `[contact]` and `[[pair]]`.
+struct ContactFields {
+    restitution: Option<f64>,
+    friction: Option<f64>,
+    rolling_friction: Option<f64>,
+    law: Option<LawName>,
+    kn: Option<f64>,
+    kt: Option<f64>,
+    damping: Option<clump_core::contact::DampingLaw>,
+    rolling: Option<RollingLaw>,
+    tensile: Option<bool>,
+}
+
+impl ContactFields {
+    fn from_contact(c: &RawContact) -> Self {
+        ContactFields {
+            restitution: c.restitution,
+            friction: c.friction,
+            rolling_friction: c.rolling_friction,
+            law: c.law,
+            kn: c.kn,
+            kt: c.kt,
+            damping: c.damping,
+            rolling: c.rolling,
+            tensile: c.tensile,
+        }
+    }
+    fn from_pair(c: &RawPair) -> Self {
+        ContactFields {
+            restitution: c.restitution,
+            friction: c.friction,
+            rolling_friction: c.rolling_friction,
+            law: c.law,
+            kn: c.kn,
+            kt: c.kt,
+            damping: c.damping,
+            rolling: c.rolling,
+            tensile: c.tensile,
+        }
+    }
+}
+
+fn contact_props(
+    cx: &mut Cx,
+    base: &[Seg],
+    what: &str,
+    f: &ContactFields,
+    dflt: &PairProperties,
+) -> R<PairProperties> {
+    let p = |k: &'static str| {
+        let mut v = base.to_vec();
+        v.push(K(k));
+        v
+    };
+    let mut out = *dflt;
+    if let Some(e) = f.restitution {
+        if !(0.0..=1.0).contains(&e) {
+            return Err(cx
+                .err(
+                    &p("restitution"),
+                    format!("restitution must lie in [0, 1], found {e}"),
+                )
+                .label("outside [0, 1]")
+                .note("note: e = 1 is perfectly elastic, e = 0 perfectly plastic"));
+        }
+        out.restitution = e;
+    }
+    if let Some(mu) = f.friction {
+        out.friction = cx.nonneg(&p("friction"), mu, "friction", "")?;
+    }
+    if let Some(mu) = f.rolling_friction {
+        out.rolling_friction = cx.nonneg(&p("rolling_friction"), mu, "rolling_friction", "")?;
+    }
+    if let Some(d) = f.damping {
+        out.damping = d;
+    }
+    if let Some(r) = f.rolling {
+        out.rolling = r;
+    }
+    if let Some(t) = f.tensile {
+        out.tensile = t;
+    }
+    let law = f.law.unwrap_or(match dflt.normal {
+        NormalLaw::Hertz => LawName::Hertz,
+        NormalLaw::Linear { .. } => LawName::Linear,
+    });
+    match law {
+        LawName::Hertz => {
+            for (k, v) in [("kn", f.kn), ("kt", f.kt)] {
+                if v.is_some() {
+                    return Err(cx
+                        .src
+                        .error_at_key(&p(k), format!("'{k}' is only used with law = \"linear\" (this {what} uses the Hertz law)"))
+                        .note("help: add law = \"linear\", or remove the stiffness (Hertz stiffness follows from the materials)"));
+                }
+            }
+            out.normal = NormalLaw::Hertz;
+        }
+        LawName::Linear => {
+            let (dkn, dkt) = match dflt.normal {
+                NormalLaw::Linear { kn, kt } => (Some(kn), Some(kt)),
+                NormalLaw::Hertz => (None, None),
+            };
+            let kn = f.kn.or(dkn).ok_or_else(|| {
+                cx.missing(
+                    base,
+                    what,
+                    "kn",
+                    "law = \"linear\" needs the normal stiffness in N/m, e.g. kn = 1e5",
+                )
+            })?;
+            let kn = cx.positive(&p("kn"), kn, "kn", "N/m")?;
+            let kt = match f.kt {
+                Some(kt) => cx.nonneg(&p("kt"), kt, "kt", "N/m")?,
+                None => dkt.filter(|_| f.kn.is_none()).unwrap_or(2.0 / 7.0 * kn),
+            };
+            out.normal = NormalLaw::Linear { kn, kt };
+        }
+    }
+    if out.rolling != RollingLaw::None && out.rolling_friction == 0.0 && f.rolling.is_some() {
+        let w = cx.src.warning_at(
+            &p("rolling"),
+            format!(
+                "rolling = {:?} with rolling_friction = 0 has no effect",
+                out.rolling
+            )
+            .to_lowercase(),
+        );
+        cx.warnings.push(w);
+    }
+    Ok(out)
+}

@@ -1,0 +1,254 @@
+//! Validation and resolution of a parsed scenario: names become indices,
+//! defaults are filled in, physical ranges are checked and every error points
+//! at the offending key.
+#![allow(
+    clippy::result_large_err,
+    clippy::neg_cmp_op_on_partial_ord,
+    clippy::unnecessary_map_or
+)]
+
+mod contact;
+mod domain;
+mod inserts;
+mod materials;
+mod output;
+mod stages;
+mod templates;
+mod time_step;
+mod walls;
+
+use super::diag::{did_you_mean, list, Diagnostic};
+use super::model::*;
+use super::raw::*;
+use super::source::{Seg, Source};
+use super::Files;
+use super::{bodies_file, diag, keys, model, raw, source};
+use clump_core::health::HealthLimits;
+use clump_core::multi_contact::MultiContact;
+use clump_core::world::WorldConfig;
+use glam::DVec3;
+
+type R<T> = Result<T, Diagnostic>;
+
+/// Largest `dt / t_Rayleigh` accepted.
+pub const DT_ERROR_FRACTION: f64 = 0.5;
+/// `dt / t_Rayleigh` above which a warning is given.
+pub const DT_WARN_FRACTION: f64 = 0.3;
+/// Most spheres of a built-in rod (`n`): bounds memory and the mass
+/// property computation of a mistyped `n`.
+pub const MAX_ROD_SPHERES: u64 = 10_000;
+/// Requested solid fraction of a pack region above which the scenario is refused.
+pub const PACK_ERROR_FRACTION: f64 = 0.45;
+
+fn sp(unit: &str) -> String {
+    if unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {unit}")
+    }
+}
+
+fn v3(a: [f64; 3]) -> DVec3 {
+    DVec3::from_array(a)
+}
+
+struct Cx<'a> {
+    src: &'a Source,
+    files: &'a mut Files,
+    warnings: Vec<Diagnostic>,
+}
+
+impl Cx<'_> {
+    fn err(&self, path: &[Seg], msg: impl Into<String>) -> Diagnostic {
+        self.src.error_at(path, msg)
+    }
+
+    fn missing(&self, table: &[Seg], what: &str, key: &str, help: &str) -> Diagnostic {
+        let mut d = self
+            .src
+            .error_at(table, format!("missing key '{key}' in {what}"));
+        if !help.is_empty() {
+            d = d.note(format!("help: {help}"));
+        }
+        d
+    }
+
+    fn positive(&self, path: &[Seg], x: f64, key: &str, unit: &str) -> R<f64> {
+        if x.is_finite() && x > 0.0 {
+            Ok(x)
+        } else {
+            Err(self
+                .err(path, format!("'{key}' must be > 0{}, found {x}", sp(unit)))
+                .label("must be positive"))
+        }
+    }
+
+    fn nonneg(&self, path: &[Seg], x: f64, key: &str, unit: &str) -> R<f64> {
+        if x.is_finite() && x >= 0.0 {
+            Ok(x)
+        } else {
+            Err(self
+                .err(path, format!("'{key}' must be >= 0{}, found {x}", sp(unit)))
+                .label("must not be negative"))
+        }
+    }
+
+    fn vec3(&self, path: &[Seg], a: [f64; 3], key: &str) -> R<DVec3> {
+        let v = v3(a);
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.err(
+                path,
+                format!("'{key}' must have finite components, found {v}"),
+            ))
+        }
+    }
+
+    fn unit(&self, path: &[Seg], a: [f64; 3], key: &str) -> R<DVec3> {
+        let v = self.vec3(path, a, key)?;
+        let l = v.length();
+        if l < 1e-12 {
+            return Err(self.err(
+                path,
+                format!("'{key}' must be a non-zero direction vector, found {v}"),
+            ));
+        }
+        if (l - 1.0).abs() > 1e-6 {
+            self.warn_later(
+                path,
+                format!(
+                    "'{key}' = {v} is not a unit vector; it is normalised to {}",
+                    v / l
+                ),
+            );
+        }
+        Ok(v / l)
+    }
+
+    /// Reads a file the scenario refers to (`what`: "template", "mesh", …);
+    /// the error points at `path` and says where relative paths start.
+    fn read_file(&mut self, path: &[Seg], what: &str, f: &str) -> R<Vec<u8>> {
+        match self.files.read(f) {
+            Ok(b) => Ok(b),
+            Err(e) => Err(self
+                .err(path, format!("cannot read {what} file '{f}': {e}"))
+                .label("file not readable")
+                .note(format!(
+                    "note: paths are relative to the scenario file's folder ({})",
+                    self.files.base_display()
+                ))),
+        }
+    }
+
+    fn warn_later(&self, _path: &[Seg], _msg: String) {
+        // normalisation is documented; no warning needed
+    }
+}
+
+/// Name lookup with "which exist" in the error.
+fn lookup(cx: &Cx, path: &[Seg], kind: &str, name: &str, names: &[String]) -> R<usize> {
+    if let Some(i) = names.iter().position(|n| n == name) {
+        return Ok(i);
+    }
+    let mut d = cx.err(path, format!("{kind} '{name}' does not exist"));
+    d = match did_you_mean(name, names.iter().map(|s| s.as_str())) {
+        Some(s) => d.label(format!("did you mean '{s}'?")),
+        None => d.label(format!("no {kind} of this name")),
+    };
+    let plural = if kind.ends_with('x') {
+        format!("{kind}es")
+    } else {
+        format!("{kind}s")
+    };
+    Err(d.note(format!("defined {plural}: {}", list(names))))
+}
+
+fn unique_name(cx: &Cx, path: &[Seg], kind: &str, name: &str, seen: &[String]) -> R<()> {
+    if name.trim().is_empty() {
+        return Err(cx.err(path, format!("{kind} name must not be empty")));
+    }
+    if seen.iter().any(|s| s == name) {
+        return Err(cx
+            .err(path, format!("duplicate {kind} name '{name}'"))
+            .label("already defined above"));
+    }
+    Ok(())
+}
+
+/// Resolves a parsed scenario.
+pub(super) fn build(
+    src: &Source,
+    raw: RawScenario,
+    files: &mut Files,
+) -> Result<Scenario, Diagnostic> {
+    let mut cx = Cx {
+        src,
+        files,
+        warnings: Vec::new(),
+    };
+    let sc = build_inner(&mut cx, raw)?;
+    Ok(Scenario {
+        warnings: cx.warnings,
+        ..sc
+    })
+}
+
+fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
+    let (material_names, materials) = materials::materials(cx, &raw)?;
+    let pair_table = contact::pair_table(cx, &raw, &material_names, materials.len())?;
+    let (template_names, templates) = templates::templates(cx, &raw, &material_names, &materials)?;
+    let (mix_names, mixes) = templates::mixes(cx, &raw, &template_names)?;
+    let sim = raw.simulation.clone().unwrap_or_default();
+    let setting = domain::setting(cx, &raw, &sim)?;
+    let time_step = time_step::time_step(cx, &sim, &templates, &mixes, &materials)?;
+    let dt = time_step.dt;
+    let (wall_names, walls, meshes, torque_points) = walls::walls(cx, &raw, &material_names)?;
+    let stages = stages::stages(cx, &raw, &sim, &wall_names, dt)?;
+    let inserts = inserts::inserts(
+        cx,
+        &raw,
+        &stages,
+        &templates,
+        &template_names,
+        &mixes,
+        &mix_names,
+        dt,
+    )?;
+    let output = output::output(cx, &raw, &stages, dt)?;
+
+    let config = WorldConfig {
+        domain: setting.domain,
+        gravity: setting.gravity,
+        dt,
+        rotation: setting.rotation,
+        added_mass: setting.added_mass,
+        skin: setting.skin,
+        multi_contact: sim.multi_contact.unwrap_or(MultiContact::Sum),
+    };
+    let stability = HealthLimits {
+        max_overlap_ratio: setting.max_overlap_ratio,
+        kinetic_jump: setting.kinetic_jump,
+        specific_energy_floor: domain::specific_energy_floor(&config, &inserts, &walls, &stages),
+    };
+    Ok(Scenario {
+        path: cx.src.path.clone(),
+        text: cx.src.text.clone(),
+        files: cx.files.loaded.clone(),
+        material_names,
+        materials,
+        pair_table,
+        templates,
+        mixes,
+        inserts,
+        walls,
+        meshes,
+        torque_points,
+        config,
+        time_step,
+        stability,
+        stages,
+        output,
+        warnings: Vec::new(),
+    })
+}
