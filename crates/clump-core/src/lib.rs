@@ -19,6 +19,7 @@
 pub mod body;
 pub mod boundary;
 pub mod contact;
+pub mod dof;
 pub mod health;
 pub mod insert;
 pub mod math;

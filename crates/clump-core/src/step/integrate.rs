@@ -147,9 +147,14 @@ impl FirstHalf {
             *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
             rot
         } else {
-            // before its start step: ballistic, forces ignored
+            // before its start step: ballistic, forces ignored; a driven
+            // body also turns at its prescribed world angular velocity
             x += *v * dt;
-            DMat3::from_quat(q)
+            if self.kicks.start.read(i) == crate::dof::DRIVEN {
+                driven_turn(&mut q, l, *om, self.inertia.read(i), dt)
+            } else {
+                DMat3::from_quat(q)
+            }
         };
         *self.pos.get(i) = x;
         *self.quat.get(i) = q;
@@ -175,6 +180,21 @@ impl FirstHalf {
         }
         stale
     }
+}
+
+/// Turns a driven body (see [`crate::dof`]) over `dt` at its constant world
+/// angular velocity `om` (rad/s): `q ← exp(ω dt) q`, and sets its world
+/// angular momentum `l = R I Rᵀ ω` (kg m²/s) to match; `inertia` holds the
+/// principal moments (kg m²). A body at rest (ω = 0) keeps its orientation
+/// bit for bit. Returns the new rotation matrix (body → world).
+#[inline(never)]
+fn driven_turn(q: &mut glam::DQuat, l: &mut DVec3, om: DVec3, inertia: DVec3, dt: f64) -> DMat3 {
+    if om != DVec3::ZERO {
+        *q = crate::math::renormalize(crate::math::quat_from_rotation_vector(om * dt) * *q);
+    }
+    let rot = DMat3::from_quat(*q);
+    *l = rot * (inertia * (rot.transpose() * om));
+    rot
 }
 
 /// Bodies per block of the first half step: the gather's chunk, so that a
