@@ -123,7 +123,10 @@ fn driven_body_follows_its_prescribed_motion() {
     let exact = DQuat::from_axis_angle(om.normalize(), angle) * q0;
     let dq = (w.bodies.orientation[b] * exact.conjugate()).normalize();
     let err_angle = 2.0 * dq.xyz().length();
-    eprintln!("driven: x = {x} (exact {}), orientation error {err_angle:.2e} rad after {angle:.1} rad", v * time);
+    eprintln!(
+        "driven: x = {x} (exact {}), orientation error {err_angle:.2e} rad after {angle:.1} rad",
+        v * time
+    );
     assert!((x - v * time).length() < 1e-12 * (v * time).length());
     assert!(err_angle < 1e-11);
     assert_eq!(w.bodies.velocity[b], v);
@@ -195,7 +198,12 @@ fn driven_body_torque_is_the_coulomb_drag() {
     assert!(rel(contact_force.y, mu * ms * G) < 1e-6);
     assert!(rel(contact_force.z, -ms * G) < 1e-6);
     // power the motor supplies = heat of sliding friction: −M·ω = μ m g ω (R − δ/2)
-    assert!(rel(-torque.dot(DVec3::new(omega, 0.0, 0.0)), mu * ms * G * omega * (big - 0.5 * delta)) < 1e-6);
+    assert!(
+        rel(
+            -torque.dot(DVec3::new(omega, 0.0, 0.0)),
+            mu * ms * G * omega * (big - 0.5 * delta)
+        ) < 1e-6
+    );
 }
 
 /// An asymmetric three-sphere clump (distinct principal moments).

@@ -28,6 +28,8 @@ use glam::{DMat3, DQuat, DVec3};
 use std::collections::HashMap;
 use Seg::{I, K};
 
+mod dof;
+
 type R<T> = Result<T, Diagnostic>;
 
 /// Largest `dt / t_Rayleigh` accepted.
@@ -1165,32 +1167,40 @@ fn build_template(
         .iter()
         .map(|s| Sphere::new(s.center * scale, s.radius * scale))
         .collect();
-    let template =
-        match (t.mass, t.inertia) {
-            (None, None) => ClumpTemplate::from_spheres(&name, &spheres, density),
-            (Some(m), Some(inertia)) => {
-                cx.positive(&p("mass"), m, "mass", "kg")?;
-                let mat = DMat3::from_cols_array_2d(&inertia).transpose();
-                ClumpTemplate::with_override(&name, &spheres, density, m, mat)
+    let template = match (t.mass, t.inertia) {
+        (None, None) => {
+            dof::template_center_of_mass(cx, i, t, scale)?;
+            ClumpTemplate::from_spheres(&name, &spheres, density)
+        }
+        (Some(m), Some(inertia)) => {
+            cx.positive(&p("mass"), m, "mass", "kg")?;
+            let mat = DMat3::from_cols_array_2d(&inertia).transpose();
+            match dof::template_center_of_mass(cx, i, t, scale)? {
+                Some(c) => ClumpTemplate::with_override_about(&name, &spheres, density, m, mat, c),
+                None => ClumpTemplate::with_override(&name, &spheres, density, m, mat),
             }
-            (Some(_), None) => return Err(cx
+        }
+        (Some(_), None) => {
+            return Err(cx
                 .src
                 .error_at_key(
                     &p("mass"),
                     "'mass' needs 'inertia' too (3×3 tensor in kg m^2 about the centre of mass)",
                 )
-                .note("help: inertia = [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz], [Ixz, Iyz, Izz]]")),
-            (None, Some(_)) => {
-                return Err(cx
-                    .src
-                    .error_at_key(&p("inertia"), "'inertia' needs 'mass' too (kg)"))
-            }
+                .note("help: inertia = [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz], [Ixz, Iyz, Izz]]"))
         }
-        .map_err(|e| shape_error(cx, i, e, inline))?;
+        (None, Some(_)) => {
+            return Err(cx
+                .src
+                .error_at_key(&p("inertia"), "'inertia' needs 'mass' too (kg)"))
+        }
+    }
+    .map_err(|e| shape_error(cx, i, e, inline))?;
     Ok(TemplateDef {
         name,
         material: mi as u16,
         template,
+        dof: dof::template_dof(t),
     })
 }
 
@@ -1695,8 +1705,15 @@ fn build_insert(
         ("start", ins.start.is_some()),
         ("end", ins.end.is_some()),
         ("max_attempts", ins.max_attempts.is_some()),
+        ("euler", ins.euler.is_some()),
+        ("angular_velocity", ins.angular_velocity.is_some()),
+        ("force_flags", ins.force_flags.is_some()),
+        ("torque_flags", ins.torque_flags.is_some()),
+        ("fixed", ins.fixed.is_some()),
+        ("driven", ins.driven.is_some()),
+        ("start_after", ins.start_after.is_some()),
     ] {
-        if present && !allowed.contains(&k) {
+        if present && !allowed.contains(&k) && !dof::applies(kind, k) {
             return Err(cx
                 .src
                 .error_at_key(&p(k), format!("'{k}' does not apply to kind = \"{kname}\""))
@@ -1706,6 +1723,7 @@ fn build_insert(
                 )));
         }
     }
+    let dynamics = dof::insert_dynamics(cx, i, ins, kind, templates)?;
     if kind == InsertKind::File {
         let f = ins.file.as_ref().ok_or_else(|| {
             cx.missing(
@@ -1721,13 +1739,26 @@ fn build_insert(
             None => None,
         };
         let format = ins.format.unwrap_or_default();
-        let mut bodies =
-            super::bodies_file::parse(&bytes, format, template_names, default_template).map_err(
-                |(line, msg)| {
-                    cx.err(&p("file"), format!("{f}:{line}: {msg}"))
-                        .label("in this file")
-                },
-            )?;
+        let mut bodies = super::bodies_file::parse(
+            &bytes,
+            format,
+            template_names,
+            default_template,
+            &super::bodies_file::RowDefaults {
+                dof: dynamics.by_template.clone(),
+                dt,
+            },
+        )
+        .map_err(|(line, msg)| {
+            cx.err(&p("file"), format!("{f}:{line}: {msg}"))
+                .label("in this file")
+        })?;
+        if let (true, Some((k, what))) = (dynamics.fixed, dof::moving_body(&bodies)) {
+            return Err(cx.err(
+                &p("fixed"),
+                format!("fixed bodies are at rest, but body {k} of '{f}' has a {what}"),
+            ));
+        }
         if ins.orientation_frame == Some(super::raw::OrientationFrame::Input) {
             // q_input maps (x_input − com) to world; x_input − com =
             // input_to_body⁻¹ x_body, so body → world is q_input · input_to_body⁻¹.
@@ -1777,6 +1808,9 @@ fn build_insert(
         None => DVec3::ZERO,
     };
     let orientation = match ins.orientation {
+        None if dynamics.euler.is_some() => Orientation::Fixed {
+            quaternion: dynamics.euler.unwrap_or_default(),
+        },
         None => Orientation::Random,
         Some(q) => {
             let q = DQuat::from_xyzw(q[1], q[2], q[3], q[0]);
@@ -1866,6 +1900,8 @@ fn build_insert(
                 velocity,
                 orientation,
                 max_attempts_per_body: ins.max_attempts.unwrap_or(1000),
+                angular_velocity: dynamics.angular_velocity,
+                dof: dynamics.by_template.clone(),
             };
             Ok(InsertDef {
                 stage,
@@ -1980,6 +2016,9 @@ fn build_insert(
                 exit_normal,
                 orientation,
                 max_attempts_per_body: ins.max_attempts.unwrap_or(20),
+                angular_velocity: dynamics.angular_velocity,
+                dof: dynamics.by_template.clone(),
+                start_after: ins.start_after,
             };
             let expected = (body_rate * (end - t0 - start)).max(0.0).floor();
             Ok(InsertDef {

@@ -70,6 +70,8 @@ pub struct TemplateDef {
     pub material: u16,
     /// The template, body frame, SI.
     pub template: ClumpTemplate,
+    /// Force and torque flags of its bodies (`force_flags`, `torque_flags`).
+    pub dof: clump_core::dof::Dof,
 }
 
 /// A named particle mix (template indices refer to [`Scenario::templates`]).
