@@ -199,7 +199,7 @@ fn driven_sphere_from_a_scenario_feels_the_coulomb_torque() {
         d.join("s.toml"),
         text(
             "force_flags = [false, false, true]\ntorque_flags = [false, false, false]",
-            "",
+            "[output.trajectory]\nbodies = [1]\nevery_steps = 20000\nloads = true",
             "steps = 20000",
         ),
     )
@@ -213,6 +213,19 @@ fn driven_sphere_from_a_scenario_feels_the_coulomb_torque() {
     eprintln!("driven torque {} (theory {theory:.6e})", w.bodies.torque[b]);
     assert_eq!(w.bodies.position[b], DVec3::ZERO);
     assert!(((w.bodies.torque[b].x - theory) / theory).abs() < 1e-6);
+    // the same load in the driven body's trajectory (last row, column mx)
+    let traj = std::fs::read_to_string(d.join("out").join("traj_1.csv")).unwrap();
+    let header: Vec<&str> = traj.lines().next().unwrap().split(',').collect();
+    let last: Vec<f64> = traj
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let mx = last[header.iter().position(|c| *c == "mx").unwrap()];
+    assert_eq!(last[0], 0.2);
+    assert!(((mx - theory) / theory).abs() < 1e-6, "trajectory mx {mx}");
     let s = w.body_index(2).unwrap();
     assert_eq!((w.bodies.position[s].x, w.bodies.position[s].y), (0.0, 0.0));
 }
@@ -298,4 +311,72 @@ fn template_center_of_mass_is_the_given_point() {
         e.contains("'center_of_mass' needs 'mass' and 'inertia'"),
         "{e}"
     );
+}
+
+/// Trajectory Euler output against a closed form: a body driven to turn
+/// about world Z at Ω, from Euler angles (φ0, θ0, ψ0) given in the body
+/// file, has φ(t) = φ0 + Ω t, θ and ψ constant (a rotation about Z
+/// composes with the first z-x-z rotation), and the written rows of A are
+/// the seed's eq. 4.3 at those angles.
+#[test]
+fn trajectory_euler_columns_of_a_body_turning_about_z() {
+    let (phi0, theta0, psi0, om) = (0.3f64, 1.2f64, 2.5f64, 1.5f64);
+    let d = std::env::temp_dir().join(format!("clump_dyn_euler_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    std::fs::write(
+        d.join("bodies.csv"),
+        format!(
+            "template,x,y,z,phi,theta,psi,wz,driven\nsmall,0,0,0,{phi0},{theta0},{psi0},{om},1\n"
+        ),
+    )
+    .unwrap();
+    let t = text(
+        "",
+        "[output.trajectory]\nbodies = [1]\nevery_steps = 1000\neuler = true",
+        "steps = 20000",
+    );
+    std::fs::write(d.join("s.toml"), &t).unwrap();
+    let sc = scenario::load(&d.join("s.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let mut run = Runner::new(sc, &d.join("out")).unwrap();
+    run.run(RunOptions::default()).unwrap();
+    let text = std::fs::read_to_string(d.join("out").join("traj_1.csv")).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |n: &str| header.iter().position(|c| *c == n).unwrap();
+    let mut rows = 0;
+    for line in lines {
+        let r: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let time = r[col("time")];
+        let phi = (phi0 + om * time).rem_euclid(2.0 * PI);
+        let dphi = (r[col("phi")] - phi + PI).rem_euclid(2.0 * PI) - PI;
+        assert!(
+            dphi.abs() < 1e-12,
+            "t {time}: phi {} vs {phi}",
+            r[col("phi")]
+        );
+        assert!((r[col("theta")] - theta0).abs() < 1e-12);
+        assert!((r[col("psi")] - psi0).abs() < 1e-12);
+        let (sf, cf, st, ct, sp, cp) = (
+            phi.sin(),
+            phi.cos(),
+            theta0.sin(),
+            theta0.cos(),
+            psi0.sin(),
+            psi0.cos(),
+        );
+        let a = [
+            [cf * cp - sf * ct * sp, sf * cp + cf * ct * sp, st * sp],
+            [-cf * sp - sf * ct * cp, -sf * sp + cf * ct * cp, st * cp],
+            [sf * st, -cf * st, ct],
+        ];
+        for (i, row) in ["ex", "ey", "ez"].iter().enumerate() {
+            for (j, c) in ["x", "y", "z"].iter().enumerate() {
+                let v = r[col(&format!("{row}{c}"))];
+                assert!((v - a[i][j]).abs() < 1e-12, "{row}{c} {v} vs {}", a[i][j]);
+            }
+        }
+        rows += 1;
+    }
+    assert!(rows >= 20, "{rows} rows");
 }

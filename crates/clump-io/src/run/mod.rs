@@ -385,7 +385,7 @@ impl Runner {
             },
             trajectory: match &o.trajectory {
                 Some(t) if !t.bodies.is_empty() => Some(
-                    TrajectoryWriter::create(outdir, &t.bodies)
+                    TrajectoryWriter::create_with(outdir, &t.bodies, t.extras)
                         .map_err(rt("cannot create trajectory files"))?,
                 ),
                 _ => None,
@@ -462,7 +462,7 @@ impl Runner {
             },
             trajectory: match &o.trajectory {
                 Some(t) if !t.bodies.is_empty() => Some(
-                    TrajectoryWriter::resume(&outdir, &t.bodies, time)
+                    TrajectoryWriter::resume_with(&outdir, &t.bodies, time, t.extras)
                         .map_err(rt("cannot resume trajectory files"))?,
                 ),
                 _ => None,

@@ -755,6 +755,10 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             Some(TrajectoryDef {
                 bodies: t.bodies.clone(),
                 every,
+                extras: crate::trajectory::Extras {
+                    euler: t.euler.unwrap_or(false),
+                    loads: t.loads.unwrap_or(false),
+                },
             })
         }
         None => None,

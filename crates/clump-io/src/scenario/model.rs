@@ -176,6 +176,8 @@ pub struct TrajectoryDef {
     pub bodies: Vec<u64>,
     /// Interval, steps.
     pub every: u64,
+    /// Optional columns (`euler`, `loads`).
+    pub extras: crate::trajectory::Extras,
 }
 
 /// Output settings (intervals in steps).

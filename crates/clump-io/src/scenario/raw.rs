@@ -587,6 +587,10 @@ pub struct RawTrajectory {
     pub every: Option<f64>,
     /// Interval, steps.
     pub every_steps: Option<u64>,
+    /// Also write the z-x-z Euler angles and the rows of A.
+    pub euler: Option<bool>,
+    /// Also write the body's force and torque.
+    pub loads: Option<bool>,
 }
 
 /// `[output]`.
