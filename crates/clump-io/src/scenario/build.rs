@@ -1205,6 +1205,7 @@ fn build_template(
         material: mi as u16,
         template,
         dof: dof::template_dof(t),
+        given_mass_properties: t.mass.is_some(),
     })
 }
 

@@ -72,6 +72,8 @@ pub struct TemplateDef {
     pub template: ClumpTemplate,
     /// Force and torque flags of its bodies (`force_flags`, `torque_flags`).
     pub dof: clump_core::dof::Dof,
+    /// `mass` and `inertia` (and maybe `center_of_mass`) were given.
+    pub given_mass_properties: bool,
 }
 
 /// A named particle mix (template indices refer to [`Scenario::templates`]).
