@@ -62,6 +62,15 @@ fn mq_to_omega(l: DVec3, q: DQuat, moments: DVec3) -> DVec3 {
 /// `inertia` (body frame, kg m²); the starting `ω` is `mq_to_omega` at `q`
 /// (LIGGGHTS' `angmom_to_omega` from `ex, ey, ez`, the same to round-off).
 pub fn drift(q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
+    drift_omega(q, l_world, inertia, dt).0
+}
+
+/// [`drift`], also returning the world angular velocity (rad/s) that
+/// `MathExtra::richardson` leaves in its `w` argument: `ω` from `L` at the
+/// first half sub-step's orientation. LIGGGHTS' `fix multisphere` moves the
+/// spheres with that `ω` until the final half kick recomputes it, so the
+/// contact velocities of the step use it (the DEM step does the same).
+pub fn drift_omega(q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> (DQuat, DVec3) {
     let dtq = 0.5 * dt;
     let w = mq_to_omega(l_world, q, inertia);
     let wq = vecquat(w, q);
@@ -70,5 +79,5 @@ pub fn drift(q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
     let w = mq_to_omega(l_world, qhalf, inertia);
     let wq = vecquat(w, qhalf);
     let qhalf = qnormalize(qhalf + wq * (0.5 * dtq));
-    qnormalize(qhalf * 2.0 - qfull)
+    (qnormalize(qhalf * 2.0 - qfull), w)
 }

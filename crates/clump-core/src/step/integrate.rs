@@ -148,14 +148,24 @@ impl FirstHalf {
         let rot = if self.kicks.kick(self.step, i, v, l, f, m) {
             x += *v * dt;
             let inertia_i = self.inertia.read(i);
-            if self.kicks.torque_kicks {
-                q = self.scheme.drift(q, *l, inertia_i, dt);
+            if self.scheme == crate::rotation::RotationScheme::RichardsonLiggghts {
+                // LIGGGHTS moves the spheres during the step with the ω of
+                // the first half sub-step (see richardson_liggghts)
+                let (qn, w_half) =
+                    crate::rotation::richardson_liggghts::drift_omega(q, *l, inertia_i, dt);
+                q = qn;
+                *om = w_half;
+                DMat3::from_quat(q)
             } else {
-                q = self.kicks.zvw_full_step(i, q, l, m, inertia_i);
+                if self.kicks.torque_kicks {
+                    q = self.scheme.drift(q, *l, inertia_i, dt);
+                } else {
+                    q = self.kicks.zvw_full_step(i, q, l, m, inertia_i);
+                }
+                let rot = DMat3::from_quat(q);
+                *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
+                rot
             }
-            let rot = DMat3::from_quat(q);
-            *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
-            rot
         } else {
             // before its start step: ballistic, forces ignored; a driven
             // body also turns at its prescribed world angular velocity
