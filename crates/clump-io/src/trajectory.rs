@@ -7,7 +7,8 @@
 //! `clump_core::math::euler`) and `exx,exy,exz,eyx,eyy,eyz,ezx,ezy,ezz`: the
 //! rows of the seed's matrix A (world → body), i.e. the body axes in world
 //! coordinates, LIGGGHTS' `ex_space, ey_space, ez_space`. With
-//! `loads = true` also `fx,fy,fz,mx,my,mz` (see [`Extras::loads`]).
+//! `loads = true` also `fx,fy,fz,mx,my,mz` (see [`Extras::loads`]); in the
+//! 2D mode last `theta_2d` (see [`PLANAR_COLUMNS`]).
 //!
 //! Like `thermo.csv` these are append-only logs flushed at each row; a body
 //! absent at a write (not yet inserted, or lost) gets no row.
@@ -39,7 +40,13 @@ pub struct Extras {
     /// (contacts and gravity; for a fixed or driven body the load its
     /// motion is held against).
     pub loads: bool,
+    /// [`PLANAR_COLUMNS`] (the 2D mode).
+    pub planar: bool,
 }
+
+/// The column the 2D mode appends (last): the rotation angle θ about z
+/// (rad, in (−π, π]) of the seed's 2D matrix `A_θ`, `2 atan2(q_z, q_w)`.
+pub const PLANAR_COLUMNS: &str = "theta_2d";
 
 /// Writes trajectory rows for a fixed set of bodies.
 pub struct TrajectoryWriter {
@@ -96,7 +103,11 @@ impl TrajectoryWriter {
         for &id in &uniq {
             let path = Self::file_path(dir, id);
             let mut keep = TRAJECTORY_HEADER.to_string();
-            for (on, cols) in [(extras.euler, EULER_COLUMNS), (extras.loads, LOAD_COLUMNS)] {
+            for (on, cols) in [
+                (extras.euler, EULER_COLUMNS),
+                (extras.loads, LOAD_COLUMNS),
+                (extras.planar, PLANAR_COLUMNS),
+            ] {
                 if on {
                     keep = format!("{keep},{cols}");
                 }
@@ -170,6 +181,15 @@ impl TrajectoryWriter {
             if self.extras.loads {
                 let (f, m) = (b.force[i], b.torque[i]);
                 row.extend([f.x, f.y, f.z, m.x, m.y, m.z].iter().map(|&v| fmt_f64(v)));
+            }
+            if self.extras.planar {
+                let mut theta = 2.0 * q.z.atan2(q.w);
+                if theta > std::f64::consts::PI {
+                    theta -= std::f64::consts::TAU;
+                } else if theta <= -std::f64::consts::PI {
+                    theta += std::f64::consts::TAU;
+                }
+                row.push(fmt_f64(theta));
             }
             f.write_all(row.join(",").as_bytes())?;
             f.write_all(b"\n")?;

@@ -34,6 +34,7 @@ pub mod eigen;
 pub mod error;
 pub mod from_mesh;
 pub mod mass_properties;
+pub mod planar;
 pub mod sphere;
 pub mod template;
 pub mod union_integral;

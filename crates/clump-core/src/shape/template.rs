@@ -101,7 +101,7 @@ impl ClumpTemplate {
     }
 
     /// Builds the body-frame template from already computed properties.
-    fn from_properties(
+    pub(super) fn from_properties(
         name: &str,
         spheres: &[Sphere],
         density: f64,

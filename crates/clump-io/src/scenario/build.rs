@@ -29,6 +29,7 @@ use std::collections::HashMap;
 use Seg::{I, K};
 
 mod dof;
+mod planar;
 
 type R<T> = Result<T, Diagnostic>;
 
@@ -345,6 +346,10 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         let td = build_template(cx, i, t, &material_names, &materials, &template_names)?;
         template_names.push(td.name.clone());
         templates.push(td);
+    }
+    let two_d = planar::two_d(cx, raw.domain.as_ref().and_then(|d| d.dimension))?;
+    if two_d {
+        planar::templates(cx, &mut templates)?;
     }
 
     // ---------------- mixes
@@ -705,6 +710,9 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             dt,
         )?);
     }
+    if two_d {
+        planar::inserts(cx, &mut inserts, gravity, &stages)?;
+    }
 
     // ---------------- output
     let to_steps =
@@ -758,6 +766,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
                 extras: crate::trajectory::Extras {
                     euler: t.euler.unwrap_or(false),
                     loads: t.loads.unwrap_or(false),
+                    planar: two_d,
                 },
             })
         }

@@ -140,6 +140,8 @@ pub struct RawDomain {
     /// Periodic axes, e.g. `["x", "y"]` (default none).
     #[serde(default)]
     pub periodic: Vec<AxisName>,
+    /// 2 (x–y plane, rotation about z) or 3 (default).
+    pub dimension: Option<u8>,
 }
 
 /// `[integrator]`.
