@@ -5,6 +5,7 @@
 //! Checked against closed forms (the seed's matrix A, eq. 4.3; Coulomb drag
 //! on a driven sphere; the weight a fixed body carries).
 
+mod support;
 use clump_io::run::{RunOptions, Runner};
 use clump_io::scenario::{self, Files, InsertSpec};
 use glam::{DMat3, DVec3};
@@ -214,17 +215,9 @@ fn driven_sphere_from_a_scenario_feels_the_coulomb_torque() {
     assert_eq!(w.bodies.position[b], DVec3::ZERO);
     assert!(((w.bodies.torque[b].x - theory) / theory).abs() < 1e-6);
     // the same load in the driven body's trajectory (last row, column mx)
-    let traj = std::fs::read_to_string(d.join("out").join("traj_1.csv")).unwrap();
-    let header: Vec<&str> = traj.lines().next().unwrap().split(',').collect();
-    let last: Vec<f64> = traj
-        .lines()
-        .last()
-        .unwrap()
-        .split(',')
-        .map(|x| x.parse().unwrap())
-        .collect();
-    let mx = last[header.iter().position(|c| *c == "mx").unwrap()];
-    assert_eq!(last[0], 0.2);
+    let traj = d.join("out").join("traj_1.csv");
+    let mx = support::last_value(&traj, "mx");
+    assert_eq!(support::last_value(&traj, "time"), 0.2);
     assert!(((mx - theory) / theory).abs() < 1e-6, "trajectory mx {mx}");
     let s = w.body_index(2).unwrap();
     assert_eq!((w.bodies.position[s].x, w.bodies.position[s].y), (0.0, 0.0));

@@ -4,6 +4,7 @@
 //! angular momentum about z, and a long run in which every out-of-plane
 //! component of every body stays exactly zero.
 
+mod support;
 use clump_io::run::{RunOptions, Runner};
 use clump_io::scenario;
 use glam::DVec3;
@@ -252,16 +253,7 @@ fn long_run_stays_exactly_in_the_plane() {
     let r = run("long", [2.0, -G], (0.8, 0.3), &walls, &bodies, 400_000);
     let w = r.world();
     assert_in_plane(w, 0.001);
-    let text = std::fs::read_to_string(r.outdir().join("traj_1.csv")).unwrap();
-    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
-    let last: Vec<f64> = text
-        .lines()
-        .last()
-        .unwrap()
-        .split(',')
-        .map(|x| x.parse().unwrap())
-        .collect();
-    let theta = last[header.iter().position(|c| *c == "theta_2d").unwrap()];
+    let theta = support::last_value(&r.outdir().join("traj_1.csv"), "theta_2d");
     let b = w.body_index(1).unwrap();
     let q = w.bodies.orientation[b];
     // A_θ of the seed: the body x axis in the world is (cos θ, sin θ)
