@@ -85,6 +85,19 @@ fn report(sc: &Scenario) {
             tp.bounding_radius,
             sc.material_names[t.material as usize]
         );
+        let c = tp.input_center_of_mass;
+        println!(
+            "  {:<16} centre of mass (input frame) ({:.6e}, {:.6e}, {:.6e}) m{}",
+            "",
+            c.x,
+            c.y,
+            c.z,
+            if t.given_mass_properties {
+                "  (mass, inertia and centre as given)"
+            } else {
+                ""
+            }
+        );
     }
     let ts = &sc.time_step;
     println!("\ntime step:");

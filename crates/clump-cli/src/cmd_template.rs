@@ -63,6 +63,27 @@ pub struct TemplateArgs {
     /// Factor applied to all lengths of the file before anything else.
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub scale: f64,
+    /// Mass override, kg (needs --inertia), as a scenario template's `mass`.
+    #[arg(long, value_name = "KG", allow_negative_numbers = true)]
+    pub mass: Option<f64>,
+    /// Inertia tensor override about the centre of mass, input frame, kg m²:
+    /// `Ixx,Ixy,Ixz,Iyy,Iyz,Izz` (LIGGGHTS' `inertia_tensor` order; needs --mass).
+    #[arg(
+        long,
+        value_name = "I6",
+        value_delimiter = ',',
+        allow_negative_numbers = true
+    )]
+    pub inertia: Option<Vec<f64>>,
+    /// Centre of mass override, input frame, m (after --scale): `x,y,z`;
+    /// the inertia is taken about it (needs --mass and --inertia).
+    #[arg(
+        long,
+        value_name = "XYZ",
+        value_delimiter = ',',
+        allow_negative_numbers = true
+    )]
+    pub center_of_mass: Option<Vec<f64>>,
     /// Print one JSON object (keys: volume, mass, center_of_mass, inertia,
     /// principal_moments, principal_axes, naive_volume,
     /// naive_principal_moments, relative_error_bound).
@@ -145,7 +166,52 @@ pub fn compute(args: &TemplateArgs) -> Result<(Vec<Sphere>, MassProperties), Inp
         .collect();
     let props = mass_properties(&spheres, args.density)
         .map_err(|e| InputError(format!("{}: {e}", file.display())))?;
-    Ok((spheres, props))
+    Ok((spheres, overrides(args, props)?))
+}
+
+/// Applies `--mass`, `--inertia` and `--center-of-mass` to `props`.
+fn overrides(args: &TemplateArgs, props: MassProperties) -> Result<MassProperties, InputError> {
+    for (name, v, n) in [
+        ("--inertia", &args.inertia, 6),
+        ("--center-of-mass", &args.center_of_mass, 3),
+    ] {
+        if let Some(v) = v.as_ref().filter(|v| v.len() != n) {
+            return Err(InputError(format!(
+                "{name} takes {n} comma-separated numbers, found {}",
+                v.len()
+            )));
+        }
+    }
+    let mut props = match (args.mass, &args.inertia) {
+        (None, None) => props,
+        (Some(m), Some(i)) => {
+            let t = glam::DMat3::from_cols_array_2d(&[
+                [i[0], i[1], i[2]],
+                [i[1], i[3], i[4]],
+                [i[2], i[4], i[5]],
+            ]);
+            props
+                .with_override(m, t)
+                .map_err(|e| InputError(format!("--mass/--inertia: {e}")))?
+        }
+        _ => return Err(InputError("--mass and --inertia go together".into())),
+    };
+    if let Some(c) = &args.center_of_mass {
+        if args.mass.is_none() {
+            return Err(InputError(
+                "--center-of-mass needs --mass and --inertia (the inertia is taken about it)"
+                    .into(),
+            ));
+        }
+        let c = DVec3::new(c[0], c[1], c[2]);
+        if !c.is_finite() {
+            return Err(InputError(format!(
+                "--center-of-mass must be finite, found {c}"
+            )));
+        }
+        props.center_of_mass = c;
+    }
+    Ok(props)
 }
 
 fn rows(m: &glam::DMat3) -> [[f64; 3]; 3] {
@@ -234,12 +300,25 @@ fn write_table(
         )?;
     }
     writeln!(out)?;
+    let given = |on: bool| if on { "  (given)" } else { "" };
+    if args.mass.is_some() {
+        writeln!(
+            out,
+            "given (override the exact column's mass and moments): mass {:.9e} kg",
+            p.mass
+        )?;
+    }
     writeln!(
         out,
-        "centre of mass [m] (input frame)      {}",
-        vec3(p.center_of_mass)
+        "centre of mass [m] (input frame)      {}{}",
+        vec3(p.center_of_mass),
+        given(args.center_of_mass.is_some())
     )?;
-    writeln!(out, "inertia about the COM [kg m^2] (input frame):")?;
+    writeln!(
+        out,
+        "inertia about the COM [kg m^2] (input frame):{}",
+        given(args.inertia.is_some())
+    )?;
     for k in 0..3 {
         writeln!(out, "  {}", vec3(p.inertia.row(k)))?;
     }

@@ -20,6 +20,7 @@ pub mod body;
 pub mod boundary;
 pub mod contact;
 pub mod contacts;
+pub mod dof;
 pub mod health;
 pub mod insert;
 pub mod math;

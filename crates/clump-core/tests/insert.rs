@@ -65,6 +65,8 @@ fn count_spec(region: Region, n: usize, template: u32) -> PackSpec {
         velocity: DVec3::ZERO,
         orientation: Orientation::Random,
         max_attempts_per_body: 1000,
+        angular_velocity: Default::default(),
+        dof: Vec::new(),
     }
 }
 
@@ -323,6 +325,8 @@ fn mix_by_mass_with_sizes() {
         velocity: DVec3::new(0.0, 0.0, -1.0),
         orientation: Orientation::Random,
         max_attempts_per_body: 1000,
+        angular_velocity: Default::default(),
+        dof: Vec::new(),
     };
     let rep = pack(&mut w, &spec, 3).unwrap();
     assert!(rep.volume_fraction >= 0.1);
@@ -372,6 +376,9 @@ fn stream_spec(template: u32, rate: StreamRate) -> StreamSpec {
         exit_normal: Some(DVec3::new(0.0, 0.0, -1.0)),
         orientation: Orientation::Random,
         max_attempts_per_body: 20,
+        angular_velocity: Default::default(),
+        dof: Vec::new(),
+        start_after: None,
     }
 }
 

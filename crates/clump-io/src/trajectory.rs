@@ -2,7 +2,13 @@
 //! `traj_<id>.csv`, with columns `time` (s), `x,y,z` (centre of mass, world,
 //! m), `vx,vy,vz` (world, m/s), `qw,qx,qy,qz` (orientation, body → world),
 //! `wx,wy,wz` (angular velocity, world, rad/s), `wbx,wby,wbz` (angular
-//! velocity, body frame, rad/s: q⁻¹ ω q).
+//! velocity, body frame, rad/s: q⁻¹ ω q). With `euler = true` also
+//! `phi,theta,psi` (the seed's z-x-z Euler angles, rad, gimbal lock as in
+//! `clump_core::math::euler`) and `exx,exy,exz,eyx,eyy,eyz,ezx,ezy,ezz`: the
+//! rows of the seed's matrix A (world → body), i.e. the body axes in world
+//! coordinates, LIGGGHTS' `ex_space, ey_space, ez_space`. With
+//! `loads = true` also `fx,fy,fz,mx,my,mz` (see [`Extras::loads`]); in the
+//! 2D mode last `theta_2d` (see [`PLANAR_COLUMNS`]).
 //!
 //! Like `thermo.csv` these are append-only logs flushed at each row; a body
 //! absent at a write (not yet inserted, or lost) gets no row.
@@ -18,11 +24,37 @@ use std::path::{Path, PathBuf};
 /// The header line of a trajectory file.
 pub const TRAJECTORY_HEADER: &str = "time,x,y,z,vx,vy,vz,qw,qx,qy,qz,wx,wy,wz,wbx,wby,wbz";
 
+/// The columns `euler = true` appends to [`TRAJECTORY_HEADER`].
+pub const EULER_COLUMNS: &str = "phi,theta,psi,exx,exy,exz,eyx,eyy,eyz,ezx,ezy,ezz";
+
+/// The columns `loads = true` appends (after the Euler columns, if any).
+pub const LOAD_COLUMNS: &str = "fx,fy,fz,mx,my,mz";
+
+/// Optional column groups of the trajectory rows.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Extras {
+    /// [`EULER_COLUMNS`].
+    pub euler: bool,
+    /// [`LOAD_COLUMNS`]: the body's total force (N) and torque about its
+    /// centre of mass (N m), world frame, of the last force evaluation
+    /// (contacts and gravity; for a fixed or driven body the load its
+    /// motion is held against).
+    pub loads: bool,
+    /// [`PLANAR_COLUMNS`] (the 2D mode).
+    pub planar: bool,
+}
+
+/// The column the 2D mode appends (last): the rotation angle θ about z
+/// (rad, in (−π, π]) of the seed's 2D matrix `A_θ`, `2 atan2(q_z, q_w)`.
+pub const PLANAR_COLUMNS: &str = "theta_2d";
+
 /// Writes trajectory rows for a fixed set of bodies.
 pub struct TrajectoryWriter {
     ids: Vec<u64>,
     files: Vec<BufWriter<File>>,
     slot: HashMap<u64, usize>,
+    /// Optional columns.
+    extras: Extras,
 }
 
 impl TrajectoryWriter {
@@ -33,16 +65,31 @@ impl TrajectoryWriter {
 
     /// Creates (truncates) one file per id in `dir` (created if missing).
     pub fn create(dir: impl AsRef<Path>, ids: &[u64]) -> io::Result<Self> {
-        Self::open(dir.as_ref(), ids, None)
+        Self::open(dir.as_ref(), ids, None, Extras::default())
+    }
+
+    /// [`Self::create`] with the optional columns `extras`.
+    pub fn create_with(dir: impl AsRef<Path>, ids: &[u64], extras: Extras) -> io::Result<Self> {
+        Self::open(dir.as_ref(), ids, None, extras)
+    }
+
+    /// [`Self::resume`] with the optional columns `extras`.
+    pub fn resume_with(
+        dir: impl AsRef<Path>,
+        ids: &[u64],
+        max_time: f64,
+        extras: Extras,
+    ) -> io::Result<Self> {
+        Self::open(dir.as_ref(), ids, Some(max_time), extras)
     }
 
     /// Reopens the files for a resumed run, keeping the complete rows with
     /// `time ≤ max_time` (s); missing files are created.
     pub fn resume(dir: impl AsRef<Path>, ids: &[u64], max_time: f64) -> io::Result<Self> {
-        Self::open(dir.as_ref(), ids, Some(max_time))
+        Self::open(dir.as_ref(), ids, Some(max_time), Extras::default())
     }
 
-    fn open(dir: &Path, ids: &[u64], resume: Option<f64>) -> io::Result<Self> {
+    fn open(dir: &Path, ids: &[u64], resume: Option<f64>, extras: Extras) -> io::Result<Self> {
         std::fs::create_dir_all(dir).map_err(|e| {
             io::Error::new(e.kind(), format!("cannot create {}: {e}", dir.display()))
         })?;
@@ -55,7 +102,17 @@ impl TrajectoryWriter {
         let mut files = Vec::with_capacity(uniq.len());
         for &id in &uniq {
             let path = Self::file_path(dir, id);
-            let mut keep = format!("{TRAJECTORY_HEADER}\n");
+            let mut keep = TRAJECTORY_HEADER.to_string();
+            for (on, cols) in [
+                (extras.euler, EULER_COLUMNS),
+                (extras.loads, LOAD_COLUMNS),
+                (extras.planar, PLANAR_COLUMNS),
+            ] {
+                if on {
+                    keep = format!("{keep},{cols}");
+                }
+            }
+            keep.push('\n');
             if let Some(max_time) = resume {
                 if let Ok(b) = std::fs::read(&path) {
                     let text = String::from_utf8_lossy(&b);
@@ -85,6 +142,7 @@ impl TrajectoryWriter {
             ids: uniq,
             files,
             slot,
+            extras,
         })
     }
 
@@ -116,11 +174,39 @@ impl TrajectoryWriter {
                 world.time, x.x, x.y, x.z, v.x, v.y, v.z, q.w, q.x, q.y, q.z, w.x, w.y, w.z, wb.x,
                 wb.y, wb.z,
             ];
-            let row: Vec<String> = vals.iter().map(|&v| fmt_f64(v)).collect();
+            let mut row: Vec<String> = vals.iter().map(|&v| fmt_f64(v)).collect();
+            if self.extras.euler {
+                row.extend(euler_columns(q).iter().map(|&v| fmt_f64(v)));
+            }
+            if self.extras.loads {
+                let (f, m) = (b.force[i], b.torque[i]);
+                row.extend([f.x, f.y, f.z, m.x, m.y, m.z].iter().map(|&v| fmt_f64(v)));
+            }
+            if self.extras.planar {
+                let mut theta = 2.0 * q.z.atan2(q.w);
+                if theta > std::f64::consts::PI {
+                    theta -= std::f64::consts::TAU;
+                } else if theta <= -std::f64::consts::PI {
+                    theta += std::f64::consts::TAU;
+                }
+                row.push(fmt_f64(theta));
+            }
             f.write_all(row.join(",").as_bytes())?;
             f.write_all(b"\n")?;
             f.flush()?;
         }
         Ok(())
     }
+}
+
+/// The values of [`EULER_COLUMNS`] for the orientation `q` (body → world):
+/// `phi, theta, psi` and the rows of A = R(q)ᵀ (the body axes in world
+/// coordinates).
+pub fn euler_columns(q: glam::DQuat) -> [f64; 12] {
+    let (phi, theta, psi) = clump_core::math::quat_to_euler(q);
+    let r = glam::DMat3::from_quat(q);
+    let (ex, ey, ez) = (r.x_axis, r.y_axis, r.z_axis);
+    [
+        phi, theta, psi, ex.x, ex.y, ex.z, ey.x, ey.y, ey.z, ez.x, ez.y, ez.z,
+    ]
 }

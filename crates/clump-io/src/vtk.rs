@@ -8,7 +8,9 @@
 //!   point, so every representation (Point Gaussian, Glyph) works.
 //! - **bodies**: points = centres of mass (m); point data `body_id`,
 //!   `quaternion` (4 components w, x, y, z, body → world), `ex`, `ey`, `ez`
-//!   (the body-frame axes expressed in the world frame, for glyphs),
+//!   (the body-frame axes expressed in the world frame, for glyphs: the
+//!   rows of the seed's matrix A, LIGGGHTS' `ex_space, ey_space,
+//!   ez_space`), `euler` (z-x-z Euler angles phi, theta, psi, rad),
 //!   `velocity` (m/s), `angular_velocity` (rad/s, world), `template` (index),
 //!   `mass` (kg).
 //! - **walls**: one polygon per face: planes clipped to the domain box,
@@ -271,6 +273,14 @@ pub fn bodies_vtp(world: &World) -> Vec<u8> {
         let v: Vec<DVec3> = b.orientation.iter().map(|q| *q * axis).collect();
         f.point_vec3(name, &v);
     }
+    f.point_f64(
+        "euler",
+        3,
+        b.orientation.iter().flat_map(|&q| {
+            let (phi, theta, psi) = clump_core::math::quat_to_euler(q);
+            [phi, theta, psi]
+        }),
+    );
     f.point_vec3("velocity", &b.velocity);
     f.point_vec3("angular_velocity", &b.angular_velocity);
     f.point_i32("template", b.template.iter().map(|&t| t as i32));

@@ -34,6 +34,8 @@ fn name(s: RotationScheme) -> &'static str {
         RotationScheme::Richardson => "richardson",
         RotationScheme::ZhaoVanWachem => "zhao_van_wachem",
         RotationScheme::NoSquish => "no_squish",
+        RotationScheme::ZhaoVanWachemSplit => "zhao_van_wachem_split",
+        RotationScheme::RichardsonLiggghts => "richardson_liggghts",
     }
 }
 

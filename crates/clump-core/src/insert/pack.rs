@@ -87,6 +87,13 @@ pub struct PackSpec {
     /// Random poses tried for one body before giving up (default 1000).
     #[serde(default = "default_attempts")]
     pub max_attempts_per_body: u32,
+    /// Initial angular velocity of every body, world frame, rad/s.
+    #[serde(default)]
+    pub angular_velocity: DVec3,
+    /// Degrees of freedom of the bodies by the index of their (unscaled)
+    /// template in the mix; a template past the end is free.
+    #[serde(default)]
+    pub dof: Vec<crate::dof::Dof>,
 }
 
 /// What [`pack()`] did.
@@ -197,10 +204,16 @@ pub fn pack(world: &mut World, spec: &PackSpec, seed: u64) -> Result<PackReport,
     let mut ids = Vec::with_capacity(placed.len());
     for &(base, scale, x, q) in &placed {
         let template = cache.resolve(world, base, scale)?;
-        let init = BodyInit {
+        let mut init = BodyInit {
             velocity: spec.velocity,
+            angular_velocity: spec.angular_velocity,
             ..BodyInit::at_rest(template, x, q)
         };
+        spec.dof
+            .get(base as usize)
+            .copied()
+            .unwrap_or_default()
+            .apply(&mut init);
         ids.push(world.add_body(&init)?);
     }
     Ok(PackReport {

@@ -57,6 +57,19 @@ pub struct StreamSpec {
     /// a later call (default 20).
     #[serde(default = "default_stream_attempts")]
     pub max_attempts_per_body: u32,
+    /// Initial angular velocity of every body, world frame, rad/s.
+    #[serde(default)]
+    pub angular_velocity: DVec3,
+    /// Degrees of freedom of the bodies by the index of their (unscaled)
+    /// template in the mix; a template past the end is free.
+    #[serde(default)]
+    pub dof: Vec<crate::dof::Dof>,
+    /// Time (s) each body moves ballistically at `velocity` after its
+    /// insertion, ignoring forces, before they act (the seed's
+    /// `start_step`, given by the user); when set, it replaces the
+    /// exit-face rule of `exit_normal`.
+    #[serde(default)]
+    pub start_after: Option<f64>,
 }
 
 /// Inserts bodies at a rate during a run. Serializable, RNG state included,
@@ -239,19 +252,30 @@ impl StreamInserter {
                 occ.insert(c, r);
             }
             let template = self.templates.resolve(world, base, scale)?;
-            let start_step = match self.spec.exit_normal {
-                Some(nrm) => {
+            let start_step = match (self.spec.start_after, self.spec.exit_normal) {
+                (Some(t), _) => world.step + (t / world.config.dt).ceil() as u64,
+                (None, Some(nrm)) => {
                     let d = (self.spec.region.support(nrm) - x.dot(nrm)).max(0.0);
                     let vn = self.spec.velocity.dot(nrm).abs();
                     world.step + (d / vn / world.config.dt).ceil() as u64
                 }
-                None => world.step,
+                (None, None) => world.step,
             };
-            let init = BodyInit {
+            let mut init = BodyInit {
                 velocity: self.spec.velocity,
-                start_step,
+                angular_velocity: self.spec.angular_velocity,
                 ..BodyInit::at_rest(template, x, q)
             };
+            let dof = self
+                .spec
+                .dof
+                .get(base as usize)
+                .copied()
+                .unwrap_or_default();
+            dof.apply(&mut init);
+            if !dof.driven {
+                init.start_step = start_step;
+            }
             world.add_body(&init)?;
             self.backlog -= 1;
             self.inserted += 1;

@@ -12,7 +12,15 @@
 //!   orientation updates (the idea of LAMMPS/LIGGGHTS `MathExtra::richardson`),
 //!   see [`richardson`].
 //! - [`RotationScheme::ZhaoVanWachem`]: the predictor–corrector quaternion
-//!   integrator of Zhao & van Wachem (2013), see [`zhao_van_wachem`].
+//!   integrator of Zhao & van Wachem (2013), see [`zhao_van_wachem`]. In
+//!   the DEM step it replaces both angular-momentum half kicks: the torque
+//!   of the force evaluation at the start of the step, held constant in the
+//!   world frame, is taken into the body frame with `q_0` and with the
+//!   predicted `q_½` (see [`crate::step::integrate`]).
+//! - [`RotationScheme::ZhaoVanWachemSplit`]: velocity-Verlet half kicks of
+//!   `L` around a torque-free Zhao–van Wachem drift.
+//! - [`RotationScheme::RichardsonLiggghts`]: LIGGGHTS' own linearised
+//!   `MathExtra::richardson`, see [`richardson_liggghts`].
 //!
 //! [`mod@reference`] holds the two schemes the seed rejects (Euler-angle rates and
 //! direct integration of the transformation matrix), for tests only.
@@ -21,6 +29,7 @@ pub mod body_dynamics;
 pub mod no_squish;
 pub mod reference;
 pub mod richardson;
+pub mod richardson_liggghts;
 pub mod zhao_van_wachem;
 
 use crate::math::{quat_from_rotation_vector, renormalize};
@@ -33,7 +42,8 @@ pub use body_dynamics::{
 };
 
 /// Choice of rotational integrator. Deserialises from the snake_case names
-/// `"richardson"`, `"zhao_van_wachem"`, `"no_squish"`.
+/// `"richardson"`, `"zhao_van_wachem"`, `"no_squish"`,
+/// `"zhao_van_wachem_split"`, `"richardson_liggghts"`.
 ///
 /// The default is [`RotationScheme::NoSquish`]: it is symplectic and
 /// time-reversible, keeps `|L|` exact and shows no secular energy drift over
@@ -44,11 +54,16 @@ pub enum RotationScheme {
     /// Richardson extrapolation of exact-exponential orientation sub-steps
     /// with `ω` recomputed from `L` (LAMMPS/LIGGGHTS `richardson` idea).
     Richardson,
-    /// Zhao & van Wachem (2013) quaternion predictor–corrector.
+    /// Zhao & van Wachem (2013) quaternion predictor–corrector; in the DEM
+    /// step with the start-of-step torque held constant in the world frame.
     ZhaoVanWachem,
     /// Miller et al. (2002) NO_SQUISH symplectic principal-axis splitting.
     #[default]
     NoSquish,
+    /// Half kicks of `L` around a torque-free Zhao & van Wachem drift.
+    ZhaoVanWachemSplit,
+    /// LIGGGHTS' `MathExtra::richardson` (linearised sub-steps, normalised).
+    RichardsonLiggghts,
 }
 
 /// State of one rotating body: orientation (body → world) and angular
@@ -71,7 +86,8 @@ impl RotationScheme {
     /// A spherical top (three equal, positive principal moments `I`) turns
     /// at the constant world-frame `ω = L/I` (`ω × Iω = 0` in Euler's
     /// equations), so its free rotation is exactly `q ← exp(ω dt) q`. Every
-    /// scheme takes that exact step for such a body: each of them
+    /// scheme but [`RotationScheme::RichardsonLiggghts`] (which reproduces
+    /// LIGGGHTS' linearised sub-steps) takes that exact step for such a body: each of them
     /// reproduces a constant-`ω` rotation (Richardson's extrapolation of
     /// two exact half steps and one exact full step returns the full step;
     /// ZvW's corrector has zero angular acceleration; NO_SQUISH's exact
@@ -81,7 +97,11 @@ impl RotationScheme {
     /// benchmark is such a body.
     #[inline]
     pub fn drift(self, q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
-        if inertia.x == inertia.y && inertia.y == inertia.z && inertia.x > 0.0 {
+        if inertia.x == inertia.y
+            && inertia.y == inertia.z
+            && inertia.x > 0.0
+            && self != RotationScheme::RichardsonLiggghts
+        {
             return renormalize(quat_from_rotation_vector(l_world * (dt / inertia.x)) * q);
         }
         self.drift_asymmetric(q, l_world, inertia, dt)
@@ -93,8 +113,13 @@ impl RotationScheme {
     fn drift_asymmetric(self, q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
         match self {
             RotationScheme::Richardson => richardson::drift(q, l_world, inertia, dt),
-            RotationScheme::ZhaoVanWachem => zhao_van_wachem::drift(q, l_world, inertia, dt),
+            RotationScheme::ZhaoVanWachem | RotationScheme::ZhaoVanWachemSplit => {
+                zhao_van_wachem::drift(q, l_world, inertia, dt)
+            }
             RotationScheme::NoSquish => no_squish::drift(q, l_world, inertia, dt),
+            RotationScheme::RichardsonLiggghts => {
+                richardson_liggghts::drift(q, l_world, inertia, dt)
+            }
         }
     }
 
@@ -115,7 +140,10 @@ impl RotationScheme {
         dt: f64,
     ) {
         match self {
-            RotationScheme::Richardson | RotationScheme::NoSquish => {
+            RotationScheme::Richardson
+            | RotationScheme::NoSquish
+            | RotationScheme::ZhaoVanWachemSplit
+            | RotationScheme::RichardsonLiggghts => {
                 let half = 0.5 * dt;
                 state.l_world += torque(state.q) * half;
                 state.q = self.drift(state.q, state.l_world, inertia, dt);
@@ -126,9 +154,19 @@ impl RotationScheme {
     }
 
     /// All production schemes, for tests and benchmarks.
-    pub const ALL: [RotationScheme; 3] = [
+    pub const ALL: [RotationScheme; 5] = [
         RotationScheme::Richardson,
         RotationScheme::ZhaoVanWachem,
         RotationScheme::NoSquish,
+        RotationScheme::ZhaoVanWachemSplit,
+        RotationScheme::RichardsonLiggghts,
     ];
+
+    /// Whether the DEM step kicks the angular momentum by half steps of the
+    /// torque (velocity Verlet); false for [`RotationScheme::ZhaoVanWachem`],
+    /// which advances `L` over the whole step itself.
+    #[inline(always)]
+    pub fn kicks_torque(self) -> bool {
+        self != RotationScheme::ZhaoVanWachem
+    }
 }

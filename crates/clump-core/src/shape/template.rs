@@ -83,8 +83,25 @@ impl ClumpTemplate {
         Ok(Self::from_properties(name, spheres, density, props))
     }
 
+    /// [`Self::with_override`] with a given centre of mass `com` (m, input
+    /// frame) as well: `inertia_input` is taken about `com`, and the body
+    /// frame's origin is `com` (LIGGGHTS templates that state their own
+    /// centre of mass). The volume is still that of the spheres' union.
+    pub fn with_override_about(
+        name: &str,
+        spheres: &[Sphere],
+        density: f64,
+        mass: f64,
+        inertia_input: DMat3,
+        com: DVec3,
+    ) -> Result<Self, ShapeError> {
+        let mut props = mass_properties(spheres, density)?.with_override(mass, inertia_input)?;
+        props.center_of_mass = com;
+        Ok(Self::from_properties(name, spheres, density, props))
+    }
+
     /// Builds the body-frame template from already computed properties.
-    fn from_properties(
+    pub(super) fn from_properties(
         name: &str,
         spheres: &[Sphere],
         density: f64,

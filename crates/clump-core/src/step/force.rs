@@ -251,8 +251,16 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     let pos = SharedMut::new(&mut bodies.position);
     // SAFETY: the gather resizes nothing, and writes no orientation (the
     // first half of the next step writes its body's, after its kick).
-    let kick =
-        kick.then(|| unsafe { FinalKick::new(dt, *step, config.added_mass, templates.as_mut_slice(), bodies) });
+    let kick = kick.then(|| unsafe {
+        FinalKick::new(
+            dt,
+            *step,
+            config.added_mass,
+            config.rotation,
+            templates.as_mut_slice(),
+            bodies,
+        )
+    });
     let b = &*bodies;
     let pair_body = SharedMut::new(&mut pairs.body);
     let pairs = &*pairs;

@@ -97,7 +97,13 @@ impl FirstHalf {
         let n = w.bodies.len();
         let b = &mut w.bodies;
         FirstHalf {
-            kicks: Kicks::new(w.config.dt, w.config.added_mass, w.templates.as_mut_slice(), b),
+            kicks: Kicks::new(
+                w.config.dt,
+                w.config.added_mass,
+                w.config.rotation,
+                w.templates.as_mut_slice(),
+                b,
+            ),
             step,
             scheme: w.config.rotation,
             pos: SharedMut::new(&mut b.position),
@@ -142,14 +148,33 @@ impl FirstHalf {
         let rot = if self.kicks.kick(self.step, i, v, l, f, m) {
             x += *v * dt;
             let inertia_i = self.inertia.read(i);
-            q = self.scheme.drift(q, *l, inertia_i, dt);
-            let rot = DMat3::from_quat(q);
-            *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
-            rot
+            if self.scheme == crate::rotation::RotationScheme::RichardsonLiggghts {
+                // LIGGGHTS moves the spheres during the step with the ω of
+                // the first half sub-step (see richardson_liggghts)
+                let (qn, w_half) =
+                    crate::rotation::richardson_liggghts::drift_omega(q, *l, inertia_i, dt);
+                q = qn;
+                *om = w_half;
+                DMat3::from_quat(q)
+            } else {
+                if self.kicks.torque_kicks {
+                    q = self.scheme.drift(q, *l, inertia_i, dt);
+                } else {
+                    q = self.kicks.zvw_full_step(i, q, l, m, inertia_i);
+                }
+                let rot = DMat3::from_quat(q);
+                *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
+                rot
+            }
         } else {
-            // before its start step: ballistic, forces ignored
+            // before its start step: ballistic, forces ignored; a driven
+            // body also turns at its prescribed world angular velocity
             x += *v * dt;
-            DMat3::from_quat(q)
+            if self.kicks.start.read(i) == crate::dof::DRIVEN {
+                driven_turn(&mut q, l, *om, self.inertia.read(i), dt)
+            } else {
+                DMat3::from_quat(q)
+            }
         };
         *self.pos.get(i) = x;
         *self.quat.get(i) = q;
@@ -175,6 +200,21 @@ impl FirstHalf {
         }
         stale
     }
+}
+
+/// Turns a driven body (see [`crate::dof`]) over `dt` at its constant world
+/// angular velocity `om` (rad/s): `q ← exp(ω dt) q`, and sets its world
+/// angular momentum `l = R I Rᵀ ω` (kg m²/s) to match; `inertia` holds the
+/// principal moments (kg m²). A body at rest (ω = 0) keeps its orientation
+/// bit for bit. Returns the new rotation matrix (body → world).
+#[inline(never)]
+fn driven_turn(q: &mut glam::DQuat, l: &mut DVec3, om: DVec3, inertia: DVec3, dt: f64) -> DMat3 {
+    if om != DVec3::ZERO {
+        *q = crate::math::renormalize(crate::math::quat_from_rotation_vector(om * dt) * *q);
+    }
+    let rot = DMat3::from_quat(*q);
+    *l = rot * (inertia * (rot.transpose() * om));
+    rot
 }
 
 /// Bodies per block of the first half step: the gather's chunk, so that a
@@ -205,11 +245,12 @@ impl FinalKick {
         dt: f64,
         step: u64,
         added: crate::world::AddedMass,
+        rotation: crate::rotation::RotationScheme,
         templates: &mut [crate::shape::ClumpTemplate],
         b: &mut crate::body::Bodies,
     ) -> Self {
         FinalKick {
-            kicks: Kicks::new(dt, added, templates, b),
+            kicks: Kicks::new(dt, added, rotation, templates, b),
             step,
             quat: SharedMut::new(&mut b.orientation),
             inertia: SharedMut::new(&mut b.inertia),
@@ -243,6 +284,9 @@ impl FinalKick {
 struct Kicks {
     dt: f64,
     added: crate::world::AddedMass,
+    /// Velocity-Verlet half kicks of `L` (false: the rotation scheme
+    /// advances `L` over the whole step, see [`Kicks::zvw_full_step`]).
+    torque_kicks: bool,
     templates: SharedMut<crate::shape::ClumpTemplate>,
     mass: SharedMut<f64>,
     ff: SharedMut<crate::body::AxisFlags>,
@@ -257,12 +301,14 @@ impl Kicks {
     unsafe fn new(
         dt: f64,
         added: crate::world::AddedMass,
+        rotation: crate::rotation::RotationScheme,
         templates: &mut [crate::shape::ClumpTemplate],
         b: &mut crate::body::Bodies,
     ) -> Self {
         Kicks {
             dt,
             added,
+            torque_kicks: rotation.kicks_torque(),
             templates: SharedMut::new(templates),
             mass: SharedMut::new(&mut b.mass),
             ff: SharedMut::new(&mut b.force_flag),
@@ -293,9 +339,42 @@ impl Kicks {
         }
         let t = self.tmpl.read(i) as usize;
         let fa = mass_factor(self.added, (*self.templates.ptr(t)).density);
-        let kick = HalfKick::new(self.dt, self.mass.read(i), fa);
+        let mut kick = HalfKick::new(self.dt, self.mass.read(i), fa);
+        if !self.torque_kicks {
+            kick.dtt = 0.0;
+        }
         kick.apply(v, l, f, m, self.ff.read(i), self.tf.read(i));
         true
+    }
+
+    /// The rotation of body `i` over the whole step by Zhao & van Wachem
+    /// (2013) as seed 003 gives it, with its two slips corrected (see
+    /// [`crate::rotation::zhao_van_wachem`]): the torque `m` (N m, world
+    /// frame) of the force evaluation at the start of the step, divided by
+    /// the added-mass factor, is held constant in the world frame over the
+    /// step and taken into the body frame with `q` (= q_0) and with the
+    /// predicted `q_½`. Returns `q_1`; sets the world angular momentum `l`
+    /// to `q_1 I ω_b,1`, keeping the components whose torque flag is off.
+    ///
+    /// # Safety
+    /// `i` is a body index.
+    #[inline(never)]
+    unsafe fn zvw_full_step(
+        &self,
+        i: usize,
+        q: glam::DQuat,
+        l: &mut DVec3,
+        m: DVec3,
+        inertia: DVec3,
+    ) -> glam::DQuat {
+        let t = self.tmpl.read(i) as usize;
+        let fa = mass_factor(self.added, (*self.templates.ptr(t)).density);
+        let tm = glam::BVec3::from(self.tf.read(i));
+        let torque = DVec3::select(tm, m / fa, DVec3::ZERO);
+        let mut st = crate::rotation::RotState { q, l_world: *l };
+        crate::rotation::zhao_van_wachem::step(&mut st, inertia, &mut |_| torque, self.dt);
+        *l = DVec3::select(tm, st.l_world, *l);
+        st.q
     }
 }
 

@@ -112,11 +112,11 @@ impl Outputs {
             },
             trajectory: match (&o.trajectory, start) {
                 (Some(t), Start::Fresh) if !t.bodies.is_empty() => Some(
-                    TrajectoryWriter::create(outdir, &t.bodies)
+                    TrajectoryWriter::create_with(outdir, &t.bodies, t.extras)
                         .map_err(rt("cannot create trajectory files"))?,
                 ),
                 (Some(t), Start::Resume { time, .. }) if !t.bodies.is_empty() => Some(
-                    TrajectoryWriter::resume(outdir, &t.bodies, time)
+                    TrajectoryWriter::resume_with(outdir, &t.bodies, time, t.extras)
                         .map_err(rt("cannot resume trajectory files"))?,
                 ),
                 _ => None,

@@ -8,6 +8,14 @@
 //!   the scenario's `[[template]]` list), `x, y, z` (centre of mass, world
 //!   frame, m), `qw, qx, qy, qz` (orientation, normalised on reading),
 //!   `vx, vy, vz` (m/s, world), `wx, wy, wz` (angular velocity, rad/s, world).
+//!   Optional instead of the quaternion: `phi, theta, psi` (z-x-z Euler
+//!   angles of the seed, rad, see `clump_core::math::euler`); instead of the
+//!   world angular velocity: `wbx, wby, wbz` (rad/s, in the frame the
+//!   orientation maps from). Degrees of freedom per body: `ffx, ffy, ffz`,
+//!   `tfx, tfy, tfz` (force and torque flags, 1 or 0; default the template's
+//!   and the insert's), `driven` (1: velocity and angular velocity held,
+//!   see `clump_core::dof`); `start_step` or `start_time` (s): before it the
+//!   body moves ballistically, ignoring forces (the seed's `start_step`).
 //! - **`xyzq`**: whitespace-separated `id x y z qw qx qy qz` rows without a
 //!   header (the format of the shared tetra-bed initial conditions and of
 //!   many LIGGGHTS/Yade scripts); every body uses the insert's template and
@@ -22,9 +30,54 @@
 use clump_core::body::BodyInit;
 use glam::{DQuat, DVec3};
 
-const COLUMNS: [&str; 14] = [
-    "template", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz",
+const COLUMNS: [&str; 29] = [
+    "template",
+    "x",
+    "y",
+    "z",
+    "qw",
+    "qx",
+    "qy",
+    "qz",
+    "vx",
+    "vy",
+    "vz",
+    "wx",
+    "wy",
+    "wz",
+    "wbx",
+    "wby",
+    "wbz",
+    "phi",
+    "theta",
+    "psi",
+    "ffx",
+    "ffy",
+    "ffz",
+    "tfx",
+    "tfy",
+    "tfz",
+    "driven",
+    "start_step",
+    "start_time",
 ];
+/// Index of the first column after `wz`.
+const WB: usize = 14;
+const EULER: usize = 17;
+const FLAGS: usize = 20;
+const DRIVEN_COL: usize = 26;
+const START_STEP: usize = 27;
+const START_TIME: usize = 28;
+
+/// What a row of a CSV body file starts from before its own columns.
+#[derive(Debug, Clone, Default)]
+pub struct RowDefaults {
+    /// Degrees of freedom by template index (the template's flags with the
+    /// insert's overrides); a template past the end is free.
+    pub dof: Vec<clump_core::dof::Dof>,
+    /// Time step, s (turns `start_time` into a step).
+    pub dt: f64,
+}
 
 /// Layout of a body file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
@@ -44,6 +97,7 @@ pub fn parse(
     format: BodyFileFormat,
     template_names: &[String],
     default_template: Option<u32>,
+    defaults: &RowDefaults,
 ) -> Result<Vec<BodyInit>, (usize, String)> {
     let text = std::str::from_utf8(bytes).map_err(|_| {
         (
@@ -52,7 +106,7 @@ pub fn parse(
         )
     })?;
     match format {
-        BodyFileFormat::Csv => parse_csv(text, template_names, default_template),
+        BodyFileFormat::Csv => parse_csv(text, template_names, default_template, defaults),
         BodyFileFormat::Xyzq => {
             let t = default_template.ok_or_else(|| {
                 (
@@ -61,7 +115,10 @@ pub fn parse(
                         .to_string(),
                 )
             })?;
-            parse_xyzq(text, t)
+            let mut bodies = parse_xyzq(text, t)?;
+            let dof = defaults.dof.get(t as usize).copied().unwrap_or_default();
+            bodies.iter_mut().for_each(|b| dof.apply(b));
+            Ok(bodies)
         }
     }
 }
@@ -122,6 +179,7 @@ fn parse_csv(
     text: &str,
     template_names: &[String],
     default_template: Option<u32>,
+    defaults: &RowDefaults,
 ) -> Result<Vec<BodyInit>, (usize, String)> {
     let mut header: Option<Vec<usize>> = None; // column index in COLUMNS per field
     let mut out = Vec::new();
@@ -136,10 +194,13 @@ fn parse_csv(
             let mut cols = Vec::new();
             for f in &fields {
                 let k = COLUMNS.iter().position(|c| c == f).ok_or_else(|| {
+                    let hint = super::diag::did_you_mean(f, COLUMNS)
+                        .map(|c| format!(" (did you mean '{c}'?)"))
+                        .unwrap_or_default();
                     (
                         ln,
                         format!(
-                            "unknown column '{f}' in the header; allowed columns: {}",
+                            "unknown column '{f}' in the header{hint}; allowed columns: {}",
                             COLUMNS.join(", ")
                         ),
                     )
@@ -161,6 +222,7 @@ fn parse_csv(
                     ));
                 }
             }
+            check_column_groups(&cols).map_err(|m| (ln, m))?;
             header = Some(cols);
             continue;
         };
@@ -174,7 +236,7 @@ fn parse_csv(
                 ),
             ));
         }
-        let mut vals = [0.0f64; 14];
+        let mut vals = [0.0f64; COLUMNS.len()];
         vals[4] = 1.0;
         let mut template = default_template.unwrap_or(0);
         for (f, &k) in fields.iter().zip(h) {
@@ -198,11 +260,7 @@ fn parse_csv(
                 vals[k] = finite(ln, COLUMNS[k], f)?;
             }
         }
-        let q = unit_quaternion(ln, vals[4], vals[5], vals[6], vals[7])?;
-        let mut b = BodyInit::at_rest(template, DVec3::new(vals[1], vals[2], vals[3]), q);
-        b.velocity = DVec3::new(vals[8], vals[9], vals[10]);
-        b.angular_velocity = DVec3::new(vals[11], vals[12], vals[13]);
-        out.push(b);
+        out.push(row_body(ln, h, &vals, template, defaults)?);
     }
     if header.is_none() {
         return Err((
@@ -214,4 +272,129 @@ fn parse_csv(
         ));
     }
     Ok(out)
+}
+
+/// Columns that go together (all or none) or exclude each other.
+fn check_column_groups(cols: &[usize]) -> Result<(), String> {
+    let has = |k: usize| cols.contains(&k);
+    let group = |ks: &[usize], what: &str| -> Result<bool, String> {
+        let n = ks.iter().filter(|&&k| has(k)).count();
+        if n != 0 && n != ks.len() {
+            let names: Vec<&str> = ks.iter().map(|&k| COLUMNS[k]).collect();
+            return Err(format!(
+                "{what} needs all of the columns {}",
+                names.join(", ")
+            ));
+        }
+        Ok(n != 0)
+    };
+    let quat = [4, 5, 6, 7].iter().any(|&k| has(k));
+    let euler = group(
+        &[EULER, EULER + 1, EULER + 2],
+        "an orientation by Euler angles",
+    )?;
+    if quat && euler {
+        return Err("give the orientation either as a quaternion (qw, qx, qy, qz) or as Euler angles (phi, theta, psi), not both".into());
+    }
+    let world = [11, 12, 13].iter().any(|&k| has(k));
+    let body = [WB, WB + 1, WB + 2].iter().any(|&k| has(k));
+    if world && body {
+        return Err("give the angular velocity either in the world frame (wx, wy, wz) or in the body frame (wbx, wby, wbz), not both".into());
+    }
+    if has(START_STEP) && has(START_TIME) {
+        return Err("give either 'start_step' or 'start_time', not both".into());
+    }
+    Ok(())
+}
+
+/// A flag column's value: 1 (free) or 0 (locked); `driven` likewise.
+fn flag(ln: usize, k: usize, x: f64) -> Result<bool, (usize, String)> {
+    match x {
+        v if v == 1.0 => Ok(true),
+        v if v == 0.0 => Ok(false),
+        _ => Err((
+            ln,
+            format!("column '{}': expected 1 or 0, found {x}", COLUMNS[k]),
+        )),
+    }
+}
+
+/// The body of one CSV row: `h` lists the row's columns (indices into
+/// [`COLUMNS`]), `vals` their values (the rest at their defaults).
+fn row_body(
+    ln: usize,
+    h: &[usize],
+    vals: &[f64; COLUMNS.len()],
+    template: u32,
+    defaults: &RowDefaults,
+) -> Result<BodyInit, (usize, String)> {
+    let q = if h.contains(&EULER) {
+        let (phi, theta, psi) = (vals[EULER], vals[EULER + 1], vals[EULER + 2]);
+        if !(0.0..=std::f64::consts::PI).contains(&theta) {
+            return Err((
+                ln,
+                format!(
+                    "column 'theta': the z-x-z nutation angle lies in [0, pi] rad, found {theta}"
+                ),
+            ));
+        }
+        clump_core::math::euler_to_quat(phi, theta, psi)
+    } else {
+        unit_quaternion(ln, vals[4], vals[5], vals[6], vals[7])?
+    };
+    let mut b = BodyInit::at_rest(template, DVec3::new(vals[1], vals[2], vals[3]), q);
+    b.velocity = DVec3::new(vals[8], vals[9], vals[10]);
+    b.angular_velocity = if h.contains(&WB) {
+        q * DVec3::new(vals[WB], vals[WB + 1], vals[WB + 2])
+    } else {
+        DVec3::new(vals[11], vals[12], vals[13])
+    };
+    let mut dof = defaults
+        .dof
+        .get(template as usize)
+        .copied()
+        .unwrap_or_default();
+    for a in 0..3 {
+        if h.contains(&(FLAGS + a)) {
+            dof.force_flag[a] = flag(ln, FLAGS + a, vals[FLAGS + a])?;
+        }
+        if h.contains(&(FLAGS + 3 + a)) {
+            dof.torque_flag[a] = flag(ln, FLAGS + 3 + a, vals[FLAGS + 3 + a])?;
+        }
+    }
+    if h.contains(&DRIVEN_COL) {
+        dof.driven = flag(ln, DRIVEN_COL, vals[DRIVEN_COL])?;
+    }
+    let start = if h.contains(&START_STEP) {
+        let s = vals[START_STEP];
+        if !(s >= 0.0 && s.fract() == 0.0 && s < 9.0e15) {
+            return Err((
+                ln,
+                format!("column 'start_step': expected a whole step number >= 0, found {s}"),
+            ));
+        }
+        Some(s as u64)
+    } else if h.contains(&START_TIME) {
+        let t = vals[START_TIME];
+        if t < 0.0 {
+            return Err((
+                ln,
+                format!("column 'start_time': expected a time >= 0 s, found {t}"),
+            ));
+        }
+        Some((t / defaults.dt).ceil() as u64)
+    } else {
+        None
+    };
+    if dof.driven && start.is_some() {
+        return Err((
+            ln,
+            "a driven body never feels forces: 'start_step'/'start_time' do not apply to it".into(),
+        ));
+    }
+    dof.apply(&mut b);
+    if let Some(s) = start {
+        b.start_step = s;
+    }
+    Ok(b)
 }

@@ -80,6 +80,10 @@ pub const DOMAIN_KEYS: &[Key] = &[
         "periodic",
         "Periodic axes, e.g. `[\"x\", \"y\"]` (default none).",
     ),
+    key(
+        "dimension",
+        "2 (motion in the x–y plane, rotation about z) or 3 (default).",
+    ),
 ];
 
 /// The keys of `[integrator]` ([`RawIntegrator`]).
@@ -170,6 +174,18 @@ pub const TEMPLATE_KEYS: &[Key] = &[
         "inertia",
         "Inertia tensor override about the centre of mass, input frame, kg m².",
     ),
+    key(
+        "center_of_mass",
+        "Centre of mass override, input frame, m (with `mass` and `inertia`, taken about it).",
+    ),
+    key(
+        "force_flags",
+        "Force flags per world axis of the template's bodies (LIGGGHTS `fflag`).",
+    ),
+    key(
+        "torque_flags",
+        "Torque flags per world axis of the template's bodies (LIGGGHTS `tflag`).",
+    ),
 ];
 
 /// The keys of the `size` of a `[[mix.component]]` ([`RawSize`]).
@@ -245,6 +261,28 @@ pub const INSERT_KEYS: &[Key] = &[
         "Stream end, s after the stage start (default the end of the stage).",
     ),
     key("max_attempts", "Placement attempts per body."),
+    key(
+        "euler",
+        "Fixed orientation as z-x-z Euler angles `[phi, theta, psi]`, rad (pack, stream).",
+    ),
+    key(
+        "angular_velocity",
+        "Initial angular velocity, world frame, rad/s (pack, stream).",
+    ),
+    key("force_flags", "Force flags per world axis (over the template's)."),
+    key("torque_flags", "Torque flags per world axis (over the template's)."),
+    key(
+        "fixed",
+        "The bodies never move (LIGGGHTS `fix freeze`); they still make contacts.",
+    ),
+    key(
+        "driven",
+        "The bodies keep their initial velocity and angular velocity.",
+    ),
+    key(
+        "start_after",
+        "Stream: seconds each body moves ballistically after insertion.",
+    ),
 ];
 
 /// The keys of the `rotation` of a mesh `[[wall]]` ([`RawRotation`]).
@@ -302,6 +340,14 @@ pub const STAGE_KEYS: &[Key] = &[
     key("steps", "Duration in steps."),
     key("gravity", "New gravity from this stage on, m/s²."),
     key("wall", "Wall changes."),
+    key("body", "Body changes."),
+];
+
+/// The keys of `[[stage.body]]` ([`RawBodyChange`]).
+pub const BODY_CHANGE_KEYS: &[Key] = &[
+    key("id", "Global body id (1-based, in insertion order)."),
+    key("velocity", "New centre-of-mass velocity, m/s."),
+    key("angular_velocity", "New angular velocity (world frame), rad/s."),
 ];
 
 /// The keys of `[output.vtk]`, `[output.thermo]` and `[output.checkpoint]` ([`RawEvery`]).
@@ -318,6 +364,11 @@ pub const TRAJECTORY_KEYS: &[Key] = &[
     ),
     key("every", "Interval, s."),
     key("every_steps", "Interval, steps."),
+    key(
+        "euler",
+        "Also write the z-x-z Euler angles and the rows of A.",
+    ),
+    key("loads", "Also write the body's force and torque."),
 ];
 
 /// The keys of `[output]` ([`RawOutput`]).
@@ -368,7 +419,16 @@ pub const REGION_TYPE_KEYS: &[KindKeys] = &[
 pub const INSERT_KIND_KEYS: &[KindKeys] = &[
     KindKeys {
         kind: "file",
-        keys: &["file", "template", "format", "orientation_frame"],
+        keys: &[
+            "file",
+            "template",
+            "format",
+            "orientation_frame",
+            "force_flags",
+            "torque_flags",
+            "fixed",
+            "driven",
+        ],
     },
     KindKeys {
         kind: "pack",
@@ -382,6 +442,12 @@ pub const INSERT_KIND_KEYS: &[KindKeys] = &[
             "velocity",
             "orientation",
             "max_attempts",
+            "euler",
+            "angular_velocity",
+            "force_flags",
+            "torque_flags",
+            "fixed",
+            "driven",
         ],
     },
     KindKeys {
@@ -399,6 +465,13 @@ pub const INSERT_KIND_KEYS: &[KindKeys] = &[
             "start",
             "end",
             "max_attempts",
+            "euler",
+            "angular_velocity",
+            "force_flags",
+            "torque_flags",
+            "fixed",
+            "driven",
+            "start_after",
         ],
     },
 ];
@@ -423,6 +496,7 @@ pub const TABLES: &[&[Key]] = &[
     WALL_KEYS,
     WALL_CHANGE_KEYS,
     STAGE_KEYS,
+    BODY_CHANGE_KEYS,
     EVERY_KEYS,
     TRAJECTORY_KEYS,
     OUTPUT_KEYS,
@@ -506,6 +580,7 @@ mod tests {
             case!(RawWall, WALL_KEYS),
             case!(RawWallChange, WALL_CHANGE_KEYS),
             case!(RawStage, STAGE_KEYS),
+            case!(RawBodyChange, BODY_CHANGE_KEYS),
             case!(RawEvery, EVERY_KEYS),
             case!(RawTrajectory, TRAJECTORY_KEYS),
             case!(RawOutput, OUTPUT_KEYS),

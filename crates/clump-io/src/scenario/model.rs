@@ -70,6 +70,10 @@ pub struct TemplateDef {
     pub material: u16,
     /// The template, body frame, SI.
     pub template: ClumpTemplate,
+    /// Force and torque flags of its bodies (`force_flags`, `torque_flags`).
+    pub dof: clump_core::dof::Dof,
+    /// `mass` and `inertia` (and maybe `center_of_mass`) were given.
+    pub given_mass_properties: bool,
 }
 
 /// A named particle mix (template indices refer to [`Scenario::templates`]).
@@ -187,6 +191,8 @@ pub struct TrajectoryDef {
     pub bodies: Vec<u64>,
     /// Interval, steps.
     pub every: u64,
+    /// Optional columns (`euler`, `loads`).
+    pub extras: crate::trajectory::Extras,
 }
 
 /// Output settings (intervals in steps).

@@ -140,6 +140,8 @@ pub struct RawDomain {
     /// Periodic axes, e.g. `["x", "y"]` (default none).
     #[serde(default)]
     pub periodic: Vec<AxisName>,
+    /// 2 (x–y plane, rotation about z) or 3 (default).
+    pub dimension: Option<u8>,
 }
 
 /// `[integrator]`.
@@ -278,6 +280,13 @@ pub struct RawTemplate {
     pub mass: Option<f64>,
     /// Inertia tensor override about the centre of mass, input frame, kg m².
     pub inertia: Option<[[f64; 3]; 3]>,
+    /// Centre of mass override, input frame, m (with `mass` and `inertia`,
+    /// which is then taken about this point).
+    pub center_of_mass: Option<[f64; 3]>,
+    /// Force flags per world axis of this template's bodies (LIGGGHTS `fflag`).
+    pub force_flags: Option<[bool; 3]>,
+    /// Torque flags per world axis of this template's bodies (LIGGGHTS `tflag`).
+    pub torque_flags: Option<[bool; 3]>,
 }
 
 /// Size distribution kind.
@@ -431,6 +440,20 @@ pub struct RawInsert {
     pub end: Option<f64>,
     /// Placement attempts per body.
     pub max_attempts: Option<u32>,
+    /// Fixed orientation as z-x-z Euler angles `[phi, theta, psi]`, rad.
+    pub euler: Option<[f64; 3]>,
+    /// Initial angular velocity, world frame, rad/s.
+    pub angular_velocity: Option<[f64; 3]>,
+    /// Force flags per world axis (override the template's).
+    pub force_flags: Option<[bool; 3]>,
+    /// Torque flags per world axis (override the template's).
+    pub torque_flags: Option<[bool; 3]>,
+    /// The bodies never move (LIGGGHTS `fix freeze`); they still make contacts.
+    pub fixed: Option<bool>,
+    /// The bodies keep their initial velocity and angular velocity.
+    pub driven: Option<bool>,
+    /// Stream: seconds each body moves ballistically after insertion.
+    pub start_after: Option<f64>,
 }
 
 /// Wall kind.
@@ -581,6 +604,10 @@ pub struct RawTrajectory {
     pub every: Option<f64>,
     /// Interval, steps.
     pub every_steps: Option<u64>,
+    /// Also write the z-x-z Euler angles and the rows of A.
+    pub euler: Option<bool>,
+    /// Also write the body's force and torque.
+    pub loads: Option<bool>,
 }
 
 /// `[output]`.

@@ -203,6 +203,8 @@ pub fn discharge(d0: f64) -> Result<Discharge, String> {
                 velocity: DVec3::ZERO,
                 orientation: Orientation::Random,
                 max_attempts_per_body: 200,
+                angular_velocity: Default::default(),
+                dof: Vec::new(),
             };
             calls += 1;
             if pack(&mut w, &spec, 1000 + calls).is_ok() {

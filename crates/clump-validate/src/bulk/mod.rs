@@ -38,6 +38,8 @@ pub fn fill(
         velocity: DVec3::ZERO,
         orientation: Orientation::Random,
         max_attempts_per_body: 2000,
+        angular_velocity: Default::default(),
+        dof: Vec::new(),
     };
     let r = pack(w, &spec, seed).map_err(|e| e.to_string())?;
     Ok(r.placed)

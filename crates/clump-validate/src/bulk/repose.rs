@@ -233,6 +233,8 @@ pub fn heap(spec: &HeapSpec) -> Result<Heap, String> {
             velocity: DVec3::new(0.0, 0.0, -v0),
             orientation: Orientation::Random,
             max_attempts_per_body: 2000,
+            angular_velocity: Default::default(),
+            dof: Vec::new(),
         };
         let r = pack(&mut w, &ps, spec.seed * 1000 + batch_no).map_err(|e| e.to_string())?;
         poured += r.placed;

@@ -5,7 +5,7 @@ use super::model::*;
 use super::raw::*;
 use super::source::Seg;
 use super::Seg::{I, K};
-use super::{lookup, Cx, PACK_ERROR_FRACTION, R};
+use super::{dof, lookup, Cx, PACK_ERROR_FRACTION, R};
 use clump_core::insert::{
     Mix, Orientation, PackSpec, PackTarget, Region, StreamRate, StreamSpec, RSA_LIMIT,
 };
@@ -157,6 +157,7 @@ fn build_insert(
                 )));
         }
     }
+    let dynamics = dof::insert_dynamics(cx, i, ins, kind, templates)?;
     if kind == InsertKind::File {
         let f = ins.file.as_ref().ok_or_else(|| {
             cx.missing(
@@ -172,13 +173,26 @@ fn build_insert(
             None => None,
         };
         let format = ins.format.unwrap_or_default();
-        let mut bodies =
-            super::bodies_file::parse(&bytes, format, template_names, default_template).map_err(
-                |(line, msg)| {
-                    cx.err(&p("file"), format!("{f}:{line}: {msg}"))
-                        .label("in this file")
-                },
-            )?;
+        let mut bodies = super::bodies_file::parse(
+            &bytes,
+            format,
+            template_names,
+            default_template,
+            &super::bodies_file::RowDefaults {
+                dof: dynamics.by_template.clone(),
+                dt,
+            },
+        )
+        .map_err(|(line, msg)| {
+            cx.err(&p("file"), format!("{f}:{line}: {msg}"))
+                .label("in this file")
+        })?;
+        if let (true, Some((k, what))) = (dynamics.fixed, dof::moving_body(&bodies)) {
+            return Err(cx.err(
+                &p("fixed"),
+                format!("fixed bodies are at rest, but body {k} of '{f}' has a {what}"),
+            ));
+        }
         if ins.orientation_frame == Some(super::raw::OrientationFrame::Input) {
             // q_input maps (x_input − com) to world; x_input − com =
             // input_to_body⁻¹ x_body, so body → world is q_input · input_to_body⁻¹.
@@ -228,6 +242,9 @@ fn build_insert(
         None => DVec3::ZERO,
     };
     let orientation = match ins.orientation {
+        None if dynamics.euler.is_some() => Orientation::Fixed {
+            quaternion: dynamics.euler.unwrap_or_default(),
+        },
         None => Orientation::Random,
         Some(q) => {
             let q = DQuat::from_xyzw(q[1], q[2], q[3], q[0]);
@@ -317,6 +334,8 @@ fn build_insert(
                 velocity,
                 orientation,
                 max_attempts_per_body: ins.max_attempts.unwrap_or(1000),
+                angular_velocity: dynamics.angular_velocity,
+                dof: dynamics.by_template.clone(),
             };
             Ok(InsertDef {
                 stage,
@@ -431,6 +450,9 @@ fn build_insert(
                 exit_normal,
                 orientation,
                 max_attempts_per_body: ins.max_attempts.unwrap_or(20),
+                angular_velocity: dynamics.angular_velocity,
+                dof: dynamics.by_template.clone(),
+                start_after: ins.start_after,
             };
             let expected = (body_rate * (end - t0 - start)).max(0.0).floor();
             Ok(InsertDef {

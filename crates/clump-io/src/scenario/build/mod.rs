@@ -8,10 +8,12 @@
 )]
 
 mod contact;
+mod dof;
 mod domain;
 mod inserts;
 mod materials;
 mod output;
+mod planar;
 mod stages;
 mod templates;
 mod time_step;
@@ -197,7 +199,12 @@ pub(super) fn build(
 fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     let (material_names, materials) = materials::materials(cx, &raw)?;
     let pair_table = contact::pair_table(cx, &raw, &material_names, materials.len())?;
-    let (template_names, templates) = templates::templates(cx, &raw, &material_names, &materials)?;
+    let (template_names, mut templates) =
+        templates::templates(cx, &raw, &material_names, &materials)?;
+    let two_d = planar::two_d(cx, raw.domain.as_ref().and_then(|d| d.dimension))?;
+    if two_d {
+        planar::templates(cx, &mut templates)?;
+    }
     let (mix_names, mixes) = templates::mixes(cx, &raw, &template_names)?;
     let sim = raw.simulation.clone().unwrap_or_default();
     let setting = domain::setting(cx, &raw, &sim)?;
@@ -205,7 +212,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     let dt = time_step.dt;
     let (wall_names, walls, meshes, torque_points) = walls::walls(cx, &raw, &material_names)?;
     let stages = stages::stages(cx, &raw, &sim, &wall_names, dt)?;
-    let inserts = inserts::inserts(
+    let mut inserts = inserts::inserts(
         cx,
         &raw,
         &stages,
@@ -215,7 +222,10 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         &mix_names,
         dt,
     )?;
-    let output = output::output(cx, &raw, &stages, dt)?;
+    if two_d {
+        planar::inserts(cx, &mut inserts, setting.gravity, &stages)?;
+    }
+    let output = output::output(cx, &raw, &stages, dt, two_d)?;
 
     let config = WorldConfig {
         domain: setting.domain,

@@ -7,7 +7,14 @@ use super::Seg::{I, K};
 use super::{Cx, R};
 
 /// The output settings; intervals in seconds become steps of `dt`.
-pub(super) fn output(cx: &mut Cx, raw: &RawScenario, stages: &[StageDef], dt: f64) -> R<OutputDef> {
+/// `two_d`: the scenario is planar (trajectories write the angle θ).
+pub(super) fn output(
+    cx: &mut Cx,
+    raw: &RawScenario,
+    stages: &[StageDef],
+    dt: f64,
+    two_d: bool,
+) -> R<OutputDef> {
     // ---------------- output
     let to_steps =
         |cx: &Cx, base: [Seg<'static>; 2], e: Option<f64>, s: Option<u64>| -> R<Option<u64>> {
@@ -57,6 +64,11 @@ pub(super) fn output(cx: &mut Cx, raw: &RawScenario, stages: &[StageDef], dt: f6
             Some(TrajectoryDef {
                 bodies: t.bodies.clone(),
                 every,
+                extras: crate::trajectory::Extras {
+                    euler: t.euler.unwrap_or(false),
+                    loads: t.loads.unwrap_or(false),
+                    planar: two_d,
+                },
             })
         }
         None => None,

@@ -5,7 +5,7 @@ use super::model::*;
 use super::raw::*;
 use super::source::Seg;
 use super::Seg::{I, K};
-use super::{lookup, unique_name, Cx, MAX_ROD_SPHERES, R};
+use super::{dof, lookup, unique_name, Cx, MAX_ROD_SPHERES, R};
 use clump_core::contact::Material;
 use clump_core::insert::{Mix, MixEntry, SizeDistribution};
 use clump_core::shape::{self, ClumpTemplate, ShapeError, Sphere};
@@ -268,32 +268,41 @@ fn build_template(
         .iter()
         .map(|s| Sphere::new(s.center * scale, s.radius * scale))
         .collect();
-    let template =
-        match (t.mass, t.inertia) {
-            (None, None) => ClumpTemplate::from_spheres(&name, &spheres, density),
-            (Some(m), Some(inertia)) => {
-                cx.positive(&p("mass"), m, "mass", "kg")?;
-                let mat = DMat3::from_cols_array_2d(&inertia).transpose();
-                ClumpTemplate::with_override(&name, &spheres, density, m, mat)
+    let template = match (t.mass, t.inertia) {
+        (None, None) => {
+            dof::template_center_of_mass(cx, i, t, scale)?;
+            ClumpTemplate::from_spheres(&name, &spheres, density)
+        }
+        (Some(m), Some(inertia)) => {
+            cx.positive(&p("mass"), m, "mass", "kg")?;
+            let mat = DMat3::from_cols_array_2d(&inertia).transpose();
+            match dof::template_center_of_mass(cx, i, t, scale)? {
+                Some(c) => ClumpTemplate::with_override_about(&name, &spheres, density, m, mat, c),
+                None => ClumpTemplate::with_override(&name, &spheres, density, m, mat),
             }
-            (Some(_), None) => return Err(cx
+        }
+        (Some(_), None) => {
+            return Err(cx
                 .src
                 .error_at_key(
                     &p("mass"),
                     "'mass' needs 'inertia' too (3×3 tensor in kg m^2 about the centre of mass)",
                 )
-                .note("help: inertia = [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz], [Ixz, Iyz, Izz]]")),
-            (None, Some(_)) => {
-                return Err(cx
-                    .src
-                    .error_at_key(&p("inertia"), "'inertia' needs 'mass' too (kg)"))
-            }
+                .note("help: inertia = [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz], [Ixz, Iyz, Izz]]"))
         }
-        .map_err(|e| shape_error(cx, i, e, inline))?;
+        (None, Some(_)) => {
+            return Err(cx
+                .src
+                .error_at_key(&p("inertia"), "'inertia' needs 'mass' too (kg)"))
+        }
+    }
+    .map_err(|e| shape_error(cx, i, e, inline))?;
     Ok(TemplateDef {
         name,
         material: mi as u16,
         template,
+        dof: dof::template_dof(t),
+        given_mass_properties: t.mass.is_some(),
     })
 }
 

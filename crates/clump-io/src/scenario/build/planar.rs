@@ -1,0 +1,101 @@
+//! `[domain] dimension = 2`: the seed's 2D case. Motion in the x–y plane
+//! and rotation about z only: every template is re-framed so that body z is
+//! its plane normal (`ClumpTemplate::planar`), every body's force flag z
+//! and torque flags x, y are off, and bodies start in the plane's motion
+//! (no z velocity, no x/y angular velocity, turned about z only). Bodies
+//! come from body files (`kind = "file"`); random packing and streams
+//! place bodies in 3D and are refused.
+
+use super::{Cx, InsertDef, InsertSpec, StageDef, TemplateDef, R};
+use super::Seg::{I, K};
+use glam::{DQuat, DVec3};
+
+/// Reads `[domain] dimension`: `Some(true)` for 2, `Some(false)` for 3.
+pub(super) fn two_d(cx: &Cx, dimension: Option<u8>) -> R<bool> {
+    match dimension {
+        None | Some(3) => Ok(false),
+        Some(2) => Ok(true),
+        Some(d) => Err(cx
+            .err(
+                &[K("domain"), K("dimension")],
+                format!("dimension must be 2 or 3, found {d}"),
+            )
+            .label("2 (x–y plane, rotation about z) or 3")),
+    }
+}
+
+/// Re-frames every template for the plane (errors name the template).
+pub(super) fn templates(cx: &Cx, templates: &mut [TemplateDef]) -> R<()> {
+    for (i, t) in templates.iter_mut().enumerate() {
+        t.template = t.template.planar().map_err(|e| {
+            cx.err(
+                &[K("template"), I(i)],
+                format!("template '{}' cannot be used in 2D: {e}", t.name),
+            )
+            .note("note: [domain] dimension = 2 needs clumps whose sphere centres lie in one plane z = const")
+        })?;
+        t.dof.force_flag[2] = false;
+        t.dof.torque_flag[0] = false;
+        t.dof.torque_flag[1] = false;
+    }
+    Ok(())
+}
+
+/// Checks and restricts the inserts and gravity to the plane.
+pub(super) fn inserts(
+    cx: &Cx,
+    inserts: &mut [InsertDef],
+    gravity: DVec3,
+    stages: &[StageDef],
+) -> R<()> {
+    let g_off = |g: DVec3| g.z != 0.0;
+    if g_off(gravity) {
+        return Err(cx.err(
+            &[K("simulation"), K("gravity")],
+            format!(
+                "in 2D gravity lies in the x–y plane: its z component must be 0, found {gravity}"
+            ),
+        ));
+    }
+    for (i, s) in stages.iter().enumerate() {
+        if s.gravity.is_some_and(g_off) {
+            return Err(cx.err(
+                &[K("stage"), I(i), K("gravity")],
+                "in 2D gravity lies in the x–y plane: its z component must be 0",
+            ));
+        }
+    }
+    for (i, ins) in inserts.iter_mut().enumerate() {
+        let InsertSpec::File { bodies } = &mut ins.kind else {
+            return Err(cx
+                .err(
+                    &[K("insert"), I(i), K("kind")],
+                    "in 2D bodies come from a body file (kind = \"file\")",
+                )
+                .note("note: random packing and streams place bodies in 3D"));
+        };
+        for (k, b) in bodies.iter_mut().enumerate() {
+            let q = b.orientation;
+            let why = if q.x.abs() > 1e-12 || q.y.abs() > 1e-12 {
+                Some("is turned about an axis other than z")
+            } else if b.velocity.z != 0.0 {
+                Some("has a z velocity")
+            } else if b.angular_velocity.x != 0.0 || b.angular_velocity.y != 0.0 {
+                Some("has an angular velocity about x or y")
+            } else {
+                None
+            };
+            if let Some(why) = why {
+                return Err(cx.err(
+                    &[K("insert"), I(i), K("file")],
+                    format!("in 2D body {} of the file {why}; bodies move in the x–y plane and turn about z", k + 1),
+                ));
+            }
+            b.orientation = DQuat::from_xyzw(0.0, 0.0, q.z, q.w).normalize();
+            b.force_flag[2] = false;
+            b.torque_flag[0] = false;
+            b.torque_flag[1] = false;
+        }
+    }
+    Ok(())
+}
