@@ -221,6 +221,47 @@ pub fn damping_ratio(law: DampingLaw, e: f64, tensile: bool) -> (f64, bool) {
     }
 }
 
+/// The law's dashpot constants `(ĝ_n, ĝ_t)` for damping ratio `β ≤ 0`, such
+/// that `γ = ĝ √(s m*)` ([`dashpot`]): Hertz `ĝ_n = −2√(5/6)β√(2E*)`,
+/// `ĝ_t = −2√(5/6)β√(8G*)` (from [`hertz_gamma`] with `S_n = 2E* s`,
+/// `S_t = 8G* s`); linear `ĝ_n = −2β√k_n`, `ĝ_t = −2β√k_t` ([`linear_gamma`]).
+pub fn dashpot_coefficients(
+    law: super::NormalLaw,
+    beta: f64,
+    e_star: f64,
+    g_star: f64,
+) -> (f64, f64) {
+    match law {
+        super::NormalLaw::Hertz => {
+            let pre = -HERTZ_DAMPING_PREFACTOR * beta;
+            (pre * (2.0 * e_star).sqrt(), pre * (8.0 * g_star).sqrt())
+        }
+        super::NormalLaw::Linear { kn, kt } => (-2.0 * beta * kn.sqrt(), -2.0 * beta * kt.sqrt()),
+    }
+}
+
+/// Dashpot coefficient `γ = ĝ √(s m*)`, kg/s, from the law's constant `ĝ`
+/// ([`dashpot_coefficients`]), the stiffness scale `s`
+/// ([`super::normal::stiffness_scale`]) and the effective mass `m*` (kg).
+#[inline(always)]
+pub fn dashpot(coef: f64, scale: f64, mass: f64) -> f64 {
+    coef * (scale * mass).sqrt()
+}
+
+/// Total normal force `F_n = F_el − γ_n v_n` (N) with the tensile clamp:
+/// at least `floor` (0 clamped, −∞ tensile). `v_n` (m/s) is negative while
+/// approaching. A comparison rather than `f64::max`: one instruction in
+/// the vectorised loop, and NaN propagates.
+#[inline(always)]
+pub fn normal_force(f_el: f64, gamma_n: f64, v_n: f64, floor: f64) -> f64 {
+    let f_raw = f_el - gamma_n * v_n;
+    if f_raw < floor {
+        floor
+    } else {
+        f_raw
+    }
+}
+
 /// Linear dashpot coefficient `γ = −2β√(m* k)`, kg/s, for stiffness `k` (N/m)
 /// and effective mass `m*` (kg).
 pub fn linear_gamma(beta: f64, stiffness: f64, mass: f64) -> f64 {

@@ -10,12 +10,20 @@
 //!   `ĝ_n = −2β√k_n`, `ĝ_t = −2β√k_t` (see [`super::damping`] for `β`),
 //! - total normal force `F_n = max(F_el − γ_n v_n, 0)` (the tensile clamp,
 //!   default) or `F_el − γ_n v_n` ([`PairProperties::tensile`]).
+//!
+//! [`SlidingLaw::evaluate`] is that composition, calling the sub-models'
+//! own formulas: [`super::normal`] (stiffness scale, elastic force, spring
+//! energy), [`super::damping`] (dashpots, the clamped normal force),
+//! [`super::tangential`] (the history spring and its energy); the
+//! constants come from the same files ([`normal::stiffness_coefficients`],
+//! [`damping::dashpot_coefficients`]). The pair kernel and the wall path
+//! run this one function.
 
-use super::damping::{clamped_pulse_time, damping_ratio, DampingLaw, HERTZ_DAMPING_PREFACTOR};
+use super::damping::{self, clamped_pulse_time, damping_ratio, DampingLaw};
 use super::material::{effective_modulus, effective_shear_modulus, Material};
-use super::normal::NormalLaw;
+use super::normal::{self, NormalLaw};
 use super::rolling::{cdt, epsd, rolling_omega, RollingLaw};
-use super::tangential::history_spring;
+use super::tangential::{self, history_spring};
 use super::time_scale::hertz_contact_time;
 use super::{ContactError, ContactHistory, ContactInput, ContactOutput};
 use glam::DVec3;
@@ -125,33 +133,23 @@ impl SlidingLaw {
         xi: &mut DVec3,
     ) -> SlidingOutput {
         let d = overlap;
-        let s = if self.hertz {
-            (radius * overlap).sqrt()
-        } else {
-            1.0
-        };
-        let q = (s * mass).sqrt();
+        let s = normal::stiffness_scale(self.hertz, radius, overlap);
         let kn = self.kn_coef * s;
         let kt = self.kt_coef * s;
-        let gamma_n = self.gn_coef * q;
-        let gamma_t = self.gt_coef * q;
+        let gamma_n = damping::dashpot(self.gn_coef, s, mass);
+        let gamma_t = damping::dashpot(self.gt_coef, s, mass);
         let vn = v_rel.dot(n);
         let vt = v_rel - vn * n;
-        let f_el = kn * d;
-        // Tensile clamp (fn_floor = 0) or none (fn_floor = −∞); the Coulomb
-        // and rolling limits use |F_n|, which is F_n itself when clamped.
-        // (A comparison rather than f64::max: one maxsd, and NaN propagates.)
-        let f_raw = f_el - gamma_n * vn;
-        let f_n = if f_raw < self.fn_floor {
-            self.fn_floor
-        } else {
-            f_raw
-        };
+        let f_el = normal::elastic_force(kn, d);
+        // The Coulomb and rolling limits use |F_n|, which is F_n itself
+        // when clamped.
+        let f_n = damping::normal_force(f_el, gamma_n, vn, self.fn_floor);
         let f_t = history_spring(xi, n, vt, dt, kt, gamma_t, self.friction * f_n.abs());
         SlidingOutput {
             force: f_n * n + f_t,
             normal_force: f_n,
-            energy: self.energy_factor * f_el * d + 0.5 * kt * xi.length_squared(),
+            energy: normal::spring_energy(self.energy_factor, f_el, d)
+                + tangential::spring_energy(kt, *xi),
             kn,
         }
     }
@@ -204,22 +202,13 @@ impl ContactModel {
         // The same β serves both normal laws (phase-plane mapping, see
         // `damping`), clamped or not.
         let (beta, clamped) = damping_ratio(p.damping, e, p.tensile);
-        let (hertz, kn_coef, kt_coef, gn_coef, gt_coef, energy_factor) = match p.normal {
+        match p.normal {
             NormalLaw::Hertz => {
                 if !e_star.is_finite() {
                     return perr(
                         "Hertz contact between two rigid materials (E* is infinite)".into(),
                     );
                 }
-                let pre = -HERTZ_DAMPING_PREFACTOR * beta;
-                (
-                    true,
-                    4.0 / 3.0 * e_star,
-                    8.0 * g_star,
-                    pre * (2.0 * e_star).sqrt(),
-                    pre * (8.0 * g_star).sqrt(),
-                    0.4,
-                )
             }
             NormalLaw::Linear { kn, kt } => {
                 if !(kn > 0.0 && kn.is_finite()) {
@@ -232,16 +221,11 @@ impl ContactModel {
                         "linear tangential stiffness kt must be finite and >= 0 N/m, got {kt}"
                     ));
                 }
-                (
-                    false,
-                    kn,
-                    kt,
-                    -2.0 * beta * kn.sqrt(),
-                    -2.0 * beta * kt.sqrt(),
-                    0.5,
-                )
             }
-        };
+        }
+        let (hertz, kn_coef, kt_coef, energy_factor) =
+            normal::stiffness_coefficients(p.normal, e_star, g_star);
+        let (gn_coef, gt_coef) = damping::dashpot_coefficients(p.normal, beta, e_star, g_star);
         Ok(ContactModel {
             props: *p,
             e_star,

@@ -28,6 +28,42 @@ pub enum NormalLaw {
     },
 }
 
+/// The stiffness scale `s` of the running law: `√(R*δ)` (Hertz; `R*`, `δ`
+/// in m) or 1 (linear). Stiffnesses are `k = k̂ s` and dashpots
+/// `γ = ĝ √(s m*)` ([`super::damping::dashpot`]).
+#[inline(always)]
+pub fn stiffness_scale(hertz: bool, r_star: f64, overlap: f64) -> f64 {
+    if hertz {
+        (r_star * overlap).sqrt()
+    } else {
+        1.0
+    }
+}
+
+/// The law's constants of a normal law: `(hertz, k̂_n, k̂_t, energy factor)`
+/// with `k̂_n = (4/3)E*` (Pa) and `k̂_t = 8G*` (Pa) for Hertz–Mindlin, the
+/// given `k_n`, `k_t` (N/m) for linear; the normal spring energy is
+/// `factor · F_el δ` (2/5 Hertz, 1/2 linear). `E*`, `G*` in Pa.
+pub fn stiffness_coefficients(law: NormalLaw, e_star: f64, g_star: f64) -> (bool, f64, f64, f64) {
+    match law {
+        NormalLaw::Hertz => (true, 4.0 / 3.0 * e_star, 8.0 * g_star, 0.4),
+        NormalLaw::Linear { kn, kt } => (false, kn, kt, 0.5),
+    }
+}
+
+/// Elastic normal force `F_el = k_n δ`, N, for the (secant) stiffness
+/// `k_n = k̂_n s` (N/m) and overlap `δ` (m): Hertz `(4/3)E*√(R*δ) δ`.
+#[inline(always)]
+pub fn elastic_force(kn: f64, overlap: f64) -> f64 {
+    kn * overlap
+}
+
+/// Energy of the normal spring, `factor · F_el δ`, J.
+#[inline(always)]
+pub fn spring_energy(factor: f64, f_el: f64, overlap: f64) -> f64 {
+    factor * f_el * overlap
+}
+
 /// Hertz elastic normal force `(4/3)E*√R* δ^{3/2}`, N, for `E*` in Pa, `R*` and
 /// `δ` in m.
 pub fn hertz_force(e_star: f64, r_star: f64, overlap: f64) -> f64 {

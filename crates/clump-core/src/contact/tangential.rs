@@ -59,6 +59,12 @@ pub fn rotate_into_plane(v: DVec3, n: DVec3) -> DVec3 {
     p * scale
 }
 
+/// Energy of the tangential spring `½ k_t |ξ|²`, J.
+#[inline(always)]
+pub fn spring_energy(kt: f64, xi: DVec3) -> f64 {
+    0.5 * kt * xi.length_squared()
+}
+
 /// Tangential force on `i` (N, world) from the history spring, updating the
 /// spring `xi` (m, world) in place as described in the module docs.
 ///
