@@ -46,14 +46,14 @@ pub(super) fn pair_table(
             &[K("pair"), I(i), K("materials"), I(0)],
             "material",
             &ms[0],
-            &material_names,
+            material_names,
         )?;
         let b = lookup(
             cx,
             &[K("pair"), I(i), K("materials"), I(1)],
             "material",
             &ms[1],
-            &material_names,
+            material_names,
         )?;
         let key = (a.min(b), a.max(b));
         if let Some(prev) = pair_set.insert(key, i) {

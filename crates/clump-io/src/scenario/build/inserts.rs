@@ -32,12 +32,12 @@ pub(super) fn inserts(
             cx,
             i,
             ins,
-            &stages,
+            stages,
             &stage_names,
-            &templates,
-            &template_names,
-            &mixes,
-            &mix_names,
+            templates,
+            template_names,
+            mixes,
+            mix_names,
             dt,
         )?);
     }

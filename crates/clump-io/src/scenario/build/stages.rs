@@ -89,7 +89,7 @@ pub(super) fn stages(
                 let wn = c.name.as_ref().ok_or_else(|| {
                     cx.missing(&ct, "[[stage.wall]]", "name", "the name of a [[wall]]")
                 })?;
-                let wall = lookup(cx, &cp("name"), "wall", wn, &wall_names)?;
+                let wall = lookup(cx, &cp("name"), "wall", wn, wall_names)?;
                 let opt = |cx: &Cx, k: &'static str, v: Option<[f64; 3]>| -> R<Option<DVec3>> {
                     v.map(|a| cx.vec3(&cp(k), a, k)).transpose()
                 };

@@ -22,7 +22,7 @@ pub(super) fn templates(
     let mut template_names: Vec<String> = Vec::new();
     let mut templates: Vec<TemplateDef> = Vec::new();
     for (i, t) in raw.template.iter().enumerate() {
-        let td = build_template(cx, i, t, &material_names, &materials, &template_names)?;
+        let td = build_template(cx, i, t, material_names, materials, &template_names)?;
         template_names.push(td.name.clone());
         templates.push(td);
     }
@@ -57,7 +57,7 @@ pub(super) fn mixes(
             let tn = c.template.as_ref().ok_or_else(|| {
                 cx.missing(&ct, "[[mix.component]]", "template", "template = \"name\"")
             })?;
-            let ti = lookup(cx, &cp("template"), "template", tn, &template_names)?;
+            let ti = lookup(cx, &cp("template"), "template", tn, template_names)?;
             let fraction = c.fraction.unwrap_or(1.0);
             cx.positive(&cp("fraction"), fraction, "fraction", "")?;
             let size = match &c.size {

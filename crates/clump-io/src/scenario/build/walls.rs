@@ -21,7 +21,7 @@ pub(super) fn walls(
     let mut meshes: Vec<TriMesh> = Vec::new();
     let mut torque_points: Vec<Option<DVec3>> = Vec::new();
     for (i, w) in raw.wall.iter().enumerate() {
-        let wall = build_wall(cx, i, w, &material_names, &wall_names, &mut meshes)?;
+        let wall = build_wall(cx, i, w, material_names, &wall_names, &mut meshes)?;
         torque_points.push(
             w.torque_point
                 .map(|a| cx.vec3(&[K("wall"), I(i), K("torque_point")], a, "torque_point"))
