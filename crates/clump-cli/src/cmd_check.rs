@@ -40,38 +40,40 @@ pub fn run(args: &CheckArgs) -> ExitCode {
     let sc = match scenario::load(&args.scenario) {
         Ok(s) => s,
         Err(e) => {
-            eprint!("{e}");
+            err!("{e}");
             return ExitCode::from(2);
         }
     };
     for w in &sc.warnings {
-        eprint!("{w}");
+        err!("{w}");
     }
     report(&sc);
     if !args.no_pack {
         if let Err(e) = trial_pack(&sc) {
-            eprint!("{e}");
+            err!("{e}");
             return ExitCode::from(2);
         }
     }
-    println!("\nok: {} is valid", args.scenario.display());
+    outln!("\nok: {} is valid", args.scenario.display());
     ExitCode::SUCCESS
 }
 
 fn report(sc: &Scenario) {
-    println!("scenario {}", sc.path.display());
-    println!("\nmaterials:");
+    outln!("scenario {}", sc.path.display());
+    outln!("\nmaterials:");
     for (n, m) in sc.material_names.iter().zip(&sc.materials) {
-        println!(
+        outln!(
             "  {n:<16} E = {:.3e} Pa  nu = {}  rho = {} kg/m^3",
-            m.youngs_modulus, m.poisson_ratio, m.density
+            m.youngs_modulus,
+            m.poisson_ratio,
+            m.density
         );
     }
-    println!("\ntemplates (body frame = principal axes, origin at the centre of mass):");
+    outln!("\ntemplates (body frame = principal axes, origin at the centre of mass):");
     for t in &sc.templates {
         let tp = &t.template;
         let i = tp.principal_inertia;
-        println!(
+        outln!(
             "  {:<16} {:>3} spheres  mass {:.6e} kg  volume {:.6e} m^3  I = ({:.4e}, {:.4e}, {:.4e}) kg m^2  r = [{:.3e}, {:.3e}] m  bounding radius {:.3e} m  material {}",
             t.name,
             tp.spheres.len(),
@@ -87,11 +89,11 @@ fn report(sc: &Scenario) {
         );
     }
     let ts = &sc.time_step;
-    println!("\ntime step:");
+    outln!("\ntime step:");
     match (ts.rayleigh_time, ts.smallest_radius, &ts.smallest_template) {
         (Some(tr), Some(r), Some(name)) => {
-            println!("  smallest sphere: r = {r:.4e} m (template '{name}'), Rayleigh time t_R = {tr:.4e} s");
-            println!(
+            outln!("  smallest sphere: r = {r:.4e} m (template '{name}'), Rayleigh time t_R = {tr:.4e} s");
+            outln!(
                 "  dt = {:.4e} s ({}) = {:.3} t_R",
                 ts.dt,
                 if ts.auto {
@@ -102,11 +104,11 @@ fn report(sc: &Scenario) {
                 ts.dt / tr
             );
         }
-        _ => println!("  dt = {:.4e} s (explicit; no templates)", ts.dt),
+        _ => outln!("  dt = {:.4e} s (explicit; no templates)", ts.dt),
     }
-    println!("\nstages:");
+    outln!("\nstages:");
     for s in &sc.stages {
-        println!(
+        outln!(
             "  {:<16} steps {:>9} .. {:>9}  ({:.4} s .. {:.4} s)",
             s.name,
             s.first_step,
@@ -115,20 +117,20 @@ fn report(sc: &Scenario) {
             (s.first_step + s.steps) as f64 * ts.dt
         );
     }
-    println!(
+    outln!(
         "  total: {} steps, {:.4} s simulated",
         sc.total_steps(),
         sc.duration()
     );
-    println!("\ninsertion:");
+    outln!("\ninsertion:");
     for (k, ins) in sc.inserts.iter().enumerate() {
         let stage = &sc.stages[ins.stage].name;
         match &ins.kind {
-            InsertSpec::File { bodies } => println!("  #{} file: {} bodies at the start of stage '{stage}'", k + 1, bodies.len()),
+            InsertSpec::File { bodies } => outln!("  #{} file: {} bodies at the start of stage '{stage}'", k + 1, bodies.len()),
             InsertSpec::Pack { expected_bodies, .. } => {
-                println!("  #{} pack: about {:.0} bodies at the start of stage '{stage}'", k + 1, expected_bodies)
+                outln!("  #{} pack: about {:.0} bodies at the start of stage '{stage}'", k + 1, expected_bodies)
             }
-            InsertSpec::Stream { spec, expected_bodies, .. } => println!(
+            InsertSpec::Stream { spec, expected_bodies, .. } => outln!(
                 "  #{} stream: about {:.0} bodies between t = {:.4} s and {:.4} s (stage '{stage}')",
                 k + 1,
                 expected_bodies,
@@ -138,8 +140,8 @@ fn report(sc: &Scenario) {
         }
     }
     let (nb, ns) = (sc.expected_bodies(), sc.expected_spheres());
-    println!("  expected in total: {nb:.0} bodies, {ns:.0} spheres");
-    println!("\nwalls:");
+    outln!("  expected in total: {nb:.0} bodies, {ns:.0} spheres");
+    outln!("\nwalls:");
     for w in &sc.walls {
         let shape = match w.shape.mesh_pose() {
             Some((m, _, _)) => match sc.meshes.get(m as usize) {
@@ -158,21 +160,21 @@ fn report(sc: &Scenario) {
             },
             None => format!("{:?}", w.shape),
         };
-        println!(
+        outln!(
             "  {:<16} {shape}{}",
             w.name,
             if w.active { "" } else { " (inactive at start)" }
         );
     }
     let mem = ns * BYTES_PER_SPHERE + nb * BYTES_PER_BODY;
-    println!(
+    outln!(
         "\nestimated memory: {} (about {:.1} kB per sphere and {:.1} kB per body)",
         human_bytes(mem),
         BYTES_PER_SPHERE / 1e3,
         BYTES_PER_BODY / 1e3
     );
     let o = &sc.output;
-    println!(
+    outln!(
         "\noutput every (steps): vtk {:?}, thermo {:?}, checkpoint {:?}, trajectory {:?}",
         o.vtk,
         o.thermo,
@@ -206,7 +208,7 @@ fn trial_pack(sc: &Scenario) -> Result<(), scenario::ScenarioError> {
                 let t = std::time::Instant::now();
                 let rep =
                     pack(&mut world, spec, *seed).map_err(|e| sc.insert_error(k, e.to_string()))?;
-                println!(
+                outln!(
                     "trial packing #{}: {} bodies placed, solid fraction {:.3} ({:.2} s)",
                     k + 1,
                     rep.placed,

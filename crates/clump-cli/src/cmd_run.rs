@@ -24,15 +24,33 @@ pub struct RunArgs {
     /// run), writing a checkpoint; for tests and quick looks.
     #[arg(long)]
     pub steps: Option<u64>,
+    /// Delete the files of an earlier run in the output directory first
+    /// (without it, such a directory is refused).
+    #[arg(long)]
+    pub overwrite: bool,
 }
 
 /// Exit status for a run error.
 pub fn error_exit(e: &RunError) -> ExitCode {
-    eprint!("{e}");
+    err!("{e}");
     if !e.to_string().ends_with('\n') {
-        eprintln!();
+        errln!();
     }
     ExitCode::from(if e.is_input() { 2 } else { 1 })
+}
+
+/// `n`, or the number of cores when `n` is larger (with a warning): more
+/// threads than cores only slow a run down (results do not depend on it).
+pub fn capped_threads(n: usize) -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+    if n > cores {
+        errln!(
+            "warning: --threads {n} is more than the {cores} cores of this machine; using {cores}"
+        );
+        cores
+    } else {
+        n
+    }
 }
 
 /// Registers SIGINT/SIGTERM: the first sets the returned flag to the signal
@@ -55,15 +73,15 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         if n == 0 {
-            eprintln!("error: --threads must be at least 1");
+            errln!("error: --threads must be at least 1");
             return ExitCode::from(2);
         }
-        b = b.num_threads(n);
+        b = b.num_threads(capped_threads(n));
     }
     let pool = match b.build() {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("error: cannot start {threads:?} threads: {e}");
+            errln!("error: cannot start {threads:?} threads: {e}");
             return ExitCode::from(1);
         }
     };
@@ -102,7 +120,7 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
         RunStatus::StepLimit => "stopped at the --steps limit",
         RunStatus::Interrupted(_) => "interrupted",
     };
-    println!(
+    outln!(
         "{status}: steps {} → {} ({} steps, t = {:.6} s), {} bodies, {} spheres, wall time {:.2} s, {:.3e} sphere-steps/s on {} threads",
         s.first_step,
         s.final_step,
@@ -114,10 +132,10 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
         s.throughput(),
         nthreads
     );
-    println!("output: {}", runner.outdir().display());
+    outln!("output: {}", runner.outdir().display());
     if let Some(c) = &s.checkpoint {
         if s.status != RunStatus::Completed {
-            println!(
+            outln!(
                 "checkpoint: {} (continue with `clump resume {}`)",
                 c.display(),
                 c.display()
@@ -145,18 +163,18 @@ pub fn run(args: &RunArgs) -> ExitCode {
     let sc = match scenario::load(&args.scenario) {
         Ok(s) => s,
         Err(e) => {
-            eprint!("{e}");
+            err!("{e}");
             return ExitCode::from(2);
         }
     };
     for w in &sc.warnings {
-        eprint!("{w}");
+        err!("{w}");
     }
     let outdir = args
         .outdir
         .clone()
         .unwrap_or_else(|| default_outdir(&sc, &args.scenario));
-    let runner = match Runner::new(sc, &outdir) {
+    let runner = match Runner::new_in(sc, &outdir, args.overwrite) {
         Ok(r) => r,
         Err(e) => return error_exit(&e),
     };
@@ -176,16 +194,23 @@ pub mod progress {
     /// A writer that prints log lines above the progress bar (if any).
     struct LogWriter;
 
+    /// Failures to write are ignored: a closed or full stderr must not stop
+    /// a run.
     impl Write for LogWriter {
         fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
             match BAR.get() {
-                Some(pb) if !pb.is_hidden() => pb.suspend(|| std::io::stderr().write_all(buf))?,
-                _ => std::io::stderr().write_all(buf)?,
+                Some(pb) if !pb.is_hidden() => {
+                    let _ = pb.suspend(|| std::io::stderr().write_all(buf));
+                }
+                _ => {
+                    let _ = std::io::stderr().write_all(buf);
+                }
             }
             Ok(buf.len())
         }
         fn flush(&mut self) -> std::io::Result<()> {
-            std::io::stderr().flush()
+            let _ = std::io::stderr().flush();
+            Ok(())
         }
     }
 
@@ -200,6 +225,7 @@ pub mod progress {
             .with_target(false)
             .with_ansi(std::io::stderr().is_terminal())
             .with_writer(|| LogWriter)
+            .log_internal_errors(false)
             .try_init();
     }
 
@@ -279,7 +305,7 @@ pub mod progress {
                         } else {
                             "?".to_string()
                         };
-                        eprintln!("progress {pct:5.1}%  {msg}  ETA {eta}");
+                        errln!("progress {pct:5.1}%  {msg}  ETA {eta}");
                     }
                 }
             }

@@ -89,7 +89,7 @@ impl std::error::Error for InputError {}
 pub fn run(args: &TemplateArgs) -> anyhow::Result<()> {
     match execute(args) {
         Err(e) if e.downcast_ref::<InputError>().is_some() => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             std::process::exit(2);
         }
         // A closed pipe (e.g. `clump template F | head`) is not an error.

@@ -14,17 +14,18 @@
 //! velocity `v` and angular velocity `ω` (a conveyor's `surface_velocity` is
 //! not included).
 //!
-//! The file is an append-only log: each row is flushed as it is written, so
-//! an interrupted run keeps every row written so far (a row cut by a crash is
-//! dropped on resume). This is deliberately not written through
+//! The file is an append-only log: each row is written to the file at once,
+//! so an interrupted run keeps every row written so far (a row cut by a
+//! crash is dropped on resume; one cut by a full disk is removed at once,
+//! see [`crate::append`]). This is deliberately not written through
 //! [`crate::atomic`]: rewriting the whole log at every row would be
 //! quadratic. On resume, [`ThermoWriter::resume`] rewrites the file
 //! atomically without the rows after the resume step and then appends.
 
+use crate::append::AppendLog;
 use crate::atomic::write_atomic;
 use clump_core::thermo::Thermo;
-use std::fs::{File, OpenOptions};
-use std::io::{self, BufWriter, Write};
+use std::io;
 use std::path::{Path, PathBuf};
 
 /// Writes `thermo.csv` rows.
@@ -32,7 +33,7 @@ pub struct ThermoWriter {
     path: PathBuf,
     header: String,
     power: Vec<bool>,
-    out: BufWriter<File>,
+    out: AppendLog,
 }
 
 /// The columns of one wall.
@@ -193,17 +194,11 @@ impl ThermoWriter {
     }
 
     fn open_append(path: PathBuf, header: String, walls: &[WallColumns]) -> io::Result<Self> {
-        let f = OpenOptions::new().append(true).open(&path).map_err(|e| {
-            io::Error::new(
-                e.kind(),
-                format!("cannot open {} for appending: {e}", path.display()),
-            )
-        })?;
         Ok(ThermoWriter {
+            out: AppendLog::open(&path)?,
             path,
             header,
             power: walls.iter().map(|w| w.power).collect(),
-            out: BufWriter::new(f),
         })
     }
 
@@ -254,7 +249,6 @@ impl ThermoWriter {
             }
         }
         row.push('\n');
-        self.out.write_all(row.as_bytes())?;
-        self.out.flush()
+        self.out.append(row.as_bytes())
     }
 }

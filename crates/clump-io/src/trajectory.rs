@@ -7,12 +7,12 @@
 //! Like `thermo.csv` these are append-only logs flushed at each row; a body
 //! absent at a write (not yet inserted, or lost) gets no row.
 
+use crate::append::AppendLog;
 use crate::atomic::write_atomic;
 use crate::thermo_csv::fmt_f64;
 use clump_core::world::World;
 use std::collections::HashMap;
-use std::fs::{File, OpenOptions};
-use std::io::{self, BufWriter, Write};
+use std::io;
 use std::path::{Path, PathBuf};
 
 /// The header line of a trajectory file.
@@ -21,7 +21,7 @@ pub const TRAJECTORY_HEADER: &str = "time,x,y,z,vx,vy,vz,qw,qx,qy,qz,wx,wy,wz,wb
 /// Writes trajectory rows for a fixed set of bodies.
 pub struct TrajectoryWriter {
     ids: Vec<u64>,
-    files: Vec<BufWriter<File>>,
+    files: Vec<AppendLog>,
     slot: HashMap<u64, usize>,
 }
 
@@ -75,10 +75,7 @@ impl TrajectoryWriter {
                 }
             }
             write_atomic(&path, keep.as_bytes())?;
-            let f = OpenOptions::new().append(true).open(&path).map_err(|e| {
-                io::Error::new(e.kind(), format!("cannot open {}: {e}", path.display()))
-            })?;
-            files.push(BufWriter::new(f));
+            files.push(AppendLog::open(&path)?);
         }
         let slot = uniq.iter().enumerate().map(|(k, &id)| (id, k)).collect();
         Ok(TrajectoryWriter {
@@ -117,9 +114,7 @@ impl TrajectoryWriter {
                 wb.y, wb.z,
             ];
             let row: Vec<String> = vals.iter().map(|&v| fmt_f64(v)).collect();
-            f.write_all(row.join(",").as_bytes())?;
-            f.write_all(b"\n")?;
-            f.flush()?;
+            f.append(format!("{}\n", row.join(",")).as_bytes())?;
         }
         Ok(())
     }

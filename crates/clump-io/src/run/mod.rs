@@ -11,7 +11,9 @@
 //!   interrupted (SIGINT/SIGTERM) and one when a `--steps` limit stops it;
 //! - `final_state.json`: every body's state at the end, with the exact f64 bit
 //!   patterns (hex), for bit-for-bit comparisons;
-//! - `manifest.json`: version, threads, wall time, steps, throughput.
+//! - `manifest.json`: version, threads, wall time, steps, throughput;
+//! - `.clump.lock` and `.clump-run`: the folder lock and the run's id
+//!   ([`outdir`]: folders are never shared or mixed).
 //!
 //! # Determinism and resume
 //! The loop has a fixed order per step: stage changes and insertions, then
@@ -24,6 +26,8 @@
 //! states and re-enters the loop at the checkpoint point, so the resumed run
 //! repeats the uninterrupted one bit for bit.
 #![allow(clippy::manual_is_multiple_of, clippy::result_large_err)]
+
+pub mod outdir;
 
 use crate::checkpoint::write_checkpoint;
 use crate::scenario::{self, Files, InsertSpec, Scenario, ScenarioError};
@@ -201,6 +205,9 @@ pub struct Checkpoint {
     pub driver: DriverState,
     /// The world state.
     pub world: WorldState,
+    /// Id of the run (see [`outdir`]; absent in older checkpoints).
+    #[serde(default)]
+    pub run_id: Option<String>,
 }
 
 /// How a run ended.
@@ -345,6 +352,8 @@ struct Outputs {
     thermo: Option<ThermoWriter>,
     trajectory: Option<TrajectoryWriter>,
     last_checkpoint: Option<PathBuf>,
+    run_id: String,
+    _lock: outdir::FolderLock,
 }
 
 /// A simulation ready to run (fresh or resumed).
@@ -357,15 +366,19 @@ pub struct Runner {
 }
 
 impl Runner {
-    /// A fresh run of `scenario` writing into `outdir` (created if missing).
+    /// A fresh run of `scenario` writing into `outdir` (created if missing;
+    /// refused when it holds another run's files, see [`outdir`]).
     pub fn new(scenario: Scenario, outdir: &Path) -> Result<Self, RunError> {
+        Self::new_in(scenario, outdir, false)
+    }
+
+    /// [`Runner::new`]; with `overwrite`, another run's files in `outdir`
+    /// are deleted first.
+    pub fn new_in(scenario: Scenario, outdir: &Path, overwrite: bool) -> Result<Self, RunError> {
         let world = scenario
             .build_world()
             .map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
-        std::fs::create_dir_all(outdir).map_err(rt(&format!(
-            "cannot create output directory {}",
-            outdir.display()
-        )))?;
+        let (lock, run_id) = outdir::prepare_fresh(outdir, overwrite, &scenario.path)?;
         crate::atomic::write_atomic(outdir.join("scenario.toml"), scenario.text.as_bytes())
             .map_err(rt("cannot copy the scenario"))?;
         let o = &scenario.output;
@@ -391,6 +404,8 @@ impl Runner {
                 _ => None,
             },
             last_checkpoint: None,
+            run_id,
+            _lock: lock,
         };
         let st = DriverState {
             stage: 0,
@@ -427,7 +442,7 @@ impl Runner {
                 checkpoint.display()
             ))
         })?;
-        let (scenario, world, driver) = load_checkpoint(&bytes, checkpoint)?;
+        let (scenario, world, driver, run_id) = load_checkpoint_with_id(&bytes, checkpoint)?;
         let outdir = match outdir {
             Some(d) => d.to_path_buf(),
             None => checkpoint
@@ -436,10 +451,7 @@ impl Runner {
                 .filter(|p| !p.as_os_str().is_empty())
                 .unwrap_or_else(|| PathBuf::from(".")),
         };
-        std::fs::create_dir_all(&outdir).map_err(rt(&format!(
-            "cannot create output directory {}",
-            outdir.display()
-        )))?;
+        let (lock, run_id) = outdir::prepare_resume(&outdir, run_id.as_deref(), checkpoint)?;
         crate::atomic::write_atomic(outdir.join("scenario.toml"), scenario.text.as_bytes())
             .map_err(rt("cannot copy the scenario"))?;
         let o = &scenario.output;
@@ -468,6 +480,8 @@ impl Runner {
                 _ => None,
             },
             last_checkpoint: Some(checkpoint.to_path_buf()),
+            run_id,
+            _lock: lock,
         };
         let n = scenario.templates.len();
         tracing::info!(step, time, "resumed from {}", checkpoint.display());
@@ -762,6 +776,7 @@ impl Runner {
             extra_templates: extra,
             driver: self.st.clone(),
             world,
+            run_id: Some(self.out.run_id.clone()),
         };
         let json = serde_json::to_string(&ck).map_err(rt("cannot encode the checkpoint"))?;
         let path = self
@@ -885,6 +900,14 @@ pub fn load_checkpoint(
     bytes: &[u8],
     checkpoint: &Path,
 ) -> Result<(Scenario, World, DriverState), RunError> {
+    load_checkpoint_with_id(bytes, checkpoint).map(|(s, w, d, _)| (s, w, d))
+}
+
+/// [`load_checkpoint`], also returning the run id stored in the checkpoint.
+pub fn load_checkpoint_with_id(
+    bytes: &[u8],
+    checkpoint: &Path,
+) -> Result<(Scenario, World, DriverState, Option<String>), RunError> {
     let (json, fingerprint): (String, u64) =
         crate::checkpoint::decode_checkpoint(bytes, checkpoint)
             .map_err(|e| RunError::InputMessage(e.to_string()))?;
@@ -930,7 +953,7 @@ pub fn load_checkpoint(
             checkpoint.display()
         ))
     })?;
-    Ok((scenario, world, ck.driver))
+    Ok((scenario, world, ck.driver, ck.run_id))
 }
 
 fn hex3(v: glam::DVec3) -> [String; 3] {

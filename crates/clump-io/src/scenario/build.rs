@@ -7,6 +7,7 @@
     clippy::unnecessary_map_or
 )]
 
+use super::bounds;
 use super::diag::{did_you_mean, list, Diagnostic};
 use super::model::*;
 use super::raw::*;
@@ -496,6 +497,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     };
 
     // ---------------- time step from the smallest sphere
+    bounds::finite_particle_stiffness(cx.src, &templates, &materials, &material_names)?;
     let mut smallest: Option<(f64, f64, String)> = None; // (t_R, radius, template)
     for (ti, t) in templates.iter().enumerate() {
         let mut scale_min: f64 = 1.0;
@@ -564,6 +566,14 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             (dt, false)
         }
     };
+    bounds::periodic_cells(
+        cx.src,
+        &domain,
+        &templates,
+        &mixes,
+        skin,
+        smallest.as_ref().map(|s| s.1),
+    )?;
     let time_step = TimeStep {
         dt,
         auto: dt_auto,
@@ -602,9 +612,13 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
                 )),
                 (Some(d), None) => {
                     let d = cx.positive(&pd, d, "duration", "s")?;
-                    Ok(((d / dt) - 1e-9).ceil().max(1.0) as u64)
+                    bounds::steps_of_duration(cx.src, &pd, d, dt)
                 }
-                (None, Some(n)) => Ok(n),
+                (None, Some(n)) => {
+                    let mut ps = base.to_vec();
+                    ps.push(K("steps"));
+                    bounds::steps_given(cx.src, &ps, n)
+                }
                 (None, None) => Err(cx.missing(
                     base,
                     what,
@@ -682,7 +696,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
                 gravity,
                 walls: changes,
             });
-            first += steps;
+            first = bounds::add_steps(cx.src, &t, first, steps)?;
         }
     }
     let stage_names: Vec<String> = stages.iter().map(|s| s.name.clone()).collect();
@@ -715,13 +729,13 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
                 )),
                 (Some(x), None) => {
                     let x = cx.positive(&[a, b, K("every")], x, "every", "s")?;
-                    Ok(Some(((x / dt).round() as u64).max(1)))
+                    Ok(Some(bounds::interval_steps(x, dt)))
                 }
                 (None, Some(0)) => Err(cx.err(
                     &[a, b, K("every_steps")],
                     "'every_steps' must be at least 1",
                 )),
-                (None, Some(n)) => Ok(Some(n)),
+                (None, Some(n)) => Ok(Some(n.min(bounds::MAX_STEPS))),
                 (None, None) => Ok(None),
             }
         };

@@ -10,6 +10,7 @@
 #![allow(clippy::result_large_err)]
 
 mod bodies_file;
+pub mod bounds;
 mod build;
 pub mod diag;
 mod model;

@@ -181,6 +181,19 @@ CASES = [
      ["'file' does not apply to a wall of type \"plane\""]),
     ("tensile_not_bool", rep("friction = 0.5", 'friction = 0.5\ntensile = "yes"'), 'tensile = "yes"',
      ["wrong type for 'tensile' in [contact]: expected true or false", "found string"]),
+    # bounds: step counts that would overflow or never end, zero steps
+    ("dt_tiny_steps_overflow", rep('dt = "auto"', 'dt = 1e-300'), "duration = 0.1",
+     ["duration = 1e-1 s is 1.000e299 steps of dt = 1e-300 s", "at most 1e12 steps are allowed"]),
+    ("duration_huge", rep("duration = 0.1", "duration = 1e308"), "duration = 1e308",
+     ["duration = 1e308 s is", "at most 1e12 steps are allowed"]),
+    ("steps_zero", rep("duration = 0.1", "steps = 0"), "steps = 0",
+     ["'steps' must be at least 1, found 0"]),
+    ("steps_huge", rep("duration = 0.1", "steps = 9223372036854775807"), "steps = 9223372036854775807",
+     ["steps = 9223372036854775807", "at most 1e12 steps are allowed"]),
+    ("rigid_particle_material", rep("youngs_modulus = 5e6", "youngs_modulus = inf"), 'material = "rock"',
+     ["template 'pebble' uses material 'rock' with youngs_modulus = inf", "particles need a finite Young's modulus"]),
+    ("periodic_box_too_short", rep("hi = [0.1, 0.1, 0.3]", 'hi = [-0.095, 0.1, 0.3]\nperiodic = ["x"]'), "periodic = ",
+     ["periodic axis x is 5.0000e-3 m long, shorter than 3 neighbour cells"]),
 ]
 
 
