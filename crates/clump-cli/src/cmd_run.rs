@@ -132,6 +132,7 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
         s.throughput(),
         nthreads
     );
+    report_bodies(&runner);
     outln!("output: {}", runner.outdir().display());
     if let Some(c) = &s.checkpoint {
         if s.status != RunStatus::Completed {
@@ -145,6 +146,35 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
     match s.status {
         RunStatus::Interrupted(sig) => ExitCode::from((128 + sig).clamp(0, 255) as u8),
         _ => ExitCode::SUCCESS,
+    }
+}
+
+/// Prints what became of the bodies asked for (stdout), with a warning on
+/// stderr for every insertion that could not place them all.
+fn report_bodies(runner: &Runner) {
+    for c in runner.insertions() {
+        outln!(
+            "insert #{} ({}): asked {}, placed {}{}",
+            c.insert,
+            c.kind,
+            c.asked,
+            c.placed,
+            if c.waiting > 0 {
+                format!(", {} not placed (no room in the region)", c.waiting)
+            } else {
+                String::new()
+            }
+        );
+        if c.waiting > 0 {
+            errln!(
+                "warning: insert #{} ({}) placed {} of the {} bodies asked for; {} found no room in its region (a larger region, a lower rate or a longer stage helps)",
+                c.insert, c.kind, c.placed, c.asked, c.waiting
+            );
+        }
+    }
+    let lost = runner.lost_bodies();
+    if lost > 0 {
+        outln!("lost: {lost} bodies left the domain (their centre crossed a non-periodic side)");
     }
 }
 

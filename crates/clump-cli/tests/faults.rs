@@ -429,3 +429,68 @@ fn full_disk_stops_the_run_naming_the_file() {
         }
     }
 }
+
+/// The run summary says what became of the bodies asked for: a pack places
+/// all it asked for; a stream into a region too small for its rate warns
+/// with the counts.
+#[test]
+fn run_summary_counts_asked_and_placed_bodies() {
+    let d = tmp("counts");
+    let sc = scenario(&d, 100, 50);
+    let o = run(&[
+        "run".as_ref(),
+        sc.as_os_str(),
+        "-o".as_ref(),
+        d.join("pack").as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let out = text(&o.stdout);
+    assert!(
+        out.contains("insert #1 (pack): asked 20, placed 20\n"),
+        "{out}"
+    );
+
+    let stream = std::fs::read_to_string(&sc).unwrap().replace(
+        "kind = \"pack\"\ntemplate = \"tetra\"\ncount = 20\nregion = { type = \"box\", lo = [-0.02, -0.02, 0.005], hi = [0.02, 0.02, 0.05] }",
+        "kind = \"stream\"\ntemplate = \"tetra\"\nbodies_per_second = 200000\nvelocity = [0.0, 0.0, 0.0]\nregion = { type = \"box\", lo = [-0.005, -0.005, 0.05], hi = [0.005, 0.005, 0.06] }",
+    );
+    assert!(stream.contains("stream"));
+    let sc2 = d.join("stream.toml");
+    std::fs::write(&sc2, stream).unwrap();
+    let o = run(&[
+        "run".as_ref(),
+        sc2.as_os_str(),
+        "-o".as_ref(),
+        d.join("stream").as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    // insertion runs before each of the 100 steps, the last at t = 99 dt:
+    // floor(200 000/s × 99 × 2e-5 s) = 396 due
+    let out = text(&o.stdout);
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("insert #1 (stream): asked 396, placed "))
+        .unwrap_or_else(|| panic!("{out}"));
+    let placed: u64 = line
+        .split("placed ")
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(placed < 396, "{line}");
+    let err = text(&o.stderr);
+    assert!(
+        err.contains(&format!(
+            "warning: insert #1 (stream) placed {placed} of the 396 bodies asked for; {} found no room",
+            396 - placed
+        )),
+        "{err}"
+    );
+    let m: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("stream/manifest.json")).unwrap())
+            .unwrap();
+    assert_eq!(m["insertions"][0]["waiting"].as_u64(), Some(396 - placed));
+}

@@ -28,6 +28,9 @@
 #![allow(clippy::manual_is_multiple_of, clippy::result_large_err)]
 
 pub mod outdir;
+mod report;
+
+pub use report::InsertionCount;
 
 use crate::checkpoint::write_checkpoint;
 use crate::scenario::{self, Files, InsertSpec, Scenario, ScenarioError};
@@ -882,6 +885,7 @@ impl Runner {
             "bodies": s.bodies,
             "spheres": s.spheres,
             "lost_bodies": self.world.lost_bodies,
+            "insertions": self.insertions(),
             "sphere_steps": s.sphere_steps,
             "sphere_steps_per_s": s.throughput(),
             "steps_per_s": if s.wall_time > 0.0 { s.steps() as f64 / s.wall_time } else { 0.0 },

@@ -8,8 +8,9 @@
 )]
 
 use super::bounds;
-use super::diag::{did_you_mean, list, Diagnostic};
+use super::diag::{did_you_mean, list, num, Diagnostic};
 use super::model::*;
+use super::placement;
 use super::raw::*;
 use super::source::{Seg, Source};
 use super::Files;
@@ -79,7 +80,10 @@ impl Cx<'_> {
             Ok(x)
         } else {
             Err(self
-                .err(path, format!("'{key}' must be > 0{}, found {x}", sp(unit)))
+                .err(
+                    path,
+                    format!("'{key}' must be > 0{}, found {}", sp(unit), num(x)),
+                )
                 .label("must be positive"))
         }
     }
@@ -89,7 +93,10 @@ impl Cx<'_> {
             Ok(x)
         } else {
             Err(self
-                .err(path, format!("'{key}' must be >= 0{}, found {x}", sp(unit)))
+                .err(
+                    path,
+                    format!("'{key}' must be >= 0{}, found {}", sp(unit), num(x)),
+                )
                 .label("must not be negative"))
         }
     }
@@ -704,7 +711,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     // ---------------- inserts
     let mut inserts = Vec::new();
     for (i, ins) in raw.insert.iter().enumerate() {
-        inserts.push(build_insert(
+        let def = build_insert(
             cx,
             i,
             ins,
@@ -715,7 +722,9 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             &mixes,
             &mix_names,
             dt,
-        )?);
+        )?;
+        placement::check_insert(cx.src, i, &def, &domain, &mut cx.warnings)?;
+        inserts.push(def);
     }
 
     // ---------------- output

@@ -49,6 +49,8 @@ type = "mesh"
 %s
 """
 
+PACK = 'kind = "pack"\nstage = "fill"\nmix = "pebbles"\ncount = 100\nregion = { type = "box", lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1] }\nseed = 1'
+
 CASES = [
     ("unknown_key_pair", rep("restitution = 0.4", "restitutoin = 0.4"), "restitutoin",
      ["unknown key 'restitutoin' in [[pair]]", "did you mean 'restitution'?"]),
@@ -194,7 +196,22 @@ CASES = [
      ["template 'pebble' uses material 'rock' with youngs_modulus = inf", "particles need a finite Young's modulus"]),
     ("periodic_box_too_short", rep("hi = [0.1, 0.1, 0.3]", 'hi = [-0.095, 0.1, 0.3]\nperiodic = ["x"]'), "periodic = ",
      ["periodic axis x is 5.0000e-3 m long, shorter than 3 neighbour cells"]),
+    # no body lost without a word
+    ("pack_region_outside_domain", rep("lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1]", "lo = [-0.05, -0.05, 0.4], hi = [0.05, 0.05, 0.5]"), "region = ",
+     ["the region lies outside the domain along z (region 0.4000 .. 0.5000 m, domain -0.0100 .. 0.3000 m)"]),
+    ("body_file_row_outside_domain", rep(PACK, 'kind = "file"\nfile = "data_bodies_outside.csv"'), "data_bodies_outside",
+     ["1 of 2 bodies in the body file lie outside the domain", "body 2 at [0.0000, 0.0000, 0.5000]"]),
+    ("body_file_coincident_rows", rep(PACK, 'kind = "file"\nfile = "data_bodies_coincident.csv"'), "data_bodies_coincident",
+     ["bodies 1 and 3 of the body file are at the same point", "overlapping placement"]),
+    # values shortened in messages
+    ("tiny_negative_dt_printed_short", rep('dt = "auto"', 'dt = -1e-300'), "dt = -1e-300",
+     ["'dt' must be > 0 s, found -1e-300"]),
+    ("huge_line_excerpt", rep('name = "fill"', 'name = "fill"\nbogus = "' + "x" * 5000 + '"'), "bogus",
+     ["unknown key 'bogus' in [[stage]]", "…"]),
 ]
+
+# the invalid-UTF-8 case is written as bytes
+BAD_UTF8 = ("invalid_utf8", "gravity = [0.0, 0.0, -9.81]", ["is not valid UTF-8 text: invalid byte at line 4, column 15"])
 
 
 def main():
@@ -213,7 +230,15 @@ def main():
             lines.append(f"{stem}.toml:{line_of(text, marker, nth)}:")
         with open(os.path.join(HERE, stem + ".expected"), "w") as f:
             f.write("\n".join(lines) + "\n")
-    print(len(CASES), "cases")
+    k = len(CASES) + 1
+    name, marker, subs = BAD_UTF8
+    stem = f"{k:02d}_{name}"
+    data = BASE.replace(marker, "gravity = [0.0\xff, 0.0, -9.81]").encode("utf-8").replace(b"\xc3\xbf", b"\xff")
+    with open(os.path.join(HERE, stem + ".toml"), "wb") as f:
+        f.write(data)
+    with open(os.path.join(HERE, stem + ".expected"), "w") as f:
+        f.write("\n".join(subs) + "\n")
+    print(k, "cases")
 
 
 if __name__ == "__main__":
