@@ -596,7 +596,11 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     let mut meshes: Vec<TriMesh> = Vec::new();
     let mut torque_points: Vec<Option<DVec3>> = Vec::new();
     for (i, w) in raw.wall.iter().enumerate() {
-        let wall = build_wall(cx, i, w, &material_names, &wall_names, &mut meshes)?;
+        let mut wall = build_wall(cx, i, w, &material_names, &wall_names, &mut meshes)?;
+        // [simulation] multi_contact is also the walls' default
+        if let (None, Some(mc)) = (w.multi_contact, sim.multi_contact) {
+            wall.multi_contact = mc;
+        }
         torque_points.push(
             w.torque_point
                 .map(|a| cx.vec3(&[K("wall"), I(i), K("torque_point")], a, "torque_point"))
@@ -1001,6 +1005,21 @@ fn contact_props(
         );
         cx.warnings.push(w);
     }
+    if out.rolling == RollingLaw::None && out.rolling_friction > 0.0 && f.rolling_friction.is_some()
+    {
+        let w = cx
+            .src
+            .warning_at(
+                &p("rolling_friction"),
+                format!(
+                    "rolling_friction = {} has no effect without a rolling model",
+                    out.rolling_friction
+                ),
+            )
+            .label("ignored")
+            .note("help: add rolling = \"epsd\" (or \"cdt\") to resist rolling");
+        cx.warnings.push(w);
+    }
     Ok(out)
 }
 
@@ -1209,7 +1228,11 @@ fn build_template(
                     .error_at_key(&p("inertia"), "'inertia' needs 'mass' too (kg)"))
             }
         }
-        .map_err(|e| shape_error(cx, i, e, inline))?;
+        .map_err(|e| {
+            let mut d = shape_error(cx, i, e, inline);
+            d.message = format!("template '{name}': {}", d.message);
+            d
+        })?;
     Ok(TemplateDef {
         name,
         material: mi as u16,
