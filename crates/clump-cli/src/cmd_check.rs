@@ -3,6 +3,7 @@
 //! expected counts, memory estimate). Packings are tried out in a scratch
 //! world, so a region that cannot hold its bodies is reported here.
 
+use crate::check_words;
 use clap::Args;
 use clump_core::insert::pack;
 use clump_io::scenario::{self, InsertSpec, Scenario};
@@ -94,14 +95,16 @@ fn report(sc: &Scenario) {
         (Some(tr), Some(r), Some(name)) => {
             outln!("  smallest sphere: r = {r:.4e} m (template '{name}'), Rayleigh time t_R = {tr:.4e} s");
             outln!(
-                "  dt = {:.4e} s ({}) = {:.3} t_R",
+                "  dt = {:.4e} s ({}) = {:.3} t_R (refused above {} t_R, warned about above {} t_R)",
                 ts.dt,
                 if ts.auto {
                     format!("auto, dt_fraction = {}", ts.fraction)
                 } else {
                     "explicit".into()
                 },
-                ts.dt / tr
+                ts.dt / tr,
+                scenario::DT_ERROR_FRACTION,
+                scenario::DT_WARN_FRACTION
             );
         }
         _ => outln!("  dt = {:.4e} s (explicit; no templates)", ts.dt),
@@ -143,28 +146,15 @@ fn report(sc: &Scenario) {
     outln!("  expected in total: {nb:.0} bodies, {ns:.0} spheres");
     outln!("\nwalls:");
     for w in &sc.walls {
-        let shape = match w.shape.mesh_pose() {
-            Some((m, _, _)) => match sc.meshes.get(m as usize) {
-                Some(mesh) => {
-                    let (lo, hi) = mesh.bounds();
-                    format!(
-                        "mesh: {} triangles ({} of zero area dropped), {} vertices, bounds [{:.4}, {:.4}, {:.4}] .. [{:.4}, {:.4}, {:.4}] m, merge angle {:.1} deg",
-                        mesh.triangles().len(),
-                        mesh.dropped_triangles(),
-                        mesh.vertices().len(),
-                        lo.x, lo.y, lo.z, hi.x, hi.y, hi.z,
-                        mesh.merge_angle.to_degrees()
-                    )
-                }
-                None => format!("{:?}", w.shape),
-            },
-            None => format!("{:?}", w.shape),
-        };
         outln!(
-            "  {:<16} {shape}{}",
+            "  {:<16} {}{}",
             w.name,
+            check_words::wall(sc, w),
             if w.active { "" } else { " (inactive at start)" }
         );
+    }
+    if let Ok(world) = sc.build_world() {
+        check_words::contacts(sc, &world);
     }
     let mem = ns * BYTES_PER_SPHERE + nb * BYTES_PER_BODY;
     outln!(
@@ -173,14 +163,7 @@ fn report(sc: &Scenario) {
         BYTES_PER_SPHERE / 1e3,
         BYTES_PER_BODY / 1e3
     );
-    let o = &sc.output;
-    outln!(
-        "\noutput every (steps): vtk {:?}, thermo {:?}, checkpoint {:?}, trajectory {:?}",
-        o.vtk,
-        o.thermo,
-        o.checkpoint,
-        o.trajectory.as_ref().map(|t| (&t.bodies, t.every))
-    );
+    outln!("\noutput:\n{}", check_words::outputs(sc));
 }
 
 /// Tries every file and pack insertion in a scratch world, stage by stage.

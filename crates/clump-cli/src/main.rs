@@ -11,6 +11,7 @@ use std::process::ExitCode;
 #[macro_use]
 mod term;
 
+mod check_words;
 mod cmd_bench;
 mod cmd_check;
 mod cmd_resume;

@@ -9,6 +9,7 @@
 
 use super::bounds;
 use super::diag::{did_you_mean, list, num, Diagnostic};
+use super::guard;
 use super::model::*;
 use super::placement;
 use super::raw::*;
@@ -802,10 +803,24 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         skin,
         multi_contact: sim.multi_contact.unwrap_or(MultiContact::Sum),
     };
+    let motion = guard::MotionBounds::new(&config, &inserts, &walls, &stages);
+    let floor = motion.energy_floor();
+    let contacts = guard::Contacts {
+        templates: &templates,
+        mixes: &mixes,
+        materials: &materials,
+        material_names: &material_names,
+        pair_table: &pair_table,
+        walls: &walls,
+    };
+    let overlap_estimate = guard::expected_overlap(&contacts, motion.impact_speed());
     let stability = HealthLimits {
-        max_overlap_ratio,
+        max_overlap_ratio: match sim.max_overlap_ratio {
+            Some(_) => max_overlap_ratio,
+            None => guard::default_limit(overlap_estimate.as_ref()),
+        },
         kinetic_jump,
-        specific_energy_floor: specific_energy_floor(&config, &inserts, &walls, &stages),
+        specific_energy_floor: floor,
     };
     Ok(Scenario {
         path: cx.src.path.clone(),
@@ -823,56 +838,11 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         config,
         time_step,
         stability,
+        overlap_estimate,
         stages,
         output,
         warnings: Vec::new(),
     })
-}
-
-/// Kinetic energy per kilogram that bodies may legitimately reach, J/kg:
-/// `½ v²` with `v² = 2 |g| D + v_max²`, where `D` is the domain diagonal and
-/// `v_max` the largest insertion speed (translation, or rotation × `D`) or
-/// wall speed (translation + rotation × `D`, also after stage changes).
-fn specific_energy_floor(
-    config: &WorldConfig,
-    inserts: &[InsertDef],
-    walls: &[Wall],
-    stages: &[StageDef],
-) -> f64 {
-    let d = config.domain.size().length();
-    let g = stages
-        .iter()
-        .filter_map(|s| s.gravity)
-        .map(|g| g.length())
-        .fold(config.gravity.length(), f64::max);
-    let mut v: f64 = 0.0;
-    for i in inserts {
-        match &i.kind {
-            InsertSpec::File { bodies } => {
-                for b in bodies {
-                    v = v.max(b.velocity.length() + b.angular_velocity.length() * d);
-                }
-            }
-            InsertSpec::Pack { spec, .. } => v = v.max(spec.velocity.length()),
-            InsertSpec::Stream { spec, .. } => v = v.max(spec.velocity.length()),
-        }
-    }
-    for w in walls {
-        let m = &w.motion;
-        v = v.max(
-            m.velocity.length() + m.angular_velocity.length() * d + m.surface_velocity.length(),
-        );
-    }
-    for c in stages.iter().flat_map(|s| &s.walls) {
-        let len = |x: Option<DVec3>| x.map_or(0.0, |x| x.length());
-        v = v.max(len(c.velocity) + len(c.angular_velocity) * d + len(c.surface_velocity));
-    }
-    let e = 0.5 * (2.0 * g * d + v * v);
-    if e.is_finite() {
-        e
-    } else {
-        0.0
-    }
 }
 
 /// Contact keys shared by `[contact]` and `[[pair]]`.

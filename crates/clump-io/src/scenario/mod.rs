@@ -13,6 +13,7 @@ mod bodies_file;
 pub mod bounds;
 mod build;
 pub mod diag;
+pub mod guard;
 mod model;
 mod placement;
 pub mod raw;
