@@ -260,10 +260,58 @@ pub mod progress {
     }
 
     /// Progress display: an indicatif bar on a terminal, plain lines otherwise.
+    /// The ETA follows the recent rate (see [`RecentRate`]).
     pub struct Display {
         bar: Option<ProgressBar>,
         last_line: Instant,
         line_every: Duration,
+        rate: RecentRate,
+    }
+
+    /// Steps per second over the last few seconds: an exponential average
+    /// of the rates between progress reports with a time constant of
+    /// [`RecentRate::TAU`], so that the ETA follows a run that slows down
+    /// (e.g. while bodies pour in) within seconds.
+    #[derive(Debug, Default)]
+    pub struct RecentRate {
+        rate: Option<f64>,
+        last: Option<Instant>,
+    }
+
+    impl RecentRate {
+        /// Time constant of the average, s.
+        pub const TAU: f64 = 1.0;
+
+        /// Adds a rate measured now (steps/s); returns the average.
+        pub fn update(&mut self, steps_per_second: f64, now: Instant) -> f64 {
+            let r = match (self.rate, self.last) {
+                (Some(r), Some(t)) => {
+                    let a = 1.0 - (-now.duration_since(t).as_secs_f64() / Self::TAU).exp();
+                    r + a * (steps_per_second - r)
+                }
+                _ => steps_per_second,
+            };
+            self.rate = Some(r);
+            self.last = Some(now);
+            r
+        }
+    }
+
+    /// `left` steps at `rate` steps/s, as `1h02m`, `3m05s` or `12 s`.
+    pub fn eta(left: u64, rate: f64) -> String {
+        if !(rate > 0.0) {
+            return "?".to_string();
+        }
+        let s = (left as f64 / rate).round();
+        if !(s < 1e9) {
+            return "?".to_string();
+        }
+        let s = s as u64;
+        match s {
+            0..=99 => format!("{s} s"),
+            100..=3599 => format!("{}m{:02}s", s / 60, s % 60),
+            _ => format!("{}h{:02}m", s / 3600, s / 60 % 60),
+        }
     }
 
     impl Display {
@@ -276,7 +324,7 @@ pub mod progress {
                 );
                 pb.set_style(
                     ProgressStyle::with_template(
-                        "{spinner} [{elapsed_precise}] {bar:30.cyan/blue} {msg} ETA {eta}",
+                        "{spinner} [{elapsed_precise}] {bar:30.cyan/blue} {msg}",
                     )
                     .unwrap_or_else(|_| ProgressStyle::default_bar())
                     .progress_chars("=> "),
@@ -288,12 +336,14 @@ pub mod progress {
                     bar: Some(pb),
                     last_line: Instant::now(),
                     line_every: Duration::from_secs(5),
+                    rate: RecentRate::default(),
                 }
             } else {
                 Display {
                     bar: None,
                     last_line: Instant::now(),
                     line_every: Duration::from_secs(5),
+                    rate: RecentRate::default(),
                 }
             }
         }
@@ -309,6 +359,8 @@ pub mod progress {
 
         /// Shows one progress report.
         pub fn update(&mut self, p: &clump_io::run::Progress) {
+            let rate = self.rate.update(p.steps_per_second, Instant::now());
+            let eta = eta(p.end_step.saturating_sub(p.step), rate);
             let msg = format!(
                 "t = {:.4}/{:.4} s  step {}/{}  {:.0} steps/s  {} bodies  {} contacts  [{}]",
                 p.time,
@@ -323,18 +375,12 @@ pub mod progress {
             match &self.bar {
                 Some(pb) => {
                     pb.set_position(p.step);
-                    pb.set_message(msg);
+                    pb.set_message(format!("{msg} ETA {eta}"));
                 }
                 None => {
                     if self.last_line.elapsed() >= self.line_every || p.step == p.end_step {
                         self.last_line = Instant::now();
                         let pct = 100.0 * p.step as f64 / p.end_step.max(1) as f64;
-                        let left = p.end_step.saturating_sub(p.step) as f64;
-                        let eta = if p.steps_per_second > 0.0 {
-                            format!("{:.0} s", left / p.steps_per_second)
-                        } else {
-                            "?".to_string()
-                        };
                         errln!("progress {pct:5.1}%  {msg}  ETA {eta}");
                     }
                 }
@@ -346,6 +392,38 @@ pub mod progress {
             if let Some(pb) = &self.bar {
                 pb.finish_and_clear();
             }
+        }
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::*;
+
+        /// A run slowing from 1000 to 100 steps/s: the excess of the ETA's
+        /// rate decays as e^(−t/τ), τ = 1 s, whatever the report interval
+        /// (here 0.25 s): after 4 s it is 100 + 900 e^(−4) ≈ 116 steps/s.
+        #[test]
+        fn eta_follows_a_falling_rate() {
+            let t0 = Instant::now();
+            let mut r = RecentRate::default();
+            let mut k = 0u32;
+            let mut at = |r: &mut RecentRate, sps: f64| {
+                k += 1;
+                r.update(sps, t0 + Duration::from_millis(250 * k as u64))
+            };
+            for _ in 0..40 {
+                at(&mut r, 1000.0);
+            }
+            let mut last = 0.0;
+            for _ in 0..16 {
+                last = at(&mut r, 100.0);
+            }
+            let want = 100.0 + 900.0 * (-4.0f64).exp();
+            assert!((last - want).abs() < 1e-9 * want, "{last} vs {want}");
+            assert_eq!(eta(1000, 100.0), "10 s");
+            assert_eq!(eta(18_500, 100.0), "3m05s");
+            assert_eq!(eta(372_000, 100.0), "1h02m");
+            assert_eq!(eta(10, 0.0), "?");
         }
     }
 }

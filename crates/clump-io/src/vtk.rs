@@ -9,8 +9,10 @@
 //! - **bodies**: points = centres of mass (m); point data `body_id`,
 //!   `quaternion` (4 components w, x, y, z, body → world), `ex`, `ey`, `ez`
 //!   (the body-frame axes expressed in the world frame, for glyphs),
-//!   `velocity` (m/s), `angular_velocity` (rad/s, world), `template` (index),
-//!   `mass` (kg).
+//!   `velocity` (m/s), `angular_velocity` (rad/s, world), `template` (the
+//!   scenario's template index, 0-based, in the order of `[[template]]`;
+//!   the names are listed in `manifest.json`), `scale` (the body's size
+//!   factor of a mix's size distribution, 1 otherwise), `mass` (kg).
 //! - **walls**: one polygon per face: planes clipped to the domain box,
 //!   cylinders tessellated with [`CYLINDER_SEGMENTS`] quads over the domain's
 //!   extent along their axis, boxes as 6 quads, meshes as their triangles
@@ -273,10 +275,39 @@ pub fn bodies_vtp(world: &World) -> Vec<u8> {
     }
     f.point_vec3("velocity", &b.velocity);
     f.point_vec3("angular_velocity", &b.angular_velocity);
-    f.point_i32("template", b.template.iter().map(|&t| t as i32));
+    let base = base_templates(world);
+    f.point_i32(
+        "template",
+        b.template.iter().map(|&t| base[t as usize] as i32),
+    );
+    f.point_f64(
+        "scale",
+        1,
+        b.template.iter().map(|&t| {
+            let (own, of_base) = (
+                &world.templates[t as usize],
+                &world.templates[base[t as usize]],
+            );
+            own.max_radius / of_base.max_radius
+        }),
+    );
     f.point_f64("mass", 1, b.mass.iter().copied());
     f.vertex_cells();
     f.finish()
+}
+
+/// For every world template, the index of the template it is a scaled copy
+/// of: the first template with the same name (insertion adds scaled copies
+/// under their base's name after the scenario's templates, whose names are
+/// unique). Scenario templates map to themselves.
+fn base_templates(world: &World) -> Vec<usize> {
+    let mut first: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    world
+        .templates
+        .iter()
+        .enumerate()
+        .map(|(i, t)| *first.entry(t.name.as_str()).or_insert(i))
+        .collect()
 }
 
 /// Polygon (3–6 vertices, ordered) of the plane through `p` with unit
