@@ -625,17 +625,25 @@ impl VtkSeries {
     /// Writes `spheres_<label>.vtp`, `bodies_<label>.vtp`, `walls_<label>.vtp`
     /// (label zero-padded to 6 digits, e.g. the step number) at `world.time`
     /// and appends them to the collections.
+    ///
+    /// The spheres and bodies series start at the first frame with bodies:
+    /// VTK drops the arrays of a piece without points, so a first frame
+    /// without bodies would leave `radius` out of ParaView's Glyph menu
+    /// (ParaView shows a series' first frame at earlier times). Frames
+    /// without bodies after that (e.g. an emptied hopper) are written.
     pub fn write_frame(&mut self, world: &World, label: u64) -> io::Result<()> {
         let names = [
             format!("spheres_{label:06}.vtp"),
             format!("bodies_{label:06}.vtp"),
             format!("walls_{label:06}.vtp"),
         ];
-        write_spheres(self.dir.join(&names[0]), world)?;
-        write_bodies(self.dir.join(&names[1]), world)?;
+        if !world.bodies.is_empty() || !self.spheres.entries().is_empty() {
+            write_spheres(self.dir.join(&names[0]), world)?;
+            write_bodies(self.dir.join(&names[1]), world)?;
+            self.spheres.append(world.time, &names[0])?;
+            self.bodies.append(world.time, &names[1])?;
+        }
         write_walls(self.dir.join(&names[2]), world)?;
-        self.spheres.append(world.time, &names[0])?;
-        self.bodies.append(world.time, &names[1])?;
         self.walls.append(world.time, &names[2])
     }
 }
