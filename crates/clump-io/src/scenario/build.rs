@@ -59,9 +59,23 @@ struct Cx<'a> {
     src: &'a Source,
     files: &'a mut Files,
     warnings: Vec<Diagnostic>,
+    /// Errors of the items of the current section (templates, walls,
+    /// inserts), collected so that all of them are reported at once.
+    errors: Vec<Diagnostic>,
 }
 
 impl Cx<'_> {
+    /// Ends a section whose items collected their errors: the first error,
+    /// if any (the others stay in `errors` and are reported with it); later
+    /// sections depend on this one's names, so they are not checked.
+    fn barrier(&mut self) -> R<()> {
+        if self.errors.is_empty() {
+            Ok(())
+        } else {
+            Err(self.errors.remove(0))
+        }
+    }
+
     fn err(&self, path: &[Seg], msg: impl Into<String>) -> Diagnostic {
         self.src.error_at(path, msg)
     }
@@ -190,13 +204,18 @@ pub(super) fn build(
     src: &Source,
     raw: RawScenario,
     files: &mut Files,
-) -> Result<Scenario, Diagnostic> {
+) -> Result<Scenario, super::ScenarioError> {
     let mut cx = Cx {
         src,
         files,
         warnings: Vec::new(),
+        errors: Vec::new(),
     };
-    let sc = build_inner(&mut cx, raw)?;
+    let sc = build_inner(&mut cx, raw).map_err(|first| {
+        let mut diagnostics = vec![first];
+        diagnostics.append(&mut cx.errors);
+        super::ScenarioError { diagnostics }
+    })?;
     Ok(Scenario {
         warnings: cx.warnings,
         ..sc
@@ -349,10 +368,15 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     let mut template_names: Vec<String> = Vec::new();
     let mut templates: Vec<TemplateDef> = Vec::new();
     for (i, t) in raw.template.iter().enumerate() {
-        let td = build_template(cx, i, t, &material_names, &materials, &template_names)?;
-        template_names.push(td.name.clone());
-        templates.push(td);
+        match build_template(cx, i, t, &material_names, &materials, &template_names) {
+            Ok(td) => {
+                template_names.push(td.name.clone());
+                templates.push(td);
+            }
+            Err(d) => cx.errors.push(d),
+        }
     }
+    cx.barrier()?;
 
     // ---------------- mixes
     let mut mix_names: Vec<String> = Vec::new();
@@ -597,19 +621,26 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     let mut meshes: Vec<TriMesh> = Vec::new();
     let mut torque_points: Vec<Option<DVec3>> = Vec::new();
     for (i, w) in raw.wall.iter().enumerate() {
-        let mut wall = build_wall(cx, i, w, &material_names, &wall_names, &mut meshes)?;
+        let built =
+            build_wall(cx, i, w, &material_names, &wall_names, &mut meshes).and_then(|wall| {
+                let tp = w
+                    .torque_point
+                    .map(|a| cx.vec3(&[K("wall"), I(i), K("torque_point")], a, "torque_point"))
+                    .transpose()?;
+                Ok((wall, tp))
+            });
+        let Ok((mut wall, tp)) = built.map_err(|d| cx.errors.push(d)) else {
+            continue;
+        };
         // [simulation] multi_contact is also the walls' default
         if let (None, Some(mc)) = (w.multi_contact, sim.multi_contact) {
             wall.multi_contact = mc;
         }
-        torque_points.push(
-            w.torque_point
-                .map(|a| cx.vec3(&[K("wall"), I(i), K("torque_point")], a, "torque_point"))
-                .transpose()?,
-        );
+        torque_points.push(tp);
         wall_names.push(wall.name.clone());
         walls.push(wall);
     }
+    cx.barrier()?;
 
     // ---------------- stages
     let mut stages: Vec<StageDef> = Vec::new();
@@ -727,10 +758,16 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             &mixes,
             &mix_names,
             dt,
-        )?;
-        placement::check_insert(cx.src, i, &def, &domain, &mut cx.warnings)?;
-        inserts.push(def);
+        )
+        .and_then(|def| {
+            placement::check_insert(cx.src, i, &def, &domain, &mut cx.warnings).map(|()| def)
+        });
+        match def {
+            Ok(def) => inserts.push(def),
+            Err(d) => cx.errors.push(d),
+        }
     }
+    cx.barrier()?;
 
     // ---------------- output
     let to_steps =

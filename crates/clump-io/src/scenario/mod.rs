@@ -110,7 +110,7 @@ pub fn parse(path: &Path, text: String, mut files: Files) -> Result<Scenario, Sc
     let src = Source::new(path, text);
     let raw: raw::RawScenario =
         toml::from_str(&src.text).map_err(|e| ScenarioError::one(src.from_toml_error(&e)))?;
-    build::build(&src, raw, &mut files).map_err(ScenarioError::one)
+    build::build(&src, raw, &mut files)
 }
 
 impl Scenario {

@@ -208,6 +208,13 @@ CASES = [
      ["'dt' must be > 0 s, found -1e-300"]),
     ("huge_line_excerpt", rep('name = "fill"', 'name = "fill"\nbogus = "' + "x" * 5000 + '"'), "bogus",
      ["unknown key 'bogus' in [[stage]]", "…"]),
+    # several errors in one section are reported together
+    ("two_bad_templates", chain(rep("radius = 0.002", "radius = -0.002"),
+        append('\n[[template]]\nname = "grain"\nmaterial = "rock"\nshape = "sphere"\nradius = 0.0\n')), "radius = 0.0",
+     ["'radius' must be > 0 m, found -0.002", "two_bad_templates.toml:35:", "'radius' must be > 0 m, found 0"]),
+    ("two_bad_inserts", chain(rep("lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1]", "lo = [-0.05, -0.05, 0.4], hi = [0.05, 0.05, 0.5]"),
+        append('\n[[insert]]\nkind = "pack"\nstage = "fill"\nmix = "pebbles"\ncount = 10\nregion = { type = "box", lo = [0.2, -0.05, 0.01], hi = [0.3, 0.05, 0.1] }\n')), "lo = [0.2, -0.05",
+     ["the region lies outside the domain along z", "the region lies outside the domain along x (region 0.2000 .. 0.3000 m"]),
 ]
 
 # the invalid-UTF-8 case is written as bytes
