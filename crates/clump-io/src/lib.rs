@@ -13,3 +13,4 @@ pub mod template_file;
 pub mod thermo_csv;
 pub mod trajectory;
 pub mod vtk;
+pub mod vtu;

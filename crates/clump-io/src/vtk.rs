@@ -581,6 +581,7 @@ pub struct VtkSeries {
     spheres: PvdWriter,
     bodies: PvdWriter,
     walls: PvdWriter,
+    format: crate::vtu::VtkFormat,
 }
 
 impl VtkSeries {
@@ -595,7 +596,14 @@ impl VtkSeries {
             bodies: PvdWriter::new(dir.join("bodies.pvd")),
             walls: PvdWriter::new(dir.join("walls.pvd")),
             dir,
+            format: Default::default(),
         })
+    }
+
+    /// The series writing its frames in `format` (`.vtp` by default).
+    pub fn with_format(mut self, format: crate::vtu::VtkFormat) -> Self {
+        self.format = format;
+        self
     }
 
     /// Reopens a series in `dir` for a resumed run: collection entries after
@@ -610,6 +618,7 @@ impl VtkSeries {
             bodies: PvdWriter::resume(dir.join("bodies.pvd"), max_time),
             walls: PvdWriter::resume(dir.join("walls.pvd"), max_time),
             dir,
+            format: Default::default(),
         };
         s.spheres.write()?;
         s.bodies.write()?;
@@ -623,8 +632,8 @@ impl VtkSeries {
     }
 
     /// Writes `spheres_<label>.vtp`, `bodies_<label>.vtp`, `walls_<label>.vtp`
-    /// (label zero-padded to 6 digits, e.g. the step number) at `world.time`
-    /// and appends them to the collections.
+    /// (label zero-padded to 6 digits, e.g. the step number; `.vtu` in that
+    /// format) at `world.time` and appends them to the collections.
     ///
     /// The spheres and bodies series start at the first frame with bodies:
     /// VTK drops the arrays of a piece without points, so a first frame
@@ -632,18 +641,21 @@ impl VtkSeries {
     /// (ParaView shows a series' first frame at earlier times). Frames
     /// without bodies after that (e.g. an emptied hopper) are written.
     pub fn write_frame(&mut self, world: &World, label: u64) -> io::Result<()> {
+        let ext = self.format.extension();
         let names = [
-            format!("spheres_{label:06}.vtp"),
-            format!("bodies_{label:06}.vtp"),
-            format!("walls_{label:06}.vtp"),
+            format!("spheres_{label:06}.{ext}"),
+            format!("bodies_{label:06}.{ext}"),
+            format!("walls_{label:06}.{ext}"),
         ];
+        let write =
+            |name: &str, vtp: Vec<u8>| write_atomic(self.dir.join(name), &self.format.encode(vtp));
         if !world.bodies.is_empty() || !self.spheres.entries().is_empty() {
-            write_spheres(self.dir.join(&names[0]), world)?;
-            write_bodies(self.dir.join(&names[1]), world)?;
+            write(&names[0], spheres_vtp(world))?;
+            write(&names[1], bodies_vtp(world))?;
             self.spheres.append(world.time, &names[0])?;
             self.bodies.append(world.time, &names[1])?;
         }
-        write_walls(self.dir.join(&names[2]), world)?;
+        write(&names[2], walls_vtp(world))?;
         self.walls.append(world.time, &names[2])
     }
 }

@@ -389,7 +389,11 @@ impl Runner {
         let out = Outputs {
             dir: outdir.to_path_buf(),
             vtk: match o.vtk {
-                Some(_) => Some(VtkSeries::new(outdir).map_err(rt("cannot start VTK output"))?),
+                Some(_) => Some(
+                    VtkSeries::new(outdir)
+                        .map_err(rt("cannot start VTK output"))?
+                        .with_format(o.vtk_format),
+                ),
                 None => None,
             },
             thermo: match o.thermo {
@@ -463,9 +467,11 @@ impl Runner {
         let out = Outputs {
             dir: outdir.clone(),
             vtk: match o.vtk {
-                Some(_) => {
-                    Some(VtkSeries::resume(&outdir, time).map_err(rt("cannot resume VTK output"))?)
-                }
+                Some(_) => Some(
+                    VtkSeries::resume(&outdir, time)
+                        .map_err(rt("cannot resume VTK output"))?
+                        .with_format(o.vtk_format),
+                ),
                 None => None,
             },
             thermo: match o.thermo {

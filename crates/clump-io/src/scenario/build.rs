@@ -829,6 +829,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         thermo: thermo.or(Some((total_steps / 200).max(1))),
         checkpoint,
         trajectory,
+        vtk_format: o.vtk_format.unwrap_or_default(),
     };
 
     let config = WorldConfig {

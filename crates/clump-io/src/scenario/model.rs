@@ -192,6 +192,8 @@ pub struct OutputDef {
     pub checkpoint: Option<u64>,
     /// Trajectories.
     pub trajectory: Option<TrajectoryDef>,
+    /// File format of the VTK frames (`.vtp` or `.vtu`).
+    pub vtk_format: crate::vtu::VtkFormat,
 }
 
 impl Scenario {
