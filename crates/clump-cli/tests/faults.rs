@@ -2,6 +2,8 @@
 //! output folders shared or reused, resume into a foreign folder, a full
 //! disk. Each case states the expected exit status and message.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -17,57 +19,14 @@ fn tmp(name: &str) -> PathBuf {
     d
 }
 
-/// A small scenario: `n` bodies from a pack fall onto a floor for `steps`.
-fn scenario(dir: &Path, steps: u64, thermo_every: u64) -> PathBuf {
-    let text = format!(
-        r#"
-[simulation]
-dt = 2e-5
-steps = {steps}
-
-[domain]
-lo = [-0.03, -0.03, -0.01]
-hi = [0.03, 0.03, 0.1]
-
-[[material]]
-name = "rock"
-youngs_modulus = 5e6
-poisson_ratio = 0.3
-density = 2500
-
-[contact]
-restitution = 0.3
-friction = 0.5
-
-[[template]]
-name = "tetra"
-material = "rock"
-shape = "tetrahedron"
-radius = 0.002
-edge = 0.0025
-
-[[wall]]
-name = "floor"
-material = "rock"
-type = "plane"
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-
-[[insert]]
-kind = "pack"
-template = "tetra"
-count = 20
-region = {{ type = "box", lo = [-0.02, -0.02, 0.005], hi = [0.02, 0.02, 0.05] }}
-seed = 3
-
-[output]
-vtk = {{ every_steps = {thermo_every} }}
-thermo = {{ every_steps = {thermo_every} }}
-trajectory = {{ bodies = [1, 2], every_steps = {thermo_every} }}
-"#
-    );
+/// The shared small scenario (see `common`) with VTK, thermo and
+/// trajectory output every `every` steps, written as `dir/fall.toml`.
+fn scenario(dir: &Path, steps: u64, every: u64) -> PathBuf {
     let p = dir.join("fall.toml");
-    std::fs::write(&p, text).unwrap();
+    let output = format!(
+        "vtk = {{ every_steps = {every} }}\nthermo = {{ every_steps = {every} }}\ntrajectory = {{ bodies = [1, 2], every_steps = {every} }}\n"
+    );
+    std::fs::write(&p, common::fall(steps, &output)).unwrap();
     p
 }
 

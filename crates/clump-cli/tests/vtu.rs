@@ -2,49 +2,10 @@
 //! meshio reads (Debian `python3-meshio`; the test prints a note and passes
 //! without it): the same points and arrays as the `.vtp` frames.
 
+mod common;
+
 use std::path::Path;
 use std::process::Command;
-
-const SCENARIO: &str = r#"
-[simulation]
-dt = 2e-5
-steps = 40
-
-[domain]
-lo = [-0.03, -0.03, -0.01]
-hi = [0.03, 0.03, 0.1]
-
-[[material]]
-name = "rock"
-youngs_modulus = 5e6
-poisson_ratio = 0.3
-density = 2500
-
-[[template]]
-name = "tetra"
-material = "rock"
-shape = "tetrahedron"
-radius = 0.002
-edge = 0.0025
-
-[[wall]]
-name = "floor"
-material = "rock"
-type = "plane"
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-
-[[insert]]
-kind = "pack"
-template = "tetra"
-count = 20
-region = { type = "box", lo = [-0.02, -0.02, 0.005], hi = [0.02, 0.02, 0.05] }
-seed = 3
-
-[output]
-vtk = { every_steps = 20 }
-vtk_format = "vtu"
-"#;
 
 const READ: &str = r#"
 import sys, meshio
@@ -71,7 +32,11 @@ fn vtu_frames_are_read_by_meshio() {
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     let sc = d.join("vtu.toml");
-    std::fs::write(&sc, SCENARIO).unwrap();
+    std::fs::write(
+        &sc,
+        common::fall(40, "vtk = { every_steps = 20 }\nvtk_format = \"vtu\"\n"),
+    )
+    .unwrap();
     let out = d.join("out");
     let o = Command::new(env!("CARGO_BIN_EXE_clump"))
         .arg("run")
