@@ -101,13 +101,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         None
     };
     if args.liggghts_rounds > 0 && lig.is_none() {
-        eprintln!("liggghts is not installed (apt-get install liggghts): running Clump only");
+        errln!("liggghts is not installed (apt-get install liggghts): running Clump only");
     }
     let (_, sa, sb) = build_world(&scenario_path(args), args.skin)?;
     let (na, nb) = (args.na.unwrap_or(sa), args.nb.unwrap_or(sb));
-    println!(
+    outln!(
         "tetra-bed, {} clumps, phase A {na} steps, phase B {nb} steps, clump threads {}",
-        args.n, args.threads
+        args.n,
+        args.threads
     );
     let mut clump = Vec::new();
     let mut peer = Vec::new();
@@ -132,14 +133,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         tput(med(&clump, |f| f.a_seconds), na, ns),
         tput(med(&clump, |f| f.b_seconds), nb, ns),
     );
-    println!("clump    (threads {}): phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s, peak RSS {:.0} MB", args.threads, ca / 1e6, cb / 1e6, med(&clump, |f| f.peak_rss_mb));
+    outln!("clump    (threads {}): phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s, peak RSS {:.0} MB", args.threads, ca / 1e6, cb / 1e6, med(&clump, |f| f.peak_rss_mb));
     if !peer.is_empty() {
         let (la, lb) = (
             tput(med(&peer, |f| f.a_seconds), na, ns),
             tput(med(&peer, |f| f.b_seconds), nb, ns),
         );
-        println!("liggghts (serial):    phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s, peak RSS {:.0} MB", la / 1e6, lb / 1e6, med(&peer, |f| f.peak_rss_mb));
-        println!(
+        outln!("liggghts (serial):    phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s, peak RSS {:.0} MB", la / 1e6, lb / 1e6, med(&peer, |f| f.peak_rss_mb));
+        outln!(
             "ratio clump/liggghts: phase A {:.2}x, phase B {:.2}x",
             ca / la,
             cb / lb
@@ -154,7 +155,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             .collect();
         let list: Vec<String> = per_round.iter().map(|r| format!("{r:.2}x")).collect();
         per_round.sort_by(|a, b| a.total_cmp(b));
-        println!(
+        outln!(
             "phase B ratio per round: {}; median {:.2}x",
             list.join(", "),
             per_round[per_round.len() / 2]
@@ -165,7 +166,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 
 fn report(code: &str, round: usize, na: u64, nb: u64, f: &Figures) {
     let ns = f.spheres as f64;
-    println!(
+    outln!(
         "round {round} {code}: A {:.2} s ({:.3} M sph-steps/s)  B {:.2} s ({:.3} M sph-steps/s)  peak RSS {:.0} MB",
         f.a_seconds,
         ns * na as f64 / f.a_seconds / 1e6,
@@ -239,13 +240,13 @@ fn run_clump(args: &BenchArgs, na: u64, nb: u64) -> Result<Figures> {
         w.run(nb)?;
         let (b, cb) = (t1.elapsed().as_secs_f64(), cpu_seconds() - c1);
         let ns = w.spheres().len() as f64;
-        eprintln!(
+        errln!(
             "clump: CPU time (all threads) phase A {ca:.2} s ({:.3} M sph-steps per CPU s), phase B {cb:.2} s ({:.3} M sph-steps per CPU s)",
             ns * na as f64 / ca / 1e6,
             ns * nb as f64 / cb / 1e6
         );
         let th = w.thermo();
-        eprintln!(
+        errln!(
             "clump: {} bodies, {} contacts, lost {}, KE {:.3e} J, rebuilds {}",
             th.bodies,
             th.pair_contacts + th.wall_contacts,
@@ -506,7 +507,7 @@ fn scaling(args: &BenchArgs) -> Result<()> {
     if let Some(n) = args.scaling.iter().find(|&&n| n == 0) {
         bail!("--scaling: sphere counts must be positive (got {n})");
     }
-    println!(
+    outln!(
         "scaling: dense periodic tetra beds (a ~1e4-sphere tile of {} layers settled {} steps, copied side by side), {} alternating rounds of {} steps (repeated from the same state by the smaller beds up to the largest's sphere-steps), threads {}",
         args.layers, args.settle, args.scaling_rounds.max(1), args.steps, args.threads
     );
@@ -572,7 +573,7 @@ fn scaling(args: &BenchArgs) -> Result<()> {
         }
         Ok(beds)
     })?;
-    println!(
+    outln!(
         "{:>9} {:>8} {:>20} {:>12} {:>14} {:>11} {:>13} {:>12} {:>13} {:>7} {:>9} {:>13}   ns/sph-step by stage (best round): initial, neighbour, pair, gather",
         "spheres",
         "clumps",
@@ -600,7 +601,7 @@ fn scaling(args: &BenchArgs) -> Result<()> {
         let median = bed.rounds[bed.rounds.len() / 2].0;
         let stages = times.rows().map(|(_, t)| format!("{:.1}", t * per));
         let rate = ns as f64 * steps as f64 / best;
-        println!(
+        outln!(
             "{:>9} {:>8} {:>20} {:>12} {:>14.3} {:>11.1} {:>13.1} {:>12.2} {:>13} {:>7.3} {:>9.0} {:>13.0}",
             ns,
             w.bodies.len(),
@@ -619,20 +620,20 @@ fn scaling(args: &BenchArgs) -> Result<()> {
             bed.rss_mb,
             bed.rss_mb * 1024.0 * 1024.0 / ns as f64
         );
-        println!("{:>153}", stages.join(", "));
+        outln!("{:>153}", stages.join(", "));
     }
     if let (Some(small), Some(large)) = (costs.first(), costs.last()) {
         if costs.len() > 1 {
             let mut ratios: Vec<f64> = small.iter().zip(large).map(|(a, b)| b / a).collect();
             let shown: Vec<String> = ratios.iter().map(|r| format!("{r:.3}")).collect();
             ratios.sort_by(f64::total_cmp);
-            println!(
+            outln!(
                 "cost per sphere-step, largest bed / smallest, per round: {}; median {:.3}",
                 shown.join(", "),
                 ratios[ratios.len() / 2]
             );
         }
     }
-    println!("process peak RSS {:.0} MB", peak_rss_mb());
+    outln!("process peak RSS {:.0} MB", peak_rss_mb());
     Ok(())
 }

@@ -3,6 +3,7 @@
 //! expected counts, memory estimate). Packings are tried out in a scratch
 //! world, so a region that cannot hold its bodies is reported here.
 
+use crate::check_words;
 use clap::Args;
 use clump_core::insert::pack;
 use clump_io::scenario::{self, InsertSpec, Scenario};
@@ -40,38 +41,40 @@ pub fn run(args: &CheckArgs) -> ExitCode {
     let sc = match scenario::load(&args.scenario) {
         Ok(s) => s,
         Err(e) => {
-            eprint!("{e}");
+            err!("{e}");
             return ExitCode::from(2);
         }
     };
     for w in &sc.warnings {
-        eprint!("{w}");
+        err!("{w}");
     }
     report(&sc);
     if !args.no_pack {
         if let Err(e) = trial_pack(&sc) {
-            eprint!("{e}");
+            err!("{e}");
             return ExitCode::from(2);
         }
     }
-    println!("\nok: {} is valid", args.scenario.display());
+    outln!("\nok: {} is valid", args.scenario.display());
     ExitCode::SUCCESS
 }
 
 fn report(sc: &Scenario) {
-    println!("scenario {}", sc.path.display());
-    println!("\nmaterials:");
+    outln!("scenario {}", sc.path.display());
+    outln!("\nmaterials:");
     for (n, m) in sc.material_names.iter().zip(&sc.materials) {
-        println!(
+        outln!(
             "  {n:<16} E = {:.3e} Pa  nu = {}  rho = {} kg/m^3",
-            m.youngs_modulus, m.poisson_ratio, m.density
+            m.youngs_modulus,
+            m.poisson_ratio,
+            m.density
         );
     }
-    println!("\ntemplates (body frame = principal axes, origin at the centre of mass):");
+    outln!("\ntemplates (body frame = principal axes, origin at the centre of mass):");
     for t in &sc.templates {
         let tp = &t.template;
         let i = tp.principal_inertia;
-        println!(
+        outln!(
             "  {:<16} {:>3} spheres  mass {:.6e} kg  volume {:.6e} m^3  I = ({:.4e}, {:.4e}, {:.4e}) kg m^2  r = [{:.3e}, {:.3e}] m  bounding radius {:.3e} m  material {}",
             t.name,
             tp.spheres.len(),
@@ -100,26 +103,28 @@ fn report(sc: &Scenario) {
         );
     }
     let ts = &sc.time_step;
-    println!("\ntime step:");
+    outln!("\ntime step:");
     match (ts.rayleigh_time, ts.smallest_radius, &ts.smallest_template) {
         (Some(tr), Some(r), Some(name)) => {
-            println!("  smallest sphere: r = {r:.4e} m (template '{name}'), Rayleigh time t_R = {tr:.4e} s");
-            println!(
-                "  dt = {:.4e} s ({}) = {:.3} t_R",
+            outln!("  smallest sphere: r = {r:.4e} m (template '{name}'), Rayleigh time t_R = {tr:.4e} s");
+            outln!(
+                "  dt = {:.4e} s ({}) = {:.3} t_R (refused above {} t_R, warned about above {} t_R)",
                 ts.dt,
                 if ts.auto {
                     format!("auto, dt_fraction = {}", ts.fraction)
                 } else {
                     "explicit".into()
                 },
-                ts.dt / tr
+                ts.dt / tr,
+                scenario::DT_ERROR_FRACTION,
+                scenario::DT_WARN_FRACTION
             );
         }
-        _ => println!("  dt = {:.4e} s (explicit; no templates)", ts.dt),
+        _ => outln!("  dt = {:.4e} s (explicit; no templates)", ts.dt),
     }
-    println!("\nstages:");
+    outln!("\nstages:");
     for s in &sc.stages {
-        println!(
+        outln!(
             "  {:<16} steps {:>9} .. {:>9}  ({:.4} s .. {:.4} s)",
             s.name,
             s.first_step,
@@ -128,20 +133,20 @@ fn report(sc: &Scenario) {
             (s.first_step + s.steps) as f64 * ts.dt
         );
     }
-    println!(
+    outln!(
         "  total: {} steps, {:.4} s simulated",
         sc.total_steps(),
         sc.duration()
     );
-    println!("\ninsertion:");
+    outln!("\ninsertion:");
     for (k, ins) in sc.inserts.iter().enumerate() {
         let stage = &sc.stages[ins.stage].name;
         match &ins.kind {
-            InsertSpec::File { bodies } => println!("  #{} file: {} bodies at the start of stage '{stage}'", k + 1, bodies.len()),
+            InsertSpec::File { bodies } => outln!("  #{} file: {} bodies at the start of stage '{stage}'", k + 1, bodies.len()),
             InsertSpec::Pack { expected_bodies, .. } => {
-                println!("  #{} pack: about {:.0} bodies at the start of stage '{stage}'", k + 1, expected_bodies)
+                outln!("  #{} pack: about {:.0} bodies at the start of stage '{stage}'", k + 1, expected_bodies)
             }
-            InsertSpec::Stream { spec, expected_bodies, .. } => println!(
+            InsertSpec::Stream { spec, expected_bodies, .. } => outln!(
                 "  #{} stream: about {:.0} bodies between t = {:.4} s and {:.4} s (stage '{stage}')",
                 k + 1,
                 expected_bodies,
@@ -151,47 +156,27 @@ fn report(sc: &Scenario) {
         }
     }
     let (nb, ns) = (sc.expected_bodies(), sc.expected_spheres());
-    println!("  expected in total: {nb:.0} bodies, {ns:.0} spheres");
-    println!("\nwalls:");
+    outln!("  expected in total: {nb:.0} bodies, {ns:.0} spheres");
+    outln!("\nwalls:");
     for w in &sc.walls {
-        let shape = match w.shape.mesh_pose() {
-            Some((m, _, _)) => match sc.meshes.get(m as usize) {
-                Some(mesh) => {
-                    let (lo, hi) = mesh.bounds();
-                    format!(
-                        "mesh: {} triangles ({} of zero area dropped), {} vertices, bounds [{:.4}, {:.4}, {:.4}] .. [{:.4}, {:.4}, {:.4}] m, merge angle {:.1} deg",
-                        mesh.triangles().len(),
-                        mesh.dropped_triangles(),
-                        mesh.vertices().len(),
-                        lo.x, lo.y, lo.z, hi.x, hi.y, hi.z,
-                        mesh.merge_angle.to_degrees()
-                    )
-                }
-                None => format!("{:?}", w.shape),
-            },
-            None => format!("{:?}", w.shape),
-        };
-        println!(
-            "  {:<16} {shape}{}",
+        outln!(
+            "  {:<16} {}{}",
             w.name,
+            check_words::wall(sc, w),
             if w.active { "" } else { " (inactive at start)" }
         );
     }
+    if let Ok(world) = sc.build_world() {
+        check_words::contacts(sc, &world);
+    }
     let mem = ns * BYTES_PER_SPHERE + nb * BYTES_PER_BODY;
-    println!(
+    outln!(
         "\nestimated memory: {} (about {:.1} kB per sphere and {:.1} kB per body)",
         human_bytes(mem),
         BYTES_PER_SPHERE / 1e3,
         BYTES_PER_BODY / 1e3
     );
-    let o = &sc.output;
-    println!(
-        "\noutput every (steps): vtk {:?}, thermo {:?}, checkpoint {:?}, trajectory {:?}",
-        o.vtk,
-        o.thermo,
-        o.checkpoint,
-        o.trajectory.as_ref().map(|t| (&t.bodies, t.every))
-    );
+    outln!("\noutput:\n{}", check_words::outputs(sc));
 }
 
 /// Tries every file and pack insertion in a scratch world, stage by stage.
@@ -219,7 +204,7 @@ fn trial_pack(sc: &Scenario) -> Result<(), scenario::ScenarioError> {
                 let t = std::time::Instant::now();
                 let rep =
                     pack(&mut world, spec, *seed).map_err(|e| sc.insert_error(k, e.to_string()))?;
-                println!(
+                outln!(
                     "trial packing #{}: {} bodies placed, solid fraction {:.3} ({:.2} s)",
                     k + 1,
                     rep.placed,

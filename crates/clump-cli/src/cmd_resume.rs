@@ -32,5 +32,10 @@ pub fn run(args: &ResumeArgs) -> ExitCode {
         Ok(r) => r,
         Err(e) => return error_exit(&e),
     };
+    let at = runner.world().step;
+    if let Some(n) = args.steps.filter(|&n| n <= at) {
+        errln!("error: --steps {n} is not after the checkpoint's step {at}; nothing would be run\n  = help: --steps counts from the start of the original run: give a step above {at}");
+        return ExitCode::from(2);
+    }
     drive(runner, args.threads, args.steps)
 }

@@ -24,15 +24,33 @@ pub struct RunArgs {
     /// run), writing a checkpoint; for tests and quick looks.
     #[arg(long)]
     pub steps: Option<u64>,
+    /// Delete the files of an earlier run in the output directory first
+    /// (without it, such a directory is refused).
+    #[arg(long)]
+    pub overwrite: bool,
 }
 
 /// Exit status for a run error.
 pub fn error_exit(e: &RunError) -> ExitCode {
-    eprint!("{e}");
+    err!("{e}");
     if !e.to_string().ends_with('\n') {
-        eprintln!();
+        errln!();
     }
     ExitCode::from(if e.is_input() { 2 } else { 1 })
+}
+
+/// `n`, or the number of cores when `n` is larger (with a warning): more
+/// threads than cores only slow a run down (results do not depend on it).
+pub fn capped_threads(n: usize) -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+    if n > cores {
+        errln!(
+            "warning: --threads {n} is more than the {cores} cores of this machine; using {cores}"
+        );
+        cores
+    } else {
+        n
+    }
 }
 
 /// Registers SIGINT/SIGTERM: the first sets the returned flag to the signal
@@ -55,15 +73,15 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         if n == 0 {
-            eprintln!("error: --threads must be at least 1");
+            errln!("error: --threads must be at least 1");
             return ExitCode::from(2);
         }
-        b = b.num_threads(n);
+        b = b.num_threads(capped_threads(n));
     }
     let pool = match b.build() {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("error: cannot start {threads:?} threads: {e}");
+            errln!("error: cannot start {threads:?} threads: {e}");
             return ExitCode::from(1);
         }
     };
@@ -102,7 +120,7 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
         RunStatus::StepLimit => "stopped at the --steps limit",
         RunStatus::Interrupted(_) => "interrupted",
     };
-    println!(
+    outln!(
         "{status}: steps {} → {} ({} steps, t = {:.6} s), {} bodies, {} spheres, wall time {:.2} s, {:.3e} sphere-steps/s on {} threads",
         s.first_step,
         s.final_step,
@@ -114,10 +132,11 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
         s.throughput(),
         nthreads
     );
-    println!("output: {}", runner.outdir().display());
+    report_bodies(&runner);
+    outln!("output: {}", runner.outdir().display());
     if let Some(c) = &s.checkpoint {
         if s.status != RunStatus::Completed {
-            println!(
+            outln!(
                 "checkpoint: {} (continue with `clump resume {}`)",
                 c.display(),
                 c.display()
@@ -127,6 +146,35 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
     match s.status {
         RunStatus::Interrupted(sig) => ExitCode::from((128 + sig).clamp(0, 255) as u8),
         _ => ExitCode::SUCCESS,
+    }
+}
+
+/// Prints what became of the bodies asked for (stdout), with a warning on
+/// stderr for every insertion that could not place them all.
+fn report_bodies(runner: &Runner) {
+    for c in runner.insertions() {
+        outln!(
+            "insert #{} ({}): asked {}, placed {}{}",
+            c.insert,
+            c.kind,
+            c.asked,
+            c.placed,
+            if c.waiting > 0 {
+                format!(", {} not placed (no room in the region)", c.waiting)
+            } else {
+                String::new()
+            }
+        );
+        if c.waiting > 0 {
+            errln!(
+                "warning: insert #{} ({}) placed {} of the {} bodies asked for; {} found no room in its region (a larger region, a lower rate or a longer stage helps)",
+                c.insert, c.kind, c.placed, c.asked, c.waiting
+            );
+        }
+    }
+    let lost = runner.lost_bodies();
+    if lost > 0 {
+        outln!("lost: {lost} bodies left the domain (their centre crossed a non-periodic side)");
     }
 }
 
@@ -145,18 +193,18 @@ pub fn run(args: &RunArgs) -> ExitCode {
     let sc = match scenario::load(&args.scenario) {
         Ok(s) => s,
         Err(e) => {
-            eprint!("{e}");
+            err!("{e}");
             return ExitCode::from(2);
         }
     };
     for w in &sc.warnings {
-        eprint!("{w}");
+        err!("{w}");
     }
     let outdir = args
         .outdir
         .clone()
         .unwrap_or_else(|| default_outdir(&sc, &args.scenario));
-    let runner = match Runner::new(sc, &outdir) {
+    let runner = match Runner::new_in(sc, &outdir, args.overwrite) {
         Ok(r) => r,
         Err(e) => return error_exit(&e),
     };
@@ -176,16 +224,23 @@ pub mod progress {
     /// A writer that prints log lines above the progress bar (if any).
     struct LogWriter;
 
+    /// Failures to write are ignored: a closed or full stderr must not stop
+    /// a run.
     impl Write for LogWriter {
         fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
             match BAR.get() {
-                Some(pb) if !pb.is_hidden() => pb.suspend(|| std::io::stderr().write_all(buf))?,
-                _ => std::io::stderr().write_all(buf)?,
+                Some(pb) if !pb.is_hidden() => {
+                    let _ = pb.suspend(|| std::io::stderr().write_all(buf));
+                }
+                _ => {
+                    let _ = std::io::stderr().write_all(buf);
+                }
             }
             Ok(buf.len())
         }
         fn flush(&mut self) -> std::io::Result<()> {
-            std::io::stderr().flush()
+            let _ = std::io::stderr().flush();
+            Ok(())
         }
     }
 
@@ -200,14 +255,63 @@ pub mod progress {
             .with_target(false)
             .with_ansi(std::io::stderr().is_terminal())
             .with_writer(|| LogWriter)
+            .log_internal_errors(false)
             .try_init();
     }
 
     /// Progress display: an indicatif bar on a terminal, plain lines otherwise.
+    /// The ETA follows the recent rate (see [`RecentRate`]).
     pub struct Display {
         bar: Option<ProgressBar>,
         last_line: Instant,
         line_every: Duration,
+        rate: RecentRate,
+    }
+
+    /// Steps per second over the last few seconds: an exponential average
+    /// of the rates between progress reports with a time constant of
+    /// [`RecentRate::TAU`], so that the ETA follows a run that slows down
+    /// (e.g. while bodies pour in) within seconds.
+    #[derive(Debug, Default)]
+    pub struct RecentRate {
+        rate: Option<f64>,
+        last: Option<Instant>,
+    }
+
+    impl RecentRate {
+        /// Time constant of the average, s.
+        pub const TAU: f64 = 1.0;
+
+        /// Adds a rate measured now (steps/s); returns the average.
+        pub fn update(&mut self, steps_per_second: f64, now: Instant) -> f64 {
+            let r = match (self.rate, self.last) {
+                (Some(r), Some(t)) => {
+                    let a = 1.0 - (-now.duration_since(t).as_secs_f64() / Self::TAU).exp();
+                    r + a * (steps_per_second - r)
+                }
+                _ => steps_per_second,
+            };
+            self.rate = Some(r);
+            self.last = Some(now);
+            r
+        }
+    }
+
+    /// `left` steps at `rate` steps/s, as `1h02m`, `3m05s` or `12 s`.
+    pub fn eta(left: u64, rate: f64) -> String {
+        if !(rate > 0.0) {
+            return "?".to_string();
+        }
+        let s = (left as f64 / rate).round();
+        if !(s < 1e9) {
+            return "?".to_string();
+        }
+        let s = s as u64;
+        match s {
+            0..=99 => format!("{s} s"),
+            100..=3599 => format!("{}m{:02}s", s / 60, s % 60),
+            _ => format!("{}h{:02}m", s / 3600, s / 60 % 60),
+        }
     }
 
     impl Display {
@@ -220,7 +324,7 @@ pub mod progress {
                 );
                 pb.set_style(
                     ProgressStyle::with_template(
-                        "{spinner} [{elapsed_precise}] {bar:30.cyan/blue} {msg} ETA {eta}",
+                        "{spinner} [{elapsed_precise}] {bar:30.cyan/blue} {msg}",
                     )
                     .unwrap_or_else(|_| ProgressStyle::default_bar())
                     .progress_chars("=> "),
@@ -232,12 +336,14 @@ pub mod progress {
                     bar: Some(pb),
                     last_line: Instant::now(),
                     line_every: Duration::from_secs(5),
+                    rate: RecentRate::default(),
                 }
             } else {
                 Display {
                     bar: None,
                     last_line: Instant::now(),
                     line_every: Duration::from_secs(5),
+                    rate: RecentRate::default(),
                 }
             }
         }
@@ -253,6 +359,8 @@ pub mod progress {
 
         /// Shows one progress report.
         pub fn update(&mut self, p: &clump_io::run::Progress) {
+            let rate = self.rate.update(p.steps_per_second, Instant::now());
+            let eta = eta(p.end_step.saturating_sub(p.step), rate);
             let msg = format!(
                 "t = {:.4}/{:.4} s  step {}/{}  {:.0} steps/s  {} bodies  {} contacts  [{}]",
                 p.time,
@@ -267,19 +375,13 @@ pub mod progress {
             match &self.bar {
                 Some(pb) => {
                     pb.set_position(p.step);
-                    pb.set_message(msg);
+                    pb.set_message(format!("{msg} ETA {eta}"));
                 }
                 None => {
                     if self.last_line.elapsed() >= self.line_every || p.step == p.end_step {
                         self.last_line = Instant::now();
                         let pct = 100.0 * p.step as f64 / p.end_step.max(1) as f64;
-                        let left = p.end_step.saturating_sub(p.step) as f64;
-                        let eta = if p.steps_per_second > 0.0 {
-                            format!("{:.0} s", left / p.steps_per_second)
-                        } else {
-                            "?".to_string()
-                        };
-                        eprintln!("progress {pct:5.1}%  {msg}  ETA {eta}");
+                        errln!("progress {pct:5.1}%  {msg}  ETA {eta}");
                     }
                 }
             }
@@ -290,6 +392,38 @@ pub mod progress {
             if let Some(pb) = &self.bar {
                 pb.finish_and_clear();
             }
+        }
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::*;
+
+        /// A run slowing from 1000 to 100 steps/s: the excess of the ETA's
+        /// rate decays as e^(−t/τ), τ = 1 s, whatever the report interval
+        /// (here 0.25 s): after 4 s it is 100 + 900 e^(−4) ≈ 116 steps/s.
+        #[test]
+        fn eta_follows_a_falling_rate() {
+            let t0 = Instant::now();
+            let mut r = RecentRate::default();
+            let mut k = 0u32;
+            let mut at = |r: &mut RecentRate, sps: f64| {
+                k += 1;
+                r.update(sps, t0 + Duration::from_millis(250 * k as u64))
+            };
+            for _ in 0..40 {
+                at(&mut r, 1000.0);
+            }
+            let mut last = 0.0;
+            for _ in 0..16 {
+                last = at(&mut r, 100.0);
+            }
+            let want = 100.0 + 900.0 * (-4.0f64).exp();
+            assert!((last - want).abs() < 1e-9 * want, "{last} vs {want}");
+            assert_eq!(eta(1000, 100.0), "10 s");
+            assert_eq!(eta(18_500, 100.0), "3m05s");
+            assert_eq!(eta(372_000, 100.0), "1h02m");
+            assert_eq!(eta(10, 0.0), "?");
         }
     }
 }

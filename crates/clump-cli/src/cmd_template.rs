@@ -110,7 +110,7 @@ impl std::error::Error for InputError {}
 pub fn run(args: &TemplateArgs) -> anyhow::Result<()> {
     match execute(args) {
         Err(e) if e.downcast_ref::<InputError>().is_some() => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             std::process::exit(2);
         }
         // A closed pipe (e.g. `clump template F | head`) is not an error.
@@ -330,6 +330,54 @@ fn write_table(
     Ok(())
 }
 
+/// Bytes the sphere generation may need per voxel of the bounding box (an
+/// interior voxel's centre, distance, ordering key and flags, with the
+/// growth slack of their vectors).
+const BYTES_PER_VOXEL: f64 = 64.0;
+
+/// Memory the system can still give, bytes (Linux `MemAvailable`; `None`
+/// elsewhere).
+fn available_memory() -> Option<f64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let kb: f64 = info
+        .lines()
+        .find_map(|l| l.strip_prefix("MemAvailable:"))?
+        .trim()
+        .trim_end_matches("kB")
+        .trim()
+        .parse()
+        .ok()?;
+    Some(kb * 1024.0)
+}
+
+/// Refuses a `--resolution` whose voxel grid (the mesh's bounding box in
+/// cubes of its smallest extent / `resolution`) needs more memory than is
+/// available, saying how much it needs and which resolution fits, instead
+/// of aborting on allocation.
+fn voxel_memory_fits(mesh: &clump_core::wall::TriMesh, resolution: usize) -> anyhow::Result<()> {
+    let (lo, hi) = mesh.bounds();
+    let ext = hi - lo;
+    let h = ext.min_element() / resolution as f64;
+    if !(h > 0.0) {
+        return Ok(()); // flat mesh: generate() reports it
+    }
+    let voxels = (ext.x / h).ceil() * (ext.y / h).ceil() * (ext.z / h).ceil();
+    let need = voxels * BYTES_PER_VOXEL;
+    if let Some(avail) = available_memory() {
+        if need > avail {
+            // memory grows as resolution³
+            let fits = (resolution as f64 * (avail / need).cbrt()).floor();
+            return Err(InputError(format!(
+                "--resolution {resolution} needs about {:.1} GB for {voxels:.3e} voxels, but only {:.1} GB of memory is available; use --resolution {fits:.0} or less",
+                need / 1e9,
+                avail / 1e9
+            ))
+            .into());
+        }
+    }
+    Ok(())
+}
+
 /// `--from-mesh`: generate, write the spheres, report the fidelity.
 fn from_mesh(args: &TemplateArgs, path: &std::path::Path) -> anyhow::Result<()> {
     if !args.scale.is_finite() || args.scale <= 0.0 {
@@ -363,6 +411,7 @@ fn from_mesh(args: &TemplateArgs, path: &std::path::Path) -> anyhow::Result<()> 
         };
         InputError(format!("{}: {e}{note}", path.display()))
     };
+    voxel_memory_fits(&mesh, args.resolution)?;
     let t0 = std::time::Instant::now();
     let spheres = generate(&mesh, &opt).map_err(|e| bad_mesh(&e))?;
     let elapsed = t0.elapsed().as_secs_f64();

@@ -23,7 +23,7 @@ pub struct ValidateArgs {
 /// Runs the suite and writes the report.
 pub fn run(a: &ValidateArgs) -> ExitCode {
     if let Err(e) = std::fs::create_dir_all(&a.out) {
-        eprintln!("error: cannot create {}: {e}", a.out.display());
+        errln!("error: cannot create {}: {e}", a.out.display());
         return ExitCode::from(2);
     }
     let t0 = Instant::now();
@@ -48,14 +48,14 @@ pub fn run(a: &ValidateArgs) -> ExitCode {
         format!("clump {}", env!("CARGO_PKG_VERSION")),
     ];
     if let Err(e) = report::write(&a.out, &suite, &header) {
-        eprintln!(
+        errln!(
             "error: cannot write {}: {e}",
             a.out.join("report.md").display()
         );
         return ExitCode::from(2);
     }
     let fails = suite.failures();
-    println!(
+    outln!(
         "{} passed, {} failed ({secs:.1} s); report: {}",
         suite.len() - fails,
         fails,
@@ -67,9 +67,11 @@ pub fn run(a: &ValidateArgs) -> ExitCode {
         .flat_map(|g| &g.cases)
         .filter(|c| !c.pass)
     {
-        println!(
+        outln!(
             "FAIL: {}: expected {}, measured {}",
-            c.name, c.expected, c.measured
+            c.name,
+            c.expected,
+            c.measured
         );
     }
     if fails == 0 {

@@ -1,12 +1,17 @@
 //! The `clump` command-line program.
 //!
 //! Exit status: 0 success, 2 bad input (scenario, checkpoint, arguments),
-//! 1 failure while running, 130 after SIGINT, 143 after SIGTERM (a
-//! checkpoint is written first).
+//! 1 failure while running (also when stdout cannot be written, e.g. a full
+//! disk), 130 after SIGINT, 143 after SIGTERM (a checkpoint is written
+//! first), 141 when the reader of stdout closed it (`| head`; see [`term`]).
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+#[macro_use]
+mod term;
+
+mod check_words;
 mod cmd_bench;
 mod cmd_check;
 mod cmd_resume;
@@ -55,14 +60,14 @@ fn main() -> ExitCode {
         Commands::Bench(a) => match cmd_bench::run(&a) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
-                eprintln!("error: {e:#}");
+                errln!("error: {e:#}");
                 ExitCode::from(1)
             }
         },
         Commands::Template(a) => match cmd_template::run(&a) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
-                eprintln!("error: {e:#}");
+                errln!("error: {e:#}");
                 ExitCode::from(1)
             }
         },

@@ -65,7 +65,7 @@ impl AtomicWriter {
         let buf = self.file.take().expect("not yet committed");
         let file = buf
             .into_inner()
-            .map_err(|e| with_path(e.into_error(), &self.tmp, "cannot write"))?;
+            .map_err(|e| with_path(e.into_error(), &self.target, "cannot write"))?;
         file.sync_all()
             .map_err(|e| with_path(e, &self.tmp, "cannot sync"))?;
         drop(file);
@@ -83,13 +83,20 @@ impl AtomicWriter {
 
 impl Write for AtomicWriter {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
-        self.file.as_mut().expect("not yet committed").write(buf)
+        let target = &self.target;
+        self.file
+            .as_mut()
+            .expect("not yet committed")
+            .write(buf)
+            .map_err(|e| with_path(e, target, "cannot write"))
     }
     fn write_all(&mut self, buf: &[u8]) -> io::Result<()> {
+        let target = &self.target;
         self.file
             .as_mut()
             .expect("not yet committed")
             .write_all(buf)
+            .map_err(|e| with_path(e, target, "cannot write"))
     }
     fn flush(&mut self) -> io::Result<()> {
         self.file.as_mut().expect("not yet committed").flush()

@@ -3,6 +3,7 @@
 //! body CSV files, triangle meshes, ParaView VTK XML output, thermo and
 //! trajectory CSV logs, versioned checkpoints, atomic file writes, and the run
 //! driver behind `clump run` / `clump resume`.
+pub mod append;
 pub mod atomic;
 pub mod checkpoint;
 pub mod mesh_file;
@@ -12,3 +13,4 @@ pub mod template_file;
 pub mod thermo_csv;
 pub mod trajectory;
 pub mod vtk;
+pub mod vtu;

@@ -1,30 +1,32 @@
 //! `thermo.csv`: one row of global quantities per thermo output (SI units,
 //! world frame).
 //!
-//! Columns: `time` (s), `step`, `bodies`, `contacts` (pair + wall),
-//! `pair_contacts`, `wall_contacts`, `ke_translational` (J),
-//! `ke_rotational` (J), `elastic_energy` (J), `potential_energy` (J),
-//! `max_overlap_ratio`, `lost_bodies`, then per wall
-//! `<name>_fx,<name>_fy,<name>_fz` (N) and `<name>_tx,<name>_ty,<name>_tz`
-//! (N m, about the wall's `torque_point`, by default its motion centre): the
-//! load the particles exert on it; for a wall that moves (in any stage) also
-//! `<name>_power` (W): the power the wall's rigid motion delivers to the
+//! Columns (the header carries the units in brackets, e.g.
+//! `ke_translational[J]`; counts and ratios have none): `time[s]`, `step`,
+//! `bodies`, `contacts` (pair + wall), `pair_contacts`, `wall_contacts`,
+//! `ke_translational[J]`, `ke_rotational[J]`, `elastic_energy[J]`,
+//! `potential_energy[J]`, `max_overlap_ratio`, `lost_bodies`, then per wall
+//! `<name>_fx[N],<name>_fy[N],<name>_fz[N]` and
+//! `<name>_tx[N*m],<name>_ty[N*m],<name>_tz[N*m]` (about the wall's
+//! `torque_point`, by default its motion centre): the load the particles
+//! exert on it; for a wall that moves (in any stage) also `<name>_power[W]`: the power the wall's rigid motion delivers to the
 //! particles, `−(F·v + T_c·ω)` with the load `F` and the torque `T_c` about
 //! the centre of rotation exerted on the wall by the particles, and the wall's
 //! velocity `v` and angular velocity `ω` (a conveyor's `surface_velocity` is
 //! not included).
 //!
-//! The file is an append-only log: each row is flushed as it is written, so
-//! an interrupted run keeps every row written so far (a row cut by a crash is
-//! dropped on resume). This is deliberately not written through
+//! The file is an append-only log: each row is written to the file at once,
+//! so an interrupted run keeps every row written so far (a row cut by a
+//! crash is dropped on resume; one cut by a full disk is removed at once,
+//! see [`crate::append`]). This is deliberately not written through
 //! [`crate::atomic`]: rewriting the whole log at every row would be
 //! quadratic. On resume, [`ThermoWriter::resume`] rewrites the file
 //! atomically without the rows after the resume step and then appends.
 
+use crate::append::AppendLog;
 use crate::atomic::write_atomic;
 use clump_core::thermo::Thermo;
-use std::fs::{File, OpenOptions};
-use std::io::{self, BufWriter, Write};
+use std::io;
 use std::path::{Path, PathBuf};
 
 /// Writes `thermo.csv` rows.
@@ -32,7 +34,7 @@ pub struct ThermoWriter {
     path: PathBuf,
     header: String,
     power: Vec<bool>,
-    out: BufWriter<File>,
+    out: AppendLog,
 }
 
 /// The columns of one wall.
@@ -88,6 +90,21 @@ pub fn column_name(name: &str) -> String {
     }
 }
 
+/// `header` without its `[unit]` suffixes.
+pub fn without_units(header: &str) -> String {
+    let mut out = String::with_capacity(header.len());
+    let mut depth = 0;
+    for c in header.chars() {
+        match c {
+            '[' => depth += 1,
+            ']' => depth -= 1,
+            _ if depth == 0 => out.push(c),
+            _ => {}
+        }
+    }
+    out
+}
+
 impl ThermoWriter {
     /// The header line (without newline) for the given wall names.
     pub fn header(wall_names: &[String]) -> String {
@@ -97,8 +114,8 @@ impl ThermoWriter {
     /// The header line (without newline) for the given walls.
     pub fn header_walls(walls: &[WallColumns]) -> String {
         let mut h = String::from(
-            "time,step,bodies,contacts,pair_contacts,wall_contacts,ke_translational,ke_rotational,\
-             elastic_energy,potential_energy,max_overlap_ratio,lost_bodies",
+            "time[s],step,bodies,contacts,pair_contacts,wall_contacts,ke_translational[J],\
+             ke_rotational[J],elastic_energy[J],potential_energy[J],max_overlap_ratio,lost_bodies",
         );
         let mut used: Vec<String> = Vec::new();
         for (i, w) in walls.iter().enumerate() {
@@ -107,11 +124,11 @@ impl ThermoWriter {
                 c = format!("{c}_{i}");
             }
             used.push(c.clone());
-            for s in ["fx", "fy", "fz", "tx", "ty", "tz"] {
+            for s in ["fx[N]", "fy[N]", "fz[N]", "tx[N*m]", "ty[N*m]", "tz[N*m]"] {
                 h.push_str(&format!(",{c}_{s}"));
             }
             if w.power {
-                h.push_str(&format!(",{c}_power"));
+                h.push_str(&format!(",{c}_power[W]"));
             }
         }
         h
@@ -165,7 +182,8 @@ impl ThermoWriter {
         };
         let mut lines = text.split_inclusive('\n');
         let first = lines.next().unwrap_or("").trim_end();
-        if first != header {
+        // a header of an older version, without units, continues too
+        if first != header && first != without_units(&header) {
             return Err(io::Error::new(
                 io::ErrorKind::InvalidData,
                 format!(
@@ -193,17 +211,11 @@ impl ThermoWriter {
     }
 
     fn open_append(path: PathBuf, header: String, walls: &[WallColumns]) -> io::Result<Self> {
-        let f = OpenOptions::new().append(true).open(&path).map_err(|e| {
-            io::Error::new(
-                e.kind(),
-                format!("cannot open {} for appending: {e}", path.display()),
-            )
-        })?;
         Ok(ThermoWriter {
+            out: AppendLog::open(&path)?,
             path,
             header,
             power: walls.iter().map(|w| w.power).collect(),
-            out: BufWriter::new(f),
         })
     }
 
@@ -254,7 +266,6 @@ impl ThermoWriter {
             }
         }
         row.push('\n');
-        self.out.write_all(row.as_bytes())?;
-        self.out.flush()
+        self.out.append(row.as_bytes())
     }
 }

@@ -13,12 +13,12 @@
 //! Like `thermo.csv` these are append-only logs flushed at each row; a body
 //! absent at a write (not yet inserted, or lost) gets no row.
 
+use crate::append::AppendLog;
 use crate::atomic::write_atomic;
 use crate::thermo_csv::fmt_f64;
 use clump_core::world::World;
 use std::collections::HashMap;
-use std::fs::{File, OpenOptions};
-use std::io::{self, BufWriter, Write};
+use std::io;
 use std::path::{Path, PathBuf};
 
 /// The header line of a trajectory file.
@@ -51,7 +51,7 @@ pub const PLANAR_COLUMNS: &str = "theta_2d";
 /// Writes trajectory rows for a fixed set of bodies.
 pub struct TrajectoryWriter {
     ids: Vec<u64>,
-    files: Vec<BufWriter<File>>,
+    files: Vec<AppendLog>,
     slot: HashMap<u64, usize>,
     /// Optional columns.
     extras: Extras,
@@ -132,10 +132,7 @@ impl TrajectoryWriter {
                 }
             }
             write_atomic(&path, keep.as_bytes())?;
-            let f = OpenOptions::new().append(true).open(&path).map_err(|e| {
-                io::Error::new(e.kind(), format!("cannot open {}: {e}", path.display()))
-            })?;
-            files.push(BufWriter::new(f));
+            files.push(AppendLog::open(&path)?);
         }
         let slot = uniq.iter().enumerate().map(|(k, &id)| (id, k)).collect();
         Ok(TrajectoryWriter {
@@ -191,9 +188,7 @@ impl TrajectoryWriter {
                 }
                 row.push(fmt_f64(theta));
             }
-            f.write_all(row.join(",").as_bytes())?;
-            f.write_all(b"\n")?;
-            f.flush()?;
+            f.append(format!("{}\n", row.join(",")).as_bytes())?;
         }
         Ok(())
     }

@@ -9,10 +9,12 @@
 //! - **bodies**: points = centres of mass (m); point data `body_id`,
 //!   `quaternion` (4 components w, x, y, z, body → world), `ex`, `ey`, `ez`
 //!   (the body-frame axes expressed in the world frame, for glyphs: the
-//!   rows of the seed's matrix A, LIGGGHTS' `ex_space, ey_space,
-//!   ez_space`), `euler` (z-x-z Euler angles phi, theta, psi, rad),
-//!   `velocity` (m/s), `angular_velocity` (rad/s, world), `template` (index),
-//!   `mass` (kg).
+//!   rows of the matrix A, LIGGGHTS' `ex_space, ey_space, ez_space`),
+//!   `euler` (z-x-z Euler angles phi, theta, psi, rad), `velocity` (m/s),
+//!   `angular_velocity` (rad/s, world), `template` (the scenario's template
+//!   index, 0-based, in the order of `[[template]]`; the names are listed
+//!   in `manifest.json`), `scale` (the body's size factor of a mix's size
+//!   distribution, 1 otherwise), `mass` (kg).
 //! - **walls**: one polygon per face: planes clipped to the domain box,
 //!   cylinders tessellated with [`CYLINDER_SEGMENTS`] quads over the domain's
 //!   extent along their axis, boxes as 6 quads, meshes as their triangles
@@ -283,10 +285,39 @@ pub fn bodies_vtp(world: &World) -> Vec<u8> {
     );
     f.point_vec3("velocity", &b.velocity);
     f.point_vec3("angular_velocity", &b.angular_velocity);
-    f.point_i32("template", b.template.iter().map(|&t| t as i32));
+    let base = base_templates(world);
+    f.point_i32(
+        "template",
+        b.template.iter().map(|&t| base[t as usize] as i32),
+    );
+    f.point_f64(
+        "scale",
+        1,
+        b.template.iter().map(|&t| {
+            let (own, of_base) = (
+                &world.templates[t as usize],
+                &world.templates[base[t as usize]],
+            );
+            own.max_radius / of_base.max_radius
+        }),
+    );
     f.point_f64("mass", 1, b.mass.iter().copied());
     f.vertex_cells();
     f.finish()
+}
+
+/// For every world template, the index of the template it is a scaled copy
+/// of: the first template with the same name (insertion adds scaled copies
+/// under their base's name after the scenario's templates, whose names are
+/// unique). Scenario templates map to themselves.
+fn base_templates(world: &World) -> Vec<usize> {
+    let mut first: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    world
+        .templates
+        .iter()
+        .enumerate()
+        .map(|(i, t)| *first.entry(t.name.as_str()).or_insert(i))
+        .collect()
 }
 
 /// Polygon (3–6 vertices, ordered) of the plane through `p` with unit
@@ -560,6 +591,7 @@ pub struct VtkSeries {
     spheres: PvdWriter,
     bodies: PvdWriter,
     walls: PvdWriter,
+    format: crate::vtu::VtkFormat,
 }
 
 impl VtkSeries {
@@ -574,7 +606,14 @@ impl VtkSeries {
             bodies: PvdWriter::new(dir.join("bodies.pvd")),
             walls: PvdWriter::new(dir.join("walls.pvd")),
             dir,
+            format: Default::default(),
         })
+    }
+
+    /// The series writing its frames in `format` (`.vtp` by default).
+    pub fn with_format(mut self, format: crate::vtu::VtkFormat) -> Self {
+        self.format = format;
+        self
     }
 
     /// Reopens a series in `dir` for a resumed run: collection entries after
@@ -589,6 +628,7 @@ impl VtkSeries {
             bodies: PvdWriter::resume(dir.join("bodies.pvd"), max_time),
             walls: PvdWriter::resume(dir.join("walls.pvd"), max_time),
             dir,
+            format: Default::default(),
         };
         s.spheres.write()?;
         s.bodies.write()?;
@@ -602,19 +642,30 @@ impl VtkSeries {
     }
 
     /// Writes `spheres_<label>.vtp`, `bodies_<label>.vtp`, `walls_<label>.vtp`
-    /// (label zero-padded to 6 digits, e.g. the step number) at `world.time`
-    /// and appends them to the collections.
+    /// (label zero-padded to 6 digits, e.g. the step number; `.vtu` in that
+    /// format) at `world.time` and appends them to the collections.
+    ///
+    /// The spheres and bodies series start at the first frame with bodies:
+    /// VTK drops the arrays of a piece without points, so a first frame
+    /// without bodies would leave `radius` out of ParaView's Glyph menu
+    /// (ParaView shows a series' first frame at earlier times). Frames
+    /// without bodies after that (e.g. an emptied hopper) are written.
     pub fn write_frame(&mut self, world: &World, label: u64) -> io::Result<()> {
+        let ext = self.format.extension();
         let names = [
-            format!("spheres_{label:06}.vtp"),
-            format!("bodies_{label:06}.vtp"),
-            format!("walls_{label:06}.vtp"),
+            format!("spheres_{label:06}.{ext}"),
+            format!("bodies_{label:06}.{ext}"),
+            format!("walls_{label:06}.{ext}"),
         ];
-        write_spheres(self.dir.join(&names[0]), world)?;
-        write_bodies(self.dir.join(&names[1]), world)?;
-        write_walls(self.dir.join(&names[2]), world)?;
-        self.spheres.append(world.time, &names[0])?;
-        self.bodies.append(world.time, &names[1])?;
+        let write =
+            |name: &str, vtp: Vec<u8>| write_atomic(self.dir.join(name), &self.format.encode(vtp));
+        if !world.bodies.is_empty() || !self.spheres.entries().is_empty() {
+            write(&names[0], spheres_vtp(world))?;
+            write(&names[1], bodies_vtp(world))?;
+            self.spheres.append(world.time, &names[0])?;
+            self.bodies.append(world.time, &names[1])?;
+        }
+        write(&names[2], walls_vtp(world))?;
         self.walls.append(world.time, &names[2])
     }
 }

@@ -148,3 +148,70 @@ fn bad_body_files_are_named_errors() {
     let e = scenario("template = \"trimmer\"", "x,y,z\n0,0,0\n").unwrap_err();
     assert!(e.contains("trimmer") && e.contains("trimer"), "{e}");
 }
+
+fn file_bodies(sc: &scenario::Scenario) -> &[clump_core::body::BodyInit] {
+    let InsertSpec::File { bodies } = &sc.inserts[0].kind else {
+        panic!("expected a file insertion")
+    };
+    bodies
+}
+
+/// A byte-order mark (as spreadsheet programs write it) before the header
+/// is not part of the first column name.
+#[test]
+fn csv_with_a_byte_order_mark_is_accepted() {
+    let sc = scenario("", "\u{feff}template,x,y,z\ntrimer,0.1,0.2,0.3\n").unwrap();
+    assert_eq!(file_bodies(&sc)[0].position, DVec3::new(0.1, 0.2, 0.3));
+}
+
+/// Quaternions are normalised without overflow or underflow: (1e200,
+/// 1e200, 0, 0) and (1e-200, 0, 0, 1e-200) are the rotations by 90° about
+/// x and z; the zero quaternion is refused, naming the row.
+#[test]
+fn quaternions_are_normalised_safely() {
+    let sc = scenario(
+        "template = \"trimer\"",
+        "x,y,z,qw,qx,qy,qz\n0,0,0,1e200,1e200,0,0\n0.5,0,0,1e-200,0,0,1e-200\n",
+    )
+    .unwrap();
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let want = [
+        DQuat::from_xyzw(h, 0.0, 0.0, h),
+        DQuat::from_xyzw(0.0, 0.0, h, h),
+    ];
+    for (b, w) in file_bodies(&sc).iter().zip(want) {
+        assert!((b.orientation - w).length() < 1e-15, "{:?}", b.orientation);
+    }
+    let e = scenario(
+        "template = \"trimer\"",
+        "x,y,z,qw,qx,qy,qz\n0,0,0,1,0,0,0\n0.5,0,0,0,0,0,0\n",
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("bodies.txt:3: the quaternion (qw, qx, qy, qz) is zero"),
+        "{e}"
+    );
+}
+
+/// Invalid UTF-8 is reported with its line and column; a 50 kB token is
+/// not echoed whole.
+#[test]
+fn invalid_bytes_and_huge_tokens_are_located_and_shortened() {
+    let mut file = b"template,x,y,z\ntrimer,0.1,0".to_vec();
+    file.push(0xff);
+    file.extend_from_slice(b",0.3\n");
+    let mut files = BTreeMap::new();
+    files.insert("bodies.txt".to_string(), file);
+    let sc = "[simulation]\ndt = 1e-5\n[domain]\nlo = [-1.0, -1.0, -1.0]\nhi = [1.0, 1.0, 1.0]\n[[material]]\nname = \"m\"\nyoungs_modulus = 1e7\npoisson_ratio = 0.3\ndensity = 2000\n[[template]]\nname = \"trimer\"\nmaterial = \"m\"\nspheres = [[0.0, 0.0, 0.0, 0.01]]\n[[insert]]\nkind = \"file\"\nfile = \"bodies.txt\"\n[[stage]]\nsteps = 1\n";
+    let e = scenario::parse(Path::new("t.toml"), sc.to_string(), Files::embedded(files))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("bodies.txt:2: not UTF-8 text: invalid byte at column 13"),
+        "{e}"
+    );
+    let huge = "9".repeat(50_000) + "x";
+    let e = scenario("template = \"trimer\"", &format!("x,y,z\n{huge},0,0\n")).unwrap_err();
+    assert!(e.len() < 2_000, "message of {} bytes", e.len());
+    assert!(e.contains("(50001 characters)"), "{e}");
+}

@@ -46,10 +46,11 @@ fn thermo_rows_and_resume() {
     let text = std::fs::read_to_string(&p).unwrap();
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), 5);
-    assert!(lines[0]
-        .starts_with("time,step,bodies,contacts,pair_contacts,wall_contacts,ke_translational"));
+    assert!(lines[0].starts_with(
+        "time[s],step,bodies,contacts,pair_contacts,wall_contacts,ke_translational[J]"
+    ));
     assert!(lines[0].ends_with(
-        "floor_plate_fx,floor_plate_fy,floor_plate_fz,floor_plate_tx,floor_plate_ty,floor_plate_tz"
+        "floor_plate_fx[N],floor_plate_fy[N],floor_plate_fz[N],floor_plate_tx[N*m],floor_plate_ty[N*m],floor_plate_tz[N*m]"
     ));
     let cols: Vec<&str> = lines[2].split(',').collect();
     assert_eq!(cols.len(), 12 + 6);
@@ -73,6 +74,26 @@ fn thermo_rows_and_resume() {
     assert_eq!(steps, ["0", "100", "200"]);
     // changed walls are refused
     assert!(ThermoWriter::resume(&p, &["other".to_string()], 150).is_err());
+    // a file of an older version (header without units) resumes, with units
+    let text = std::fs::read_to_string(&p).unwrap();
+    let (head, rows) = text.split_once('\n').unwrap();
+    let old = clump_io::thermo_csv::without_units(head);
+    assert!(
+        old.starts_with("time,step,bodies,") && !old.contains('['),
+        "{old}"
+    );
+    write_atomic(&p, format!("{old}\n{rows}").as_bytes()).unwrap();
+    drop(ThermoWriter::resume(&p, &names, 150).unwrap());
+    assert_eq!(
+        std::fs::read_to_string(&p).unwrap(),
+        format!(
+            "{head}\n{}",
+            rows.lines()
+                .take(2)
+                .map(|l| format!("{l}\n"))
+                .collect::<String>()
+        )
+    );
     std::fs::remove_dir_all(&d).unwrap();
 }
 

@@ -288,6 +288,35 @@ fn bodies_file_round_trips() {
     }
 }
 
+/// A body of a scaled copy of a template (as a mix's size distribution
+/// adds them) reports the scenario's template index and its size factor.
+#[test]
+fn bodies_of_scaled_templates_report_their_base_template_and_scale() {
+    let mut w = world();
+    let scaled = w.templates[0].scaled(1.25);
+    let t = w.add_template(scaled, 0).unwrap();
+    assert_eq!(t, 2);
+    w.add_body(&BodyInit::at_rest(
+        t,
+        DVec3::new(0.05, 0.02, 0.02),
+        DQuat::IDENTITY,
+    ))
+    .unwrap();
+    let p = parse(&vtk::bodies_vtp(&w));
+    let tpl = p.i32s("PointData", "template");
+    let (_, scale) = p.f64s("PointData", "scale");
+    let n = w.bodies.len();
+    for b in 0..n {
+        let (want_t, want_s) = match w.bodies.template[b] {
+            2 => (0, 1.25),
+            t => (t as i32, 1.0),
+        };
+        assert_eq!(tpl[b], want_t);
+        assert!((scale[b] - want_s).abs() < 1e-12, "{}", scale[b]);
+    }
+    assert!(tpl.iter().filter(|&&t| t == 0).count() >= 2);
+}
+
 #[test]
 fn walls_file_has_polygons_on_the_walls() {
     let w = world();

@@ -28,6 +28,9 @@ impl ContactTable {
                     // entry only fills the table.
                     ma.youngs_modulus = 1.0;
                     mb.youngs_modulus = 1.0;
+                    // a wall material may have density 0 (it never moves)
+                    ma.density = 1.0;
+                    mb.density = 1.0;
                 }
                 let m = ContactModel::new(&ma, &mb, &props(lo, hi))
                     .map_err(|e| format!("materials {lo} and {hi}: {e}"))?;

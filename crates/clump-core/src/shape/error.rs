@@ -54,6 +54,15 @@ pub enum ShapeError {
         /// The offending scale factor (dimensionless).
         scale: f64,
     },
+    /// The mass properties came out infinite or NaN: the coordinates are
+    /// so large that their squares overflow (|x| above about 1e150 m).
+    #[error("the mass properties are not finite ({what}): sphere coordinates or radii too large for f64 (centres up to {extent:e} m from the origin)")]
+    NotFinite {
+        /// Which quantity, with its value.
+        what: String,
+        /// Largest distance of a sphere's far side from the origin, m.
+        extent: f64,
+    },
     /// The adaptive quadrature did not reach the requested accuracy (only for
     /// pathological inputs, e.g. many thousands of spheres).
     #[error(

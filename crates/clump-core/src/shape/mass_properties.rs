@@ -136,7 +136,8 @@ pub fn naive_mass_properties(spheres: &[Sphere], density: f64) -> (f64, DVec3, D
 /// (reported in [`MassProperties::relative_error_bound`]); deterministic.
 ///
 /// Errors: empty list, non-finite or non-positive radius, non-finite centre,
-/// density not finite and > 0, or (pathological inputs) no convergence.
+/// density not finite and > 0, results that overflow (coordinates beyond
+/// about 1e150 m), or (pathological inputs) no convergence.
 pub fn mass_properties(spheres: &[Sphere], density: f64) -> Result<MassProperties, ShapeError> {
     validate_spheres(spheres)?;
     if !density.is_finite() || density <= 0.0 {
@@ -152,6 +153,22 @@ pub fn mass_properties(spheres: &[Sphere], density: f64) -> Result<MassPropertie
     let trace = c.x_axis.x + c.y_axis.y + c.z_axis.z;
     let inertia = (DMat3::from_diagonal(DVec3::splat(trace)) - c) * density;
     let (moments, axes) = principal_frame(&inertia);
+    let bad = |what: String| ShapeError::NotFinite {
+        what,
+        extent: spheres
+            .iter()
+            .map(|s| s.center.length() + s.radius)
+            .fold(0.0, f64::max),
+    };
+    if !(u.volume.is_finite() && u.volume > 0.0) {
+        return Err(bad(format!("volume {:e} m³", u.volume)));
+    }
+    if !u.centroid.is_finite() {
+        return Err(bad(format!("centre of mass {} m", u.centroid)));
+    }
+    if !(inertia.is_finite() && moments.is_finite() && moments.x > 0.0) {
+        return Err(bad(format!("principal moments {moments} kg m²")));
+    }
     let (naive_volume, _, naive_inertia) = naive_mass_properties(spheres, density);
     let (naive_moments, _) = principal_frame(&naive_inertia);
     Ok(MassProperties {

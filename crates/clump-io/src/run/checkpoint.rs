@@ -33,6 +33,9 @@ pub struct Checkpoint {
     pub driver: DriverState,
     /// The world state.
     pub world: WorldState,
+    /// Id of the run (see [`super::outdir`]; absent in older checkpoints).
+    #[serde(default)]
+    pub run_id: Option<String>,
 }
 impl Runner {
     /// Writes a checkpoint of the current state into the output directory
@@ -60,6 +63,7 @@ impl Runner {
             extra_templates: extra,
             driver: self.st.clone(),
             world,
+            run_id: Some(self.out.run_id.clone()),
         };
         let json = serde_json::to_string(&ck).map_err(rt("cannot encode the checkpoint"))?;
         let path = self
@@ -81,11 +85,22 @@ impl Runner {
 /// Decodes checkpoint file bytes (`path` for messages) and rebuilds the
 /// simulation they hold: the scenario (from the stored text and files), the
 /// world with its restored state, and the driver state. Never panics on
-/// bad bytes: every problem is an input error.
+/// Decodes checkpoint file bytes (`path` for messages) and rebuilds the
+/// simulation they hold: the scenario, the world with its restored state,
+/// and the driver state ([`load_checkpoint_with_id`] without the run id).
 pub fn load_checkpoint(
     bytes: &[u8],
     checkpoint: &Path,
 ) -> Result<(Scenario, World, DriverState), RunError> {
+    load_checkpoint_with_id(bytes, checkpoint).map(|(s, w, d, _)| (s, w, d))
+}
+
+/// bad bytes: every problem is an input error.
+/// Also returns the run id stored in the checkpoint.
+pub fn load_checkpoint_with_id(
+    bytes: &[u8],
+    checkpoint: &Path,
+) -> Result<(Scenario, World, DriverState, Option<String>), RunError> {
     let (json, fingerprint): (String, u64) =
         crate::checkpoint::decode_checkpoint(bytes, checkpoint)
             .map_err(|e| RunError::InputMessage(e.to_string()))?;
@@ -131,5 +146,5 @@ pub fn load_checkpoint(
             checkpoint.display()
         ))
     })?;
-    Ok((scenario, world, ck.driver))
+    Ok((scenario, world, ck.driver, ck.run_id))
 }

@@ -43,6 +43,8 @@ impl Runner {
             "bodies": s.bodies,
             "spheres": s.spheres,
             "lost_bodies": self.world.lost_bodies,
+            "insertions": self.insertions(),
+            "templates": self.scenario.templates.iter().map(|t| t.name.as_str()).collect::<Vec<_>>(),
             "sphere_steps": s.sphere_steps,
             "sphere_steps_per_s": s.throughput(),
             "steps_per_s": if s.wall_time > 0.0 { s.steps() as f64 / s.wall_time } else { 0.0 },

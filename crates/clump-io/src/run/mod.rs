@@ -11,7 +11,9 @@
 //!   interrupted (SIGINT/SIGTERM) and one when a `--steps` limit stops it;
 //! - `final_state.json`: every body's state at the end, with the exact f64 bit
 //!   patterns (hex), for bit-for-bit comparisons;
-//! - `manifest.json`: version, threads, wall time, steps, throughput.
+//! - `manifest.json`: version, threads, wall time, steps, throughput;
+//! - `.clump.lock` and `.clump-run`: the folder lock and the run's id
+//!   ([`outdir`]: folders are never shared or mixed).
 //!
 //! # Determinism and resume
 //! The loop has a fixed order per step: stage changes and insertions, then
@@ -28,10 +30,13 @@
 mod checkpoint;
 mod error;
 mod manifest;
+pub mod outdir;
 mod outputs;
+mod report;
 mod stages;
 
-pub use checkpoint::{load_checkpoint, Checkpoint};
+pub use checkpoint::{load_checkpoint, load_checkpoint_with_id, Checkpoint};
+pub use report::InsertionCount;
 pub use error::{RunError, UnstableRun};
 pub use manifest::final_state_json;
 
@@ -259,12 +264,19 @@ pub struct Runner {
 }
 
 impl Runner {
-    /// A fresh run of `scenario` writing into `outdir` (created if missing).
+    /// A fresh run of `scenario` writing into `outdir` (created if missing;
+    /// refused when it holds another run's files, see [`outdir`]).
     pub fn new(scenario: Scenario, outdir: &Path) -> Result<Self, RunError> {
+        Self::new_in(scenario, outdir, false)
+    }
+
+    /// [`Runner::new`]; with `overwrite`, another run's files in `outdir`
+    /// are deleted first.
+    pub fn new_in(scenario: Scenario, outdir: &Path, overwrite: bool) -> Result<Self, RunError> {
         let world = scenario
             .build_world()
             .map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
-        let out = Outputs::open(&scenario, outdir, Start::Fresh)?;
+        let out = Outputs::open(&scenario, outdir, Start::Fresh { overwrite })?;
         let o = &scenario.output;
         let st = DriverState {
             stage: 0,
@@ -294,7 +306,7 @@ impl Runner {
                 checkpoint.display()
             ))
         })?;
-        let (scenario, world, driver) = load_checkpoint(&bytes, checkpoint)?;
+        let (scenario, world, driver, run_id) = load_checkpoint_with_id(&bytes, checkpoint)?;
         let outdir = match outdir {
             Some(d) => d.to_path_buf(),
             None => checkpoint
@@ -308,6 +320,7 @@ impl Runner {
             checkpoint,
             step,
             time,
+            run_id: run_id.as_deref(),
         };
         let out = Outputs::open(&scenario, &outdir, start)?;
         tracing::info!(step, time, "resumed from {}", checkpoint.display());

@@ -1,6 +1,7 @@
 //! The output files of a run: VTK series, thermo.csv with the wall columns,
 //! trajectories; opened fresh or resumed, and written at their intervals.
 
+use super::outdir;
 use super::error::rt;
 use super::{RunError, Runner};
 use crate::scenario::Scenario;
@@ -56,19 +57,26 @@ pub(super) struct Outputs {
     pub(super) thermo: Option<ThermoWriter>,
     pub(super) trajectory: Option<TrajectoryWriter>,
     pub(super) last_checkpoint: Option<PathBuf>,
+    /// The run's id (see [`super::outdir`]).
+    pub(super) run_id: String,
+    /// The folder lock, held while the run lives.
+    pub(super) _lock: outdir::FolderLock,
 }
 
 /// Whether a run starts fresh or resumes from a checkpoint.
 #[derive(Clone, Copy)]
 pub(super) enum Start<'a> {
-    /// A new run: new output files.
-    Fresh,
+    /// A new run: new output files (`overwrite`: another run's files in
+    /// the folder are deleted first, else they are an error).
+    Fresh { overwrite: bool },
     /// A run resumed from `checkpoint`, whose world is at `step` and `time`
     /// (s): the existing output files are continued from that point.
     Resume {
         checkpoint: &'a Path,
         step: u64,
         time: f64,
+        /// The run id the checkpoint carries (absent in older ones).
+        run_id: Option<&'a str>,
     },
 }
 
@@ -80,10 +88,12 @@ impl Outputs {
         outdir: &Path,
         start: Start,
     ) -> Result<Outputs, RunError> {
-        std::fs::create_dir_all(outdir).map_err(rt(&format!(
-            "cannot create output directory {}",
-            outdir.display()
-        )))?;
+        let (lock, run_id) = match start {
+            Start::Fresh { overwrite } => outdir::prepare_fresh(outdir, overwrite, &scenario.path)?,
+            Start::Resume {
+                checkpoint, run_id, ..
+            } => outdir::prepare_resume(outdir, run_id, checkpoint)?,
+        };
         crate::atomic::write_atomic(outdir.join("scenario.toml"), scenario.text.as_bytes())
             .map_err(rt("cannot copy the scenario"))?;
         let o = &scenario.output;
@@ -92,16 +102,20 @@ impl Outputs {
             dir: outdir.to_path_buf(),
             vtk: match (o.vtk, start) {
                 (None, _) => None,
-                (Some(_), Start::Fresh) => {
-                    Some(VtkSeries::new(outdir).map_err(rt("cannot start VTK output"))?)
-                }
-                (Some(_), Start::Resume { time, .. }) => {
-                    Some(VtkSeries::resume(outdir, time).map_err(rt("cannot resume VTK output"))?)
-                }
+                (Some(_), Start::Fresh { .. }) => Some(
+                    VtkSeries::new(outdir)
+                        .map_err(rt("cannot start VTK output"))?
+                        .with_format(o.vtk_format),
+                ),
+                (Some(_), Start::Resume { time, .. }) => Some(
+                    VtkSeries::resume(outdir, time)
+                        .map_err(rt("cannot resume VTK output"))?
+                        .with_format(o.vtk_format),
+                ),
             },
             thermo: match (o.thermo, start) {
                 (None, _) => None,
-                (Some(_), Start::Fresh) => Some(
+                (Some(_), Start::Fresh { .. }) => Some(
                     ThermoWriter::create_walls(outdir.join("thermo.csv"), &wall_columns)
                         .map_err(rt("cannot create thermo.csv"))?,
                 ),
@@ -111,7 +125,7 @@ impl Outputs {
                 ),
             },
             trajectory: match (&o.trajectory, start) {
-                (Some(t), Start::Fresh) if !t.bodies.is_empty() => Some(
+                (Some(t), Start::Fresh { .. }) if !t.bodies.is_empty() => Some(
                     TrajectoryWriter::create_with(outdir, &t.bodies, t.extras)
                         .map_err(rt("cannot create trajectory files"))?,
                 ),
@@ -122,9 +136,11 @@ impl Outputs {
                 _ => None,
             },
             last_checkpoint: match start {
-                Start::Fresh => None,
+                Start::Fresh { .. } => None,
                 Start::Resume { checkpoint, .. } => Some(checkpoint.to_path_buf()),
             },
+            run_id,
+            _lock: lock,
         })
     }
 }

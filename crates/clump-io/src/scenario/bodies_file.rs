@@ -99,12 +99,17 @@ pub fn parse(
     default_template: Option<u32>,
     defaults: &RowDefaults,
 ) -> Result<Vec<BodyInit>, (usize, String)> {
-    let text = std::str::from_utf8(bytes).map_err(|_| {
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let (line, column) = super::diag::utf8_position(bytes, &e);
         (
-            1,
-            "not UTF-8 text (expected a text file of bodies)".to_string(),
+            line,
+            format!(
+                "not UTF-8 text: invalid byte at column {column} (expected a text file of bodies)"
+            ),
         )
     })?;
+    // a byte-order mark (spreadsheet exports) is not part of the first column
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     match format {
         BodyFileFormat::Csv => parse_csv(text, template_names, default_template, defaults),
         BodyFileFormat::Xyzq => {
@@ -130,17 +135,23 @@ fn finite(ln: usize, what: &str, f: &str) -> Result<f64, (usize, String)> {
         .ok_or_else(|| {
             (
                 ln,
-                format!("column '{what}': expected a finite number, found '{f}'"),
+                format!(
+                    "column '{what}': expected a finite number, found '{}'",
+                    super::diag::shorten(f)
+                ),
             )
         })
 }
 
+/// The unit quaternion along `(w, x, y, z)` (finite components): scaled by
+/// its largest component first, so that huge or tiny components neither
+/// overflow nor underflow; an error when it is zero.
 fn unit_quaternion(ln: usize, w: f64, x: f64, y: f64, z: f64) -> Result<DQuat, (usize, String)> {
-    let q = DQuat::from_xyzw(x, y, z, w);
-    if q.length() < 1e-12 {
+    let m = w.abs().max(x.abs()).max(y.abs()).max(z.abs());
+    if !(m > 0.0) {
         return Err((ln, "the quaternion (qw, qx, qy, qz) is zero".into()));
     }
-    Ok(q.normalize())
+    Ok(DQuat::from_xyzw(x / m, y / m, z / m, w / m).normalize())
 }
 
 fn parse_xyzq(text: &str, template: u32) -> Result<Vec<BodyInit>, (usize, String)> {
@@ -200,7 +211,8 @@ fn parse_csv(
                     (
                         ln,
                         format!(
-                            "unknown column '{f}' in the header{hint}; allowed columns: {}",
+                            "unknown column '{}' in the header{hint}; allowed columns: {}",
+                            super::diag::shorten(f),
                             COLUMNS.join(", ")
                         ),
                     )
@@ -249,7 +261,8 @@ fn parse_csv(
                             return Err((
                                 ln,
                                 format!(
-                                    "template '{f}' does not exist; defined templates: {}",
+                                    "template '{}' does not exist; defined templates: {}",
+                                    super::diag::shorten(f),
                                     template_names.join(", ")
                                 ),
                             ))

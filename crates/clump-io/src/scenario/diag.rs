@@ -124,14 +124,15 @@ impl fmt::Display for Diagnostic {
                 let pad = " ".repeat(num.len());
                 writeln!(f, "{pad}--> {file}:{}:{}", loc.line, loc.column)?;
                 writeln!(f, "{pad} |")?;
-                writeln!(f, "{num} | {}", loc.line_text)?;
-                let lead: String = loc
-                    .line_text
+                let (text, column) = excerpt(&loc.line_text, loc.column);
+                writeln!(f, "{num} | {text}")?;
+                let lead: String = text
                     .chars()
-                    .take(loc.column - 1)
+                    .take(column - 1)
                     .map(|c| if c == '\t' { '\t' } else { ' ' })
                     .collect();
-                let carets = "^".repeat(loc.width);
+                let room = text.chars().count().saturating_sub(column - 1).max(1);
+                let carets = "^".repeat(loc.width.min(room));
                 match &self.label {
                     Some(l) => writeln!(f, "{pad} | {lead}{carets} {l}")?,
                     None => writeln!(f, "{pad} | {lead}{carets}")?,
@@ -188,6 +189,66 @@ impl fmt::Display for ScenarioError {
 }
 
 impl std::error::Error for ScenarioError {}
+
+/// `x` as Rust prints it, or in exponent form when that is long (Rust
+/// prints 1e-300 with 300 digits).
+pub fn num(x: f64) -> String {
+    let s = format!("{x}");
+    if s.len() > 24 {
+        format!("{x:e}")
+    } else {
+        s
+    }
+}
+
+/// `s`, or its start and its length when it is longer than 48 characters
+/// (a line or token of megabytes must not be echoed whole).
+pub fn shorten(s: &str) -> String {
+    const MAX: usize = 48;
+    let n = s.chars().count();
+    if n <= MAX {
+        s.to_string()
+    } else {
+        let head: String = s.chars().take(32).collect();
+        format!("{head}… ({n} characters)")
+    }
+}
+
+/// The part of `line` shown in an excerpt: at most [`EXCERPT`] characters
+/// around the 1-based `column`, with `…` where it was cut; returns the text
+/// and the column within it.
+fn excerpt(line: &str, column: usize) -> (String, usize) {
+    let chars: Vec<char> = line.chars().collect();
+    if chars.len() <= EXCERPT {
+        return (line.to_string(), column);
+    }
+    let start = column
+        .saturating_sub(1 + EXCERPT / 2)
+        .min(chars.len() - EXCERPT);
+    let end = start + EXCERPT;
+    let mut t = String::new();
+    if start > 0 {
+        t.push('…');
+    }
+    t.extend(&chars[start..end]);
+    if end < chars.len() {
+        t.push('…');
+    }
+    (t, column - start + usize::from(start > 0))
+}
+
+/// Longest source line shown whole in an excerpt, characters.
+const EXCERPT: usize = 120;
+
+/// 1-based line and column (in characters) of the first invalid byte that
+/// `e` reports in `bytes`.
+pub fn utf8_position(bytes: &[u8], e: &std::str::Utf8Error) -> (usize, usize) {
+    let good = &bytes[..e.valid_up_to()];
+    let line_start = good.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    let line = 1 + good.iter().filter(|&&b| b == b'\n').count();
+    let column = 1 + std::str::from_utf8(&good[line_start..]).map_or(0, |s| s.chars().count());
+    (line, column)
+}
 
 #[allow(clippy::unnecessary_map_or)] // `is_none_or` needs Rust 1.82; the MSRV is 1.80
 /// The closest of `candidates` to `word` (Jaro–Winkler ≥ 0.8 or a small edit

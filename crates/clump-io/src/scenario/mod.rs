@@ -10,10 +10,13 @@
 #![allow(clippy::result_large_err)]
 
 mod bodies_file;
+pub mod bounds;
 mod build;
 pub mod diag;
+pub mod guard;
 pub mod keys;
 mod model;
+mod placement;
 pub mod raw;
 mod source;
 pub mod units;
@@ -80,12 +83,24 @@ impl Files {
 
 /// Reads, parses and validates the scenario file at `path`.
 pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let bytes = std::fs::read(path).map_err(|e| {
         ScenarioError::one(Diagnostic::new(
             Severity::Error,
             path,
             format!("cannot read scenario file '{}': {e}", path.display()),
         ))
+    })?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let (line, column) = diag::utf8_position(e.as_bytes(), &e.utf8_error());
+        ScenarioError::one(Diagnostic::new(
+            Severity::Error,
+            path,
+            format!(
+                "scenario file '{}' is not valid UTF-8 text: invalid byte at line {line}, column {column} ({}:{line}:{column})",
+                path.display(),
+                path.display()
+            ),
+        ).note("help: save the file as UTF-8 (TOML files are UTF-8)"))
     })?;
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
     parse(path, text, Files::disk(&base))
@@ -97,7 +112,7 @@ pub fn parse(path: &Path, text: String, mut files: Files) -> Result<Scenario, Sc
     let src = Source::new(path, text);
     let raw: raw::RawScenario =
         toml::from_str(&src.text).map_err(|e| ScenarioError::one(src.from_toml_error(&e)))?;
-    build::build(&src, raw, &mut files).map_err(ScenarioError::one)
+    build::build(&src, raw, &mut files)
 }
 
 impl Scenario {

@@ -53,6 +53,9 @@ pub struct Scenario {
     /// `kinetic_energy_jump` of `[simulation]`; the kinetic-energy floor
     /// follows from gravity, the domain and the insertion and wall speeds).
     pub stability: HealthLimits,
+    /// The largest overlap expected for the scenario's contacts, from which
+    /// the default `max_overlap_ratio` follows (see [`super::guard`]).
+    pub overlap_estimate: Option<super::guard::OverlapEstimate>,
     /// Stages, in order.
     pub stages: Vec<StageDef>,
     /// Output settings.
@@ -208,6 +211,8 @@ pub struct OutputDef {
     pub checkpoint: Option<u64>,
     /// Trajectories.
     pub trajectory: Option<TrajectoryDef>,
+    /// File format of the VTK frames (`.vtp` or `.vtu`).
+    pub vtk_format: crate::vtu::VtkFormat,
 }
 
 impl Scenario {

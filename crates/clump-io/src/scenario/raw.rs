@@ -624,4 +624,6 @@ pub struct RawOutput {
     pub checkpoint: Option<RawEvery>,
     /// Trajectories.
     pub trajectory: Option<RawTrajectory>,
+    /// File format of the VTK frames.
+    pub vtk_format: Option<crate::vtu::VtkFormat>,
 }

@@ -49,6 +49,8 @@ type = "mesh"
 %s
 """
 
+PACK = 'kind = "pack"\nstage = "fill"\nmix = "pebbles"\ncount = 100\nregion = { type = "box", lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1] }\nseed = 1'
+
 CASES = [
     ("unknown_key_pair", rep("restitution = 0.4", "restitutoin = 0.4"), "restitutoin",
      ["unknown key 'restitutoin' in [[pair]]", "did you mean 'restitution'?"]),
@@ -181,7 +183,42 @@ CASES = [
      ["'file' does not apply to a wall of type \"plane\""]),
     ("tensile_not_bool", rep("friction = 0.5", 'friction = 0.5\ntensile = "yes"'), 'tensile = "yes"',
      ["wrong type for 'tensile' in [contact]: expected true or false", "found string"]),
+    # bounds: step counts that would overflow or never end, zero steps
+    ("dt_tiny_steps_overflow", rep('dt = "auto"', 'dt = 1e-300'), "duration = 0.1",
+     ["duration = 1e-1 s is 1.000e299 steps of dt = 1e-300 s", "at most 1e12 steps are allowed"]),
+    ("duration_huge", rep("duration = 0.1", "duration = 1e308"), "duration = 1e308",
+     ["duration = 1e308 s is", "at most 1e12 steps are allowed"]),
+    ("steps_zero", rep("duration = 0.1", "steps = 0"), "steps = 0",
+     ["'steps' must be at least 1, found 0"]),
+    ("steps_huge", rep("duration = 0.1", "steps = 9223372036854775807"), "steps = 9223372036854775807",
+     ["steps = 9223372036854775807", "at most 1e12 steps are allowed"]),
+    ("rigid_particle_material", rep("youngs_modulus = 5e6", "youngs_modulus = inf"), 'material = "rock"',
+     ["template 'pebble' uses material 'rock' with youngs_modulus = inf", "particles need a finite Young's modulus"]),
+    ("periodic_box_too_short", rep("hi = [0.1, 0.1, 0.3]", 'hi = [-0.095, 0.1, 0.3]\nperiodic = ["x"]'), "periodic = ",
+     ["periodic axis x is 5.0000e-3 m long, shorter than 3 neighbour cells"]),
+    # no body lost without a word
+    ("pack_region_outside_domain", rep("lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1]", "lo = [-0.05, -0.05, 0.4], hi = [0.05, 0.05, 0.5]"), "region = ",
+     ["the region lies outside the domain along z (region 0.4000 .. 0.5000 m, domain -0.0100 .. 0.3000 m)"]),
+    ("body_file_row_outside_domain", rep(PACK, 'kind = "file"\nfile = "data_bodies_outside.csv"'), "data_bodies_outside",
+     ["1 of 2 bodies in the body file lie outside the domain", "body 2 at [0.0000, 0.0000, 0.5000]"]),
+    ("body_file_coincident_rows", rep(PACK, 'kind = "file"\nfile = "data_bodies_coincident.csv"'), "data_bodies_coincident",
+     ["bodies 1 and 3 of the body file are at the same point", "overlapping placement"]),
+    # values shortened in messages
+    ("tiny_negative_dt_printed_short", rep('dt = "auto"', 'dt = -1e-300'), "dt = -1e-300",
+     ["'dt' must be > 0 s, found -1e-300"]),
+    ("huge_line_excerpt", rep('name = "fill"', 'name = "fill"\nbogus = "' + "x" * 5000 + '"'), "bogus",
+     ["unknown key 'bogus' in [[stage]]", "…"]),
+    # several errors in one section are reported together
+    ("two_bad_templates", chain(rep("radius = 0.002", "radius = -0.002"),
+        append('\n[[template]]\nname = "grain"\nmaterial = "rock"\nshape = "sphere"\nradius = 0.0\n')), "radius = 0.0",
+     ["'radius' must be > 0 m, found -0.002", "two_bad_templates.toml:35:", "'radius' must be > 0 m, found 0"]),
+    ("two_bad_inserts", chain(rep("lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1]", "lo = [-0.05, -0.05, 0.4], hi = [0.05, 0.05, 0.5]"),
+        append('\n[[insert]]\nkind = "pack"\nstage = "fill"\nmix = "pebbles"\ncount = 10\nregion = { type = "box", lo = [0.2, -0.05, 0.01], hi = [0.3, 0.05, 0.1] }\n')), "lo = [0.2, -0.05",
+     ["the region lies outside the domain along z", "the region lies outside the domain along x (region 0.2000 .. 0.3000 m"]),
 ]
+
+# the invalid-UTF-8 case is written as bytes
+BAD_UTF8 = ("invalid_utf8", "gravity = [0.0, 0.0, -9.81]", ["is not valid UTF-8 text: invalid byte at line 4, column 15"])
 
 
 def main():
@@ -200,7 +237,15 @@ def main():
             lines.append(f"{stem}.toml:{line_of(text, marker, nth)}:")
         with open(os.path.join(HERE, stem + ".expected"), "w") as f:
             f.write("\n".join(lines) + "\n")
-    print(len(CASES), "cases")
+    k = len(CASES) + 1
+    name, marker, subs = BAD_UTF8
+    stem = f"{k:02d}_{name}"
+    data = BASE.replace(marker, "gravity = [0.0\xff, 0.0, -9.81]").encode("utf-8").replace(b"\xc3\xbf", b"\xff")
+    with open(os.path.join(HERE, stem + ".toml"), "wb") as f:
+        f.write(data)
+    with open(os.path.join(HERE, stem + ".expected"), "w") as f:
+        f.write("\n".join(subs) + "\n")
+    print(k, "cases")
 
 
 if __name__ == "__main__":

@@ -207,5 +207,20 @@ fn contact_props(
         );
         cx.warnings.push(w);
     }
+    if out.rolling == RollingLaw::None && out.rolling_friction > 0.0 && f.rolling_friction.is_some()
+    {
+        let w = cx
+            .src
+            .warning_at(
+                &p("rolling_friction"),
+                format!(
+                    "rolling_friction = {} has no effect without a rolling model",
+                    out.rolling_friction
+                ),
+            )
+            .label("ignored")
+            .note("help: add rolling = \"epsd\" (or \"cdt\") to resist rolling");
+        cx.warnings.push(w);
+    }
     Ok(out)
 }

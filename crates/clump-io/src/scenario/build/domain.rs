@@ -2,15 +2,13 @@
 //! `[integrator]`.
 
 use super::diag::Diagnostic;
-use super::model::*;
 use super::raw::*;
 use super::Seg::K;
 use super::{Cx, R};
 use clump_core::boundary::Domain;
 use clump_core::health::{DEFAULT_KINETIC_JUMP, DEFAULT_MAX_OVERLAP_RATIO};
 use clump_core::rotation::RotationScheme;
-use clump_core::wall::Wall;
-use clump_core::world::{AddedMass, WorldConfig};
+use clump_core::world::AddedMass;
 use glam::DVec3;
 
 /// The settings of `[simulation]`, `[domain]` and `[integrator]` that do not
@@ -137,50 +135,4 @@ pub(super) fn setting(cx: &mut Cx, raw: &RawScenario, sim: &RawSimulation) -> R<
         max_overlap_ratio,
         kinetic_jump,
     })
-}
-
-/// Kinetic energy per kilogram that bodies may legitimately reach, J/kg:
-/// `½ v²` with `v² = 2 |g| D + v_max²`, where `D` is the domain diagonal and
-/// `v_max` the largest insertion speed (translation, or rotation × `D`) or
-/// wall speed (translation + rotation × `D`, also after stage changes).
-pub(super) fn specific_energy_floor(
-    config: &WorldConfig,
-    inserts: &[InsertDef],
-    walls: &[Wall],
-    stages: &[StageDef],
-) -> f64 {
-    let d = config.domain.size().length();
-    let g = stages
-        .iter()
-        .filter_map(|s| s.gravity)
-        .map(|g| g.length())
-        .fold(config.gravity.length(), f64::max);
-    let mut v: f64 = 0.0;
-    for i in inserts {
-        match &i.kind {
-            InsertSpec::File { bodies } => {
-                for b in bodies {
-                    v = v.max(b.velocity.length() + b.angular_velocity.length() * d);
-                }
-            }
-            InsertSpec::Pack { spec, .. } => v = v.max(spec.velocity.length()),
-            InsertSpec::Stream { spec, .. } => v = v.max(spec.velocity.length()),
-        }
-    }
-    for w in walls {
-        let m = &w.motion;
-        v = v.max(
-            m.velocity.length() + m.angular_velocity.length() * d + m.surface_velocity.length(),
-        );
-    }
-    for c in stages.iter().flat_map(|s| &s.walls) {
-        let len = |x: Option<DVec3>| x.map_or(0.0, |x| x.length());
-        v = v.max(len(c.velocity) + len(c.angular_velocity) * d + len(c.surface_velocity));
-    }
-    let e = 0.5 * (2.0 * g * d + v * v);
-    if e.is_finite() {
-        e
-    } else {
-        0.0
-    }
 }

@@ -1,5 +1,6 @@
 //! `[[insert]]`: bodies from a file, packed regions and streams.
 
+use crate::scenario::{placement};
 use super::keys::{kind_keys, kind_specific, INSERT_KIND_KEYS, REGION_TYPE_KEYS};
 use super::model::*;
 use super::raw::*;
@@ -22,13 +23,14 @@ pub(super) fn inserts(
     mixes: &[MixDef],
     mix_names: &[String],
     dt: f64,
+    domain: &clump_core::boundary::Domain,
 ) -> R<Vec<InsertDef>> {
     let stage_names: Vec<String> = stages.iter().map(|s| s.name.clone()).collect();
 
     // ---------------- inserts
     let mut inserts = Vec::new();
     for (i, ins) in raw.insert.iter().enumerate() {
-        inserts.push(build_insert(
+        let def = build_insert(
             cx,
             i,
             ins,
@@ -39,8 +41,16 @@ pub(super) fn inserts(
             mixes,
             mix_names,
             dt,
-        )?);
+        )
+        .and_then(|def| {
+            placement::check_insert(cx.src, i, &def, domain, &mut cx.warnings).map(|()| def)
+        });
+        match def {
+            Ok(def) => inserts.push(def),
+            Err(d) => cx.errors.push(d),
+        }
     }
+    cx.barrier()?;
     Ok(inserts)
 }
 

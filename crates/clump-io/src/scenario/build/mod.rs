@@ -19,7 +19,8 @@ mod templates;
 mod time_step;
 mod walls;
 
-use super::diag::{did_you_mean, list, Diagnostic};
+use crate::scenario::guard;
+use super::diag::{did_you_mean, list, num, Diagnostic};
 use super::model::*;
 use super::raw::*;
 use super::source::{Seg, Source};
@@ -58,9 +59,23 @@ struct Cx<'a> {
     src: &'a Source,
     files: &'a mut Files,
     warnings: Vec<Diagnostic>,
+    /// Errors of the items of the current section (templates, walls,
+    /// inserts), collected so that all of them are reported at once.
+    errors: Vec<Diagnostic>,
 }
 
 impl Cx<'_> {
+    /// Ends a section whose items collected their errors: the first error,
+    /// if any (the others stay in `errors` and are reported with it); later
+    /// sections depend on this one's names, so they are not checked.
+    fn barrier(&mut self) -> R<()> {
+        if self.errors.is_empty() {
+            Ok(())
+        } else {
+            Err(self.errors.remove(0))
+        }
+    }
+
     fn err(&self, path: &[Seg], msg: impl Into<String>) -> Diagnostic {
         self.src.error_at(path, msg)
     }
@@ -80,7 +95,10 @@ impl Cx<'_> {
             Ok(x)
         } else {
             Err(self
-                .err(path, format!("'{key}' must be > 0{}, found {x}", sp(unit)))
+                .err(
+                    path,
+                    format!("'{key}' must be > 0{}, found {}", sp(unit), num(x)),
+                )
                 .label("must be positive"))
         }
     }
@@ -90,7 +108,10 @@ impl Cx<'_> {
             Ok(x)
         } else {
             Err(self
-                .err(path, format!("'{key}' must be >= 0{}, found {x}", sp(unit)))
+                .err(
+                    path,
+                    format!("'{key}' must be >= 0{}, found {}", sp(unit), num(x)),
+                )
                 .label("must not be negative"))
         }
     }
@@ -183,13 +204,18 @@ pub(super) fn build(
     src: &Source,
     raw: RawScenario,
     files: &mut Files,
-) -> Result<Scenario, Diagnostic> {
+) -> Result<Scenario, super::ScenarioError> {
     let mut cx = Cx {
         src,
         files,
         warnings: Vec::new(),
+        errors: Vec::new(),
     };
-    let sc = build_inner(&mut cx, raw)?;
+    let sc = build_inner(&mut cx, raw).map_err(|first| {
+        let mut diagnostics = vec![first];
+        diagnostics.append(&mut cx.errors);
+        super::ScenarioError { diagnostics }
+    })?;
     Ok(Scenario {
         warnings: cx.warnings,
         ..sc
@@ -208,7 +234,16 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     let (mix_names, mixes) = templates::mixes(cx, &raw, &template_names)?;
     let sim = raw.simulation.clone().unwrap_or_default();
     let setting = domain::setting(cx, &raw, &sim)?;
-    let time_step = time_step::time_step(cx, &sim, &templates, &mixes, &materials)?;
+    let time_step = time_step::time_step(
+        cx,
+        &sim,
+        &templates,
+        &mixes,
+        &materials,
+        &material_names,
+        &setting.domain,
+        setting.skin,
+    )?;
     let dt = time_step.dt;
     let (wall_names, walls, meshes, torque_points) = walls::walls(cx, &raw, &material_names)?;
     let stages = stages::stages(cx, &raw, &sim, &wall_names, dt)?;
@@ -221,6 +256,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         &mixes,
         &mix_names,
         dt,
+        &setting.domain,
     )?;
     if two_d {
         planar::inserts(cx, &mut inserts, setting.gravity, &stages)?;
@@ -236,10 +272,24 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         skin: setting.skin,
         multi_contact: sim.multi_contact.unwrap_or(MultiContact::Sum),
     };
+    let motion = guard::MotionBounds::new(&config, &inserts, &walls, &stages);
+    let floor = motion.energy_floor();
+    let contacts = guard::Contacts {
+        templates: &templates,
+        mixes: &mixes,
+        materials: &materials,
+        material_names: &material_names,
+        pair_table: &pair_table,
+        walls: &walls,
+    };
+    let overlap_estimate = guard::expected_overlap(&contacts, motion.impact_speed());
     let stability = HealthLimits {
-        max_overlap_ratio: setting.max_overlap_ratio,
+        max_overlap_ratio: match sim.max_overlap_ratio {
+            Some(_) => setting.max_overlap_ratio,
+            None => guard::default_limit(overlap_estimate.as_ref()),
+        },
         kinetic_jump: setting.kinetic_jump,
-        specific_energy_floor: domain::specific_energy_floor(&config, &inserts, &walls, &stages),
+        specific_energy_floor: floor,
     };
     Ok(Scenario {
         path: cx.src.path.clone(),
@@ -257,6 +307,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         config,
         time_step,
         stability,
+        overlap_estimate,
         stages,
         output,
         warnings: Vec::new(),

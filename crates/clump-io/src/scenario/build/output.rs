@@ -1,5 +1,6 @@
 //! `[output]`: output intervals and trajectories.
 
+use crate::scenario::{bounds};
 use super::model::*;
 use super::raw::*;
 use super::source::Seg;
@@ -26,13 +27,13 @@ pub(super) fn output(
                 )),
                 (Some(x), None) => {
                     let x = cx.positive(&[a, b, K("every")], x, "every", "s")?;
-                    Ok(Some(((x / dt).round() as u64).max(1)))
+                    Ok(Some(bounds::interval_steps(x, dt)))
                 }
                 (None, Some(0)) => Err(cx.err(
                     &[a, b, K("every_steps")],
                     "'every_steps' must be at least 1",
                 )),
-                (None, Some(n)) => Ok(Some(n)),
+                (None, Some(n)) => Ok(Some(n.min(bounds::MAX_STEPS))),
                 (None, None) => Ok(None),
             }
         };
@@ -80,6 +81,7 @@ pub(super) fn output(
         thermo: thermo.or(Some((total_steps / 200).max(1))),
         checkpoint,
         trajectory,
+        vtk_format: o.vtk_format.unwrap_or_default(),
     };
     Ok(output)
 }

@@ -1,6 +1,7 @@
 //! `[[stage]]` (or the single stage of `[simulation]`): durations, gravity
 //! and wall changes.
 
+use crate::scenario::{bounds};
 use super::model::*;
 use super::raw::*;
 use super::source::Seg;
@@ -29,9 +30,13 @@ pub(super) fn stages(
                 )),
                 (Some(d), None) => {
                     let d = cx.positive(&pd, d, "duration", "s")?;
-                    Ok(((d / dt) - 1e-9).ceil().max(1.0) as u64)
+                    bounds::steps_of_duration(cx.src, &pd, d, dt)
                 }
-                (None, Some(n)) => Ok(n),
+                (None, Some(n)) => {
+                    let mut ps = base.to_vec();
+                    ps.push(K("steps"));
+                    bounds::steps_given(cx.src, &ps, n)
+                }
                 (None, None) => Err(cx.missing(
                     base,
                     what,
@@ -130,7 +135,7 @@ pub(super) fn stages(
                 walls: changes,
                 bodies,
             });
-            first += steps;
+            first = bounds::add_steps(cx.src, &t, first, steps)?;
         }
     }
     Ok(stages)

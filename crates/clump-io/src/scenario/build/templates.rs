@@ -22,10 +22,15 @@ pub(super) fn templates(
     let mut template_names: Vec<String> = Vec::new();
     let mut templates: Vec<TemplateDef> = Vec::new();
     for (i, t) in raw.template.iter().enumerate() {
-        let td = build_template(cx, i, t, material_names, materials, &template_names)?;
-        template_names.push(td.name.clone());
-        templates.push(td);
+        match build_template(cx, i, t, material_names, materials, &template_names) {
+            Ok(td) => {
+                template_names.push(td.name.clone());
+                templates.push(td);
+            }
+            Err(d) => cx.errors.push(d),
+        }
     }
+    cx.barrier()?;
     Ok((template_names, templates))
 }
 
@@ -296,7 +301,11 @@ fn build_template(
                 .error_at_key(&p("inertia"), "'inertia' needs 'mass' too (kg)"))
         }
     }
-    .map_err(|e| shape_error(cx, i, e, inline))?;
+    .map_err(|e| {
+        let mut d = shape_error(cx, i, e, inline);
+        d.message = format!("template '{name}': {}", d.message);
+        d
+    })?;
     Ok(TemplateDef {
         name,
         material: mi as u16,

@@ -1,6 +1,7 @@
 //! The time step: explicit or `"auto"`, checked against the Rayleigh time of
 //! the smallest sphere.
 
+use crate::scenario::{bounds};
 use super::model::*;
 use super::raw::*;
 use super::Seg::K;
@@ -16,8 +17,12 @@ pub(super) fn time_step(
     templates: &[TemplateDef],
     mixes: &[MixDef],
     materials: &[Material],
+    material_names: &[String],
+    domain: &clump_core::boundary::Domain,
+    skin: Option<f64>,
 ) -> R<TimeStep> {
     // ---------------- time step from the smallest sphere
+    bounds::finite_particle_stiffness(cx.src, templates, materials, material_names)?;
     let mut smallest: Option<(f64, f64, String)> = None; // (t_R, radius, template)
     for (ti, t) in templates.iter().enumerate() {
         let mut scale_min: f64 = 1.0;
@@ -86,6 +91,14 @@ pub(super) fn time_step(
             (dt, false)
         }
     };
+    bounds::periodic_cells(
+        cx.src,
+        &domain,
+        &templates,
+        &mixes,
+        skin,
+        smallest.as_ref().map(|s| s.1),
+    )?;
     let time_step = TimeStep {
         dt,
         auto: dt_auto,

@@ -20,16 +20,28 @@ pub(super) fn walls(
     let mut walls: Vec<Wall> = Vec::new();
     let mut meshes: Vec<TriMesh> = Vec::new();
     let mut torque_points: Vec<Option<DVec3>> = Vec::new();
+    let global_multi_contact = raw.simulation.as_ref().and_then(|s| s.multi_contact);
     for (i, w) in raw.wall.iter().enumerate() {
-        let wall = build_wall(cx, i, w, material_names, &wall_names, &mut meshes)?;
-        torque_points.push(
-            w.torque_point
-                .map(|a| cx.vec3(&[K("wall"), I(i), K("torque_point")], a, "torque_point"))
-                .transpose()?,
-        );
+        let built =
+            build_wall(cx, i, w, material_names, &wall_names, &mut meshes).and_then(|wall| {
+                let tp = w
+                    .torque_point
+                    .map(|a| cx.vec3(&[K("wall"), I(i), K("torque_point")], a, "torque_point"))
+                    .transpose()?;
+                Ok((wall, tp))
+            });
+        let Ok((mut wall, tp)) = built.map_err(|d| cx.errors.push(d)) else {
+            continue;
+        };
+        // [simulation] multi_contact is also the walls' default
+        if let (None, Some(mc)) = (w.multi_contact, global_multi_contact) {
+            wall.multi_contact = mc;
+        }
+        torque_points.push(tp);
         wall_names.push(wall.name.clone());
         walls.push(wall);
     }
+    cx.barrier()?;
     Ok((wall_names, walls, meshes, torque_points))
 }
 
