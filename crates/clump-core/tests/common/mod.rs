@@ -1,5 +1,6 @@
 //! Helpers shared by the engine-level tests.
 #![allow(dead_code)]
+pub mod contact;
 
 use clump_core::body::BodyInit;
 use clump_core::boundary::Domain;
