@@ -1,6 +1,6 @@
 //! `clump template FILE [--density RHO] [--scale S] [--json]`: mass properties
 //! of a multi-sphere template file (LIGGGHTS `x y z r` format), computed
-//! exactly for the union of the spheres, with the seed's naive sums for
+//! exactly for the union of the spheres, with the naive sums (docs/theory.md T-9) for
 //! comparison.
 //!
 //! `clump template --from-mesh MESH.stl [--spheres N | --tolerance T]

@@ -29,7 +29,7 @@ pub struct BodyInit {
     /// Torque flags per world axis (LIGGGHTS `tflag`).
     pub torque_flag: AxisFlags,
     /// Step from which the body is integrated under forces. Before it the body
-    /// moves ballistically at `velocity` (the seed's `has_stream … start_step`
+    /// moves ballistically at `velocity` (LIGGGHTS' `has_stream … start_step`
     /// branch), ignoring forces.
     pub start_step: u64,
 }

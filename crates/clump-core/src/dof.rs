@@ -1,4 +1,4 @@
-//! Which degrees of freedom of a body the forces move (seed 000: LIGGGHTS'
+//! Which degrees of freedom of a body the forces move (docs/theory.md T-15: LIGGGHTS'
 //! `fflag`/`tflag`), and bodies whose motion is prescribed instead.
 //!
 //! - A `false` force flag freezes that world-frame component of the

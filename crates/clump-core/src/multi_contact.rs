@@ -1,5 +1,5 @@
 //! How several simultaneous contact points between the same two bodies (or a
-//! body and a wall) combine (seed 000, "several contact points").
+//! body and a wall) combine (docs/theory.md T-34).
 //!
 //! - [`MultiContact::Sum`]: every sphere-pair force adds up, as in LIGGGHTS,
 //!   Yade, MercuryDPM and DEM-Engine. With `n` simultaneous equal contacts the
@@ -17,7 +17,7 @@
 //!   shrinks by `√n` (linear) or `n^{2/5}` (Hertz). An elastic contact
 //!   (`e = 1`) stays elastic. The test `dimer_dropped_flat_sum_and_average`
 //!   checks this on a dimer dropped flat.
-//! - [`MultiContact::Average`]: the seed's f_ij = (1/NCP_ij) Σ f_ik,jl. The
+//! - [`MultiContact::Average`]: f_ij = (1/NCP_ij) Σ f_ik,jl. The
 //!   forces of the `NCP` touching sphere pairs are each divided by `NCP`, so
 //!   `n` equal simultaneous contacts act like a single contact: stiffness,
 //!   damping, restitution and contact time are those of one sphere pair. The

@@ -92,7 +92,7 @@ impl Spheres {
 
 /// World position of a sphere whose body-frame offset from the centre of mass
 /// is `offset_body`, for a body at `com_world` with orientation `q`
-/// (body → world): r = r_cm + Aᵀ r_b (seed 000).
+/// (body → world): r = r_cm + Aᵀ r_b (docs/theory.md T-7).
 #[inline(always)]
 pub fn sphere_position(com_world: DVec3, q: DQuat, offset_body: DVec3) -> DVec3 {
     com_world + q * offset_body

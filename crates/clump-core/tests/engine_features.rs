@@ -694,7 +694,7 @@ fn contact_history_survives_rebuild_and_resort() {
 // ------------------------------------------------------------ start step
 
 /// A body before its start step moves at its velocity, ignoring gravity and
-/// contacts (the seed's `has_stream … start_step` branch), and then falls.
+/// contacts (LIGGGHTS' `has_stream … start_step` branch), and then falls.
 #[test]
 fn body_moves_ballistically_until_its_start_step() {
     let dt = 1e-4;

@@ -1,5 +1,5 @@
-//! Orientation conventions: z-x-z Euler angles, the seed's transformation
-//! matrix `A` (world → body), quaternions (body → world), and their round trips.
+//! Orientation conventions: z-x-z Euler angles, the transformation
+//! matrix (docs/theory.md T-2) `A` (world → body), quaternions (body → world), and their round trips.
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -67,7 +67,7 @@ fn elementary_rotations_match_active_quaternions() {
 
 #[test]
 fn seed_quaternion_formulas_consistent_with_eq_4_3_and_body_to_world() {
-    // The seed's e0..e3 (Euler parameters) fed into the seed's quaternion form
+    // The Euler parameters e0..e3 (docs/theory.md T-4) fed into the quaternion form of T-2
     // of A reproduce eq. 4.3, and A = R(q)^T: no conjugation needed.
     let angles = [
         (0.1, 0.2, 0.3),

@@ -1,5 +1,5 @@
 //! Rotational integrators against reference values (validation/REFERENCE.md §1)
-//! and analytic solutions; failure modes of the seed's rejected schemes.
+//! and analytic solutions; failure modes of the rejected schemes of docs/theory.md T-5.
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -470,8 +470,8 @@ fn reference_matrix_integration_loses_orthogonality() {
 
 /// Heavy asymmetric top: principal moments (1, 2, 3), centre of mass at
 /// `L_B` (body frame) from a fixed pivot, weight 1 along −Z. The torque is a
-/// genuine function of the orientation, `T(q) = (q l_b) × (0, 0, −1)` (seed
-/// 003's `T(q)` callback). Exact invariants: the energy
+/// genuine function of the orientation, `T(q) = (q l_b) × (0, 0, −1)` (the
+/// `T(q)` callback of Zhao & van Wachem's scheme, docs/theory.md T-20). Exact invariants: the energy
 /// `E = ½ ω_b·I ω_b + (q l_b)·Z` and the vertical angular momentum `L_Z`
 /// (the torque is horizontal). Returns max |E − E0| over t ≤ 10.
 const TOP_L_B: DVec3 = DVec3::new(0.3, -0.2, 0.5);
@@ -504,7 +504,7 @@ fn heavy_top_energy_error(scheme: RotationScheme, dt: f64) -> (f64, f64) {
 }
 
 /// Every scheme takes an orientation-dependent torque `T(q)` and stays second
-/// order with it. This is the check that catches the seed's second slip in the
+/// order with it. This is the check that catches the midpoint-torque slip noted under docs/theory.md T-20 in the
 /// Zhao & van Wachem scheme: taking the midpoint torque into the body frame
 /// with `q_0` instead of the predicted `q_½` makes its `L_Z` error first
 /// order (measured with that mutation: 4.5e-3 at dt = 1e-2, 4.5e-4 at

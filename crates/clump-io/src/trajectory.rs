@@ -3,9 +3,9 @@
 //! m), `vx,vy,vz` (world, m/s), `qw,qx,qy,qz` (orientation, body → world),
 //! `wx,wy,wz` (angular velocity, world, rad/s), `wbx,wby,wbz` (angular
 //! velocity, body frame, rad/s: q⁻¹ ω q). With `euler = true` also
-//! `phi,theta,psi` (the seed's z-x-z Euler angles, rad, gimbal lock as in
+//! `phi,theta,psi` (the z-x-z Euler angles of docs/theory.md T-3, rad, gimbal lock as in
 //! `clump_core::math::euler`) and `exx,exy,exz,eyx,eyy,eyz,ezx,ezy,ezz`: the
-//! rows of the seed's matrix A (world → body), i.e. the body axes in world
+//! rows of the matrix A (docs/theory.md T-2) (world → body), i.e. the body axes in world
 //! coordinates, LIGGGHTS' `ex_space, ey_space, ez_space`. With
 //! `loads = true` also `fx,fy,fz,mx,my,mz` (see [`Extras::loads`]); in the
 //! 2D mode last `theta_2d` (see [`PLANAR_COLUMNS`]).
@@ -45,7 +45,7 @@ pub struct Extras {
 }
 
 /// The column the 2D mode appends (last): the rotation angle θ about z
-/// (rad, in (−π, π]) of the seed's 2D matrix `A_θ`, `2 atan2(q_z, q_w)`.
+/// (rad, in (−π, π]) of the planar matrix `A_θ`, `2 atan2(q_z, q_w)`.
 pub const PLANAR_COLUMNS: &str = "theta_2d";
 
 /// Writes trajectory rows for a fixed set of bodies.

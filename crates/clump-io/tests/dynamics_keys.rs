@@ -2,7 +2,7 @@
 //! force/torque flags per template, per insert and per body-file column,
 //! fixed and driven bodies, z-x-z Euler angles and body-frame angular
 //! velocities in body files, start steps, a template's given centre of mass.
-//! Checked against closed forms (the seed's matrix A, eq. 4.3; Coulomb drag
+//! Checked against closed forms (the matrix A, docs/theory.md T-3; Coulomb drag
 //! on a driven sphere; the weight a fixed body carries).
 
 mod support;
@@ -95,7 +95,7 @@ fn flags_resolve_template_then_insert_then_column() {
     assert_eq!(b[2].torque_flag, [true, true, false]);
 }
 
-/// Euler columns give the seed's A (eq. 4.3, written out here): the body's
+/// Euler columns give A (docs/theory.md T-3, written out here): the body's
 /// rotation matrix (body → world) is Aᵀ; body-frame angular velocity
 /// columns give ω_world = Aᵀ ω_b; start_time becomes ⌈t/dt⌉.
 #[test]
@@ -119,7 +119,7 @@ fn euler_and_body_frame_columns_follow_the_seed() {
         psi.sin(),
         psi.cos(),
     );
-    // rows of A (seed eq. 4.3)
+    // rows of A (docs/theory.md T-3)
     let a = DMat3::from_cols(
         DVec3::new(cf * cp - sf * ct * sp, sf * cp + cf * ct * sp, st * sp),
         DVec3::new(-cf * sp - sf * ct * cp, -sf * sp + cf * ct * cp, st * cp),
@@ -310,7 +310,7 @@ fn template_center_of_mass_is_the_given_point() {
 /// about world Z at Ω, from Euler angles (φ0, θ0, ψ0) given in the body
 /// file, has φ(t) = φ0 + Ω t, θ and ψ constant (a rotation about Z
 /// composes with the first z-x-z rotation), and the written rows of A are
-/// the seed's eq. 4.3 at those angles.
+/// docs/theory.md T-3 at those angles.
 #[test]
 fn trajectory_euler_columns_of_a_body_turning_about_z() {
     let (phi0, theta0, psi0, om) = (0.3f64, 1.2f64, 2.5f64, 1.5f64);

@@ -1,4 +1,4 @@
-//! `[domain] dimension = 2` (seed 000's 2D case: x, y and one angle θ):
+//! `[domain] dimension = 2` (the planar case of docs/theory.md: x, y and one angle θ):
 //! a sphere rolling and a planar dimer sliding down an incline against
 //! their closed forms, a 2D collision of two dimers conserving momentum and
 //! angular momentum about z, and a long run in which every out-of-plane
@@ -256,7 +256,7 @@ fn long_run_stays_exactly_in_the_plane() {
     let theta = support::last_value(&r.outdir().join("traj_1.csv"), "theta_2d");
     let b = w.body_index(1).unwrap();
     let q = w.bodies.orientation[b];
-    // A_θ of the seed: the body x axis in the world is (cos θ, sin θ)
+    // the planar A_θ: the body x axis in the world is (cos θ, sin θ)
     let ex = q * DVec3::X;
     assert!((ex.x - theta.cos()).abs() < 1e-12 && (ex.y - theta.sin()).abs() < 1e-12);
     eprintln!("long 2D run: 6 bodies in the plane after 400000 steps; body 1 at theta = {theta}");

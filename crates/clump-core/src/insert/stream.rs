@@ -65,7 +65,7 @@ pub struct StreamSpec {
     #[serde(default)]
     pub dof: Vec<crate::dof::Dof>,
     /// Time (s) each body moves ballistically at `velocity` after its
-    /// insertion, ignoring forces, before they act (the seed's
+    /// insertion, ignoring forces, before they act (LIGGGHTS'
     /// `start_step`, given by the user); when set, it replaces the
     /// exit-face rule of `exit_normal`.
     #[serde(default)]

@@ -1,20 +1,21 @@
-//! Classical z-x-z Euler angles `(phi, theta, psi)` of the seed (Goldstein's
+//! Classical z-x-z Euler angles `(phi, theta, psi)` (docs/theory.md T-3, Goldstein's
 //! convention), radians.
 //!
 //! The world frame `XYZ` is carried into the body frame `xyz` by a rotation
 //! `phi` about `Z`, then `theta` about the new `x'`, then `psi` about the new
 //! `z''`. Ranges: `phi, psi ∈ [0, 2π)`, `theta ∈ [0, π]`.
 //!
-//! The composite transformation matrix (seed eq. 4.3, world → body) is
+//! The composite transformation matrix (docs/theory.md T-3, world → body) is
 //! `A = A_psi A_theta A_phi` with the *passive* elementary rotations
 //! `A_phi = [[cφ, sφ, 0], [−sφ, cφ, 0], [0, 0, 1]]`,
 //! `A_theta = [[1, 0, 0], [0, cθ, sθ], [0, −sθ, cθ]]`, and `A_psi` like `A_phi`.
-//! Note: the seed *prints* `A_phi` and `A_psi` with the sign of the sines
-//! flipped (`[[c, −s], [s, c]]`), which is inconsistent with its own `A_theta`
-//! and with its expanded eq. 4.3; eq. 4.3 is used here as the definition.
+//! These are the passive elementary matrices; a text that prints `A_phi` and
+//! `A_psi` with the signs of the sines flipped (`[[c, −s], [s, c]]`) describes
+//! active rotations and contradicts its own `A_theta` and expanded product;
+//! the product above (docs/theory.md T-3) is the definition used here.
 //!
 //! The body → world quaternion is `q = q_Z(phi) q_x(theta) q_z(psi)`, whose
-//! components are exactly the seed's Euler parameters
+//! components are exactly the Euler parameters of docs/theory.md T-4
 //! `e0 = cos(θ/2) cos((φ+ψ)/2)`, `e1 = sin(θ/2) cos((φ−ψ)/2)`,
 //! `e2 = sin(θ/2) sin((φ−ψ)/2)`, `e3 = cos(θ/2) sin((φ+ψ)/2)`; no conjugation
 //! is needed under the crate's body → world convention (checked in
@@ -33,7 +34,7 @@ use super::transform::matrix_a_to_quat;
 /// treated as exactly gimbal-locked at `theta = 0` (resp. `π`).
 const GIMBAL_EPS: f64 = 1e-14;
 
-/// The seed's transformation matrix `A` (eq. 4.3, world → body:
+/// The transformation matrix `A` (docs/theory.md T-2) (docs/theory.md T-3, world → body:
 /// `x_body = A x_world`) of the z-x-z Euler angles `(phi, theta, psi)` (rad).
 pub fn euler_to_matrix_a(phi: f64, theta: f64, psi: f64) -> DMat3 {
     let (sf, cf) = phi.sin_cos();
@@ -48,7 +49,7 @@ pub fn euler_to_matrix_a(phi: f64, theta: f64, psi: f64) -> DMat3 {
 }
 
 /// Body → world unit quaternion of the z-x-z Euler angles (rad), from the
-/// seed's Euler-parameter formulas (`e0` = scalar part `w`).
+/// Euler-parameter formulas of docs/theory.md T-4 (`e0` = scalar part `w`).
 pub fn euler_to_quat(phi: f64, theta: f64, psi: f64) -> DQuat {
     let (sh, ch) = (0.5 * theta).sin_cos();
     let (sp, cp) = (0.5 * (phi + psi)).sin_cos();
@@ -61,7 +62,7 @@ pub fn euler_to_quat(phi: f64, theta: f64, psi: f64) -> DQuat {
 }
 
 /// z-x-z Euler angles `(phi, theta, psi)` (rad) of a unit body → world
-/// quaternion, inverting the seed's Euler-parameter formulas with half-angle
+/// quaternion, inverting the Euler-parameter formulas of docs/theory.md T-4 with half-angle
 /// `atan2`s (well conditioned for every `theta`):
 /// `phi + psi = 2 atan2(e3, e0)`, `phi − psi = 2 atan2(e2, e1)`,
 /// `theta = 2 atan2(√(e1²+e2²), √(e0²+e3²))`.
@@ -93,8 +94,8 @@ pub fn quat_to_euler(q: DQuat) -> (f64, f64, f64) {
     (wrap_angle_2pi(phi), theta, wrap_angle_2pi(psi))
 }
 
-/// z-x-z Euler angles `(phi, theta, psi)` (rad) of the seed's transformation
-/// matrix `A` (world → body), via Shepperd's quaternion
+/// z-x-z Euler angles `(phi, theta, psi)` (rad) of the transformation
+/// matrix (docs/theory.md T-2) `A` (world → body), via Shepperd's quaternion
 /// ([`matrix_a_to_quat`]) and [`quat_to_euler`]; same ranges and gimbal-lock
 /// convention (`psi = 0`).
 pub fn matrix_a_to_euler(a: &DMat3) -> (f64, f64, f64) {

@@ -3,14 +3,14 @@
 //! Conventions (fixed for the crate):
 //! - A unit quaternion `q` ([`glam::DQuat`], scalar `w`) maps **body → world**:
 //!   `v_world = q * v_body`.
-//! - The seed's transformation matrix `A` maps **world → body**:
+//! - The transformation matrix `A` (docs/theory.md T-2) maps **world → body**:
 //!   `x_body = A x_world`, hence `A = R(q)ᵀ` with `R = DMat3::from_quat(q)`.
-//! - Euler angles are the classical z-x-z set `(phi, theta, psi)` of the seed
-//!   (Goldstein's convention), radians.
+//! - Euler angles are the classical z-x-z set `(phi, theta, psi)` of
+//!   docs/theory.md T-3 (Goldstein's convention), radians.
 //!
 //! Submodules:
 //! - [`euler`]: z-x-z Euler angles ↔ `A` ↔ quaternion.
-//! - [`transform`]: quaternion ↔ transformation matrix `A` (seed formula, Shepperd).
+//! - [`transform`]: quaternion ↔ transformation matrix `A` (docs/theory.md T-2, Shepperd).
 //! - [`quat`]: quaternion helpers (exact exponential / logarithm maps, distances).
 
 pub mod euler;

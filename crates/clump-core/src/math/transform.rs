@@ -1,8 +1,8 @@
 //! Quaternion ↔ transformation matrix `A` (world → body).
 //!
-//! The seed writes `A` in the Euler parameters `e0..e3`; with `e0` the scalar
+//! docs/theory.md T-2 writes `A` in the Euler parameters `e0..e3`; with `e0` the scalar
 //! part, `(e0, e1, e2, e3)` is exactly our body → world quaternion
-//! `q = (w, x, y, z)`, and the seed's `A` equals `R(q)ᵀ`
+//! `q = (w, x, y, z)`, and `A` (docs/theory.md T-2) equals `R(q)ᵀ`
 //! (verified in `tests/orientation.rs`).
 
 use glam::{DMat3, DQuat, DVec3};
@@ -18,9 +18,9 @@ fn at(m: &DMat3, i: usize, j: usize) -> f64 {
     m.col(j)[i]
 }
 
-/// The seed's transformation matrix `A` (world → body: `x_body = A x_world`)
+/// The transformation matrix `A` (docs/theory.md T-2) (world → body: `x_body = A x_world`)
 /// of a **unit** body → world quaternion `q = (e0; e1, e2, e3)`, written with
-/// the seed's quaternion formula:
+/// the quaternion formula of docs/theory.md T-2:
 ///
 /// ```text
 ///     | e0²+e1²−e2²−e3²   2(e1e2+e0e3)      2(e1e3−e0e2)    |
@@ -96,7 +96,7 @@ pub fn rotation_matrix_to_quat(r: &DMat3) -> DQuat {
     }
 }
 
-/// Unit body → world quaternion of the seed's transformation matrix `A`
+/// Unit body → world quaternion of the transformation matrix `A` (docs/theory.md T-2)
 /// (world → body), by Shepperd's method on `Aᵀ`; inverse of
 /// [`quat_to_matrix_a`] up to the sign of `q` (result has `w ≥ 0`).
 pub fn matrix_a_to_quat(a: &DMat3) -> DQuat {

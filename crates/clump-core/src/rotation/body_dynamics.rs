@@ -40,8 +40,8 @@ pub fn omega_world(q: DQuat, l_world: DVec3, inertia: DVec3) -> DVec3 {
     omega_world_rot(&DMat3::from_quat(q), l_world, inv)
 }
 
-/// [`omega_world`] from the rotation matrix `rot = R(q)` (body → world, the
-/// seed's `Aᵀ`) and the inverse principal moments `inv_inertia` (body frame,
+/// [`omega_world`] from the rotation matrix `rot = R(q)` (body → world,
+/// `Aᵀ` of docs/theory.md T-2) and the inverse principal moments `inv_inertia` (body frame,
 /// 1/(kg m²), see [`inverse_inertia`]): `ω = R (I⁻¹ ⊙ (Rᵀ L))`, world frame,
 /// rad/s. The integration pass builds `R` once per body and reuses it for
 /// the body's spheres.

@@ -22,7 +22,7 @@
 //! - [`RotationScheme::RichardsonLiggghts`]: LIGGGHTS' own linearised
 //!   `MathExtra::richardson`, see [`richardson_liggghts`].
 //!
-//! [`mod@reference`] holds the two schemes the seed rejects (Euler-angle rates and
+//! [`mod@reference`] holds the two schemes of docs/theory.md T-5, kept to show their failure modes (Euler-angle rates and
 //! direct integration of the transformation matrix), for tests only.
 
 pub mod body_dynamics;

@@ -1,7 +1,7 @@
-//! **Reference only, not for production.** The two orientation integrators the
-//! seed rejects, kept to measure their failure modes in tests:
+//! **Reference only, not for production.** The two orientation integrators
+//! docs/theory.md T-5 rejects, kept to measure their failure modes in tests:
 //!
-//! (a) integration of the z-x-z Euler-angle rates (seed eq. 4.8a–c), singular
+//! (a) integration of the z-x-z Euler-angle rates (docs/theory.md T-5), singular
 //!     at `theta = 0` (and `π`): `phi_dot = (ω_x sinψ + ω_y cosψ)/sinθ`
 //!     divides by zero. No guard is applied: the blow-up / NaN is returned as
 //!     is;
@@ -35,7 +35,7 @@ pub struct EulerAngleState {
 }
 
 /// Euler-angle rates `(phi_dot, theta_dot, psi_dot)` (rad/s) from the
-/// BODY-frame angular velocity (seed eq. 4.8a–c). Singular at `sin θ = 0`:
+/// BODY-frame angular velocity (docs/theory.md T-5). Singular at `sin θ = 0`:
 /// returns infinities / NaN there, unguarded on purpose. `phi` does not enter
 /// the rates; it is taken for a uniform `(phi, theta, psi)` signature.
 pub fn euler_angle_rates(_phi: f64, theta: f64, psi: f64, omega_body: DVec3) -> DVec3 {
@@ -66,7 +66,7 @@ fn euler_angle_state_add(s: &EulerAngleState, h: f64, d: (DVec3, DVec3)) -> Eule
     }
 }
 
-/// One classical RK4 step of `dt` seconds of the Euler-angle rates (eq. 4.8)
+/// One classical RK4 step of `dt` seconds of the Euler-angle rates (docs/theory.md T-5)
 /// together with the torque-free Euler equations (principal moments
 /// `inertia`, kg m²). Reference only, not for production: singular at
 /// `theta = 0`.

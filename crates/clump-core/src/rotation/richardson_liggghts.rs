@@ -1,6 +1,6 @@
 //! LIGGGHTS' (and LAMMPS') own Richardson orientation update,
 //! `MathExtra::richardson`, step for step, so that a LIGGGHTS user
-//! reproduces a `fix multisphere` trajectory to round-off (seed 000).
+//! reproduces a `fix multisphere` trajectory to round-off (docs/theory.md T-19).
 //!
 //! With `dtq = dt/2` and the world angular velocity `ω` from the world
 //! angular momentum `L` at the current orientation, each sub-step is the

@@ -1,10 +1,10 @@
 //! Zhao & van Wachem (2013) quaternion integrator (Acta Mech. 224, 3091–3109),
-//! as described in seed 003, with its two transcription slips corrected to the
+//! as published by Zhao & van Wachem (2013; docs/theory.md T-20), with two slips of a common transcription corrected to the
 //! paper's algorithm:
 //! - quarter-point velocity `ω_b¼ = ω_b0 + ¼ ω̇_b0 Δt` and half-point velocity
-//!   `ω_b½ = ω_b0 + ½ ω̇_b0 Δt` (the seed swaps the ¼ and ½);
+//!   `ω_b½ = ω_b0 + ½ ω̇_b0 Δt` (the transcription swaps the ¼ and ½);
 //! - the midpoint torque is rotated into the body frame with the predicted
-//!   `q_½` (the seed writes `q_0`).
+//!   `q_½` (the transcription writes `q_0`).
 //!
 //! Step: `q_½ = exp(ω_¼ Δt/2) q_0` with `ω_¼ = q_0 ω_b¼` (world);
 //! `ω̇_b½` from Euler's equations at `q_½`; `q_1 = exp(ω_½ Δt) q_0` with

@@ -1,5 +1,5 @@
-//! Mass properties of the union of a template's spheres, and the seed's naive
-//! sums (eqs. 4.89–4.90) for comparison.
+//! Mass properties of the union of a template's spheres, and the naive
+//! sums (docs/theory.md T-9) for comparison.
 
 use glam::{DMat3, DVec3};
 use serde::{Deserialize, Serialize};
@@ -38,11 +38,11 @@ pub struct MassProperties {
     /// mass; centre of mass relative to the bounding radius; inertia relative
     /// to its trace), dimensionless. Typically ≤ 1e-10.
     pub relative_error_bound: f64,
-    /// Naive volume: sum of the sphere volumes, ignoring overlaps (seed eq.
-    /// 4.89 divided by the density), m³.
+    /// Naive volume: sum of the sphere volumes, ignoring overlaps (docs/theory.md
+    /// T-9, the naive mass divided by the density), m³.
     pub naive_volume: f64,
-    /// Principal moments (ascending) of the naive inertia tensor (seed eq.
-    /// 4.90: sphere inertias plus parallel-axis terms, ignoring overlaps,
+    /// Principal moments (ascending) of the naive inertia tensor (docs/theory.md
+    /// T-9: sphere inertias plus parallel-axis terms, ignoring overlaps,
     /// about the naive centre of mass), kg m².
     pub naive_principal_moments: DVec3,
 }
@@ -112,7 +112,7 @@ pub fn validate_inertia(m: &DMat3) -> Result<(), ShapeError> {
     Ok(())
 }
 
-/// Naive sums of the seed (eqs. 4.89–4.90), ignoring overlaps: returns
+/// Naive sums (docs/theory.md T-9), ignoring overlaps: returns
 /// `(volume m³, centre of mass m, inertia tensor about that centre kg m²)`,
 /// input frame. Every sphere counts in full, duplicates included.
 pub fn naive_mass_properties(spheres: &[Sphere], density: f64) -> (f64, DVec3, DMat3) {

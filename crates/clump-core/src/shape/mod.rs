@@ -4,8 +4,8 @@
 //! A *template* is a list of [`Sphere`]s (centre and radius, m) given in some
 //! *input frame* chosen by the user, plus a density (kg/m³) or a mass (kg).
 //! [`mass_properties()`] integrates over the **union** of the spheres, so that
-//! overlapping regions are counted once (unlike the naive sums of the seed,
-//! eqs. 4.89–4.90, which are also reported for comparison).
+//! overlapping regions are counted once (unlike the naive sums of
+//! docs/theory.md T-9, which are also reported for comparison).
 //! [`ClumpTemplate`] re-expresses the template in its *principal body frame*:
 //! origin at the centre of mass, axes along the principal axes of inertia,
 //! right-handed.

@@ -1,4 +1,4 @@
-//! Templates for the 2D mode (seed 000's 2D case: two coordinates of the
+//! Templates for the 2D mode (the planar case of docs/theory.md: two coordinates of the
 //! centre of mass and one rotation angle): every sphere centre lies in the
 //! plane `z = const` of the input frame, and the body frame is re-chosen so
 //! that body z is the input z axis exactly (the plane normal, a principal

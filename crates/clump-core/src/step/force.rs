@@ -8,7 +8,7 @@
 //! `PairBody::col`), then a per-body gather in a fixed order
 //! with sphere–wall contacts and gravity, which also applies the final kick.
 //!
-//! Body force and torque (seed eq. 4.87–4.88), world frame:
+//! Body force and torque (docs/theory.md T-11), world frame:
 //! `F = m g + Σ_s F_s`, `M = Σ_s [(x_s − r_cm) × F_s + T_s]`, where `F_s` is
 //! the total contact force on sphere `s` and `T_s` the torque of its contacts
 //! about the sphere centre, `Σ (x_c − x_s) × f + couples`. This equals

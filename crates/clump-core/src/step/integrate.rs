@@ -1,4 +1,4 @@
-//! Velocity-Verlet integration of the bodies (seed 000, LIGGGHTS
+//! Velocity-Verlet integration of the bodies (docs/theory.md T-15, LIGGGHTS
 //! `fix multisphere`): half kicks of the centre-of-mass velocity and of the
 //! world angular momentum, with per-axis force/torque flags and the added-mass
 //! factor; a full drift of the centre of mass; and a free-rotation drift of
@@ -348,7 +348,7 @@ impl Kicks {
     }
 
     /// The rotation of body `i` over the whole step by Zhao & van Wachem
-    /// (2013) as seed 003 gives it, with its two slips corrected (see
+    /// (2013) as Zhao & van Wachem (2013) give it (docs/theory.md T-20) (see
     /// [`crate::rotation::zhao_van_wachem`]): the torque `m` (N m, world
     /// frame) of the force evaluation at the start of the step, divided by
     /// the added-mass factor, is held constant in the world frame over the

@@ -1,4 +1,4 @@
-//! Sphere positions from the body poses (seed 000): r_ik = r_cm + Aᵀ r_ik^b.
+//! Sphere positions from the body poses (docs/theory.md T-7): r_ik = r_cm + Aᵀ r_ik^b.
 //! A sphere's velocity, v_ik = v_cm + ω × (r_ik − r_cm), is not stored: the
 //! contact kernels evaluate it at the contact point from the owner's
 //! velocity and angular velocity.

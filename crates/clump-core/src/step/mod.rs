@@ -15,7 +15,7 @@
 //!    torque as soon as all its pairs are evaluated; then a per-body gather
 //!    in a fixed order with sphere–wall contacts and gravity (and the pair
 //!    sums of the bodies on the seam between two threads' runs).
-//!    F = Σ f, M = Σ (x_c − r_cm) × f (seed eq. 4.87–4.88).
+//!    F = Σ f, M = Σ (x_c − r_cm) × f (docs/theory.md T-11).
 //! 5. Final integrate (`integrate::FinalKick`): second half kick, applied by
 //!    the gather to each body as soon as its force and torque are summed
 //!    (same pass).

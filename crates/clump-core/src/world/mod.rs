@@ -17,7 +17,7 @@ use thiserror::Error;
 mod scratch;
 pub(crate) use scratch::{Scratch, StepPhase};
 
-/// Added-mass model (seed 000): the body's inertia in the kicks is scaled by
+/// Added-mass model (docs/theory.md T-14): the body's inertia in the kicks is scaled by
 /// `1 + coefficient · fluid_density / body_density`. Gravity still acts on the
 /// true mass.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]

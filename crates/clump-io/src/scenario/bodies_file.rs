@@ -9,13 +9,13 @@
 //!   frame, m), `qw, qx, qy, qz` (orientation, normalised on reading),
 //!   `vx, vy, vz` (m/s, world), `wx, wy, wz` (angular velocity, rad/s, world).
 //!   Optional instead of the quaternion: `phi, theta, psi` (z-x-z Euler
-//!   angles of the seed, rad, see `clump_core::math::euler`); instead of the
+//!   angles of docs/theory.md T-3, rad, see `clump_core::math::euler`); instead of the
 //!   world angular velocity: `wbx, wby, wbz` (rad/s, in the frame the
 //!   orientation maps from). Degrees of freedom per body: `ffx, ffy, ffz`,
 //!   `tfx, tfy, tfz` (force and torque flags, 1 or 0; default the template's
 //!   and the insert's), `driven` (1: velocity and angular velocity held,
 //!   see `clump_core::dof`); `start_step` or `start_time` (s): before it the
-//!   body moves ballistically, ignoring forces (the seed's `start_step`).
+//!   body moves ballistically, ignoring forces (LIGGGHTS' `start_step`, docs/theory.md T-16).
 //! - **`xyzq`**: whitespace-separated `id x y z qw qx qy qz` rows without a
 //!   header (the format of the shared tetra-bed initial conditions and of
 //!   many LIGGGHTS/Yade scripts); every body uses the insert's template and

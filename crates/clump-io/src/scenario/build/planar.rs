@@ -1,4 +1,4 @@
-//! `[domain] dimension = 2`: the seed's 2D case. Motion in the x–y plane
+//! `[domain] dimension = 2`: the planar case of docs/theory.md. Motion in the x–y plane
 //! and rotation about z only: every template is re-framed so that body z is
 //! its plane normal (`ClumpTemplate::planar`), every body's force flag z
 //! and torque flags x, y are off, and bodies start in the plane's motion
