@@ -15,6 +15,7 @@ pub mod bulk;
 pub mod case;
 pub mod chung_ooi;
 pub mod clump_cases;
+pub mod dem_order;
 pub mod mass;
 pub mod ode;
 pub mod plot;
@@ -45,6 +46,7 @@ pub fn run_suite(selection: Selection, dir: &Path) -> Suite {
     let groups: Vec<(&str, fn(Selection, &Path) -> Group)> = vec![
         ("Chung & Ooi (2011) impacts", chung_ooi::run),
         ("Rigid-body rotation", rigid_body::run),
+        ("Rotation schemes inside the DEM step", dem_order::run),
         ("Mass properties", mass::run),
         ("Clump-specific dynamics", clump_cases::run),
         ("Bulk behaviour", bulk::run),

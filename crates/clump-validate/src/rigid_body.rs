@@ -135,12 +135,23 @@ pub fn run(sel: Selection, dir: &Path) -> Group {
             1000,
         );
         let (q3, w3) = r4_error(scheme, R1_INERTIA, DVec3::Z, 0.0, 0.3, 1e-2, 1000);
+        // LIGGGHTS' linearised sub-steps turn by 2 atan(ω h/2), not ω h:
+        // an O((ω dt)³) error per step (bound: 1000 steps at the largest
+        // ω dt of the three set-ups, 10 rad/s × 1e-2 s); the others are exact
+        let (expect, bound) = if scheme == RotationScheme::RichardsonLiggghts {
+            (
+                "≤ 1000 (ω dt)³ (linearised sub-steps)",
+                1000.0 * 0.1f64.powi(3),
+            )
+        } else {
+            ("0 (round-off)", 1e-10)
+        };
         g.cases.push(Case::at_most(
             format!("R4 {}: constant torque from rest, max |q − q_exact| and |ω − ω_exact| (3 set-ups, 1000 steps)", name(scheme)),
             "REFERENCE.md §1 (θ = τt²/2I)",
-            "0 (round-off)",
+            expect,
             q1.max(w1).max(q2).max(w2).max(q3).max(w3),
-            1e-10,
+            bound,
         ));
     }
     let e0 = r1_error(RotationScheme::NoSquish, DTS[0]);
@@ -161,7 +172,7 @@ pub fn run(sel: Selection, dir: &Path) -> Group {
     };
     g.plot(
         "rigid_body_r1_convergence.png",
-        "R1: log-log convergence of the three rotation schemes with a slope-2 reference line",
+        "R1: log-log convergence of the rotation schemes with a slope-2 reference line",
         draw(&dir.join("rigid_body_r1_convergence.png"), &c),
     );
     g.notes.push("R1: I = (1, 2, 3) kg m², ω_body(0) = (1, 0, 1) rad/s, reference state at t = 10 s from REFERENCE.md §1; error = max(max-norm of the ω_body error, quaternion distance min(|q−q_ref|, |q+q_ref|)). R4: I = 1, τ = 0.1 N m about x, dt = 1e-3 s; I = 1, τ = 1 N m about y from a π/2 rotation about y, dt = 1e-2 s (the Zhao & van Wachem values of §1); I = (1, 2, 3), τ = 0.3 N m about z, dt = 1e-2 s.".into());
