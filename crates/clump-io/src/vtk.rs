@@ -601,13 +601,19 @@ impl VtkSeries {
         std::fs::create_dir_all(&dir).map_err(|e| {
             io::Error::new(e.kind(), format!("cannot create {}: {e}", dir.display()))
         })?;
-        Ok(VtkSeries {
+        let s = VtkSeries {
             spheres: PvdWriter::new(dir.join("spheres.pvd")),
             bodies: PvdWriter::new(dir.join("bodies.pvd")),
             walls: PvdWriter::new(dir.join("walls.pvd")),
             dir,
             format: Default::default(),
-        })
+        };
+        // the collections exist from the start (the spheres and bodies ones
+        // stay empty until the first body, see `write_frame`)
+        s.spheres.write()?;
+        s.bodies.write()?;
+        s.walls.write()?;
+        Ok(s)
     }
 
     /// The series writing its frames in `format` (`.vtp` by default).
