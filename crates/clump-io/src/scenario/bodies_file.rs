@@ -143,13 +143,20 @@ fn finite(ln: usize, what: &str, f: &str) -> Result<f64, (usize, String)> {
         })
 }
 
-/// The unit quaternion along `(w, x, y, z)` (finite components): scaled by
-/// its largest component first, so that huge or tiny components neither
-/// overflow nor underflow; an error when it is zero.
+/// The unit quaternion along `(w, x, y, z)` (finite components); an error
+/// when it is zero. A quaternion whose squared length is a normal number is
+/// normalised as it is (the bits every earlier version gave); one with huge
+/// or tiny components is first scaled by its largest component, so that
+/// the squared length neither overflows nor underflows.
 fn unit_quaternion(ln: usize, w: f64, x: f64, y: f64, z: f64) -> Result<DQuat, (usize, String)> {
     let m = w.abs().max(x.abs()).max(y.abs()).max(z.abs());
     if !(m > 0.0) {
         return Err((ln, "the quaternion (qw, qx, qy, qz) is zero".into()));
+    }
+    let q = DQuat::from_xyzw(x, y, z, w);
+    let l2 = q.length_squared();
+    if l2.is_finite() && l2.is_normal() {
+        return Ok(q.normalize());
     }
     Ok(DQuat::from_xyzw(x / m, y / m, z / m, w / m).normalize())
 }
