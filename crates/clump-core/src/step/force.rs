@@ -16,19 +16,15 @@
 
 use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, for_each_run, GATHER_LOOP, PAIR_LOOP};
 use super::integrate::{FinalKick, FirstHalf};
+use super::wall_contacts::WallPass;
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
-use crate::contact::geometry::contact_point;
-use crate::contact::{ContactHistory, ContactInput};
-use crate::contact::record::WallRecord;
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::column_sum;
-use crate::sphere::{point_velocity, SPHERE_ID_BITS};
-use crate::wall::{WallLoad, WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
+use crate::sphere::SPHERE_ID_BITS;
+use crate::wall::{WallLoad, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::World;
 use crate::stats::ContactStats;
-use crate::neighbor::walls::WALL_SLOTS;
-use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -233,9 +229,6 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     chunk_wall_loads.resize(nchunks * nw, WallLoad::default());
     let dt = config.dt;
     let gravity = config.gravity;
-    let walls_average = walls
-        .iter()
-        .any(|x| x.multi_contact == MultiContact::Average);
     let any_stale = AtomicBool::new(false);
     let next = next.as_ref();
     let force = SharedMut::new(&mut bodies.force);
@@ -243,10 +236,6 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     let vel = SharedMut::new(&mut bodies.velocity);
     let angm = SharedMut::new(&mut bodies.angular_momentum);
     let omega = SharedMut::new(&mut bodies.angular_velocity);
-    let keys = SharedMut::new(&mut wall_list.key);
-    let hists = SharedMut::new(&mut wall_list.hist);
-    let (entry_sphere, entry_mask, chunk_entries) =
-        (&wall_list.sphere, &wall_list.mask, &wall_list.chunk_start);
     let loads = SharedMut::new(chunk_wall_loads);
     let pos = SharedMut::new(&mut bodies.position);
     // SAFETY: the gather resizes nothing, and writes no orientation (the
@@ -264,18 +253,6 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     let b = &*bodies;
     let pair_body = SharedMut::new(&mut pairs.body);
     let pairs = &*pairs;
-    // Walls to test for entry `e` of the wall list, in ascending order: of
-    // the first 64, the active ones of its mask (near its sphere, or moving;
-    // see `neighbor::walls`); then every active wall beyond 64.
-    let mut active_lo = 0u64;
-    for (wi, wall) in walls.iter().enumerate().take(64) {
-        active_lo |= (wall.active as u64) << wi;
-    }
-    // SAFETY: e is an entry of the list, one mask per entry.
-    let candidates = |e: usize| {
-        let lo = BitIter(unsafe { at(entry_mask, e) } & active_lo);
-        lo.chain((64..nw).filter(|&wi| walls[wi].active))
-    };
     let stats_out = SharedMut::new(chunk_stats);
     // this step keeps its contacts (crate::contacts): each chunk its own list
     let recording = contact_records.recording;
@@ -284,7 +261,18 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         contact_records.wall.truncate(nchunks);
         contact_records.wall.iter_mut().for_each(Vec::clear);
     }
-    let wall_records = SharedMut::new(&mut contact_records.wall);
+    let wall_pass = WallPass::new(
+        sp,
+        b,
+        table,
+        walls,
+        meshes,
+        dt,
+        wall_list,
+        loads,
+        &mut contact_records.wall,
+        recording,
+    );
     for_each_chunk_with(
         nchunks,
         body_chunk_cost(body_cost, nb, BODY_CHUNK),
@@ -301,7 +289,10 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
             let b0 = c * BODY_CHUNK;
             let b1 = (b0 + BODY_CHUNK).min(nb);
             // the chunk's entries of the wall list, ascending with its bodies
-            let (mut e, e_end) = (chunk_entries[c] as usize, chunk_entries[c + 1] as usize);
+            let (mut e, e_end) = (
+                wall_pass.chunk_start[c] as usize,
+                wall_pass.chunk_start[c + 1] as usize,
+            );
             // the next entry whose sphere is to be prefetched
             let mut e_pf = e;
             let mut stale = false;
@@ -321,7 +312,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                 while e_pf < pf_end {
                     // SAFETY: the entry and its sphere exist (a prefetch
                     // never faults anyway).
-                    unsafe { prefetch(sp.state.as_ptr().add(at(entry_sphere, e_pf) as usize)) };
+                    unsafe { prefetch(sp.state.as_ptr().add(at(wall_pass.entry_sphere, e_pf) as usize)) };
                     e_pf += 1;
                 }
                 // the column sum of a body a few ahead (the pair stage wrote
@@ -334,7 +325,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                 }
                 let s_end = sp.of_body(bi).end;
                 // SAFETY: e < e_end ≤ the number of entries.
-                while e < e_end && (unsafe { at(entry_sphere, e) } as usize) < s_end {
+                while e < e_end && (unsafe { at(wall_pass.entry_sphere, e) } as usize) < s_end {
                     e += 1;
                 }
                 // --- sphere–sphere contacts: summed by the pair stage, or
@@ -356,126 +347,10 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                 let mut m = pl.torque;
                 // --- sphere–wall contacts
                 if e > e0 {
-                    if walls_average {
-                        wcounts.clear();
-                        let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
-                        for q in e0..e {
-                            let s = entry_sphere[q] as usize;
-                            for wi in candidates(q) {
-                                let k = walls[wi].shape.contacts(
-                                    meshes,
-                                    sp.position(s),
-                                    sp.state[s].radius,
-                                    0.0,
-                                    &mut buf,
-                                );
-                                for _ in 0..k {
-                                    wcounts.add(wi as u64);
-                                }
-                            }
-                        }
-                    }
-                    let ctx = WallCtx {
-                        sp,
-                        b,
-                        table,
-                        walls,
-                        dt,
-                        bi,
-                        com,
+                    // SAFETY: the entries e0..e are body bi's, chunk c's.
+                    unsafe {
+                        wall_pass.body(bi, com, e0..e, c, wcounts, touch_buf, stat, &mut f, &mut m)
                     };
-                    let buf = &mut *touch_buf;
-                    for q in e0..e {
-                        // SAFETY: entry q is of body bi, handled by this
-                        // chunk only.
-                        let (s, key, hist) =
-                            unsafe { (at(entry_sphere, q) as usize, keys.get(q), hists.get(q)) };
-                        let mut cand = candidates(q).peekable();
-                        if cand.peek().is_none() {
-                            // no wall to test: only clear what a contact left
-                            if key[0] != 0 {
-                                *key = [0; WALL_SLOTS];
-                                *hist = [ContactHistory::default(); WALL_SLOTS];
-                            }
-                            continue;
-                        }
-                        let mut new_key = [0u32; WALL_SLOTS];
-                        let mut new_hist = [ContactHistory::default(); WALL_SLOTS];
-                        let mut n_new = 0;
-                        let mut used = [false; WALL_SLOTS];
-                        for wi in cand {
-                            let wall = &walls[wi];
-                            let k = wall.shape.contacts(
-                                meshes,
-                                sp.position(s),
-                                sp.state[s].radius,
-                                0.0,
-                                buf,
-                            );
-                            let is_mesh = matches!(wall.shape, WallShape::Mesh { .. });
-                            for touch in &buf[..k] {
-                                let (patch, old) = if is_mesh {
-                                    let patch = oct_encode(touch.normal);
-                                    (patch, match_mesh_slot(key, &used, wi, touch.normal))
-                                } else {
-                                    let patch = touch.face as u16;
-                                    let slot_key = slot_key(wi, patch);
-                                    (patch, key.iter().position(|&x| x == slot_key))
-                                };
-                                let slot_key = slot_key(wi, patch);
-                                let mut h = match old {
-                                    Some(o) => {
-                                        used[o] = true;
-                                        hist[o]
-                                    }
-                                    None => ContactHistory::default(),
-                                };
-                                let scale = if wall.multi_contact == MultiContact::Average {
-                                    1.0 / wcounts.get(wi as u64) as f64
-                                } else {
-                                    1.0
-                                };
-                                let (fw, mw, tw, energy, fn_w) = ctx.evaluate(s, wi, touch, &mut h);
-                                if recording {
-                                    // SAFETY: chunk c's list is written by chunk c only.
-                                    unsafe { wall_records.get(c) }.push(WallRecord {
-                                        sphere: s as u32,
-                                        wall: wi as u32,
-                                        patch,
-                                        normal: touch.normal,
-                                        overlap: touch.overlap,
-                                        force: fw * scale,
-                                        normal_force: fn_w * scale,
-                                        spring: h.tangential,
-                                    });
-                                }
-                                f += fw * scale;
-                                m += mw * scale;
-                                // SAFETY: row c of the chunk loads belongs to this chunk only.
-                                let load = unsafe { loads.get(c * nw + wi) };
-                                load.force -= fw * scale;
-                                load.torque -= tw * scale;
-                                stat.wall_contacts += 1;
-                                stat.elastic_energy += energy * scale;
-                                let ratio = touch.overlap / sp.state[s].radius;
-                                if ratio > stat.max_overlap_ratio {
-                                    stat.max_overlap_ratio = ratio;
-                                    stat.max_overlap_bodies = [b.id[bi], 0];
-                                    stat.max_overlap_wall = wi as u32 + 1;
-                                }
-                                if n_new < WALL_SLOTS {
-                                    new_key[n_new] = slot_key;
-                                    new_hist[n_new] = h;
-                                    n_new += 1;
-                                }
-                            }
-                        }
-                        // most spheres touch no wall: skip the write then
-                        if n_new > 0 || key[0] != 0 {
-                            *key = new_key;
-                            *hist = new_hist;
-                        }
-                    }
                 }
                 // the body's velocities as local values, kicked, then stored
                 // once: read back from memory right after the kick's
@@ -554,152 +429,6 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         *load = l;
     }
     any_stale.into_inner()
-}
-
-/// The indices of the set bits of a mask, ascending.
-struct BitIter(u64);
-
-impl Iterator for BitIter {
-    type Item = usize;
-    #[inline(always)]
-    fn next(&mut self) -> Option<usize> {
-        if self.0 == 0 {
-            return None;
-        }
-        let i = self.0.trailing_zeros() as usize;
-        self.0 &= self.0 - 1;
-        Some(i)
-    }
-}
-
-
-/// Largest angle (rad) between a mesh contact's normal and the normal stored
-/// with a slot of the previous step for the contact to continue that slot's
-/// history (30°; larger than the mesh merge angle, so that a contact patch
-/// moving onto the next facet keeps its history).
-pub const MESH_MATCH_ANGLE: f64 = std::f64::consts::PI / 6.0;
-
-/// Key of a sphere–wall contact slot (0 = empty): wall index in the high 16
-/// bits, and in the low 16 bits the face (analytic walls) or the octahedral
-/// code of the contact normal (mesh walls), plus one.
-#[inline(always)]
-fn slot_key(wi: usize, sub: u16) -> u32 {
-    ((wi as u32) << 16 | sub as u32) + 1
-}
-
-/// History slot of the previous step that continues a mesh contact with
-/// normal `n` on wall `wi`: the unused slot of that wall whose stored normal
-/// is closest, within [`MESH_MATCH_ANGLE`]. Mesh contacts are keyed by contact
-/// patch (normal), not by triangle, so the history follows a contact that
-/// slides from one triangle onto the next; the contact law rotates it into
-/// the new tangent plane.
-#[inline]
-fn match_mesh_slot(
-    key: &[u32; WALL_SLOTS],
-    used: &[bool; WALL_SLOTS],
-    wi: usize,
-    n: glam::DVec3,
-) -> Option<usize> {
-    let cos_min = MESH_MATCH_ANGLE.cos();
-    let mut best: Option<(usize, f64)> = None;
-    for (k, &x) in key.iter().enumerate() {
-        if x == 0 || used[k] || ((x - 1) >> 16) as usize != wi {
-            continue;
-        }
-        let c = oct_decode(((x - 1) & 0xFFFF) as u16).dot(n);
-        if c > cos_min && best.map_or(true, |b| c > b.1) {
-            best = Some((k, c));
-        }
-    }
-    best.map(|b| b.0)
-}
-
-/// Octahedral encoding of a unit vector in 16 bits (8 per coordinate; about
-/// 1° resolution), used to remember a mesh contact's normal in its slot key.
-#[inline]
-pub fn oct_encode(n: glam::DVec3) -> u16 {
-    let l1 = n.x.abs() + n.y.abs() + n.z.abs();
-    if !(l1 > 0.0) {
-        return 0;
-    }
-    let (mut u, mut v) = (n.x / l1, n.y / l1);
-    if n.z < 0.0 {
-        let (pu, pv) = (u, v);
-        u = (1.0 - pv.abs()) * pu.signum();
-        v = (1.0 - pu.abs()) * pv.signum();
-    }
-    let q = |a: f64| ((a.clamp(-1.0, 1.0) * 0.5 + 0.5) * 255.0).round() as u16;
-    q(u) << 8 | q(v)
-}
-
-/// Inverse of [`oct_encode`] (unit vector).
-#[inline]
-pub fn oct_decode(k: u16) -> glam::DVec3 {
-    let u = (k >> 8) as f64 / 255.0 * 2.0 - 1.0;
-    let v = (k & 0xFF) as f64 / 255.0 * 2.0 - 1.0;
-    let z = 1.0 - u.abs() - v.abs();
-    let (x, y) = if z < 0.0 {
-        ((1.0 - v.abs()) * u.signum(), (1.0 - u.abs()) * v.signum())
-    } else {
-        (u, v)
-    };
-    glam::DVec3::new(x, y, z).normalize()
-}
-
-struct WallCtx<'a> {
-    sp: &'a crate::sphere::Spheres,
-    b: &'a crate::body::Bodies,
-    table: &'a crate::contact::ContactTable,
-    walls: &'a [crate::wall::Wall],
-    dt: f64,
-    bi: usize,
-    com: DVec3,
-}
-
-impl WallCtx<'_> {
-    /// One sphere–wall contact: returns (force on the body, torque on the body
-    /// about its centre of mass, torque on the wall about its motion centre
-    /// *from the body's side* i.e. of the force on the body, elastic energy,
-    /// signed normal force on the body).
-    #[inline]
-    fn evaluate(
-        &self,
-        s: usize,
-        wi: usize,
-        touch: &WallTouch,
-        h: &mut ContactHistory,
-    ) -> (DVec3, DVec3, DVec3, f64, f64) {
-        let wall = &self.walls[wi];
-        let r = self.sp.state[s].radius;
-        let n = touch.normal;
-        let xc = contact_point(self.sp.position(s), n, r, touch.overlap);
-        let bi = self.bi;
-        let wb = self.b.angular_velocity[bi];
-        let v_body = point_velocity(self.com, self.b.velocity[bi], wb, xc);
-        let mut v_wall = wall.surface_velocity_at(xc);
-        let sv = wall.motion.surface_velocity;
-        v_wall -= n * n.dot(sv);
-        let input = ContactInput {
-            normal: n,
-            overlap: touch.overlap,
-            rel_velocity: v_body - v_wall,
-            rel_omega: wb - wall.motion.angular_velocity,
-            radius: r,
-            mass: self.b.mass[bi],
-            dt: self.dt,
-        };
-        let model = self.table.get(self.sp.material[s], wall.material);
-        let out = model.evaluate(&input, h);
-        let m_body = (xc - self.com).cross(out.force) + out.torque;
-        let m_wall_from_body = (xc - wall.motion.center).cross(out.force) + out.torque;
-        (
-            out.force,
-            m_body,
-            m_wall_from_body,
-            out.elastic_energy,
-            out.normal_force,
-        )
-    }
 }
 
 #[cfg(test)]

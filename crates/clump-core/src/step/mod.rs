@@ -40,6 +40,7 @@ pub mod kinematics;
 mod pair_kernel;
 pub mod rebuild;
 pub mod run;
+mod wall_contacts;
 
 use crate::world::World;
 use std::time::Instant;
