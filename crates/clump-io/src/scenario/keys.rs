@@ -381,6 +381,10 @@ pub const OUTPUT_KEYS: &[Key] = &[
     key("thermo", "Thermo interval."),
     key("checkpoint", "Checkpoint interval."),
     key("trajectory", "Trajectories."),
+    key(
+        "vtk_format",
+        "File format of the VTK frames: `\"vtp\"` (default) or `\"vtu\"` (for readers without PolyData, e.g. meshio).",
+    ),
 ];
 /// The keys of each `[[wall]]` type (the other keys of [`WALL_KEYS`] apply
 /// to every wall).
