@@ -176,7 +176,12 @@ impl HealthMonitor {
     /// [`Self::check`] from a step's statistics (as the run loop reports
     /// them after every step, [`crate::step::run::StepReport`]): `step` and
     /// `time` (s) after the step.
-    pub fn check_step(&mut self, step: u64, time: f64, s: &ContactStats) -> Result<(), Instability> {
+    pub fn check_step(
+        &mut self,
+        step: u64,
+        time: f64,
+        s: &ContactStats,
+    ) -> Result<(), Instability> {
         let fail = |kind| Err(Instability { step, time, kind });
         if s.non_finite_body != 0 || !s.kinetic_energy.is_finite() {
             return fail(InstabilityKind::NonFinite {

@@ -38,8 +38,8 @@ pub mod rotation;
 pub mod shape;
 pub mod sphere;
 pub mod state;
-pub mod steer;
 pub mod stats;
+pub mod steer;
 pub mod step;
 #[cfg(any(test, feature = "testbed"))]
 pub mod testbed;

@@ -10,11 +10,11 @@
 use crate::body::Bodies;
 use crate::contact::ContactHistory;
 use crate::neighbor::walls::WallList;
+use crate::neighbor::walls::WALL_SLOTS;
+use crate::stats::ContactStats;
 use crate::step::{rebuild, StepError};
 use crate::wall::{Wall, WallLoad};
 use crate::world::{World, WorldConfig};
-use crate::stats::ContactStats;
-use crate::neighbor::walls::WALL_SLOTS;
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -65,7 +65,9 @@ impl World {
             self.prepare()?;
         }
         let mut map = std::mem::take(&mut self.neighbors.history_map);
-        self.neighbors.pairs.save_history(&self.spheres.gid, &mut map);
+        self.neighbors
+            .pairs
+            .save_history(&self.spheres.gid, &mut map);
         let mut pair_history: Vec<_> = map.drain().collect();
         pair_history.sort_by_key(|e| e.0);
         self.neighbors.history_map = map;

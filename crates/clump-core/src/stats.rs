@@ -118,4 +118,3 @@ impl std::ops::AddAssign for StageTimes {
         self.gather += o.gather;
     }
 }
-

@@ -84,6 +84,8 @@ fn finite(what: &str, v: DVec3) -> Result<(), WorldError> {
     if v.is_finite() {
         Ok(())
     } else {
-        Err(WorldError::BadValue(format!("{what} must be finite, got {v}")))
+        Err(WorldError::BadValue(format!(
+            "{what} must be finite, got {v}"
+        )))
     }
 }

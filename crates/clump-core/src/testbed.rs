@@ -13,12 +13,12 @@
 
 use crate::body::BodyInit;
 use crate::boundary::Domain;
+use crate::contact::ContactTable;
 use crate::contact::{DampingLaw, Material, PairProperties};
 use crate::multi_contact::MultiContact;
 use crate::shape::{ClumpTemplate, Sphere};
 use crate::wall::{Wall, WallMotion, WallShape};
 use crate::world::{AddedMass, World, WorldConfig};
-use crate::contact::ContactTable;
 use glam::{DQuat, DVec3};
 
 /// Lattice pitch, m: just above the clump's bounding diameter (3.47 mm), so

@@ -3,6 +3,7 @@
 
 use clump_core::body::BodyInit;
 use clump_core::boundary::Domain;
+use clump_core::contact::ContactTable;
 use clump_core::contact::{Material, PairProperties};
 use clump_core::insert::{
     pack, FractionBasis, InsertError, Mix, MixEntry, Orientation, PackSpec, PackTarget, Region,
@@ -13,7 +14,6 @@ use clump_core::rotation::RotationScheme;
 use clump_core::shape::{self, ClumpTemplate};
 use clump_core::wall::{Wall, WallMotion, WallShape};
 use clump_core::world::{AddedMass, World, WorldConfig};
-use clump_core::contact::ContactTable;
 use glam::{DQuat, DVec3};
 
 fn world_with(domain: Domain, gravity: DVec3) -> World {

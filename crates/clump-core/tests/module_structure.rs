@@ -23,7 +23,12 @@ fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
 /// The top-level module a file belongs to (`lib` for lib.rs).
 fn owner(src: &Path, file: &Path) -> String {
     let rel = file.strip_prefix(src).unwrap();
-    let first = rel.components().next().unwrap().as_os_str().to_string_lossy();
+    let first = rel
+        .components()
+        .next()
+        .unwrap()
+        .as_os_str()
+        .to_string_lossy();
     first.trim_end_matches(".rs").to_string()
 }
 
@@ -64,7 +69,10 @@ fn graph() -> BTreeMap<String, BTreeSet<String>> {
 fn no_import_cycle_among_top_level_modules() {
     let g = graph();
     for (m, d) in &g {
-        println!("{m} -> {}", d.iter().cloned().collect::<Vec<_>>().join(", "));
+        println!(
+            "{m} -> {}",
+            d.iter().cloned().collect::<Vec<_>>().join(", ")
+        );
     }
     // depth-first search for a back edge
     fn visit(

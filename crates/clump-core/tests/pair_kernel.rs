@@ -9,13 +9,13 @@
 mod common;
 use clump_core::body::BodyInit;
 use clump_core::boundary::Domain;
+use clump_core::contact::ContactTable;
 use clump_core::contact::{
     ContactHistory, ContactInput, DampingLaw, Material, NormalLaw, PairProperties, RollingLaw,
 };
 use clump_core::multi_contact::MultiContact;
 use clump_core::shape::{ClumpTemplate, Sphere};
 use clump_core::world::World;
-use clump_core::contact::ContactTable;
 use common::Lcg;
 use glam::DVec3;
 use std::collections::HashMap;

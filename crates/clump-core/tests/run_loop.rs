@@ -27,7 +27,10 @@ fn bits(w: &World) -> Vec<u64> {
                 b.angular_momentum[i],
                 b.orientation[i],
             );
-            [x.x, x.y, x.z, v.x, v.y, v.z, l.x, l.y, l.z, q.x, q.y, q.z, q.w].map(f64::to_bits)
+            [
+                x.x, x.y, x.z, v.x, v.y, v.z, l.x, l.y, l.z, q.x, q.y, q.z, q.w,
+            ]
+            .map(f64::to_bits)
         })
         .collect()
 }

@@ -101,12 +101,12 @@ fn thermo_rows_and_resume() {
 fn trajectory_rows() {
     use clump_core::body::BodyInit;
     use clump_core::boundary::Domain;
+    use clump_core::contact::ContactTable;
     use clump_core::contact::{Material, PairProperties};
     use clump_core::multi_contact::MultiContact;
     use clump_core::rotation::RotationScheme;
     use clump_core::shape::{self, ClumpTemplate};
     use clump_core::world::{AddedMass, World, WorldConfig};
-use clump_core::contact::ContactTable;
     use clump_io::trajectory::{TrajectoryWriter, TRAJECTORY_HEADER};
     use glam::DQuat;
 

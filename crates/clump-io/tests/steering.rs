@@ -149,7 +149,11 @@ angular_velocity = [0.0, 30.0, 5.0]
             }
         }
     }
-    w.run_driven(&mut Kick { at: 3000, end: 7000 }).unwrap();
+    w.run_driven(&mut Kick {
+        at: 3000,
+        end: 7000,
+    })
+    .unwrap();
     assert!(
         bits(a) == bits(&w),
         "the staged run and the steered run differ"
@@ -178,5 +182,8 @@ fn a_stage_body_change_naming_a_missing_body_is_an_input_error() {
     let e = run.run(RunOptions::default()).unwrap_err();
     let msg = e.to_string();
     assert!(e.is_input(), "{msg}");
-    assert!(msg.contains("no body with id 9") && msg.contains("s.toml"), "{msg}");
+    assert!(
+        msg.contains("no body with id 9") && msg.contains("s.toml"),
+        "{msg}"
+    );
 }

@@ -3,13 +3,13 @@
 
 use clump_core::body::BodyInit;
 use clump_core::boundary::Domain;
+use clump_core::contact::ContactTable;
 use clump_core::contact::{Material, PairProperties};
 use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::RotationScheme;
 use clump_core::shape::{self, ClumpTemplate};
 use clump_core::wall::{TriMesh, Wall, WallMotion, WallShape};
 use clump_core::world::{AddedMass, World, WorldConfig};
-use clump_core::contact::ContactTable;
 use clump_io::vtk::{self, PvdWriter, VtkSeries, CYLINDER_SEGMENTS};
 use glam::{DQuat, DVec3};
 use std::collections::HashMap;

@@ -4,13 +4,13 @@
 
 use clump_core::body::BodyInit;
 use clump_core::boundary::Domain;
+use clump_core::contact::ContactTable;
 use clump_core::contact::{Material, PairProperties};
 use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::RotationScheme;
 use clump_core::shape::{ClumpTemplate, Sphere};
 use clump_core::wall::{Wall, WallMotion, WallShape};
 use clump_core::world::{AddedMass, World, WorldConfig};
-use clump_core::contact::ContactTable;
 use glam::{DQuat, DVec3};
 
 /// Material index of the particles in worlds built by [`world`].

@@ -44,6 +44,6 @@ pub use builtin::{cube_octet, rod, single_sphere, tetrahedron};
 pub use eigen::{principal_frame, symmetric_eigen};
 pub use error::ShapeError;
 pub use mass_properties::{mass_properties, naive_mass_properties, MassProperties};
-pub use sphere::{union_sphere_indices, Sphere};
 pub use set::TemplateSet;
+pub use sphere::{union_sphere_indices, Sphere};
 pub use template::ClumpTemplate;

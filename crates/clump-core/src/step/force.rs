@@ -14,17 +14,19 @@
 //! about the sphere centre, `Σ (x_c − x_s) × f + couples`. This equals
 //! `Σ (x_c − r_cm) × f` over the contacts.
 
-use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, for_each_run, GATHER_LOOP, PAIR_LOOP};
 use super::integrate::{FinalKick, FirstHalf};
 use super::wall_contacts::WallPass;
-use crate::par::prefetch::prefetch;
-use crate::par::shared::{at, SharedMut};
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::column_sum;
+use crate::par::affinity::{
+    body_chunk_cost, for_each_chunk_with, for_each_run, GATHER_LOOP, PAIR_LOOP,
+};
+use crate::par::prefetch::prefetch;
+use crate::par::shared::{at, SharedMut};
 use crate::sphere::SPHERE_ID_BITS;
+use crate::stats::ContactStats;
 use crate::wall::{WallLoad, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::World;
-use crate::stats::ContactStats;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -73,9 +75,7 @@ pub(crate) fn pair_forces(w: &mut World) {
     if records.recording {
         records.pair.resize(pairs.topo.len(), Default::default());
     }
-    let record = records
-        .recording
-        .then(|| SharedMut::new(&mut records.pair));
+    let record = records.recording.then(|| SharedMut::new(&mut records.pair));
     let rows = RowCtx {
         dt: w.config.dt,
         domain: w.config.domain,
@@ -312,7 +312,13 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                 while e_pf < pf_end {
                     // SAFETY: the entry and its sphere exist (a prefetch
                     // never faults anyway).
-                    unsafe { prefetch(sp.state.as_ptr().add(at(wall_pass.entry_sphere, e_pf) as usize)) };
+                    unsafe {
+                        prefetch(
+                            sp.state
+                                .as_ptr()
+                                .add(at(wall_pass.entry_sphere, e_pf) as usize),
+                        )
+                    };
                     e_pf += 1;
                 }
                 // the column sum of a body a few ahead (the pair stage wrote

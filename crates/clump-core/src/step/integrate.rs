@@ -4,10 +4,10 @@
 //! factor; a full drift of the centre of mass; and a free-rotation drift of
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
-use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};
 use super::kinematics::sphere_position;
-use crate::par::shared::{at, SharedMut};
 use crate::neighbor::skin;
+use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};
+use crate::par::shared::{at, SharedMut};
 use crate::rotation::{inverse_inertia, omega_world, omega_world_rot};
 use crate::world::World;
 use glam::{DMat3, DVec3};
@@ -118,7 +118,8 @@ impl FirstHalf {
             toff: SharedMut::new(&mut w.templates.offset),
             xref: SharedMut::new(&mut w.neighbors.reference_position),
             limit2,
-            pair_body: (w.neighbors.pairs.body.len() == n).then(|| SharedMut::new(&mut w.neighbors.pairs.body)),
+            pair_body: (w.neighbors.pairs.body.len() == n)
+                .then(|| SharedMut::new(&mut w.neighbors.pairs.body)),
         }
     }
 

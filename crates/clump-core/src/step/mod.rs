@@ -137,5 +137,4 @@ impl World {
         rec.recording = false;
         Ok(())
     }
-
 }

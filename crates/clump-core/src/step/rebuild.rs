@@ -22,7 +22,9 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     }
     let min_cell = 2.0 * w.max_radius() + w.skin();
     if reorganize {
-        w.neighbors.pairs.save_history(&w.spheres.gid, &mut w.neighbors.history_map);
+        w.neighbors
+            .pairs
+            .save_history(&w.spheres.gid, &mut w.neighbors.history_map);
         let domain = w.config.domain;
         let n = w.bodies.len();
         let keep = &mut w.scratch.keep;
@@ -115,8 +117,12 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         gid: &sp.gid,
         skin: w.skin(),
     };
-    w.neighbors.pairs
-        .build(&w.neighbors.grid, &w.config.domain, &inp, &w.neighbors.history_map);
+    w.neighbors.pairs.build(
+        &w.neighbors.grid,
+        &w.config.domain,
+        &inp,
+        &w.neighbors.history_map,
+    );
     w.neighbors.history_map.clear();
     w.neighbors.pairs.refresh_bodies(&w.bodies);
     if reorganize {
@@ -140,14 +146,23 @@ fn adapt_skin(w: &mut World) {
         return;
     }
     let sp = &w.spheres;
-    if w.phase.topology_dirty || w.neighbors.reference_position.len() != sp.len() || w.step <= w.neighbors.built_step {
+    if w.phase.topology_dirty
+        || w.neighbors.reference_position.len() != sp.len()
+        || w.step <= w.neighbors.built_step
+    {
         return;
     }
     let d2 = (0..sp.len())
-        .map(|s| sp.position(s).distance_squared(w.neighbors.reference_position[s]))
+        .map(|s| {
+            sp.position(s)
+                .distance_squared(w.neighbors.reference_position[s])
+        })
         .fold(0.0f64, f64::max);
-    w.neighbors.adapted_skin =
-        crate::neighbor::skin::adapted_skin(w.min_radius(), d2.sqrt(), w.step - w.neighbors.built_step);
+    w.neighbors.adapted_skin = crate::neighbor::skin::adapted_skin(
+        w.min_radius(),
+        d2.sqrt(),
+        w.step - w.neighbors.built_step,
+    );
 }
 
 /// Builds the wall Verlet list ([`crate::neighbor::walls`]) at the
@@ -200,7 +215,9 @@ pub(crate) fn build_wall_lists(w: &mut World) {
 /// builds when a wall starts to move, and on a restart.
 pub(crate) fn refresh_wall_list(w: &mut World) {
     let n = w.spheres.len();
-    w.neighbors.wall_list.live_entries(n, &mut w.scratch.wall_carry);
+    w.neighbors
+        .wall_list
+        .live_entries(n, &mut w.scratch.wall_carry);
     build_wall_lists(w);
 }
 

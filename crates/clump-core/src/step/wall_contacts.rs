@@ -160,8 +160,13 @@ impl<'a> WallPass<'a> {
         for q in e0..e {
             // SAFETY: entry q is of body bi, handled by this
             // chunk only.
-            let (s, key, hist) =
-                unsafe { (at(self.entry_sphere, q) as usize, self.keys.get(q), self.hists.get(q)) };
+            let (s, key, hist) = unsafe {
+                (
+                    at(self.entry_sphere, q) as usize,
+                    self.keys.get(q),
+                    self.hists.get(q),
+                )
+            };
             let mut cand = self.candidates(q).peekable();
             if cand.peek().is_none() {
                 // no wall to test: only clear what a contact left
@@ -248,7 +253,6 @@ impl<'a> WallPass<'a> {
                 *hist = new_hist;
             }
         }
-    
     }
 }
 
@@ -267,7 +271,6 @@ impl Iterator for BitIter {
         Some(i)
     }
 }
-
 
 /// Largest angle (rad) between a mesh contact's normal and the normal stored
 /// with a slot of the previous step for the contact to continue that slot's
@@ -397,4 +400,3 @@ impl WallCtx<'_> {
         )
     }
 }
-

@@ -3,12 +3,12 @@
 use crate::body::{Bodies, BodyInit};
 use crate::boundary::Domain;
 use crate::contact::{ContactTable, Material};
-use crate::stats::ContactStats;
 use crate::multi_contact::MultiContact;
 use crate::neighbor::NeighborState;
 use crate::rotation::RotationScheme;
 use crate::shape::{ClumpTemplate, TemplateSet};
 use crate::sphere::Spheres;
+use crate::stats::ContactStats;
 use crate::wall::{TriMesh, Wall, WallLoad, WallSet, WallShape};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};

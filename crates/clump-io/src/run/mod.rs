@@ -36,9 +36,9 @@ mod report;
 mod stages;
 
 pub use checkpoint::{load_checkpoint, load_checkpoint_with_id, Checkpoint};
-pub use report::InsertionCount;
 pub use error::{RunError, UnstableRun};
 pub use manifest::final_state_json;
+pub use report::InsertionCount;
 
 use crate::scenario::Scenario;
 use clump_core::health::{HealthMonitor, Instability};

@@ -1,8 +1,8 @@
 //! The output files of a run: VTK series, thermo.csv with the wall columns,
 //! trajectories; opened fresh or resumed, and written at their intervals.
 
-use super::outdir;
 use super::error::rt;
+use super::outdir;
 use super::{RunError, Runner};
 use crate::scenario::Scenario;
 use crate::thermo_csv::{ThermoWriter, WallColumns};

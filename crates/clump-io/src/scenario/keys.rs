@@ -269,8 +269,14 @@ pub const INSERT_KEYS: &[Key] = &[
         "angular_velocity",
         "Initial angular velocity, world frame, rad/s (pack, stream).",
     ),
-    key("force_flags", "Force flags per world axis (over the template's)."),
-    key("torque_flags", "Torque flags per world axis (over the template's)."),
+    key(
+        "force_flags",
+        "Force flags per world axis (over the template's).",
+    ),
+    key(
+        "torque_flags",
+        "Torque flags per world axis (over the template's).",
+    ),
     key(
         "fixed",
         "The bodies never move (LIGGGHTS `fix freeze`); they still make contacts.",
@@ -347,7 +353,10 @@ pub const STAGE_KEYS: &[Key] = &[
 pub const BODY_CHANGE_KEYS: &[Key] = &[
     key("id", "Global body id (1-based, in insertion order)."),
     key("velocity", "New centre-of-mass velocity, m/s."),
-    key("angular_velocity", "New angular velocity (world frame), rad/s."),
+    key(
+        "angular_velocity",
+        "New angular velocity (world frame), rad/s.",
+    ),
 ];
 
 /// The keys of `[output.vtk]`, `[output.thermo]` and `[output.checkpoint]` ([`RawEvery`]).

@@ -27,8 +27,8 @@ pub use diag::{Diagnostic, Location, ScenarioError, Severity};
 pub use model::*;
 pub use source::{Seg, Source};
 
-use clump_core::world::World;
 use clump_core::contact::ContactTable;
+use clump_core::world::World;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -174,9 +174,20 @@ impl Scenario {
 
     /// An error at `[[stage]]` `stage`'s `[[stage.body]]` entry `index`
     /// (its `id`), for problems found when the stage begins.
-    pub fn stage_body_error(&self, stage: usize, index: usize, message: impl Into<String>) -> ScenarioError {
+    pub fn stage_body_error(
+        &self,
+        stage: usize,
+        index: usize,
+        message: impl Into<String>,
+    ) -> ScenarioError {
         let src = Source::new(&self.path, self.text.clone());
-        let at = [Seg::K("stage"), Seg::I(stage), Seg::K("body"), Seg::I(index), Seg::K("id")];
+        let at = [
+            Seg::K("stage"),
+            Seg::I(stage),
+            Seg::K("body"),
+            Seg::I(index),
+            Seg::K("id"),
+        ];
         ScenarioError::one(src.error_at(&at, message))
     }
 }

@@ -292,9 +292,9 @@ fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact::{ContactModel, Material, NormalLaw, PairProperties};
     use crate::par::simd::simd;
     use crate::par::simd::Simd;
-    use crate::contact::{ContactModel, Material, NormalLaw, PairProperties};
 
     /// Lanes of contacts with overlaps of 0 to 20 % of the radius, sliding
     /// and sticking springs, random velocities; `mixed`: every lane its own

@@ -37,14 +37,14 @@
 //! pair's normal, overlap and forces.
 
 use super::force::BODY_CHUNK;
+use crate::contact::ContactInput;
+use crate::neighbor::pairs::{BodyLoad, PairBody};
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
 use crate::par::simd::Simd;
-use lanes::{get3, run_law, set3, Lanes};
-use crate::contact::ContactInput;
-use crate::neighbor::pairs::{BodyLoad, PairBody};
 use crate::stats::ContactStats;
 use glam::DVec3;
+use lanes::{get3, run_law, set3, Lanes};
 
 mod lanes;
 
@@ -355,12 +355,8 @@ impl RowCtx<'_> {
                     mass: l.m_star[k],
                     dt: self.dt,
                 };
-                let (couple, e_r) = model.rolling_couple(
-                    &input,
-                    l.normal_force[k],
-                    l.kn[k],
-                    self.rolling.get(p),
-                );
+                let (couple, e_r) =
+                    model.rolling_couple(&input, l.normal_force[k], l.kn[k], self.rolling.get(p));
                 let couple = couple * l.scale[k];
                 let (ti, tj) = (get3(&l.torque_i, k), get3(&l.torque_j, k));
                 set3(&mut l.torque_i, k, ti + couple);
@@ -467,7 +463,6 @@ impl RowCtx<'_> {
     }
 }
 
-
 /// How many candidate pairs ahead the detect pass prefetches the partner
 /// sphere's state, body index and the pair's spring in a bed whose data fit
 /// the caches ([`PREFETCH_MIN_SPHERES`]).
@@ -534,4 +529,3 @@ impl Default for Batch {
         }
     }
 }
-

@@ -3,8 +3,8 @@
 //! of mass, the initial angular velocity, Euler-angle orientations and the
 //! stream's `start_after`.
 
-use super::{Cx, InsertKind, RawInsert, RawTemplate, TemplateDef, R};
 use super::Seg::{I, K};
+use super::{Cx, InsertKind, RawInsert, RawTemplate, TemplateDef, R};
 use clump_core::dof::Dof;
 use glam::{DQuat, DVec3};
 

@@ -1,12 +1,12 @@
 //! `[[insert]]`: bodies from a file, packed regions and streams.
 
-use crate::scenario::{placement};
 use super::keys::{kind_keys, kind_specific, INSERT_KIND_KEYS, REGION_TYPE_KEYS};
 use super::model::*;
 use super::raw::*;
 use super::source::Seg;
 use super::Seg::{I, K};
 use super::{dof, lookup, Cx, PACK_ERROR_FRACTION, R};
+use crate::scenario::placement;
 use clump_core::insert::{
     Mix, Orientation, PackSpec, PackTarget, Region, StreamRate, StreamSpec, RSA_LIMIT,
 };

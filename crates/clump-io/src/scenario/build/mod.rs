@@ -19,13 +19,13 @@ mod templates;
 mod time_step;
 mod walls;
 
-use crate::scenario::guard;
 use super::diag::{did_you_mean, list, num, Diagnostic};
 use super::model::*;
 use super::raw::*;
 use super::source::{Seg, Source};
 use super::Files;
 use super::{bodies_file, diag, keys, model, raw, source};
+use crate::scenario::guard;
 use clump_core::health::HealthLimits;
 use clump_core::multi_contact::MultiContact;
 use clump_core::world::WorldConfig;

@@ -1,11 +1,11 @@
 //! `[output]`: output intervals and trajectories.
 
-use crate::scenario::{bounds};
 use super::model::*;
 use super::raw::*;
 use super::source::Seg;
 use super::Seg::{I, K};
 use super::{Cx, R};
+use crate::scenario::bounds;
 
 /// The output settings; intervals in seconds become steps of `dt`.
 /// `two_d`: the scenario is planar (trajectories write the angle θ).

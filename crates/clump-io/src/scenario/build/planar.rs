@@ -6,8 +6,8 @@
 //! come from body files (`kind = "file"`); random packing and streams
 //! place bodies in 3D and are refused.
 
-use super::{Cx, InsertDef, InsertSpec, StageDef, TemplateDef, R};
 use super::Seg::{I, K};
+use super::{Cx, InsertDef, InsertSpec, StageDef, TemplateDef, R};
 use glam::{DQuat, DVec3};
 
 /// Reads `[domain] dimension`: `Some(true)` for 2, `Some(false)` for 3.

@@ -1,12 +1,12 @@
 //! `[[stage]]` (or the single stage of `[simulation]`): durations, gravity
 //! and wall changes.
 
-use crate::scenario::{bounds};
 use super::model::*;
 use super::raw::*;
 use super::source::Seg;
 use super::Seg::{I, K};
 use super::{lookup, unique_name, Cx, R};
+use crate::scenario::bounds;
 use glam::DVec3;
 
 /// The stages in order, with their first steps; `sim` is `[simulation]`.
@@ -112,7 +112,12 @@ pub(super) fn stages(
                 let cp = |k: &'static str| [K("stage"), I(i), K("body"), I(j), K(k)];
                 let ct = [K("stage"), I(i), K("body"), I(j)];
                 let id = c.id.ok_or_else(|| {
-                    cx.missing(&ct, "[[stage.body]]", "id", "the global id of a body (1-based)")
+                    cx.missing(
+                        &ct,
+                        "[[stage.body]]",
+                        "id",
+                        "the global id of a body (1-based)",
+                    )
                 })?;
                 if id == 0 {
                     return Err(cx.err(&cp("id"), "body ids start at 1"));

@@ -1,11 +1,11 @@
 //! The time step: explicit or `"auto"`, checked against the Rayleigh time of
 //! the smallest sphere.
 
-use crate::scenario::{bounds};
 use super::model::*;
 use super::raw::*;
 use super::Seg::K;
 use super::{Cx, DT_ERROR_FRACTION, DT_WARN_FRACTION, R};
+use crate::scenario::bounds;
 use clump_core::contact::time_scale::rayleigh_time;
 use clump_core::contact::Material;
 
