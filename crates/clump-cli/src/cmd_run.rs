@@ -173,8 +173,21 @@ fn report_bodies(runner: &Runner) {
         }
     }
     let lost = runner.lost_bodies();
-    if lost > 0 {
-        outln!("lost: {lost} bodies left the domain (their centre crossed a non-periodic side)");
+    if lost.total() > 0 {
+        let causes: Vec<String> = lost
+            .by_cause()
+            .into_iter()
+            .map(|(cause, n)| match cause {
+                "not_finite" => format!("{n} with a non-finite position"),
+                "removed" => format!("{n} removed by a driver"),
+                side => format!("{n} through the {side} side"),
+            })
+            .collect();
+        outln!(
+            "lost: {} bodies: {} (a body is lost when its centre crosses a non-periodic side of the domain)",
+            lost.total(),
+            causes.join(", ")
+        );
     }
 }
 

@@ -1,5 +1,6 @@
 //! The simulation domain and periodic boundaries.
 
+use crate::lost::LossCause;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
@@ -47,8 +48,27 @@ impl Domain {
     /// True when a centre of mass at `x` lies outside the domain along a
     /// non-periodic axis (such a body is removed).
     pub fn is_outside(&self, x: DVec3) -> bool {
-        (0..3).any(|a| !self.periodic[a] && (x[a] < self.lo[a] || x[a] > self.hi[a]))
-            || !x.is_finite()
+        self.exit_cause(x).is_some()
+    }
+
+    /// Why a centre of mass at `x` is outside the domain: the first
+    /// non-periodic side it lies beyond (x, then y, then z), or a
+    /// non-finite position; `None` inside.
+    pub fn exit_cause(&self, x: DVec3) -> Option<LossCause> {
+        if !x.is_finite() {
+            return Some(LossCause::NotFinite);
+        }
+        (0..3).find_map(|axis| {
+            if self.periodic[axis] {
+                None
+            } else if x[axis] < self.lo[axis] {
+                Some(LossCause::Side { axis, high: false })
+            } else if x[axis] > self.hi[axis] {
+                Some(LossCause::Side { axis, high: true })
+            } else {
+                None
+            }
+        })
     }
 
     /// Integer image shift `s` (per axis) such that `d + s·L` is the minimum

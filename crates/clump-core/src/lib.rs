@@ -30,6 +30,7 @@ pub mod contacts;
 pub mod dof;
 pub mod health;
 pub mod insert;
+pub mod lost;
 pub mod math;
 pub mod multi_contact;
 pub mod neighbor;

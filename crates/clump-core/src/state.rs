@@ -27,8 +27,8 @@ pub struct WorldState {
     pub step: u64,
     /// Simulated time, s.
     pub time: f64,
-    /// Bodies lost so far.
-    pub lost_bodies: u64,
+    /// Bodies lost so far, by cause.
+    pub lost: crate::lost::LostBodies,
     /// Neighbour builds so far.
     pub rebuilds: u64,
     /// Next global body id.
@@ -76,7 +76,7 @@ impl World {
             config: self.config,
             step: self.step,
             time: self.time,
-            lost_bodies: self.lost_bodies,
+            lost: self.lost,
             rebuilds: self.rebuilds,
             next_id: self.next_id,
             bodies: self.bodies.clone(),
@@ -178,7 +178,7 @@ impl World {
         self.neighbors.built_step = s.built_step;
         self.step = s.step;
         self.time = s.time;
-        self.lost_bodies = s.lost_bodies;
+        self.lost = s.lost;
         self.rebuilds = s.rebuilds;
         self.next_id = s.next_id;
         self.bodies = s.bodies;

@@ -74,6 +74,7 @@ impl World {
             .filter(|&k| k as usize != i)
             .collect();
         self.bodies.permute(&keep);
+        self.lost.record(crate::lost::LossCause::Removed);
         self.phase.topology_dirty = true;
         self.phase.forces_ready = false;
         Ok(())

@@ -27,7 +27,7 @@ pub struct Thermo {
     pub potential: f64,
     /// Largest overlap / smaller radius over all contacts.
     pub max_overlap_ratio: f64,
-    /// Bodies removed for leaving the domain so far.
+    /// Bodies lost so far, all causes (see [`crate::lost::LostBodies`]).
     pub lost_bodies: u64,
     /// Load on each wall (force and torque exerted by the particles), world frame.
     pub wall_loads: Vec<WallLoad>,
@@ -57,7 +57,7 @@ impl World {
             elastic: self.stats.elastic_energy,
             potential: pe,
             max_overlap_ratio: self.stats.max_overlap_ratio,
-            lost_bodies: self.lost_bodies,
+            lost_bodies: self.lost.total(),
             wall_loads: self.walls.loads.clone(),
         }
     }

@@ -32,8 +32,9 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         keep.resize(n, true);
         for b in 0..n {
             let x = w.bodies.position[b];
-            if domain.is_outside(x) {
+            if let Some(cause) = domain.exit_cause(x) {
                 keep[b] = false;
+                w.lost.record(cause);
             } else {
                 w.bodies.position[b] = domain.wrap(x);
             }
@@ -48,7 +49,6 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
             &mut w.scratch.perm,
             &mut w.scratch.keys,
         );
-        w.lost_bodies += (n - w.scratch.perm.len()) as u64;
         // carry wall-contact slots along with their spheres: per sphere in
         // the new order, the entry of the old wall list it continues; bodies
         // added since the last build (indices ≥ old count) start empty

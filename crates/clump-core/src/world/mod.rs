@@ -3,6 +3,7 @@
 use crate::body::{Bodies, BodyInit};
 use crate::boundary::Domain;
 use crate::contact::{ContactTable, Material};
+use crate::lost::LostBodies;
 use crate::multi_contact::MultiContact;
 use crate::neighbor::NeighborState;
 use crate::rotation::RotationScheme;
@@ -86,8 +87,8 @@ pub struct World {
     pub step: u64,
     /// Simulated time, s.
     pub time: f64,
-    /// Bodies removed because they left the domain.
-    pub lost_bodies: u64,
+    /// Bodies that left the simulation, by cause.
+    pub lost: LostBodies,
     /// Aggregates of the last force evaluation.
     pub stats: ContactStats,
     /// Number of neighbour-list builds so far.
@@ -121,7 +122,7 @@ impl World {
             walls: WallSet::default(),
             step: 0,
             time: 0.0,
-            lost_bodies: 0,
+            lost: LostBodies::default(),
             stats: ContactStats::default(),
             rebuilds: 0,
             stage_times: Default::default(),

@@ -42,7 +42,8 @@ impl Runner {
             "wall_time_s": s.wall_time,
             "bodies": s.bodies,
             "spheres": s.spheres,
-            "lost_bodies": self.world.lost_bodies,
+            "lost_bodies": self.world.lost.total(),
+            "lost_by_cause": self.world.lost.by_cause().into_iter().map(|(k, n)| (k.to_string(), serde_json::Value::from(n))).collect::<serde_json::Map<_, _>>(),
             "insertions": self.insertions(),
             "templates": self.scenario.templates.iter().map(|t| t.name.as_str()).collect::<Vec<_>>(),
             "sphere_steps": s.sphere_steps,
@@ -87,7 +88,7 @@ pub fn final_state_json(world: &World) -> String {
     let v = serde_json::json!({
         "step": world.step,
         "time_bits": format!("{:016x}", world.time.to_bits()),
-        "lost_bodies": world.lost_bodies,
+        "lost_bodies": world.lost.total(),
         "bodies": bodies,
     });
     serde_json::to_string_pretty(&v).unwrap_or_default()

@@ -57,9 +57,9 @@ impl Runner {
         v
     }
 
-    /// Bodies removed so far because they left the domain (their centre
-    /// crossed a non-periodic side).
-    pub fn lost_bodies(&self) -> u64 {
-        self.world.lost_bodies
+    /// Bodies lost so far, by cause (a side of the domain their centre
+    /// crossed, a non-finite position, removal by a driver).
+    pub fn lost_bodies(&self) -> clump_core::lost::LostBodies {
+        self.world.lost
     }
 }

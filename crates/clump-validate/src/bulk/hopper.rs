@@ -95,7 +95,7 @@ pub struct Discharge {
 /// below it still in the domain, kg.
 fn discharged(w: &World, m: f64) -> f64 {
     let below = w.bodies.position.iter().filter(|p| p.z < 0.0).count() as u64;
-    (w.lost_bodies + below) as f64 * m
+    (w.lost.total() + below) as f64 * m
 }
 
 /// Runs the constant-head discharge through an orifice of diameter `d0` (m).

@@ -59,20 +59,49 @@ struct Cx<'a> {
     src: &'a Source,
     files: &'a mut Files,
     warnings: Vec<Diagnostic>,
-    /// Errors of the items of the current section (templates, walls,
-    /// inserts), collected so that all of them are reported at once.
+    /// Every error found so far, in file-section order, so that all of them
+    /// are reported at once.
     errors: Vec<Diagnostic>,
+    /// Where the current section's errors start in `errors`.
+    section_start: usize,
 }
 
 impl Cx<'_> {
-    /// Ends a section whose items collected their errors: the first error,
-    /// if any (the others stay in `errors` and are reported with it); later
-    /// sections depend on this one's names, so they are not checked.
+    /// Ends a section whose items collected their errors: the section's
+    /// first error, if any (the others stay in `errors`).
     fn barrier(&mut self) -> R<()> {
-        if self.errors.is_empty() {
-            Ok(())
+        if self.errors.len() > self.section_start {
+            Err(self.errors.remove(self.section_start))
         } else {
-            Err(self.errors.remove(0))
+            Ok(())
+        }
+    }
+
+    /// Takes the first error found (every section that failed left one).
+    fn first_error(&mut self) -> Diagnostic {
+        if self.errors.is_empty() {
+            Diagnostic::new(
+                super::diag::Severity::Error,
+                &self.src.path,
+                "the scenario could not be built (no diagnostic was recorded: please report this)",
+            )
+        } else {
+            self.errors.remove(0)
+        }
+    }
+
+    /// Builds one section; its errors join `errors` in order and the result
+    /// is `None`. Sections that need it are then skipped, and the others
+    /// are still checked, so one pass reports every independent error.
+    fn section<T>(&mut self, f: impl FnOnce(&mut Self) -> R<T>) -> Option<T> {
+        let start = self.errors.len();
+        self.section_start = start;
+        match f(self) {
+            Ok(v) => Some(v),
+            Err(d) => {
+                self.errors.insert(start, d);
+                None
+            }
         }
     }
 
@@ -210,6 +239,7 @@ pub(super) fn build(
         files,
         warnings: Vec::new(),
         errors: Vec::new(),
+        section_start: 0,
     };
     let sc = build_inner(&mut cx, raw).map_err(|first| {
         let mut diagnostics = vec![first];
@@ -223,45 +253,123 @@ pub(super) fn build(
 }
 
 fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
-    let (material_names, materials) = materials::materials(cx, &raw)?;
-    let pair_table = contact::pair_table(cx, &raw, &material_names, materials.len())?;
-    let (template_names, mut templates) =
-        templates::templates(cx, &raw, &material_names, &materials)?;
-    let two_d = planar::two_d(cx, raw.domain.as_ref().and_then(|d| d.dimension))?;
-    if two_d {
-        planar::templates(cx, &mut templates)?;
-    }
-    let (mix_names, mixes) = templates::mixes(cx, &raw, &template_names)?;
     let sim = raw.simulation.clone().unwrap_or_default();
-    let setting = domain::setting(cx, &raw, &sim)?;
-    let time_step = time_step::time_step(
-        cx,
-        &sim,
-        &templates,
-        &mixes,
-        &materials,
-        &material_names,
-        &setting.domain,
-        setting.skin,
-    )?;
-    let dt = time_step.dt;
-    let (wall_names, walls, meshes, torque_points) = walls::walls(cx, &raw, &material_names)?;
-    let stages = stages::stages(cx, &raw, &sim, &wall_names, dt)?;
-    let mut inserts = inserts::inserts(
-        cx,
-        &raw,
-        &stages,
-        &templates,
-        &template_names,
-        &mixes,
-        &mix_names,
-        dt,
-        &setting.domain,
-    )?;
-    if two_d {
-        planar::inserts(cx, &mut inserts, setting.gravity, &stages)?;
+    // sections in file order; each runs when what it needs was built
+    let mats = cx.section(|cx| materials::materials(cx, &raw));
+    // sections that only look materials up by name are still checked when
+    // a material's values are wrong (their result is then discarded)
+    let given_names: Vec<String> = match &mats {
+        Some((names, _)) => names.clone(),
+        None => raw.material.iter().filter_map(|m| m.name.clone()).collect(),
+    };
+    let pair_table =
+        cx.section(|cx| contact::pair_table(cx, &raw, &given_names, given_names.len()));
+    let mut tpls = mats
+        .as_ref()
+        .and_then(|(names, m)| cx.section(|cx| templates::templates(cx, &raw, names, m)));
+    let two_d = cx.section(|cx| planar::two_d(cx, raw.domain.as_ref().and_then(|d| d.dimension)));
+    if let (Some(true), Some((_, t))) = (two_d, tpls.as_mut()) {
+        if cx.section(|cx| planar::templates(cx, t)).is_none() {
+            tpls = None;
+        }
     }
-    let output = output::output(cx, &raw, &stages, dt, two_d)?;
+    let mixes = tpls
+        .as_ref()
+        .and_then(|(names, _)| cx.section(|cx| templates::mixes(cx, &raw, names)));
+    let setting = cx.section(|cx| domain::setting(cx, &raw, &sim));
+    let time_step = match (&mats, &tpls, &mixes, &setting) {
+        (
+            Some((material_names, materials)),
+            Some((_, templates)),
+            Some((_, mixes)),
+            Some(setting),
+        ) => cx.section(|cx| {
+            time_step::time_step(
+                cx,
+                &sim,
+                templates,
+                mixes,
+                materials,
+                material_names,
+                &setting.domain,
+                setting.skin,
+            )
+        }),
+        _ => None,
+    };
+    // the stages and outputs are still checked with a dt the user gave when
+    // the time step could not be derived (e.g. a template failed)
+    let dt = time_step.as_ref().map(|t| t.dt).or(match sim.dt {
+        Some(DtSpec::Fixed(v)) if v.is_finite() && v > 0.0 => Some(v),
+        _ => None,
+    });
+    let walls = cx.section(|cx| walls::walls(cx, &raw, &given_names));
+    let stages = match (&walls, dt) {
+        (Some((wall_names, ..)), Some(dt)) => {
+            cx.section(|cx| stages::stages(cx, &raw, &sim, wall_names, dt))
+        }
+        _ => None,
+    };
+    let mut inserts = match (&stages, &tpls, &mixes, dt, &setting) {
+        (
+            Some(stages),
+            Some((template_names, templates)),
+            Some((mix_names, mixes)),
+            Some(dt),
+            Some(setting),
+        ) => cx.section(|cx| {
+            inserts::inserts(
+                cx,
+                &raw,
+                stages,
+                templates,
+                template_names,
+                mixes,
+                mix_names,
+                dt,
+                &setting.domain,
+            )
+        }),
+        _ => None,
+    };
+    if let (Some(true), Some(ins), Some(setting), Some(stages)) =
+        (two_d, inserts.as_mut(), &setting, &stages)
+    {
+        if cx
+            .section(|cx| planar::inserts(cx, ins, setting.gravity, stages))
+            .is_none()
+        {
+            inserts = None;
+        }
+    }
+    let output = match (&stages, dt, two_d) {
+        (Some(stages), Some(dt), Some(two_d)) => {
+            cx.section(|cx| output::output(cx, &raw, stages, dt, two_d))
+        }
+        _ => None,
+    };
+    let (
+        Some((material_names, materials)),
+        Some(pair_table),
+        Some((_, templates)),
+        Some((_, mixes)),
+        Some(setting),
+        Some(time_step),
+        Some((_, walls, meshes, torque_points)),
+        Some(stages),
+        Some(inserts),
+        Some(output),
+    ) = (
+        mats, pair_table, tpls, mixes, setting, time_step, walls, stages, inserts, output,
+    )
+    else {
+        // a section that is `None` reported its error
+        return Err(cx.first_error());
+    };
+    if !cx.errors.is_empty() {
+        return Err(cx.first_error());
+    }
+    let dt = time_step.dt;
 
     let config = WorldConfig {
         domain: setting.domain,
