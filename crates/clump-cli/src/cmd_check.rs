@@ -38,6 +38,7 @@ fn human_bytes(b: f64) -> String {
 
 /// Runs `clump check`.
 pub fn run(args: &CheckArgs) -> ExitCode {
+    crate::cmd_run::progress::init_logging();
     let sc = match scenario::load(&args.scenario) {
         Ok(s) => s,
         Err(e) => {

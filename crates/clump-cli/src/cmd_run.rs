@@ -262,7 +262,7 @@ pub mod progress {
     pub fn init_logging() {
         use tracing_subscriber::EnvFilter;
         let filter = EnvFilter::try_from_default_env()
-            .unwrap_or_else(|_| EnvFilter::new("warn,clump_io=info,clump=info"));
+            .unwrap_or_else(|_| EnvFilter::new("warn,clump_io=info,clump=info,clump_core=info"));
         let _ = tracing_subscriber::fmt()
             .with_env_filter(filter)
             .with_target(false)

@@ -108,6 +108,8 @@ impl std::error::Error for InputError {}
 /// the process with status 2. Other failures (e.g. writing stdout) are
 /// returned.
 pub fn run(args: &TemplateArgs) -> anyhow::Result<()> {
+    // progress of a slow integration (templates of 10⁴ spheres) on stderr
+    crate::cmd_run::progress::init_logging();
     match execute(args) {
         Err(e) if e.downcast_ref::<InputError>().is_some() => {
             errln!("error: {e}");

@@ -35,8 +35,10 @@ pub mod error;
 pub mod from_mesh;
 pub mod mass_properties;
 pub mod planar;
+mod progress;
 mod set;
 pub mod sphere;
+mod sphere_grid;
 pub mod template;
 pub mod union_integral;
 

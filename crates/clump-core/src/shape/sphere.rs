@@ -64,13 +64,18 @@ pub fn validate_spheres(spheres: &[Sphere]) -> Result<(), ShapeError> {
 /// The spheres must be valid (see [`validate_spheres`]); frame-independent.
 pub fn union_sphere_indices(spheres: &[Sphere]) -> Vec<usize> {
     let n = spheres.len();
+    let grid = super::sphere_grid::SphereGrid::new(spheres);
     let mut keep = Vec::with_capacity(n);
-    'outer: for i in 0..n {
+    for i in 0..n {
         let si = &spheres[i];
-        for (j, sj) in spheres.iter().enumerate() {
-            if i == j {
-                continue;
+        let mut inside = false;
+        // a sphere that contains sphere i has its centre within r_max of
+        // i's, so it is among the grid neighbours
+        grid.for_each_near(spheres, i, |j| {
+            if inside {
+                return;
             }
+            let sj = &spheres[j];
             let d = (si.center - sj.center).length();
             let tol = 4.0 * f64::EPSILON * (sj.radius + sj.center.abs().max_element());
             // Is sphere i inside sphere j?
@@ -80,11 +85,13 @@ pub fn union_sphere_indices(spheres: &[Sphere]) -> Vec<usize> {
                 let tol_i = 4.0 * f64::EPSILON * (si.radius + si.center.abs().max_element());
                 let mutual = d + sj.radius <= si.radius + tol_i;
                 if !mutual || j < i {
-                    continue 'outer;
+                    inside = true;
                 }
             }
+        });
+        if !inside {
+            keep.push(i);
         }
-        keep.push(i);
     }
     keep
 }

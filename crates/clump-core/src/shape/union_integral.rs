@@ -32,7 +32,9 @@ use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 
 use super::disc_union::{Disc, DiscUnion};
+use super::progress::Progress;
 use super::sphere::{union_sphere_indices, Sphere};
+use super::sphere_grid::SphereGrid;
 
 /// Geometric (density-free) properties of a union of spheres, input frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -89,7 +91,11 @@ const WG: [f64; 4] = [
 
 /// Slice integrand: moments of the cross-section at height z (shifted frame).
 struct Slicer<'a> {
+    /// The spheres sorted by centre height, so that a slice visits only
+    /// those within r_max of it.
     spheres: &'a [Sphere],
+    /// Largest radius.
+    rmax: f64,
     discs: Vec<Disc>,
     union: DiscUnion,
     evaluations: usize,
@@ -99,7 +105,12 @@ impl Slicer<'_> {
     fn eval(&mut self, z: f64) -> Vals {
         self.evaluations += 1;
         self.discs.clear();
-        for s in self.spheres {
+        let lo = self.spheres.partition_point(|s| s.center.z < z - self.rmax);
+        let hi = self
+            .spheres
+            .partition_point(|s| s.center.z <= z + self.rmax);
+        // the disc union sorts its discs, so the order here does not matter
+        for s in &self.spheres[lo..hi] {
             let dz = z - s.center.z;
             if dz.abs() < s.radius {
                 let r = ((s.radius - dz) * (s.radius + dz)).sqrt();
@@ -200,17 +211,23 @@ fn gk15(slicer: &mut Slicer, a: f64, b: f64, t0: f64, t1: f64) -> (Vals, Vals) {
 fn breakpoints(sph: &[Sphere]) -> Vec<f64> {
     let n = sph.len();
     // Overlapping pairs (symmetric adjacency lists, ascending).
-    let mut adjacent = vec![Vec::<usize>::new(); n];
-    for i in 0..n {
-        for j in i + 1..n {
-            let d2 = (sph[j].center - sph[i].center).length_squared();
-            let rs = sph[i].radius + sph[j].radius;
-            if d2 < rs * rs && d2 > 0.0 {
-                adjacent[i].push(j);
-                adjacent[j].push(i);
-            }
-        }
-    }
+    // overlapping pairs, each list sorted (the triple search below bisects)
+    let grid = SphereGrid::new(sph);
+    let adjacent: Vec<Vec<usize>> = (0..n)
+        .map(|i| {
+            let mut near = Vec::new();
+            grid.for_each_near(sph, i, |j| {
+                let d2 = (sph[j].center - sph[i].center).length_squared();
+                let rs = sph[i].radius + sph[j].radius;
+                if d2 < rs * rs && d2 > 0.0 {
+                    near.push(j);
+                }
+            });
+            near.sort_unstable();
+            near.dedup();
+            near
+        })
+        .collect();
     // A point on the surface of sphere i can only lie strictly inside a
     // sphere that overlaps sphere i.
     let inside_other = |p: DVec3, i: usize, skip: &[usize]| -> bool {
@@ -332,8 +349,12 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
         .fold(f64::NEG_INFINITY, f64::max);
     let z: Vec<f64> = z.into_iter().filter(|&v| v >= zmin && v <= zmax).collect();
 
+    let mut by_height = shifted.clone();
+    by_height.sort_by(|p, q| p.center.z.total_cmp(&q.center.z));
+    let rmax = shifted.iter().map(|s| s.radius).fold(0.0, f64::max);
     let new_slicer = || Slicer {
-        spheres: &shifted,
+        spheres: &by_height,
+        rmax,
         discs: Vec::with_capacity(shifted.len()),
         union: DiscUnion::new(),
         evaluations: 0,
@@ -344,11 +365,14 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
     let vmax = shifted.iter().map(|s| s.volume()).fold(0.0, f64::max);
     // First pass over all sub-intervals, in parallel (each result depends on
     // its interval only, so the outcome does not depend on the thread count).
+    let progress = Progress::new(shifted.len());
+    let intervals = z.len().saturating_sub(1);
     let segments: Vec<Segment> = z
         .par_windows(2)
         .filter(|w| w[1] > w[0])
         .map_init(new_slicer, |slicer, w| {
             let (value, error) = gk15(slicer, w[0], w[1], 0.0, 1.0);
+            progress.interval_done(intervals);
             Segment {
                 a: w[0],
                 b: w[1],
@@ -383,6 +407,7 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
     let max_evaluations = 2_000_000usize.max(2000 * shifted.len());
     while total_err > TOLERANCE && slicer.evaluations < max_evaluations {
         let Some(seg) = heap.pop() else { break };
+        progress.refining(total_err, TOLERANCE);
         let tm = 0.5 * (seg.t0 + seg.t1);
         if tm <= seg.t0 || tm >= seg.t1 {
             heap.push(Segment { norm: 0.0, ..seg });
