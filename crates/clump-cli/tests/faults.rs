@@ -340,7 +340,9 @@ fn threads_above_the_cores_are_capped() {
 
 /// A full disk (a 256 kB tmpfs; needs root, else the test prints a note
 /// and passes) stops the run with status 1 and a message naming the file;
-/// thermo.csv and traj_*.csv end with a whole row.
+/// thermo.csv and traj_*.csv end with a whole row; no temporary file is
+/// left; the run writes a checkpoint if there is room (one that resumes)
+/// and says so, or says that there was none.
 #[test]
 fn full_disk_stops_the_run_naming_the_file() {
     let d = tmp("enospc");
@@ -372,8 +374,52 @@ fn full_disk_stops_the_run_naming_the_file() {
             (p, t)
         })
         .collect();
+    // what the run says about a checkpoint, and every file it left there
+    let left: Vec<PathBuf> = std::fs::read_dir(&mnt)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    let saved = d.join("saved");
+    std::fs::create_dir_all(&saved).unwrap();
+    for p in &left {
+        if p.is_file() {
+            std::fs::copy(p, saved.join(p.file_name().unwrap())).unwrap();
+        }
+    }
     let _ = Command::new("umount").arg(&mnt).status();
     assert_eq!(o.status.code(), Some(1), "{}", text(&o.stderr));
+    let err = text(&o.stderr);
+    let temporaries: Vec<_> = left
+        .iter()
+        .filter(|p| p.file_name().unwrap().to_string_lossy().contains(".tmp"))
+        .collect();
+    assert!(
+        temporaries.is_empty(),
+        "temporary files left: {temporaries:?}"
+    );
+    eprintln!("full disk: {err}");
+    if err.contains("there was no room for a checkpoint") {
+        assert!(!left
+            .iter()
+            .any(|p| p.extension().is_some_and(|e| e == "ckpt")));
+    } else {
+        // the checkpoint named is whole: it resumes on a disk with room
+        assert!(err.contains("a checkpoint of step"), "{err}");
+        let ck = left
+            .iter()
+            .find(|p| p.extension().is_some_and(|e| e == "ckpt"))
+            .expect("the checkpoint named");
+        let step: u64 = ck.file_stem().unwrap().to_string_lossy()["checkpoint_".len()..]
+            .parse()
+            .unwrap();
+        let r = run(&[
+            "resume".as_ref(),
+            saved.join(ck.file_name().unwrap()).as_os_str(),
+            "--steps".as_ref(),
+            (step + 20).to_string().as_ref(),
+        ]);
+        assert!(r.status.success(), "{}", text(&r.stderr));
+    }
     let err = text(&o.stderr);
     assert!(
         err.contains("No space left on device") && err.contains(&mnt.display().to_string()),

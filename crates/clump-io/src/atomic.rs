@@ -60,17 +60,26 @@ impl AtomicWriter {
         &self.target
     }
 
-    /// Flushes, syncs and renames the temporary file over the target.
+    /// Flushes, syncs and renames the temporary file over the target. On
+    /// failure (e.g. a full disk while flushing) the temporary file is
+    /// removed and the target left untouched.
     pub fn commit(mut self) -> io::Result<()> {
         let buf = self.file.take().expect("not yet committed");
-        let file = buf
+        let done = buf
             .into_inner()
-            .map_err(|e| with_path(e.into_error(), &self.target, "cannot write"))?;
-        file.sync_all()
-            .map_err(|e| with_path(e, &self.tmp, "cannot sync"))?;
-        drop(file);
-        fs::rename(&self.tmp, &self.target)
-            .map_err(|e| with_path(e, &self.target, "cannot rename temporary file onto"))?;
+            .map_err(|e| with_path(e.into_error(), &self.target, "cannot write"))
+            .and_then(|file| {
+                file.sync_all()
+                    .map_err(|e| with_path(e, &self.tmp, "cannot sync"))
+            })
+            .and_then(|()| {
+                fs::rename(&self.tmp, &self.target)
+                    .map_err(|e| with_path(e, &self.target, "cannot rename temporary file onto"))
+            });
+        if done.is_err() {
+            let _ = fs::remove_file(&self.tmp);
+        }
+        done?;
         // Make the rename durable where the platform allows syncing a directory.
         if let Some(dir) = self.target.parent().filter(|p| !p.as_os_str().is_empty()) {
             if let Ok(d) = File::open(dir) {

@@ -83,9 +83,6 @@ impl Runner {
 }
 
 /// Decodes checkpoint file bytes (`path` for messages) and rebuilds the
-/// simulation they hold: the scenario (from the stored text and files), the
-/// world with its restored state, and the driver state. Never panics on
-/// Decodes checkpoint file bytes (`path` for messages) and rebuilds the
 /// simulation they hold: the scenario, the world with its restored state,
 /// and the driver state ([`load_checkpoint_with_id`] without the run id).
 pub fn load_checkpoint(
@@ -95,8 +92,11 @@ pub fn load_checkpoint(
     load_checkpoint_with_id(bytes, checkpoint).map(|(s, w, d, _)| (s, w, d))
 }
 
-/// bad bytes: every problem is an input error.
-/// Also returns the run id stored in the checkpoint.
+/// Decodes checkpoint file bytes (`path` for messages) and rebuilds the
+/// simulation they hold: the scenario (from the stored text and files), the
+/// world with its restored state, and the driver state. Never panics on
+/// bad bytes: every problem is an input error. Also returns the run id
+/// stored in the checkpoint.
 pub fn load_checkpoint_with_id(
     bytes: &[u8],
     checkpoint: &Path,

@@ -372,7 +372,11 @@ impl Runner {
         let status = loop {
             // --- at a step boundary
             if !self.st.pre_step_done {
-                let finished = self.pre_step()?;
+                let finished = match self.pre_step() {
+                    Ok(f) => f,
+                    Err(RunError::Runtime(m)) => return Err(self.output_failed(m)),
+                    Err(e) => return Err(e),
+                };
                 self.st.pre_step_done = true;
                 if finished {
                     break RunStatus::Completed;
@@ -459,6 +463,24 @@ impl Runner {
         self.write_manifest(&summary, opts.threads)
             .map_err(rt("cannot write manifest.json"))?;
         Ok(summary)
+    }
+
+    /// An output of this step could not be written (e.g. a full disk): the
+    /// stage changes and insertions of the step are done (outputs come
+    /// last), so the state is whole. A checkpoint is written if there is
+    /// room, and the message says whether, and how to continue.
+    fn output_failed(&mut self, message: String) -> RunError {
+        self.st.pre_step_done = true;
+        let step = self.world.step;
+        let next = match self.write_checkpoint() {
+            Ok(p) => format!(
+                "a checkpoint of step {step} was written: {} (after freeing space, `clump resume {}` continues; outputs of step {step} may be missing)",
+                p.display(),
+                p.display()
+            ),
+            Err(e) => format!("there was no room for a checkpoint of step {step} either ({e})"),
+        };
+        RunError::Runtime(format!("{message}\n  {next}"))
     }
 
     /// The step of the next event: the end of the current stage, the next
