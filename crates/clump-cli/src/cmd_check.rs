@@ -50,6 +50,9 @@ pub fn run(args: &CheckArgs) -> ExitCode {
         err!("{w}");
     }
     report(&sc);
+    if !crate::memory::fits(&sc) {
+        return ExitCode::from(2);
+    }
     if !args.no_pack {
         if let Err(e) = trial_pack(&sc) {
             err!("{e}");

@@ -213,6 +213,9 @@ pub fn run(args: &RunArgs) -> ExitCode {
     for w in &sc.warnings {
         err!("{w}");
     }
+    if !crate::memory::fits(&sc) {
+        return ExitCode::from(2);
+    }
     let outdir = args
         .outdir
         .clone()

@@ -337,21 +337,6 @@ fn write_table(
 /// growth slack of their vectors).
 const BYTES_PER_VOXEL: f64 = 64.0;
 
-/// Memory the system can still give, bytes (Linux `MemAvailable`; `None`
-/// elsewhere).
-fn available_memory() -> Option<f64> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let kb: f64 = info
-        .lines()
-        .find_map(|l| l.strip_prefix("MemAvailable:"))?
-        .trim()
-        .trim_end_matches("kB")
-        .trim()
-        .parse()
-        .ok()?;
-    Some(kb * 1024.0)
-}
-
 /// Refuses a `--resolution` whose voxel grid (the mesh's bounding box in
 /// cubes of its smallest extent / `resolution`) needs more memory than is
 /// available, saying how much it needs and which resolution fits, instead
@@ -365,7 +350,7 @@ fn voxel_memory_fits(mesh: &clump_core::wall::TriMesh, resolution: usize) -> any
     }
     let voxels = (ext.x / h).ceil() * (ext.y / h).ceil() * (ext.z / h).ceil();
     let need = voxels * BYTES_PER_VOXEL;
-    if let Some(avail) = available_memory() {
+    if let Some(avail) = crate::memory::available_memory() {
         if need > avail {
             // memory grows as resolution³
             let fits = (resolution as f64 * (avail / need).cbrt()).floor();

@@ -18,6 +18,7 @@ mod cmd_resume;
 mod cmd_run;
 mod cmd_template;
 mod cmd_validate;
+mod memory;
 
 /// Clump: a DEM simulator for rigid clumps of overlapping spheres.
 #[derive(Parser)]

@@ -499,3 +499,47 @@ fn run_summary_counts_asked_and_placed_bodies() {
             .unwrap();
     assert_eq!(m["insertions"][0]["waiting"].as_u64(), Some(396 - placed));
 }
+
+/// A pack that places more spheres than memory can hold is refused by
+/// `check` and `run` before anything is allocated, saying how much it
+/// needs; a stream that could bring that many is warned about.
+#[test]
+fn bodies_beyond_memory_are_refused_before_allocating() {
+    let d = tmp("memory");
+    let sc = scenario(&d, 100, 50);
+    let text = std::fs::read_to_string(&sc).unwrap();
+    let text = text
+        .replace("lo = [-0.03, -0.03, -0.01]", "lo = [-50.0, -50.0, -0.01]")
+        .replace("hi = [0.03, 0.03, 0.1]", "hi = [50.0, 50.0, 100.0]")
+        .replace(
+            "count = 20\nregion = { type = \"box\", lo = [-0.02, -0.02, 0.005], hi = [0.02, 0.02, 0.05] }",
+            "count = 2000000000000\nregion = { type = \"box\", lo = [-49.0, -49.0, 1.0], hi = [49.0, 49.0, 99.0] }",
+        );
+    assert!(text.contains("count = 2000000000000"), "{text}");
+    let big = d.join("big.toml");
+    std::fs::write(&big, text).unwrap();
+    let out = d.join("o");
+    for args in [
+        vec!["check".as_ref(), big.as_os_str()],
+        vec![
+            "run".as_ref(),
+            big.as_os_str(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ],
+    ] {
+        let cmd = args[0].to_string_lossy().into_owned();
+        let o = run(&args);
+        let err = text_of(&o);
+        no_panic(&o);
+        assert_eq!(o.status.code(), Some(2), "{cmd}: {err}");
+        assert!(
+            err.contains("GB of memory is available") && err.contains("big.toml"),
+            "{cmd}: {err}"
+        );
+    }
+}
+
+fn text_of(o: &Output) -> String {
+    text(&o.stderr)
+}

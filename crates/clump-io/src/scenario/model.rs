@@ -244,6 +244,21 @@ impl Scenario {
 
     /// Expected number of spheres over the whole run.
     pub fn expected_spheres(&self) -> f64 {
+        self.inserts.iter().map(|i| self.insert_spheres(i)).sum()
+    }
+
+    /// Spheres of the pack and file inserts: bodies placed whole when their
+    /// stage begins, so the run holds them all unless some leave.
+    pub fn placed_spheres(&self) -> f64 {
+        self.inserts
+            .iter()
+            .filter(|i| !matches!(i.kind, InsertSpec::Stream { .. }))
+            .map(|i| self.insert_spheres(i))
+            .sum()
+    }
+
+    /// Expected number of spheres one insert brings.
+    fn insert_spheres(&self, insert: &InsertDef) -> f64 {
         let mean_spheres = |mix: &Mix| {
             let mut w = 0.0;
             let mut s = 0.0;
@@ -260,24 +275,21 @@ impl Scenario {
             }
             s / w
         };
-        self.inserts
-            .iter()
-            .map(|i| match &i.kind {
-                InsertSpec::File { bodies } => bodies
-                    .iter()
-                    .map(|b| self.templates[b.template as usize].template.spheres.len() as f64)
-                    .sum(),
-                InsertSpec::Pack {
-                    spec,
-                    expected_bodies,
-                    ..
-                } => expected_bodies * mean_spheres(&spec.mix),
-                InsertSpec::Stream {
-                    spec,
-                    expected_bodies,
-                    ..
-                } => expected_bodies * mean_spheres(&spec.mix),
-            })
-            .sum()
+        match &insert.kind {
+            InsertSpec::File { bodies } => bodies
+                .iter()
+                .map(|b| self.templates[b.template as usize].template.spheres.len() as f64)
+                .sum(),
+            InsertSpec::Pack {
+                spec,
+                expected_bodies,
+                ..
+            } => expected_bodies * mean_spheres(&spec.mix),
+            InsertSpec::Stream {
+                spec,
+                expected_bodies,
+                ..
+            } => expected_bodies * mean_spheres(&spec.mix),
+        }
     }
 }
