@@ -37,6 +37,7 @@ pub mod mass_properties;
 pub mod planar;
 mod progress;
 mod set;
+mod slabs;
 pub mod sphere;
 mod sphere_grid;
 pub mod template;
