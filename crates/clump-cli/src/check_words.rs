@@ -138,9 +138,13 @@ pub fn contacts(sc: &Scenario, world: &World) {
             };
             let k = model.normal_stiffness(r_star, 0.01 * r_star);
             outln!(
-                "  {} – {}: {law}, e = {}, mu = {}, mu_r = {}{}, damping ratio {:.3}, E* = {:.3e} Pa, k_n = {k:.3e} N/m (R* = {r_star:.3e} m, m* = {m_star:.3e} kg)",
+                "  {} – {}: {law}{}, e = {}, mu = {}, mu_r = {}{}, damping ratio {:.3}, E* = {:.3e} Pa, k_n = {k:.3e} N/m (R* = {r_star:.3e} m, m* = {m_star:.3e} kg)",
                 sc.material_names[a],
                 sc.material_names[b],
+                match p.tangential {
+                    clump_core::contact::TangentialLaw::Clump => "",
+                    clump_core::contact::TangentialLaw::Liggghts => " (LIGGGHTS' tangential rule)",
+                },
                 p.restitution,
                 p.friction,
                 p.rolling_friction,

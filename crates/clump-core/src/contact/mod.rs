@@ -39,6 +39,9 @@
 //! - [`tangential`]: incremental history spring (Mindlin `k_t = 8G*√(R*δ)` or
 //!   linear `k_t`), dashpot, Coulomb limit `|F_t| ≤ μF_n`; a sliding contact
 //!   keeps the limit in its elastic spring.
+//! - [`tangential::TangentialLaw::Liggghts`]: LIGGGHTS' rule (only the
+//!   spring is limited, the dashpot dropped while sliding); such pairs run
+//!   the scalar composition [`extended`].
 //! - [`rolling`]: rolling resistance, none, CDT or EPSD.
 //! - [`time_scale`]: Rayleigh time and Hertz contact duration, for choosing a
 //!   time step.
@@ -56,6 +59,7 @@
 //! calibrated for whichever rule the pair uses (see [`damping`]).
 
 pub mod damping;
+pub mod extended;
 pub mod geometry;
 pub mod material;
 pub mod model;
@@ -72,6 +76,7 @@ pub use model::{ContactModel, PairProperties, SlidingLaw, SlidingOutput};
 pub use normal::NormalLaw;
 pub use rolling::RollingLaw;
 pub use table::ContactTable;
+pub use tangential::TangentialLaw;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};

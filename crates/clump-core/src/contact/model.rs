@@ -23,7 +23,7 @@ use super::damping::{self, clamped_pulse_time, damping_ratio, DampingLaw};
 use super::material::{effective_modulus, effective_shear_modulus, Material};
 use super::normal::{self, NormalLaw};
 use super::rolling::{cdt, epsd, rolling_omega, RollingLaw};
-use super::tangential::{self, history_spring};
+use super::tangential::{self, history_spring, TangentialLaw};
 use super::time_scale::hertz_contact_time;
 use super::{ContactError, ContactHistory, ContactInput, ContactOutput};
 use glam::DVec3;
@@ -56,11 +56,14 @@ pub struct PairProperties {
     /// and the limits use `|F_n|`, as LIGGGHTS does. [`DampingLaw::Exact`]
     /// is calibrated for either choice (see [`super::damping`]).
     pub tensile: bool,
+    /// Tangential rule ([`TangentialLaw`]): Clump's (default) or LIGGGHTS'.
+    pub tangential: TangentialLaw,
 }
 
 impl Default for PairProperties {
     /// `e = 0.5`, `μ = 0.5`, `μ_r = 0`, Hertz, exact damping, no rolling
-    /// resistance, normal force clamped (not tensile).
+    /// resistance, normal force clamped (not tensile), Clump's tangential
+    /// rule.
     fn default() -> Self {
         PairProperties {
             restitution: 0.5,
@@ -70,6 +73,7 @@ impl Default for PairProperties {
             damping: DampingLaw::Exact,
             rolling: RollingLaw::None,
             tensile: false,
+            tangential: TangentialLaw::Clump,
         }
     }
 }
@@ -168,6 +172,10 @@ pub struct ContactModel {
     rolling_friction: f64,
     rolling: RollingLaw,
     rolling_damping: f64,
+    /// The pair selects a sub-model the vectorised [`SlidingLaw`] does not
+    /// have (LIGGGHTS' tangential rule): it runs the scalar composition
+    /// [`super::extended::evaluate`], in the pair kernel and on walls.
+    extended: bool,
 }
 
 impl ContactModel {
@@ -244,6 +252,7 @@ impl ContactModel {
             rolling_friction: p.rolling_friction,
             rolling: p.rolling,
             rolling_damping: 0.0,
+            extended: p.tangential != TangentialLaw::Clump,
         })
     }
 
@@ -268,6 +277,9 @@ impl ContactModel {
     /// the rolling part [`Self::rolling_couple`].
     #[inline(always)]
     pub fn evaluate(&self, c: &ContactInput, h: &mut ContactHistory) -> ContactOutput {
+        if self.extended {
+            return super::extended::evaluate(self, c, h);
+        }
         let out = self.law.evaluate(
             c.normal,
             c.overlap,
@@ -289,6 +301,13 @@ impl ContactModel {
     /// The normal and tangential part of the law.
     pub fn sliding_law(&self) -> &SlidingLaw {
         &self.law
+    }
+
+    /// Whether the pair selects a sub-model that only the scalar
+    /// composition has ([`super::extended`]); the pair kernel then runs
+    /// [`Self::evaluate`] for it instead of the vectorised [`SlidingLaw`].
+    pub fn is_extended(&self) -> bool {
+        self.extended
     }
 
     /// Whether the law has a rolling couple (a rolling law other than none).

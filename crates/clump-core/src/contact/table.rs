@@ -9,6 +9,8 @@ pub struct ContactTable {
     models: Vec<ContactModel>,
     /// Some model has a rolling couple.
     rolling: bool,
+    /// Some model runs the scalar composition ([`ContactModel::is_extended`]).
+    extended: bool,
 }
 
 impl ContactTable {
@@ -38,7 +40,13 @@ impl ContactTable {
             }
         }
         let rolling = models.iter().any(|m| m.has_rolling());
-        Ok(Self { n, models, rolling })
+        let extended = models.iter().any(|m| m.is_extended());
+        Ok(Self {
+            n,
+            models,
+            rolling,
+            extended,
+        })
     }
 
     /// The model for materials `a` and `b`.
@@ -62,5 +70,11 @@ impl ContactTable {
     /// Whether some model has a rolling couple.
     pub fn any_rolling(&self) -> bool {
         self.rolling
+    }
+
+    /// Whether some model runs the scalar composition
+    /// ([`ContactModel::is_extended`]).
+    pub fn any_extended(&self) -> bool {
+        self.extended
     }
 }

@@ -129,6 +129,10 @@ pub const CONTACT_KEYS: &[Key] = &[
         "tensile",
         "Whether the normal force may be tensile (no clamp at zero).",
     ),
+    key(
+        "tangential",
+        "Tangential rule: `\"clump\"` (default) or `\"liggghts\"`.",
+    ),
 ];
 
 /// The keys of `[[pair]]` ([`RawPair`]).
@@ -148,6 +152,10 @@ pub const PAIR_KEYS: &[Key] = &[
     key(
         "tensile",
         "Whether the normal force may be tensile (no clamp at zero).",
+    ),
+    key(
+        "tangential",
+        "Tangential rule: `\"clump\"` (default) or `\"liggghts\"`.",
     ),
 ];
 

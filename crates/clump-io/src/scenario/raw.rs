@@ -4,7 +4,7 @@
 //! on every field. Validation and cross-references are resolved in
 //! [`super::build`]. See `docs/scenario.md` for the reference.
 
-use clump_core::contact::{DampingLaw, RollingLaw};
+use clump_core::contact::{DampingLaw, RollingLaw, TangentialLaw};
 use clump_core::insert::FractionBasis;
 use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::RotationScheme;
@@ -210,6 +210,8 @@ pub struct RawContact {
     pub rolling: Option<RollingLaw>,
     /// Whether the normal force may be tensile (no clamp at zero).
     pub tensile: Option<bool>,
+    /// Tangential rule: `"clump"` (default) or `"liggghts"`.
+    pub tangential: Option<TangentialLaw>,
 }
 
 /// `[[pair]]`: like `[contact]` for one pair of materials.
@@ -236,6 +238,8 @@ pub struct RawPair {
     pub rolling: Option<RollingLaw>,
     /// Whether the normal force may be tensile (no clamp at zero).
     pub tensile: Option<bool>,
+    /// Tangential rule: `"clump"` (default) or `"liggghts"`.
+    pub tangential: Option<TangentialLaw>,
 }
 
 /// Built-in template shape name.

@@ -215,6 +215,9 @@ CASES = [
     ("two_bad_inserts", chain(rep("lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1]", "lo = [-0.05, -0.05, 0.4], hi = [0.05, 0.05, 0.5]"),
         append('\n[[insert]]\nkind = "pack"\nstage = "fill"\nmix = "pebbles"\ncount = 10\nregion = { type = "box", lo = [0.2, -0.05, 0.01], hi = [0.3, 0.05, 0.1] }\n')), "lo = [0.2, -0.05",
      ["the region lies outside the domain along z", "the region lies outside the domain along x (region 0.2000 .. 0.3000 m"]),
+    # contact sub-models
+    ("tangential_typo", rep("friction = 0.3", 'friction = 0.3\ntangential = "ligghts"'), '"ligghts"',
+     ["invalid value \"ligghts\" for 'tangential' in [[pair]]", 'did you mean "liggghts"?', '"clump", "liggghts"']),
 ]
 
 # the invalid-UTF-8 case is written as bytes

@@ -20,6 +20,11 @@
 //!    with the baseline SSE2, the widest the processor has chosen at run
 //!    time (`crate::par::simd`); vector and scalar IEEE arithmetic give the
 //!    same bits;
+//!    Pairs whose model runs the scalar composition
+//!    ([`crate::contact::ContactModel::is_extended`], e.g. LIGGGHTS'
+//!    tangential rule) are evaluated again by
+//!    [`crate::contact::ContactModel::evaluate`]
+//!    from their stored history, overwriting their lanes;
 //! 4. *scatter*: rolling couples (for laws that have one), then each pair's
 //!    history is stored (and the pair marked live), its `i` side is added
 //!    to the row sum of `i`'s body and its `j` side to the column sum of
@@ -37,7 +42,7 @@
 //! pair's normal, overlap and forces.
 
 use super::force::BODY_CHUNK;
-use crate::contact::ContactInput;
+use crate::contact::{ContactHistory, ContactInput};
 use crate::neighbor::pairs::{BodyLoad, PairBody};
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
@@ -337,10 +342,28 @@ impl RowCtx<'_> {
             None
         };
         run_law(l, len, law.as_ref(), self.dt, self.simd);
+        if table.any_extended() {
+            // pairs whose law only the scalar composition has: evaluated
+            // again from their stored history (the lanes ran the vectorised
+            // law on them, whose results are overwritten here); their
+            // rolling couple comes with it
+            for k in 0..len {
+                let model = table.by_index(batch.model[k]);
+                if model.is_extended() {
+                    let p = batch.pair[k] as usize;
+                    let mut h = ContactHistory {
+                        tangential: self.tangential.read(p),
+                        rolling: self.rolling.read(p),
+                    };
+                    l.contact_scalar(k, model, &mut h, self.dt);
+                    *self.rolling.get(p) = h.rolling;
+                }
+            }
+        }
         if table.any_rolling() {
             for k in 0..len {
                 let model = table.by_index(batch.model[k]);
-                if !model.has_rolling() {
+                if !model.has_rolling() || model.is_extended() {
                     continue;
                 }
                 let p = batch.pair[k] as usize;

@@ -4,7 +4,7 @@ use super::raw::*;
 use super::source::Seg;
 use super::Seg::{I, K};
 use super::{lookup, Cx, R};
-use clump_core::contact::{NormalLaw, PairProperties, RollingLaw};
+use clump_core::contact::{NormalLaw, PairProperties, RollingLaw, TangentialLaw};
 use std::collections::HashMap;
 
 /// The contact properties of every pair of materials, row-major
@@ -88,6 +88,7 @@ struct ContactFields {
     damping: Option<clump_core::contact::DampingLaw>,
     rolling: Option<RollingLaw>,
     tensile: Option<bool>,
+    tangential: Option<TangentialLaw>,
 }
 
 impl ContactFields {
@@ -102,6 +103,7 @@ impl ContactFields {
             damping: c.damping,
             rolling: c.rolling,
             tensile: c.tensile,
+            tangential: c.tangential,
         }
     }
     fn from_pair(c: &RawPair) -> Self {
@@ -115,6 +117,7 @@ impl ContactFields {
             damping: c.damping,
             rolling: c.rolling,
             tensile: c.tensile,
+            tangential: c.tangential,
         }
     }
 }
@@ -158,6 +161,9 @@ fn contact_props(
     }
     if let Some(t) = f.tensile {
         out.tensile = t;
+    }
+    if let Some(t) = f.tangential {
+        out.tangential = t;
     }
     let law = f.law.unwrap_or(match dflt.normal {
         NormalLaw::Hertz => LawName::Hertz,
