@@ -13,7 +13,7 @@
 mod common;
 use clump_core::contact::{DampingLaw, Material, PairProperties};
 use clump_core::rotation::{omega_world, RotState, RotationScheme};
-use common::liggghts::{run_bounce, table};
+use clump_validate::liggghts::{run_bounce, table};
 use glam::{DQuat, DVec3};
 
 /// Rows of `free.dat`: time, q (w, x, y, z), ω (world), L (world), I.
@@ -88,7 +88,7 @@ fn bounce(scheme: RotationScheme) -> [f64; 4] {
     };
     let spheres = include_str!("fixtures/liggghts/bounce_spheres_step100.txt");
     let states = run_bounce(&rows, spheres, 0.01, mat, props, 1, scheme, 1e-5, 100);
-    common::liggghts::deviation(&rows, &states)
+    clump_validate::liggghts::deviation(&rows, &states)
 }
 
 #[test]

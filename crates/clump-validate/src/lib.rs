@@ -15,7 +15,9 @@ pub mod bulk;
 pub mod case;
 pub mod chung_ooi;
 pub mod clump_cases;
+pub mod contact_models;
 pub mod dem_order;
+pub mod liggghts;
 pub mod mass;
 pub mod ode;
 pub mod plot;
@@ -49,6 +51,7 @@ pub fn run_suite(selection: Selection, dir: &Path) -> Suite {
         ("Rotation schemes inside the DEM step", dem_order::run),
         ("Mass properties", mass::run),
         ("Clump-specific dynamics", clump_cases::run),
+        ("Contact models users ask for", contact_models::run),
         ("Bulk behaviour", bulk::run),
     ];
     for (name, f) in groups {

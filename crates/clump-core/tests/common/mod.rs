@@ -1,7 +1,6 @@
 //! Helpers shared by the engine-level tests.
 #![allow(dead_code)]
 pub mod contact;
-pub mod liggghts;
 
 use clump_core::body::BodyInit;
 use clump_core::boundary::Domain;

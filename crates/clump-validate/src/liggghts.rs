@@ -1,10 +1,9 @@
-//! LIGGGHTS' one-stone bounces (fixtures/liggghts): the stone and its
-//! state read from LIGGGHTS' printed rows, run in Clump row by row.
+//! LIGGGHTS' stone bounces (`crates/clump-core/tests/fixtures/liggghts`):
+//! the stone and its state read from LIGGGHTS' printed rows, run in Clump
+//! row by row. Shared by the engine tests and the validation cases.
 
-use super::{moving, open_domain, plane, world};
-use clump_core::body::BodyInit;
-use clump_core::contact::{Material, PairProperties};
-use clump_core::multi_contact::MultiContact;
+use crate::setup::{body, open_box, plane, world};
+use clump_core::contact::{DampingLaw, Material, PairProperties, TangentialLaw};
 use clump_core::rotation::RotationScheme;
 use clump_core::shape::{ClumpTemplate, Sphere};
 use clump_core::world::World;
@@ -23,13 +22,16 @@ pub fn v3(r: &[f64], k: usize) -> DVec3 {
     DVec3::new(r[k], r[k + 1], r[k + 2])
 }
 
-/// Clump's body state at one of LIGGGHTS' rows (world frame): centre of
-/// mass (m), velocity (m/s), orientation, angular velocity (rad/s).
+/// Clump's body state at one of LIGGGHTS' rows (world frame).
 #[derive(Debug, Clone, Copy)]
 pub struct State {
+    /// Centre of mass, m.
     pub x: DVec3,
+    /// Velocity, m/s.
     pub v: DVec3,
+    /// Orientation (LIGGGHTS' body frame → world).
     pub q: DQuat,
+    /// Angular velocity, rad/s.
     pub w: DVec3,
 }
 
@@ -126,15 +128,9 @@ pub fn stone_world(
     scheme: RotationScheme,
     dt: f64,
 ) -> World {
-    let mut w = world(
-        mat,
-        props,
-        dt,
-        open_domain(0.5),
-        DVec3::new(0.0, 0.0, -9.81),
-    );
+    let mut w = world(mat, props, dt, open_box(0.5), DVec3::new(0.0, 0.0, -9.81)).unwrap();
     w.config.rotation = scheme;
-    let mut floor = plane(DVec3::ZERO, DVec3::Z, MultiContact::Sum);
+    let mut floor = plane(DVec3::ZERO, DVec3::Z);
     floor.material = wall_material;
     w.add_wall(floor).unwrap();
     w
@@ -146,10 +142,13 @@ pub fn stone_world(
 pub fn add_stone(w: &mut World, t: u32, r: &[f64], frame: DQuat) -> u64 {
     let q = DQuat::from_xyzw(r[8], r[9], r[10], r[7]);
     let id = w
-        .add_body(&BodyInit {
-            orientation: q * frame.conjugate(),
-            ..moving(t, v3(r, 1), v3(r, 4), v3(r, 11))
-        })
+        .add_body(&body(
+            t,
+            v3(r, 1),
+            q * frame.conjugate(),
+            v3(r, 4),
+            v3(r, 11),
+        ))
         .unwrap();
     let b = w.body_index(id).unwrap();
     w.bodies.angular_momentum[b] = v3(r, 14);
@@ -180,4 +179,103 @@ pub fn deviation(rows: &[Vec<f64>], states: &[State]) -> [f64; 4] {
         dev[3] = dev[3].max((s.w - v3(r, 11)).length() / v3(r, 11).length());
     }
     dev
+}
+
+/// Where the fixtures live (the engine's tests own them).
+macro_rules! fixture {
+    ($f:literal) => {
+        include_str!(concat!("../../clump-core/tests/fixtures/liggghts/", $f))
+    };
+}
+
+/// LIGGGHTS' own stone of the tutorial `multisphere_stone_restitution`
+/// (Debian liggghts-doc; GPL, read from the install, never copied into the
+/// repository), 50 spheres in mm.
+pub const TUTORIAL_STONE: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public/multisphere_stone_restitution/data/stone1.multisphere";
+
+/// The stone material and contact of LIGGGHTS' tutorial (E = 10 MPa,
+/// ν = 0.45, ρ = 2500 kg/m³; e = 0.3, μ = 0.5, LIGGGHTS damping,
+/// `limitForce off`), with tangential rule `rule`.
+pub fn tutorial_contact(rule: TangentialLaw) -> (Material, PairProperties) {
+    let mat = Material {
+        youngs_modulus: 1e7,
+        poisson_ratio: 0.45,
+        density: 2500.0,
+    };
+    let props = PairProperties {
+        restitution: 0.3,
+        friction: 0.5,
+        damping: DampingLaw::Liggghts,
+        tensile: true,
+        tangential: rule,
+        ..PairProperties::default()
+    };
+    (mat, props)
+}
+
+/// Index of the first row after the end of the first bounce: the stone
+/// rises (vz > 0) and its velocity changes by gravity alone until the next
+/// row (rows 1 ms apart). `None` without such a row.
+pub fn after_bounce(rows: &[Vec<f64>]) -> Option<usize> {
+    let rising = rows.iter().position(|r| r[6] > 0.0)?;
+    (rising..rows.len() - 1).find(|&k| {
+        let dv = v3(&rows[k + 1], 4) - v3(&rows[k], 4);
+        (dv - DVec3::new(0.0, 0.0, -9.81e-3)).length() < 1e-9
+    })
+}
+
+/// Relative deviation of Clump's angular velocity from LIGGGHTS' at row `k`.
+pub fn spin_error(rows: &[Vec<f64>], states: &[State], k: usize) -> f64 {
+    (states[k].w - v3(&rows[k], 11)).length() / v3(&rows[k], 11).length()
+}
+
+/// The fixture `friction.*` (the asymmetric stone of `stone.txt` arriving
+/// spinning and sliding on a plane of its own material, set up as the
+/// tutorial) run with tangential rule `rule`: LIGGGHTS' rows and Clump's
+/// states at them.
+pub fn friction_bounce(rule: TangentialLaw) -> (Vec<Vec<f64>>, Vec<State>) {
+    let rows = table(fixture!("friction.dat"));
+    let (mat, props) = tutorial_contact(rule);
+    let spheres = fixture!("friction_spheres_step100.txt");
+    let scheme = RotationScheme::RichardsonLiggghts;
+    let states = run_bounce(&rows, spheres, 0.01, mat, props, 0, scheme, 1e-5, 100);
+    (rows, states)
+}
+
+/// LIGGGHTS' tutorial itself (`tutorial.in` → `tutorial_body*.dat`,
+/// `tutorial_frame.txt`): its two stones from LIGGGHTS' state at step 100,
+/// with LIGGGHTS' stone `stone_text` (the file [`TUTORIAL_STONE`], mm),
+/// Monte-Carlo mass properties and body frame, run with tangential rule
+/// `rule` to the last row; per stone, LIGGGHTS' rows and Clump's states.
+pub fn tutorial(rule: TangentialLaw, stone_text: &str) -> [(Vec<Vec<f64>>, Vec<State>); 2] {
+    let frame = table(fixture!("tutorial_frame.txt"));
+    let c = v3(&frame[0], 0);
+    let rot = DMat3::from_cols(v3(&frame[1], 0), v3(&frame[2], 0), v3(&frame[3], 0)).transpose();
+    // input frame (mm) → LIGGGHTS' body frame (m)
+    let spheres: Vec<Sphere> = table(stone_text)
+        .iter()
+        .map(|r| Sphere::new(rot * (v3(r, 0) * 0.001 - c), r[3] * 0.001))
+        .collect();
+    assert_eq!(spheres.len(), 50);
+    let rows = [
+        table(fixture!("tutorial_body1.dat")),
+        table(fixture!("tutorial_body2.dat")),
+    ];
+    let (mat, props) = tutorial_contact(rule);
+    let mut w = stone_world(mat, props, 0, RotationScheme::RichardsonLiggghts, 1e-5);
+    let r0 = &rows[0][0];
+    let tmpl = body_frame_template(&spheres, mat.density, r0[20], v3(r0, 17));
+    let frame = tmpl.input_to_body;
+    let t = w.add_template(tmpl, 0).unwrap();
+    let ids = [0, 1].map(|b| add_stone(&mut w, t, &rows[b][0], frame));
+    let mut states = ids.map(|id| vec![state(&w, id, frame)]);
+    for _ in 1..rows[0].len() {
+        w.run(100).unwrap();
+        for b in 0..2 {
+            states[b].push(state(&w, ids[b], frame));
+        }
+    }
+    let [s0, s1] = states;
+    let [r0, r1] = rows;
+    [(r0, s0), (r1, s1)]
 }
