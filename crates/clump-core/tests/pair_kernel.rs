@@ -174,6 +174,7 @@ fn reference(w: &World, table: &ContactTable, multi: MultiContact) -> HashMap<u6
             rel_velocity: vc(bi) - vc(bj),
             rel_omega: b.angular_velocity[bi] - b.angular_velocity[bj],
             radius: ri * rj / (ri + rj),
+            radius_sum: f64::INFINITY,
             mass: b.mass[bi] * b.mass[bj] / (b.mass[bi] + b.mass[bj]),
             dt: w.config.dt,
         };

@@ -1,5 +1,6 @@
 //! Contact sub-models users ask for, each against a value from outside the
-//! code: LIGGGHTS' tangential rule against LIGGGHTS 3.8 itself.
+//! code: LIGGGHTS' tangential rule and `cohesion sjkr` against LIGGGHTS 3.8
+//! itself.
 
 use crate::case::{Case, Group};
 use crate::liggghts::{after_bounce, friction_bounce, spin_error, tutorial, TUTORIAL_STONE};
@@ -11,7 +12,33 @@ use std::path::Path;
 pub fn run(_sel: Selection, _dir: &Path) -> Group {
     let mut g = Group::default();
     liggghts_rule(&mut g);
+    sjkr(&mut g);
     g
+}
+
+/// `cohesion = "sjkr"` against LIGGGHTS' `cohesion sjkr`, side by side.
+fn sjkr(g: &mut Group) {
+    let source = "LIGGGHTS-PUBLIC 3.8.0 cohesion sjkr run (fixtures sjkr_wall, sjkr_pair)";
+    match crate::cohesion::sjkr_wall() {
+        Ok((rows, clump)) => g.cases.push(Case::at_most(
+            "SJKR: 2 mm sphere dropped onto a plane, sticks (k_c = 2e5 J/m³): largest |Δz|, |Δv_z| relative to LIGGGHTS",
+            source,
+            "LIGGGHTS' z, v_z",
+            crate::cohesion::deviation(&rows, &clump, [1, 2]),
+            1e-9,
+        )),
+        Err(e) => g.cases.push(Case::error("SJKR sphere on a plane", source, e)),
+    }
+    match crate::cohesion::sjkr_pair() {
+        Ok((rows, clump)) => g.cases.push(Case::at_most(
+            "SJKR: 2 mm and 1 mm spheres meeting head-on, stick: largest |Δx|, |Δv| relative to LIGGGHTS",
+            source,
+            "LIGGGHTS' x, v",
+            crate::cohesion::deviation(&rows, &clump, [1, 2, 3, 4]),
+            1e-9,
+        )),
+        Err(e) => g.cases.push(Case::error("SJKR sphere pair", source, e)),
+    }
 }
 
 /// `tangential = "liggghts"` against LIGGGHTS' printed trajectories.

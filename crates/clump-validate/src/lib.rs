@@ -15,6 +15,7 @@ pub mod bulk;
 pub mod case;
 pub mod chung_ooi;
 pub mod clump_cases;
+pub mod cohesion;
 pub mod contact_models;
 pub mod dem_order;
 pub mod liggghts;

@@ -1,6 +1,7 @@
 //! The scalar composition of the contact law for pairs that select a
 //! sub-model the vectorised [`SlidingLaw`](super::SlidingLaw) does not have:
-//! LIGGGHTS' tangential rule ([`super::tangential::liggghts_spring`]).
+//! LIGGGHTS' tangential rule ([`super::tangential::liggghts_spring`]) and
+//! cohesion ([`super::cohesion`]: SJKR, JKR).
 //!
 //! The same sub-model formulas as [`SlidingLaw::evaluate`]: the stiffness
 //! scale, elastic force and spring energy of [`super::normal`], the dashpots
@@ -12,34 +13,82 @@
 //!
 //! [`SlidingLaw::evaluate`]: super::SlidingLaw::evaluate
 
+use super::cohesion::{
+    jkr_contact_radius, jkr_force_parts, jkr_pull_off_force, sjkr_force, CohesionLaw,
+};
 use super::tangential::{self, history_spring, liggghts_spring, TangentialLaw};
 use super::{damping, normal};
 use super::{ContactHistory, ContactInput, ContactModel, ContactOutput};
+use glam::DVec3;
 
 /// One contact of an extended pair (conventions of [`super`]): force and
 /// couple on `i` (N, N m, world), stored elastic energy (J), signed normal
-/// force (N); updates the springs in `h`. Requires `c.overlap > 0`.
+/// force (N); updates the springs in `h`. Requires `c.overlap > 0`, or for
+/// a JKR pair `c.overlap ≥ −δ_c` ([`ContactModel::reach`]; below, the
+/// contact carries no force).
+///
+/// Normal force: `F_n = max(F_el − γ_n v_n, floor) + F_coh`, the pair's
+/// clamp on the elastic and dashpot part and the cohesion added after it
+/// (LIGGGHTS' order). Without cohesion and for SJKR, `F_el` is the normal
+/// law at `δ` with stiffness scale `s = √(R*δ)` (Hertz) or 1 (linear); for
+/// JKR, `F_el = 4E*a³/(3R*)` and `F_coh = −√(8πΓE*a³)` at the JKR contact
+/// radius `a`, and `s = a` (the Hertz `√(R*δ)` is the Hertz contact
+/// radius). The Coulomb limit is `μ|F_n|` (LIGGGHTS, SJKR included); for
+/// JKR `μ·max(F_n + 2F_c, 0)`, `F_c = (3/2)πΓR*` (Thornton & Yin 1991: the
+/// friction of an adhesive contact vanishes at pull-off).
 pub fn evaluate(model: &ContactModel, c: &ContactInput, h: &mut ContactHistory) -> ContactOutput {
     let law = model.sliding_law();
     let n = c.normal;
     let d = c.overlap;
-    let s = normal::stiffness_scale(law.hertz, c.radius, d);
+    let props = model.properties();
+    let e_star = model.effective_modulus();
+    let (s, f_el, f_coh, f_limit_shift) = match props.cohesion {
+        CohesionLaw::Jkr { surface_energy: g } => {
+            let Some(a) = jkr_contact_radius(g, c.radius, e_star, d) else {
+                h.tangential = DVec3::ZERO;
+                h.rolling = DVec3::ZERO;
+                return ContactOutput::default();
+            };
+            let (f_h, f_a) = jkr_force_parts(g, c.radius, e_star, a);
+            (a, f_h, f_a, 2.0 * jkr_pull_off_force(g, c.radius))
+        }
+        CohesionLaw::Sjkr { energy_density: k } => {
+            let s = normal::stiffness_scale(law.hertz, c.radius, d);
+            let f_coh = sjkr_force(k, c.radius, c.radius_sum, d);
+            (
+                s,
+                normal::elastic_force(law.kn_coef * s, d),
+                f_coh,
+                f64::NAN,
+            )
+        }
+        CohesionLaw::None => {
+            let s = normal::stiffness_scale(law.hertz, c.radius, d);
+            (s, normal::elastic_force(law.kn_coef * s, d), 0.0, f64::NAN)
+        }
+    };
     let kn = law.kn_coef * s;
     let kt = law.kt_coef * s;
     let gamma_n = damping::dashpot(law.gn_coef, s, c.mass);
     let gamma_t = damping::dashpot(law.gt_coef, s, c.mass);
     let vn = c.rel_velocity.dot(n);
     let vt = c.rel_velocity - vn * n;
-    let f_el = normal::elastic_force(kn, d);
-    let f_n = damping::normal_force(f_el, gamma_n, vn, law.fn_floor);
-    let f_max = law.friction * f_n.abs();
+    let f_n = damping::normal_force(f_el, gamma_n, vn, law.fn_floor) + f_coh;
+    let f_max = if f_limit_shift.is_nan() {
+        law.friction * f_n.abs()
+    } else {
+        law.friction * (f_n + f_limit_shift).max(0.0)
+    };
     let xi = &mut h.tangential;
-    let f_t = match model.properties().tangential {
+    let f_t = match props.tangential {
         TangentialLaw::Clump => history_spring(xi, n, vt, c.dt, kt, gamma_t, f_max),
         TangentialLaw::Liggghts => liggghts_spring(xi, n, vt, c.dt, kt, gamma_t, f_max),
     };
+    // the normal spring's energy at the Hertz overlap of the stiffness scale
+    // (`δ` itself without JKR; `a²/R*` with it)
+    let d_h = if law.hertz { s * s / c.radius } else { d };
     let energy =
-        normal::spring_energy(law.energy_factor, f_el, d) + tangential::spring_energy(kt, *xi);
+        normal::spring_energy(law.energy_factor, f_el, d_h) + tangential::spring_energy(kt, *xi);
     let (torque, e_r) = model.rolling_couple(c, f_n, kn, &mut h.rolling);
     ContactOutput {
         force: f_n * n + f_t,

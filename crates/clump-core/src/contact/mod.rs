@@ -58,6 +58,7 @@
 //! separation and the limits use `|F_n|`. The exact-restitution damping is
 //! calibrated for whichever rule the pair uses (see [`damping`]).
 
+pub mod cohesion;
 pub mod damping;
 pub mod extended;
 pub mod geometry;
@@ -70,6 +71,7 @@ pub mod table;
 pub mod tangential;
 pub mod time_scale;
 
+pub use cohesion::CohesionLaw;
 pub use damping::DampingLaw;
 pub use material::Material;
 pub use model::{ContactModel, PairProperties, SlidingLaw, SlidingOutput};
@@ -83,6 +85,7 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 /// Geometry and kinematics of one contact, all in the world frame, SI units.
+/// `overlap` may be negative only for a JKR pair (a neck under tension).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ContactInput {
     /// Unit contact normal, world frame, from `j`'s centre to `i`'s centre
@@ -98,6 +101,8 @@ pub struct ContactInput {
     pub rel_omega: DVec3,
     /// Effective radius `R* = R₁R₂/(R₁+R₂)`, m (wall: sphere radius).
     pub radius: f64,
+    /// Radius sum `R₁ + R₂`, m (wall: `∞`); read by SJKR's contact area only.
+    pub radius_sum: f64,
     /// Effective mass `m* = m₁m₂/(m₁+m₂)` of the two bodies, kg (wall: body mass).
     pub mass: f64,
     /// Time step, s (used for the history-spring increments).

@@ -19,6 +19,7 @@
 //! [`damping::dashpot_coefficients`]). The pair kernel and the wall path
 //! run this one function.
 
+use super::cohesion::{jkr_critical_separation, CohesionLaw};
 use super::damping::{self, clamped_pulse_time, damping_ratio, DampingLaw};
 use super::material::{effective_modulus, effective_shear_modulus, Material};
 use super::normal::{self, NormalLaw};
@@ -58,6 +59,8 @@ pub struct PairProperties {
     pub tensile: bool,
     /// Tangential rule ([`TangentialLaw`]): Clump's (default) or LIGGGHTS'.
     pub tangential: TangentialLaw,
+    /// Cohesion ([`CohesionLaw`]; default none).
+    pub cohesion: CohesionLaw,
 }
 
 impl Default for PairProperties {
@@ -74,6 +77,7 @@ impl Default for PairProperties {
             rolling: RollingLaw::None,
             tensile: false,
             tangential: TangentialLaw::Clump,
+            cohesion: CohesionLaw::None,
         }
     }
 }
@@ -173,7 +177,7 @@ pub struct ContactModel {
     rolling: RollingLaw,
     rolling_damping: f64,
     /// The pair selects a sub-model the vectorised [`SlidingLaw`] does not
-    /// have (LIGGGHTS' tangential rule): it runs the scalar composition
+    /// have (LIGGGHTS' tangential rule, cohesion): it runs the scalar composition
     /// [`super::extended::evaluate`], in the pair kernel and on walls.
     extended: bool,
 }
@@ -231,6 +235,26 @@ impl ContactModel {
                 }
             }
         }
+        match p.cohesion {
+            CohesionLaw::None => {}
+            CohesionLaw::Sjkr { energy_density: k } => {
+                if !(k >= 0.0 && k.is_finite()) {
+                    return perr(format!(
+                        "cohesion energy density must be finite and >= 0 J/m^3, got {k}"
+                    ));
+                }
+            }
+            CohesionLaw::Jkr { surface_energy: g } => {
+                if !(g >= 0.0 && g.is_finite()) {
+                    return perr(format!(
+                        "surface energy must be finite and >= 0 J/m^2, got {g}"
+                    ));
+                }
+                if p.normal != NormalLaw::Hertz {
+                    return perr("JKR cohesion needs the Hertz normal law".into());
+                }
+            }
+        }
         let (hertz, kn_coef, kt_coef, energy_factor) =
             normal::stiffness_coefficients(p.normal, e_star, g_star);
         let (gn_coef, gt_coef) = damping::dashpot_coefficients(p.normal, beta, e_star, g_star);
@@ -252,7 +276,7 @@ impl ContactModel {
             rolling_friction: p.rolling_friction,
             rolling: p.rolling,
             rolling_damping: 0.0,
-            extended: p.tangential != TangentialLaw::Clump,
+            extended: p.tangential != TangentialLaw::Clump || p.cohesion != CohesionLaw::None,
         })
     }
 
@@ -308,6 +332,30 @@ impl ContactModel {
     /// [`Self::evaluate`] for it instead of the vectorised [`SlidingLaw`].
     pub fn is_extended(&self) -> bool {
         self.extended
+    }
+
+    /// How far apart (m, ≥ 0) the surfaces of a contact between spheres of
+    /// effective radius `r_star` (m) may move before it breaks: JKR's
+    /// critical separation `δ_c`, 0 for every other law (a contact ends at
+    /// `δ = 0`). See [`super::cohesion`].
+    pub fn reach(&self, r_star: f64) -> f64 {
+        match self.props.cohesion {
+            CohesionLaw::Jkr { surface_energy } => {
+                jkr_critical_separation(surface_energy, r_star, self.e_star)
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// JKR pull-off force magnitude `(3/2)πΓR*` (N) for effective radius
+    /// `r_star` (m); 0 without JKR cohesion.
+    pub fn pull_off_force(&self, r_star: f64) -> f64 {
+        match self.props.cohesion {
+            CohesionLaw::Jkr { surface_energy } => {
+                super::cohesion::jkr_pull_off_force(surface_energy, r_star)
+            }
+            _ => 0.0,
+        }
     }
 
     /// Whether the law has a rolling couple (a rolling law other than none).

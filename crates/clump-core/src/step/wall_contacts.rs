@@ -384,6 +384,7 @@ impl WallCtx<'_> {
             rel_velocity: v_body - v_wall,
             rel_omega: wb - wall.motion.angular_velocity,
             radius: r,
+            radius_sum: f64::INFINITY,
             mass: self.b.mass[bi],
             dt: self.dt,
         };

@@ -133,6 +133,15 @@ pub const CONTACT_KEYS: &[Key] = &[
         "tangential",
         "Tangential rule: `\"clump\"` (default) or `\"liggghts\"`.",
     ),
+    key(
+        "cohesion",
+        "Cohesion model: `\"none\"` (default), `\"sjkr\"` or `\"jkr\"`.",
+    ),
+    key(
+        "cohesion_energy_density",
+        "SJKR cohesion energy density, J/m³.",
+    ),
+    key("surface_energy", "JKR work of adhesion, J/m²."),
 ];
 
 /// The keys of `[[pair]]` ([`RawPair`]).
@@ -157,6 +166,15 @@ pub const PAIR_KEYS: &[Key] = &[
         "tangential",
         "Tangential rule: `\"clump\"` (default) or `\"liggghts\"`.",
     ),
+    key(
+        "cohesion",
+        "Cohesion model: `\"none\"` (default), `\"sjkr\"` or `\"jkr\"`.",
+    ),
+    key(
+        "cohesion_energy_density",
+        "SJKR cohesion energy density, J/m³.",
+    ),
+    key("surface_energy", "JKR work of adhesion, J/m²."),
 ];
 
 /// The keys of `[[template]]` ([`RawTemplate`]).

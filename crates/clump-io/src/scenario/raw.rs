@@ -178,6 +178,18 @@ pub struct RawMaterial {
     pub density: Option<f64>,
 }
 
+/// Cohesion model name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CohesionName {
+    /// No cohesion.
+    None,
+    /// LIGGGHTS' simplified JKR (needs `cohesion_energy_density`).
+    Sjkr,
+    /// JKR (needs `surface_energy`).
+    Jkr,
+}
+
 /// Normal force law name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -212,6 +224,12 @@ pub struct RawContact {
     pub tensile: Option<bool>,
     /// Tangential rule: `"clump"` (default) or `"liggghts"`.
     pub tangential: Option<TangentialLaw>,
+    /// Cohesion model: `"none"` (default), `"sjkr"` or `"jkr"`.
+    pub cohesion: Option<CohesionName>,
+    /// SJKR cohesion energy density, J/m³.
+    pub cohesion_energy_density: Option<f64>,
+    /// JKR work of adhesion, J/m².
+    pub surface_energy: Option<f64>,
 }
 
 /// `[[pair]]`: like `[contact]` for one pair of materials.
@@ -240,6 +258,12 @@ pub struct RawPair {
     pub tensile: Option<bool>,
     /// Tangential rule: `"clump"` (default) or `"liggghts"`.
     pub tangential: Option<TangentialLaw>,
+    /// Cohesion model: `"none"` (default), `"sjkr"` or `"jkr"`.
+    pub cohesion: Option<CohesionName>,
+    /// SJKR cohesion energy density, J/m³.
+    pub cohesion_energy_density: Option<f64>,
+    /// JKR work of adhesion, J/m².
+    pub surface_energy: Option<f64>,
 }
 
 /// Built-in template shape name.

@@ -218,6 +218,12 @@ CASES = [
     # contact sub-models
     ("tangential_typo", rep("friction = 0.3", 'friction = 0.3\ntangential = "ligghts"'), '"ligghts"',
      ["invalid value \"ligghts\" for 'tangential' in [[pair]]", 'did you mean "liggghts"?', '"clump", "liggghts"']),
+    ("sjkr_without_density", rep("friction = 0.3", 'friction = 0.3\ncohesion = "sjkr"'), None,
+     ["missing key 'cohesion_energy_density' in [[pair]]", "cohesionEnergyDensity"]),
+    ("surface_energy_without_jkr", rep("friction = 0.5", 'friction = 0.5\ncohesion = "sjkr"\nsurface_energy = 0.05'), "surface_energy",
+     ["'surface_energy' is only used with cohesion = \"jkr\"", "this [contact] has cohesion = \"sjkr\""]),
+    ("negative_cohesion", rep("friction = 0.5", 'friction = 0.5\ncohesion = "jkr"\nsurface_energy = -0.05'), "surface_energy",
+     ["'surface_energy' must be >= 0 J/m^2, found -0.05"]),
 ]
 
 # the invalid-UTF-8 case is written as bytes

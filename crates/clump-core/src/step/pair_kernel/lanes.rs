@@ -203,18 +203,15 @@ impl Lanes {
             rel_velocity: c.vrel,
             rel_omega: get3(&self.omega_i, k) - get3(&self.omega_j, k),
             radius: c.radius,
+            radius_sum: self.radius_i[k] + self.radius_j[k],
             mass: c.mass,
             dt,
         };
         let out = model.evaluate(&input, h);
         set3(&mut self.spring, k, h.tangential);
-        let kn = model.sliding_law().kn_coef
-            * crate::contact::normal::stiffness_scale(
-                model.sliding_law().hertz,
-                c.radius,
-                c.overlap,
-            );
-        self.store(k, &c, out.force, out.elastic_energy, out.normal_force, kn);
+        // the lane's stiffness is read only by the kernel's rolling loop,
+        // which skips these pairs (their couple is in `out.torque`)
+        self.store(k, &c, out.force, out.elastic_energy, out.normal_force, 0.0);
         // the rolling couple, as the kernel adds it for vectorised pairs
         let couple = out.torque * self.scale[k];
         let (ti, tj) = (get3(&self.torque_i, k), get3(&self.torque_j, k));

@@ -375,6 +375,7 @@ impl RowCtx<'_> {
                     rel_velocity: DVec3::ZERO,
                     rel_omega: get3(&l.omega_i, k) - get3(&l.omega_j, k),
                     radius: l.r_star[k],
+                    radius_sum: l.radius_i[k] + l.radius_j[k],
                     mass: l.m_star[k],
                     dt: self.dt,
                 };

@@ -4,7 +4,7 @@ use super::raw::*;
 use super::source::Seg;
 use super::Seg::{I, K};
 use super::{lookup, Cx, R};
-use clump_core::contact::{NormalLaw, PairProperties, RollingLaw, TangentialLaw};
+use clump_core::contact::{CohesionLaw, NormalLaw, PairProperties, RollingLaw, TangentialLaw};
 use std::collections::HashMap;
 
 /// The contact properties of every pair of materials, row-major
@@ -89,6 +89,9 @@ struct ContactFields {
     rolling: Option<RollingLaw>,
     tensile: Option<bool>,
     tangential: Option<TangentialLaw>,
+    cohesion: Option<CohesionName>,
+    cohesion_energy_density: Option<f64>,
+    surface_energy: Option<f64>,
 }
 
 impl ContactFields {
@@ -104,6 +107,9 @@ impl ContactFields {
             rolling: c.rolling,
             tensile: c.tensile,
             tangential: c.tangential,
+            cohesion: c.cohesion,
+            cohesion_energy_density: c.cohesion_energy_density,
+            surface_energy: c.surface_energy,
         }
     }
     fn from_pair(c: &RawPair) -> Self {
@@ -118,6 +124,9 @@ impl ContactFields {
             rolling: c.rolling,
             tensile: c.tensile,
             tangential: c.tangential,
+            cohesion: c.cohesion,
+            cohesion_energy_density: c.cohesion_energy_density,
+            surface_energy: c.surface_energy,
         }
     }
 }
@@ -165,6 +174,7 @@ fn contact_props(
     if let Some(t) = f.tangential {
         out.tangential = t;
     }
+    out.cohesion = cohesion(cx, base, what, f, dflt.cohesion)?;
     let law = f.law.unwrap_or(match dflt.normal {
         NormalLaw::Hertz => LawName::Hertz,
         NormalLaw::Linear { .. } => LawName::Linear,
@@ -229,4 +239,75 @@ fn contact_props(
         cx.warnings.push(w);
     }
     Ok(out)
+}
+
+/// The cohesion model of a `[contact]` or `[[pair]]` table from `cohesion`
+/// and its parameter (`cohesion_energy_density` for SJKR, `surface_energy`
+/// for JKR); keys left out keep `dflt` (the `[contact]` model for a pair).
+fn cohesion(
+    cx: &mut Cx,
+    base: &[Seg],
+    what: &str,
+    f: &ContactFields,
+    dflt: CohesionLaw,
+) -> R<CohesionLaw> {
+    let p = |k: &'static str| {
+        let mut v = base.to_vec();
+        v.push(K(k));
+        v
+    };
+    let name = f.cohesion.unwrap_or(match dflt {
+        CohesionLaw::None => CohesionName::None,
+        CohesionLaw::Sjkr { .. } => CohesionName::Sjkr,
+        CohesionLaw::Jkr { .. } => CohesionName::Jkr,
+    });
+    let (dk, dg) = match dflt {
+        CohesionLaw::Sjkr { energy_density } => (Some(energy_density), None),
+        CohesionLaw::Jkr { surface_energy } => (None, Some(surface_energy)),
+        CohesionLaw::None => (None, None),
+    };
+    // a parameter of another model is an error, not silently ignored
+    let stray = |k: &'static str, model: &str| {
+        cx.src
+            .error_at_key(&p(k), format!("'{k}' is only used with cohesion = \"{model}\" (this {what} has cohesion = \"{}\")", format!("{name:?}").to_lowercase()))
+            .note(format!("help: add cohesion = \"{model}\", or remove '{k}'"))
+    };
+    if f.cohesion_energy_density.is_some() && name != CohesionName::Sjkr {
+        return Err(stray("cohesion_energy_density", "sjkr"));
+    }
+    if f.surface_energy.is_some() && name != CohesionName::Jkr {
+        return Err(stray("surface_energy", "jkr"));
+    }
+    Ok(match name {
+        CohesionName::None => CohesionLaw::None,
+        CohesionName::Sjkr => {
+            let k = f.cohesion_energy_density.or(dk).ok_or_else(|| {
+                cx.missing(
+                    base,
+                    what,
+                    "cohesion_energy_density",
+                    "cohesion = \"sjkr\" needs the cohesion energy density in J/m^3 (LIGGGHTS' cohesionEnergyDensity), e.g. cohesion_energy_density = 3e5",
+                )
+            })?;
+            let k = cx.nonneg(
+                &p("cohesion_energy_density"),
+                k,
+                "cohesion_energy_density",
+                "J/m^3",
+            )?;
+            CohesionLaw::Sjkr { energy_density: k }
+        }
+        CohesionName::Jkr => {
+            let g = f.surface_energy.or(dg).ok_or_else(|| {
+                cx.missing(
+                    base,
+                    what,
+                    "surface_energy",
+                    "cohesion = \"jkr\" needs the work of adhesion in J/m^2, e.g. surface_energy = 0.05",
+                )
+            })?;
+            let g = cx.nonneg(&p("surface_energy"), g, "surface_energy", "J/m^2")?;
+            CohesionLaw::Jkr { surface_energy: g }
+        }
+    })
 }
