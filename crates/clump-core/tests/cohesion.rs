@@ -5,7 +5,9 @@
 
 use clump_core::contact::cohesion::lens_radius_sq;
 use clump_core::contact::{CohesionLaw, ContactHistory, ContactInput, ContactModel};
-use clump_validate::cohesion::{deviation, sjkr_contact, sjkr_pair, sjkr_wall};
+use clump_validate::cohesion::{
+    deviation, jkr_impact, jkr_loading_cycle, sjkr_contact, sjkr_pair, sjkr_wall,
+};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -77,4 +79,119 @@ fn sjkr_reproduces_liggghts() {
         dev_wall < 1e-12 && dev_pair < 1e-12,
         "{dev_wall:e} {dev_pair:e}"
     );
+}
+
+/// JKR through a quasi-static loading and unloading cycle (two spheres,
+/// one driven): no force while they approach apart, the JKR curve from
+/// the touch (`δ = 0`, where the force jumps to `−(4/3)πΓR*`) on loading
+/// and all the way to `−δ_c` on unloading, the pull-off force
+/// `(3/2)πΓR*` as the least force, and the break at `−δ_c` with
+/// `−(5/6)πΓR*` — every value from the closed forms (computed in
+/// `clump_validate::cohesion::Jkr`, independently of the engine's solver).
+#[test]
+fn jkr_force_overlap_cycle() {
+    let (jkr, rows) = jkr_loading_cycle().unwrap();
+    let (fc, dc) = (jkr.pull_off(), jkr.delta_c());
+    // the closed forms of the engine agree with the independent ones
+    let model = {
+        let (mat, props) = clump_validate::cohesion::jkr_contact();
+        ContactModel::new(&mat, &mat, &props).unwrap()
+    };
+    assert!((model.reach(jkr.r) - dc).abs() < 1e-12 * dc);
+    assert!((model.pull_off_force(jkr.r) - fc).abs() < 1e-12 * fc);
+    let step = dc / 2000.0;
+    let (mut worst, mut min_f) = (0.0f64, f64::INFINITY);
+    let mut touched = false;
+    let mut last_bound = f64::NAN;
+    let mut first_free = f64::NAN;
+    for &(d, f, loading) in &rows {
+        touched |= d >= 0.0;
+        let bound = f != 0.0;
+        if loading && !touched {
+            assert_eq!(f, 0.0, "force before touching at δ = {d:e}");
+            continue;
+        }
+        if !loading && !bound {
+            if first_free.is_nan() {
+                first_free = d;
+            }
+            continue;
+        }
+        assert!(first_free.is_nan(), "the contact came back at δ = {d:e}");
+        worst = worst.max((f - jkr.force_at(d)).abs() / fc);
+        if !loading {
+            min_f = min_f.min(f);
+            last_bound = d;
+        }
+    }
+    eprintln!(
+        "JKR cycle: {} steps, |F − F_JKR(δ)|/F_c ≤ {worst:.2e}; least force {:.6e} N (−F_c = {:.6e} N); \
+         last bound δ {:.6e} m, first free δ {:.6e} m (−δ_c = {:.6e} m)",
+        rows.len(),
+        min_f,
+        -fc,
+        last_bound,
+        first_free,
+        -dc
+    );
+    assert!(worst < 1e-9, "{worst:e}");
+    // the minimum of the sampled curve: the curve is flat there, so the
+    // samples δ_c/2000 apart find it to ~1e-7
+    assert!((min_f + fc).abs() < 1e-6 * fc, "{min_f:e} vs {:e}", -fc);
+    // breaks between the samples that straddle −δ_c
+    assert!(
+        last_bound >= -dc && first_free < -dc,
+        "{last_bound:e} {first_free:e}"
+    );
+    assert!(last_bound - first_free < 1.01 * step);
+    // at the break the force is −(5/6)πΓR* (= −(5/9) F_c): the engine's
+    // law just inside −δ_c, and no force just outside (near −δ_c the force
+    // changes as √(δ + δ_c), so the samples above do not resolve it)
+    let at = |d: f64| {
+        let c = ContactInput {
+            normal: DVec3::X,
+            overlap: d,
+            rel_velocity: DVec3::ZERO,
+            rel_omega: DVec3::ZERO,
+            radius: jkr.r,
+            radius_sum: 4.0 * jkr.r,
+            mass: 1e-5,
+            dt: 1e-6,
+        };
+        model
+            .evaluate(&c, &mut ContactHistory::default())
+            .normal_force
+    };
+    let f_break = at(-dc * (1.0 - 1e-12));
+    assert!((f_break + 5.0 / 9.0 * fc).abs() < 1e-5 * fc, "{f_break:e}");
+    assert_eq!(at(-dc * (1.0 + 1e-12)), 0.0);
+}
+
+/// An undamped JKR sphere hitting a plane sticks below the critical
+/// sticking velocity `v_s = √(2W/m*)` (W: the adhesion work of breaking
+/// the contact, the energy balance of Thornton & Ning 1998) and rebounds
+/// above it with `√(v² − v_s²)`. The rebound speed converges to it as
+/// `dt` shrinks: the force jumps at the touch (to `−(4/3)πΓR*`) and at the
+/// break, and a fixed step puts each jump up to a step late (measured:
+/// 1.7e-3 at dt = 1e-7 s, 1.3e-4 at dt/4).
+#[test]
+fn jkr_sticks_below_the_critical_velocity() {
+    let dt = 1e-7;
+    let (jkr, m, _) = jkr_impact(0.0, dt).unwrap();
+    let vs = jkr.sticking_velocity(m);
+    let (_, _, below) = jkr_impact(0.97 * vs, dt).unwrap();
+    let want = vs * (1.05f64 * 1.05 - 1.0).sqrt();
+    let err = |dt: f64| {
+        let (_, _, above) = jkr_impact(1.05 * vs, dt).unwrap();
+        let v_out = above.expect("bound above v_s");
+        (v_out - want) / want
+    };
+    let (e1, e4) = (err(dt), err(dt / 4.0));
+    eprintln!(
+        "JKR impact: v_s = {vs:.6e} m/s; at 0.97 v_s: {below:?} (bound); at 1.05 v_s the rebound speed departs from √(v² − v_s²) = {want:.6e} m/s by {e1:.2e} (dt = {dt:e} s), {e4:.2e} (dt/4)"
+    );
+    assert!(below.is_none(), "rebounded below v_s: {below:?}");
+    assert!(e1.abs() < 3e-3, "{e1:e}");
+    // the departure is the time step's: it shrinks with it
+    assert!(e4.abs() < 0.3 * e1.abs(), "{e4:e} vs {e1:e}");
 }

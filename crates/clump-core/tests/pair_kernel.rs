@@ -64,6 +64,7 @@ fn pair_props(a: usize, b: usize, rule: TangentialLaw) -> PairProperties {
             damping: DampingLaw::Liggghts,
             tensile: true,
             tangential: rule,
+            ..PairProperties::default()
         },
     }
 }

@@ -1,6 +1,6 @@
 //! Contact sub-models users ask for, each against a value from outside the
 //! code: LIGGGHTS' tangential rule and `cohesion sjkr` against LIGGGHTS 3.8
-//! itself.
+//! itself, JKR against its closed forms.
 
 use crate::case::{Case, Group};
 use crate::liggghts::{after_bounce, friction_bounce, spin_error, tutorial, TUTORIAL_STONE};
@@ -13,7 +13,81 @@ pub fn run(_sel: Selection, _dir: &Path) -> Group {
     let mut g = Group::default();
     liggghts_rule(&mut g);
     sjkr(&mut g);
+    jkr(&mut g);
     g
+}
+
+/// `cohesion = "jkr"` against the JKR closed forms.
+fn jkr(g: &mut Group) {
+    let source = "Johnson, Kendall & Roberts (1971); docs/theory.md T-47";
+    match crate::cohesion::jkr_loading_cycle() {
+        Ok((jkr, rows)) => {
+            let fc = jkr.pull_off();
+            let worst = rows
+                .iter()
+                .filter(|r| r.1 != 0.0)
+                .map(|r| (r.1 - jkr.force_at(r.0)).abs() / fc)
+                .fold(0.0, f64::max);
+            g.cases.push(Case::at_most(
+                "JKR: driven loading–unloading cycle of two 1 mm spheres (Γ = 0.05 J/m²), |F − F_JKR(δ)|/F_c on both branches",
+                source,
+                "0",
+                worst,
+                1e-9,
+            ));
+            let least = rows.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
+            g.cases.push(Case::relative(
+                "JKR: least force of the cycle (pull-off, (3/2)πΓR*)",
+                source,
+                -fc,
+                least,
+                1e-6,
+                "N",
+            ));
+            let last = rows
+                .iter()
+                .filter(|r| r.1 != 0.0)
+                .map(|r| r.0)
+                .fold(f64::INFINITY, f64::min);
+            g.cases.push(Case::relative(
+                "JKR: overlap at which the contact breaks (−δ_c = −(3/4)(π²Γ²R*/E*²)^{1/3}; samples δ_c/2000 apart)",
+                source,
+                -jkr.delta_c(),
+                last,
+                1e-3,
+                "m",
+            ));
+        }
+        Err(e) => g.cases.push(Case::error("JKR loading cycle", source, e)),
+    }
+    let source = "energy balance of Thornton & Ning (1998), v_s = √(2W/m*) (T-47)";
+    let dt = 1e-7;
+    let run = |v: f64| crate::cohesion::jkr_impact(v, dt);
+    match run(0.0).and_then(|(jkr, m, _)| {
+        let vs = jkr.sticking_velocity(m);
+        Ok((vs, run(0.97 * vs)?.2, run(1.05 * vs)?.2))
+    }) {
+        Ok((vs, below, above)) => {
+            g.cases.push(Case::at_most(
+                "JKR: 1 mm sphere onto a plane at 0.97 v_s, undamped: rebound speed (0 = stuck)",
+                source,
+                "0 (sticks)",
+                below.unwrap_or(0.0),
+                0.0,
+            ));
+            g.cases.push(Case::relative(
+                "JKR: the same at 1.05 v_s: rebound speed √(v² − v_s²) (dt = 1e-7 s; the touch and break fall between steps)",
+                source,
+                vs * (1.05f64 * 1.05 - 1.0).sqrt(),
+                above.unwrap_or(0.0),
+                3e-3,
+                "m/s",
+            ));
+        }
+        Err(e) => g
+            .cases
+            .push(Case::error("JKR sticking velocity", source, e)),
+    }
 }
 
 /// `cohesion = "sjkr"` against LIGGGHTS' `cohesion sjkr`, side by side.

@@ -5,7 +5,10 @@
 //! 1. *detect* ([`RowCtx::evaluate`]): a branch-free pass walks the
 //!    candidate pairs of the rows and compacts the touching ones into the
 //!    batch (the common non-touching pair costs one distance test; stale
-//!    state is cleared only when a pair stops touching);
+//!    state is cleared only when a pair stops touching). With JKR cohesion
+//!    a live contact counts as touching until its gap exceeds the model's
+//!    reach `δ_c` (a separate instance of the pass, so the default one is
+//!    unchanged);
 //! 2. *gather*: each touching pair's inputs (world frame: centre
 //!    separation, lever arms from the bodies' centres of mass, body
 //!    velocities and angular velocities, radii, body
@@ -130,6 +133,24 @@ impl RowCtx<'_> {
         batch: &mut Batch,
         stats: &SharedMut<ContactStats>,
     ) {
+        if self.table.any_reach() {
+            self.evaluate_rows::<true>(bodies, run_start, batch, stats)
+        } else {
+            self.evaluate_rows::<false>(bodies, run_start, batch, stats)
+        }
+    }
+
+    /// [`Self::evaluate`]; `REACH`: some model keeps a live contact beyond
+    /// touching (JKR, [`crate::contact::ContactModel::reach`]), so the
+    /// detect pass also keeps a live pair whose gap is within its reach.
+    #[inline(always)]
+    unsafe fn evaluate_rows<const REACH: bool>(
+        &self,
+        bodies: std::ops::Range<usize>,
+        run_start: usize,
+        batch: &mut Batch,
+        stats: &SharedMut<ContactStats>,
+    ) {
         let sp = self.sp;
         let n = sp.len();
         let np = self.topo.len();
@@ -188,7 +209,16 @@ impl RowCtx<'_> {
             let si = self.sphere(i);
             let d = si.position - self.partner_position(j, t.shift);
             let rsum = si.radius + self.sphere(j).radius;
-            let touching = d.length_squared() < rsum * rsum;
+            let mut touching = d.length_squared() < rsum * rsum;
+            if REACH && !touching && t.live {
+                // a live contact that may last while apart (JKR)
+                let rj = self.sphere(j).radius;
+                let reach = self
+                    .table
+                    .by_index(self.model_index(i, p))
+                    .reach(si.radius * rj / (si.radius + rj));
+                touching = d.length() < rsum + reach;
+            }
             // branch-free compaction: the slot is always written, kept
             // only when touching (len < BATCH here)
             debug_assert!(len < BATCH);
