@@ -224,6 +224,8 @@ CASES = [
      ["'surface_energy' is only used with cohesion = \"jkr\"", "this [contact] has cohesion = \"sjkr\""]),
     ("negative_cohesion", rep("friction = 0.5", 'friction = 0.5\ncohesion = "jkr"\nsurface_energy = -0.05'), "surface_energy",
      ["'surface_energy' must be >= 0 J/m^2, found -0.05"]),
+    ("jkr_linear", rep("friction = 0.3", 'friction = 0.3\nlaw = "linear"\nkn = 1e4\ncohesion = "jkr"\nsurface_energy = 0.05'), 'cohesion = "jkr"',
+     ["cohesion = \"jkr\" needs the Hertz normal law (this [[pair]] uses law = \"linear\")"]),
 ]
 
 # the invalid-UTF-8 case is written as bytes

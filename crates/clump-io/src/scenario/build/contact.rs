@@ -212,6 +212,17 @@ fn contact_props(
             out.normal = NormalLaw::Linear { kn, kt };
         }
     }
+    if matches!(out.cohesion, CohesionLaw::Jkr { .. }) && out.normal != NormalLaw::Hertz {
+        let key = if f.cohesion.is_some() {
+            "cohesion"
+        } else {
+            "law"
+        };
+        return Err(cx
+            .src
+            .error_at_key(&p(key), format!("cohesion = \"jkr\" needs the Hertz normal law (this {what} uses law = \"linear\")"))
+            .note("help: remove law = \"linear\" (JKR's force follows from the materials and the work of adhesion), or use cohesion = \"sjkr\""));
+    }
     if out.rolling != RollingLaw::None && out.rolling_friction == 0.0 && f.rolling.is_some() {
         let w = cx.src.warning_at(
             &p("rolling"),
