@@ -151,6 +151,9 @@ pub fn contacts(sc: &Scenario, world: &World) {
                         format!(", SJKR cohesion k_c = {energy_density:.3e} J/m^3"),
                     clump_core::contact::CohesionLaw::Jkr { surface_energy } =>
                         format!(", JKR cohesion (work of adhesion {surface_energy:.3e} J/m^2, pull-off force {:.3e} N)", model.pull_off_force(r_star)),
+                } + match p.twisting {
+                    clump_core::contact::TwistingLaw::None => "",
+                    clump_core::contact::TwistingLaw::Marshall => ", twisting resistance (Marshall)",
                 },
                 p.restitution,
                 p.friction,

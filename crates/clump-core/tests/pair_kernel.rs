@@ -14,7 +14,7 @@ use clump_core::boundary::Domain;
 use clump_core::contact::ContactTable;
 use clump_core::contact::{
     ContactHistory, ContactInput, DampingLaw, Material, NormalLaw, PairProperties, RollingLaw,
-    TangentialLaw,
+    TangentialLaw, TwistingLaw,
 };
 use clump_core::multi_contact::MultiContact;
 use clump_core::shape::{ClumpTemplate, Sphere};
@@ -64,6 +64,13 @@ fn pair_props(a: usize, b: usize, rule: TangentialLaw) -> PairProperties {
             damping: DampingLaw::Liggghts,
             tensile: true,
             tangential: rule,
+            // with LIGGGHTS' rule also twisting resistance (its couple
+            // comes with the scalar path's)
+            twisting: if rule == TangentialLaw::Liggghts {
+                TwistingLaw::Marshall
+            } else {
+                TwistingLaw::None
+            },
             ..PairProperties::default()
         },
     }

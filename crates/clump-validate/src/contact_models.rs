@@ -1,6 +1,6 @@
 //! Contact sub-models users ask for, each against a value from outside the
 //! code: LIGGGHTS' tangential rule and `cohesion sjkr` against LIGGGHTS 3.8
-//! itself, JKR against its closed forms.
+//! itself, JKR and twisting resistance against their closed forms.
 
 use crate::case::{Case, Group};
 use crate::liggghts::{after_bounce, friction_bounce, spin_error, tutorial, TUTORIAL_STONE};
@@ -14,7 +14,44 @@ pub fn run(_sel: Selection, _dir: &Path) -> Group {
     liggghts_rule(&mut g);
     sjkr(&mut g);
     jkr(&mut g);
+    twisting(&mut g);
     g
+}
+
+/// `twisting = "marshall"` against the closed forms of a spinning sphere
+/// resting on a plane.
+fn twisting(g: &mut Group) {
+    let source = "closed forms of docs/theory.md T-48 (Marshall 2009 constants)";
+    match crate::twisting::spin_down(50.0, 1e-5, 0.3, 1000) {
+        Ok((sd, rows)) => {
+            let (a, b) = (rows[1], rows[rows.len() - 1]);
+            g.cases.push(Case::relative(
+                "Twisting, slipping: spin-down rate of a 2 mm sphere resting on a plane, ω₀ = 50 rad/s (M_max/I)",
+                source,
+                sd.m_max / sd.inertia,
+                (a.1 - b.1) / (b.0 - a.0),
+                1e-9,
+                "rad/s²",
+            ));
+        }
+        Err(e) => g.cases.push(Case::error("Twisting, slipping", source, e)),
+    }
+    match crate::twisting::spin_down(0.5, 1e-5, 0.3, 100) {
+        Ok((sd, rows)) => {
+            let worst = rows
+                .iter()
+                .map(|&(t, w)| (w - sd.sticking(0.5, t)).abs() / 0.5)
+                .fold(0.0, f64::max);
+            g.cases.push(Case::at_most(
+                "Twisting, sticking: ω₀ = 0.5 rad/s rings down as the damped torsional oscillator, |ω − ω_closed|/ω₀ over 4 periods (dt = 1e-5 s)",
+                source,
+                "0",
+                worst,
+                2e-3,
+            ));
+        }
+        Err(e) => g.cases.push(Case::error("Twisting, sticking", source, e)),
+    }
 }
 
 /// `cohesion = "jkr"` against the JKR closed forms.

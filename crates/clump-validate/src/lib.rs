@@ -25,6 +25,7 @@ pub mod plot;
 pub mod report;
 pub mod rigid_body;
 pub mod setup;
+pub mod twisting;
 
 pub use case::{Case, Group, Suite};
 

@@ -1,7 +1,8 @@
 //! The scalar composition of the contact law for pairs that select a
 //! sub-model the vectorised [`SlidingLaw`](super::SlidingLaw) does not have:
-//! LIGGGHTS' tangential rule ([`super::tangential::liggghts_spring`]) and
-//! cohesion ([`super::cohesion`]: SJKR, JKR).
+//! LIGGGHTS' tangential rule ([`super::tangential::liggghts_spring`]),
+//! cohesion ([`super::cohesion`]: SJKR, JKR) and twisting resistance
+//! ([`super::twisting`]).
 //!
 //! The same sub-model formulas as [`SlidingLaw::evaluate`]: the stiffness
 //! scale, elastic force and spring energy of [`super::normal`], the dashpots
@@ -17,6 +18,7 @@ use super::cohesion::{
     jkr_contact_radius, jkr_force_parts, jkr_pull_off_force, sjkr_force, CohesionLaw,
 };
 use super::tangential::{self, history_spring, liggghts_spring, TangentialLaw};
+use super::twisting::{self, TwistingLaw};
 use super::{damping, normal};
 use super::{ContactHistory, ContactInput, ContactModel, ContactOutput};
 use glam::DVec3;
@@ -89,11 +91,40 @@ pub fn evaluate(model: &ContactModel, c: &ContactInput, h: &mut ContactHistory) 
     let d_h = if law.hertz { s * s / c.radius } else { d };
     let energy =
         normal::spring_energy(law.energy_factor, f_el, d_h) + tangential::spring_energy(kt, *xi);
-    let (torque, e_r) = model.rolling_couple(c, f_n, kn, &mut h.rolling);
+    // the couple spring: the twisting spring along the normal, the EPSD
+    // rolling spring in the tangent plane (which that law rotates)
+    let twist = props.twisting != TwistingLaw::None;
+    let m_tw = if twist { h.rolling.dot(n) } else { 0.0 };
+    if twist {
+        h.rolling -= m_tw * n;
+    }
+    let (mut torque, e_r) = model.rolling_couple(c, f_n, kn, &mut h.rolling);
+    let mut energy = e_r.map_or(energy, |e| energy + e);
+    if twist {
+        // Marshall (2009): k_tw = k_t a²/2, γ_tw = γ_t a²/2, M_max = (2/3)aμ|F_n|
+        let a = if law.hertz {
+            s
+        } else {
+            (c.radius * d.max(0.0)).sqrt()
+        };
+        let mut m = m_tw;
+        let (couple, e_tw) = twisting::sds(
+            &mut m,
+            n,
+            c.rel_omega.dot(n),
+            c.dt,
+            0.5 * kt * a * a,
+            0.5 * gamma_t * a * a,
+            2.0 / 3.0 * a * law.friction * f_n.abs(),
+        );
+        h.rolling += m * n;
+        torque += couple;
+        energy += e_tw;
+    }
     ContactOutput {
         force: f_n * n + f_t,
         torque,
-        elastic_energy: e_r.map_or(energy, |e| energy + e),
+        elastic_energy: energy,
         normal_force: f_n,
     }
 }

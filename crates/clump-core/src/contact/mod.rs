@@ -42,6 +42,8 @@
 //! - [`tangential::TangentialLaw::Liggghts`]: LIGGGHTS' rule (only the
 //!   spring is limited, the dashpot dropped while sliding); such pairs run
 //!   the scalar composition [`extended`].
+//! - [`cohesion`]: SJKR and JKR; [`twisting`]: twisting resistance
+//!   (both on the scalar path [`extended`]).
 //! - [`rolling`]: rolling resistance, none, CDT or EPSD.
 //! - [`time_scale`]: Rayleigh time and Hertz contact duration, for choosing a
 //!   time step.
@@ -70,6 +72,7 @@ pub mod rolling;
 pub mod table;
 pub mod tangential;
 pub mod time_scale;
+pub mod twisting;
 
 pub use cohesion::CohesionLaw;
 pub use damping::DampingLaw;
@@ -79,6 +82,7 @@ pub use normal::NormalLaw;
 pub use rolling::RollingLaw;
 pub use table::ContactTable;
 pub use tangential::TangentialLaw;
+pub use twisting::TwistingLaw;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -116,8 +120,9 @@ pub struct ContactHistory {
     /// Tangential spring displacement `ξ`, m, world frame. After an evaluation
     /// it lies in the current tangent plane (`ξ·n = 0`).
     pub tangential: DVec3,
-    /// Rolling spring torque `M_r` on `i`, N m, world frame (EPSD only; zero
-    /// otherwise). After an evaluation it lies in the tangent plane.
+    /// Couple spring on `i`, N m, world frame: in the tangent plane the
+    /// EPSD rolling spring `M_r` (zero for other rolling laws), along the
+    /// normal the twisting spring ([`twisting`]; zero without it).
     pub rolling: DVec3,
 }
 

@@ -26,6 +26,7 @@ use super::normal::{self, NormalLaw};
 use super::rolling::{cdt, epsd, rolling_omega, RollingLaw};
 use super::tangential::{self, history_spring, TangentialLaw};
 use super::time_scale::hertz_contact_time;
+use super::twisting::TwistingLaw;
 use super::{ContactError, ContactHistory, ContactInput, ContactOutput};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -61,6 +62,8 @@ pub struct PairProperties {
     pub tangential: TangentialLaw,
     /// Cohesion ([`CohesionLaw`]; default none).
     pub cohesion: CohesionLaw,
+    /// Twisting resistance ([`TwistingLaw`]; default none).
+    pub twisting: TwistingLaw,
 }
 
 impl Default for PairProperties {
@@ -78,6 +81,7 @@ impl Default for PairProperties {
             tensile: false,
             tangential: TangentialLaw::Clump,
             cohesion: CohesionLaw::None,
+            twisting: TwistingLaw::None,
         }
     }
 }
@@ -177,7 +181,7 @@ pub struct ContactModel {
     rolling: RollingLaw,
     rolling_damping: f64,
     /// The pair selects a sub-model the vectorised [`SlidingLaw`] does not
-    /// have (LIGGGHTS' tangential rule, cohesion): it runs the scalar composition
+    /// have (LIGGGHTS' tangential rule, cohesion, twisting): it runs the scalar composition
     /// [`super::extended::evaluate`], in the pair kernel and on walls.
     extended: bool,
 }
@@ -276,7 +280,9 @@ impl ContactModel {
             rolling_friction: p.rolling_friction,
             rolling: p.rolling,
             rolling_damping: 0.0,
-            extended: p.tangential != TangentialLaw::Clump || p.cohesion != CohesionLaw::None,
+            extended: p.tangential != TangentialLaw::Clump
+                || p.cohesion != CohesionLaw::None
+                || p.twisting != TwistingLaw::None,
         })
     }
 

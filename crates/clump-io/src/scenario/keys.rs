@@ -142,6 +142,10 @@ pub const CONTACT_KEYS: &[Key] = &[
         "SJKR cohesion energy density, J/m³.",
     ),
     key("surface_energy", "JKR work of adhesion, J/m²."),
+    key(
+        "twisting",
+        "Twisting resistance: `\"none\"` (default) or `\"marshall\"`.",
+    ),
 ];
 
 /// The keys of `[[pair]]` ([`RawPair`]).
@@ -175,6 +179,10 @@ pub const PAIR_KEYS: &[Key] = &[
         "SJKR cohesion energy density, J/m³.",
     ),
     key("surface_energy", "JKR work of adhesion, J/m²."),
+    key(
+        "twisting",
+        "Twisting resistance: `\"none\"` (default) or `\"marshall\"`.",
+    ),
 ];
 
 /// The keys of `[[template]]` ([`RawTemplate`]).

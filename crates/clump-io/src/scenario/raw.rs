@@ -4,7 +4,7 @@
 //! on every field. Validation and cross-references are resolved in
 //! [`super::build`]. See `docs/scenario.md` for the reference.
 
-use clump_core::contact::{DampingLaw, RollingLaw, TangentialLaw};
+use clump_core::contact::{DampingLaw, RollingLaw, TangentialLaw, TwistingLaw};
 use clump_core::insert::FractionBasis;
 use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::RotationScheme;
@@ -230,6 +230,8 @@ pub struct RawContact {
     pub cohesion_energy_density: Option<f64>,
     /// JKR work of adhesion, J/m².
     pub surface_energy: Option<f64>,
+    /// Twisting resistance: `"none"` (default) or `"marshall"`.
+    pub twisting: Option<TwistingLaw>,
 }
 
 /// `[[pair]]`: like `[contact]` for one pair of materials.
@@ -264,6 +266,8 @@ pub struct RawPair {
     pub cohesion_energy_density: Option<f64>,
     /// JKR work of adhesion, J/m².
     pub surface_energy: Option<f64>,
+    /// Twisting resistance: `"none"` (default) or `"marshall"`.
+    pub twisting: Option<TwistingLaw>,
 }
 
 /// Built-in template shape name.

@@ -4,7 +4,9 @@ use super::raw::*;
 use super::source::Seg;
 use super::Seg::{I, K};
 use super::{lookup, Cx, R};
-use clump_core::contact::{CohesionLaw, NormalLaw, PairProperties, RollingLaw, TangentialLaw};
+use clump_core::contact::{
+    CohesionLaw, NormalLaw, PairProperties, RollingLaw, TangentialLaw, TwistingLaw,
+};
 use std::collections::HashMap;
 
 /// The contact properties of every pair of materials, row-major
@@ -92,6 +94,7 @@ struct ContactFields {
     cohesion: Option<CohesionName>,
     cohesion_energy_density: Option<f64>,
     surface_energy: Option<f64>,
+    twisting: Option<TwistingLaw>,
 }
 
 impl ContactFields {
@@ -110,6 +113,7 @@ impl ContactFields {
             cohesion: c.cohesion,
             cohesion_energy_density: c.cohesion_energy_density,
             surface_energy: c.surface_energy,
+            twisting: c.twisting,
         }
     }
     fn from_pair(c: &RawPair) -> Self {
@@ -127,6 +131,7 @@ impl ContactFields {
             cohesion: c.cohesion,
             cohesion_energy_density: c.cohesion_energy_density,
             surface_energy: c.surface_energy,
+            twisting: c.twisting,
         }
     }
 }
@@ -175,6 +180,9 @@ fn contact_props(
         out.tangential = t;
     }
     out.cohesion = cohesion(cx, base, what, f, dflt.cohesion)?;
+    if let Some(t) = f.twisting {
+        out.twisting = t;
+    }
     let law = f.law.unwrap_or(match dflt.normal {
         NormalLaw::Hertz => LawName::Hertz,
         NormalLaw::Linear { .. } => LawName::Linear,
