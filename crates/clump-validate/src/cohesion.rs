@@ -4,7 +4,7 @@
 //! closed forms (Johnson, Kendall & Roberts 1971; Thornton & Ning 1998).
 
 use crate::liggghts::table;
-use crate::setup::{body, coincident_spheres, open_box, plane, world, PARTICLE};
+use crate::setup::{body, coincident_spheres, material, open_box, plane, world, PARTICLE};
 use clump_core::contact::{CohesionLaw, DampingLaw, Material, PairProperties};
 use clump_core::world::World;
 use glam::{DQuat, DVec3};
@@ -14,11 +14,7 @@ use std::f64::consts::PI;
 /// ρ = 2500 kg/m³; e = 0.5, μ = 0.5, LIGGGHTS damping, `limitForce off`,
 /// `cohesionEnergyDensity` 2·10⁵ J/m³.
 pub fn sjkr_contact() -> (Material, PairProperties) {
-    let mat = Material {
-        youngs_modulus: 1e7,
-        poisson_ratio: 0.3,
-        density: 2500.0,
-    };
+    let mat = material(1e7, 0.3, 2500.0);
     let props = PairProperties {
         restitution: 0.5,
         friction: 0.5,
@@ -126,11 +122,7 @@ pub fn deviation<const N: usize>(rows: &[Vec<f64>], clump: &[[f64; N]], cols: [u
 /// Γ = 0.05 J/m², no damping (e = 1, so the force is the JKR force alone),
 /// no friction.
 pub fn jkr_contact() -> (Material, PairProperties) {
-    let mat = Material {
-        youngs_modulus: 1e7,
-        poisson_ratio: 0.3,
-        density: 2500.0,
-    };
+    let mat = material(1e7, 0.3, 2500.0);
     let props = PairProperties {
         restitution: 1.0,
         friction: 0.0,

@@ -1,8 +1,8 @@
 //! Twisting resistance (`contact::twisting`, Marshall 2009) against its
 //! closed forms: a sphere resting on a plane, spinning about the normal.
 
-use crate::setup::{body, coincident_spheres, open_box, plane, world, PARTICLE};
-use clump_core::contact::{Material, PairProperties, TwistingLaw};
+use crate::setup::{body, coincident_spheres, material, open_box, plane, world, PARTICLE};
+use clump_core::contact::{PairProperties, TwistingLaw};
 use glam::{DQuat, DVec3};
 
 /// The spin-down set-up: a 2 mm sphere (E = 10 MPa, ν = 0.3, ρ = 2500
@@ -48,11 +48,7 @@ pub fn spin_down(
     t_end: f64,
     every: usize,
 ) -> Result<(SpinDown, Vec<(f64, f64)>), String> {
-    let mat = Material {
-        youngs_modulus: 1e7,
-        poisson_ratio: 0.3,
-        density: 2500.0,
-    };
+    let mat = material(1e7, 0.3, 2500.0);
     let props = PairProperties {
         restitution: 0.5,
         friction: 0.5,
