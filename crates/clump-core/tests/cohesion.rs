@@ -195,3 +195,78 @@ fn jkr_sticks_below_the_critical_velocity() {
     // the departure is the time step's: it shrinks with it
     assert!(e4.abs() < 0.3 * e1.abs(), "{e4:e} vs {e1:e}");
 }
+
+/// A JKR contact stretched apart (negative overlap, no spring: head-on)
+/// survives neighbour rebuilds: the pair list carries live pairs when a
+/// model has a reach. The force stays the JKR force at that overlap.
+#[test]
+fn stretched_jkr_contact_survives_a_rebuild() {
+    use clump_core::dof::DRIVEN;
+    use clump_validate::setup::{body, coincident_spheres, open_box, world, PARTICLE};
+    use glam::DQuat;
+    let (mat, props) = clump_validate::cohesion::jkr_contact();
+    let r = 1e-3;
+    let model = ContactModel::new(&mat, &mat, &props).unwrap();
+    let dc = model.reach(0.5 * r);
+    let mut w = world(mat, props, 1e-6, open_box(0.05), DVec3::ZERO).unwrap();
+    let t = w
+        .add_template(coincident_spheres(1, r, mat.density).unwrap(), PARTICLE)
+        .unwrap();
+    let at = |x: f64| {
+        let mut b = body(
+            t,
+            DVec3::new(x, 0.0, 0.0),
+            DQuat::IDENTITY,
+            DVec3::ZERO,
+            DVec3::ZERO,
+        );
+        b.start_step = DRIVEN;
+        b
+    };
+    let a = w.add_body(&at(0.0)).unwrap();
+    let b = w.add_body(&at(2.0 * r - 1e-6)).unwrap();
+    w.run(1).unwrap();
+    let force = |w: &clump_core::world::World| -w.bodies.force[w.body_index(a).unwrap()].x;
+    assert!(force(&w) > 0.0, "pressed together");
+    // pulled apart to half the critical separation
+    let d = -0.5 * dc;
+    w.set_body_pose(b, DVec3::new(2.0 * r - d, 0.0, 0.0), DQuat::IDENTITY)
+        .unwrap();
+    w.run(1).unwrap();
+    let want = {
+        let c = ContactInput {
+            normal: DVec3::X,
+            overlap: d,
+            rel_velocity: DVec3::ZERO,
+            rel_omega: DVec3::ZERO,
+            radius: 0.5 * r,
+            radius_sum: 2.0 * r,
+            mass: 1.0,
+            dt: 1e-6,
+        };
+        model
+            .evaluate(&c, &mut ContactHistory::default())
+            .normal_force
+    };
+    assert!(want < 0.0);
+    // (the overlap from the centres differs from d by round-off)
+    let close = |f: f64| (f - want).abs() < 1e-9 * want.abs();
+    assert!(close(force(&w)), "stretched contact: {} vs {want}", force(&w));
+    // a third body: the topology changes, the lists are rebuilt
+    w.add_body(&at(0.02)).unwrap();
+    w.run(1).unwrap();
+    assert!(close(force(&w)), "after the rebuild: {} vs {want}", force(&w));
+    // beyond δ_c it breaks, and does not form again while apart
+    w.set_body_pose(
+        b,
+        DVec3::new(2.0 * r + 1.01 * dc, 0.0, 0.0),
+        DQuat::IDENTITY,
+    )
+    .unwrap();
+    w.run(1).unwrap();
+    assert_eq!(force(&w), 0.0);
+    w.set_body_pose(b, DVec3::new(2.0 * r + 0.5 * dc, 0.0, 0.0), DQuat::IDENTITY)
+        .unwrap();
+    w.run(1).unwrap();
+    assert_eq!(force(&w), 0.0, "an apart pair that was not in contact");
+}
