@@ -138,9 +138,23 @@ pub fn contacts(sc: &Scenario, world: &World) {
             };
             let k = model.normal_stiffness(r_star, 0.01 * r_star);
             outln!(
-                "  {} – {}: {law}, e = {}, mu = {}, mu_r = {}{}, damping ratio {:.3}, E* = {:.3e} Pa, k_n = {k:.3e} N/m (R* = {r_star:.3e} m, m* = {m_star:.3e} kg)",
+                "  {} – {}: {law}{}{}, e = {}, mu = {}, mu_r = {}{}, damping ratio {:.3}, E* = {:.3e} Pa, k_n = {k:.3e} N/m (R* = {r_star:.3e} m, m* = {m_star:.3e} kg)",
                 sc.material_names[a],
                 sc.material_names[b],
+                match p.tangential {
+                    clump_core::contact::TangentialLaw::Clump => "",
+                    clump_core::contact::TangentialLaw::Liggghts => " (LIGGGHTS' tangential rule)",
+                },
+                match p.cohesion {
+                    clump_core::contact::CohesionLaw::None => String::new(),
+                    clump_core::contact::CohesionLaw::Sjkr { energy_density } =>
+                        format!(", SJKR cohesion k_c = {energy_density:.3e} J/m^3"),
+                    clump_core::contact::CohesionLaw::Jkr { surface_energy } =>
+                        format!(", JKR cohesion (work of adhesion {surface_energy:.3e} J/m^2, pull-off force {:.3e} N)", model.pull_off_force(r_star)),
+                } + match p.twisting {
+                    clump_core::contact::TwistingLaw::None => "",
+                    clump_core::contact::TwistingLaw::Marshall => ", twisting resistance (Marshall)",
+                },
                 p.restitution,
                 p.friction,
                 p.rolling_friction,

@@ -48,6 +48,7 @@ fn contact_kernel(c: &mut Criterion) {
         rel_velocity: DVec3::new(0.01, -0.02, 0.003),
         rel_omega: DVec3::new(1.0, 0.0, 0.0),
         radius: 0.5e-3,
+        radius_sum: f64::INFINITY,
         mass: 1.6e-5,
         dt: 1e-5,
     };

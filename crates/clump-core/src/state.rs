@@ -65,9 +65,11 @@ impl World {
             self.prepare()?;
         }
         let mut map = std::mem::take(&mut self.neighbors.history_map);
-        self.neighbors
-            .pairs
-            .save_history(&self.spheres.gid, &mut map);
+        self.neighbors.pairs.save_history(
+            &self.spheres.gid,
+            self.contact_table.any_reach(),
+            &mut map,
+        );
         let mut pair_history: Vec<_> = map.drain().collect();
         pair_history.sort_by_key(|e| e.0);
         self.neighbors.history_map = map;

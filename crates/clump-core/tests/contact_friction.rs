@@ -36,6 +36,7 @@ fn coulomb_limit_and_history() {
             rel_velocity: 5.0 * t1 - 0.1 * n,
             rel_omega: DVec3::ZERO,
             radius: 0.005,
+            radius_sum: f64::INFINITY,
             mass: 0.005,
             dt: 1e-6,
         };
@@ -126,6 +127,7 @@ fn gross_sliding_stays_at_the_coulomb_limit() {
             rel_velocity: v_cp,
             rel_omega: DVec3::ZERO,
             radius: r,
+            radius_sum: f64::INFINITY,
             mass: m,
             dt,
         };
@@ -197,6 +199,7 @@ fn tangential_spring_and_rotation() {
         rel_velocity: vt,
         rel_omega: DVec3::ZERO,
         radius: r,
+        radius_sum: f64::INFINITY,
         mass: 0.01,
         dt,
     };
@@ -246,6 +249,7 @@ fn rolling_input(n: DVec3, omega: DVec3) -> ContactInput {
         rel_velocity: DVec3::ZERO,
         rel_omega: omega,
         radius: 0.004,
+        radius_sum: f64::INFINITY,
         mass: 0.003,
         dt: 1e-6,
     }

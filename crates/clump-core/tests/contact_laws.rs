@@ -95,6 +95,7 @@ fn head_on(model: &ContactModel, mi: f64, ri: f64, mj: f64, rj: f64, v: f64, dt:
             rel_velocity: DVec3::new((vi + 0.5 * dt * ai) - (vj + 0.5 * dt * aj), 0.0, 0.0),
             rel_omega: DVec3::ZERO,
             radius: r_star,
+            radius_sum: f64::INFINITY,
             mass: m_star,
             dt,
         };
@@ -325,6 +326,7 @@ fn tensile_option_keeps_the_unclamped_law() {
         rel_velocity: DVec3::new(2.0, 0.0, 1.0),
         rel_omega: DVec3::ZERO,
         radius: 0.005,
+        radius_sum: f64::INFINITY,
         mass: 0.005,
         dt: 1e-7,
     };
@@ -388,6 +390,7 @@ fn zero_restitution_does_not_rebound() {
                 rel_velocity: DVec3::new(vx + 0.5 * dt * a, 0.0, 0.0),
                 rel_omega: DVec3::ZERO,
                 radius: r,
+                radius_sum: f64::INFINITY,
                 mass: m,
                 dt,
             };
@@ -419,6 +422,7 @@ fn linear_law_values() {
         rel_velocity: DVec3::new(0.0, -0.3, 0.0),
         rel_omega: DVec3::ZERO,
         radius: 0.01,
+        radius_sum: f64::INFINITY,
         mass: m,
         dt: 1e-6,
     };

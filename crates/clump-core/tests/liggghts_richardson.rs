@@ -11,13 +11,10 @@
 //! depart from it by their (different) truncation errors.
 
 mod common;
-use clump_core::body::BodyInit;
 use clump_core::contact::{DampingLaw, Material, PairProperties};
-use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::{omega_world, RotState, RotationScheme};
-use clump_core::shape::{ClumpTemplate, Sphere};
-use common::*;
-use glam::{DMat3, DQuat, DVec3};
+use clump_validate::liggghts::{run_bounce, table};
+use glam::{DQuat, DVec3};
 
 /// Rows of `free.dat`: time, q (w, x, y, z), ω (world), L (world), I.
 fn rows() -> Vec<[f64; 14]> {
@@ -73,40 +70,10 @@ fn free_rotation_reproduces_liggghts_to_its_printed_precision() {
     }
 }
 
-/// Numeric rows of a LIGGGHTS output file.
-fn table(text: &str) -> Vec<Vec<f64>> {
-    text.lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
-        .collect()
-}
-
 /// The bounce with `scheme`: largest deviation from LIGGGHTS' rows of
 /// (centre of mass in m, velocity in m/s, quaternion, ω relative to |ω|).
 fn bounce(scheme: RotationScheme) -> [f64; 4] {
     let rows = table(include_str!("fixtures/liggghts/bounce.dat"));
-    let r0 = &rows[0];
-    let v3 = |r: &[f64], k: usize| DVec3::new(r[k], r[k + 1], r[k + 2]);
-    let (x0, q0) = (v3(r0, 1), DQuat::from_xyzw(r0[8], r0[9], r0[10], r0[7]));
-    let inertia = v3(r0, 17);
-    // body-frame sphere centres from LIGGGHTS' world positions at the same step
-    let spheres: Vec<Sphere> = table(include_str!("fixtures/liggghts/bounce_spheres_step100.txt"))
-        .iter()
-        .filter(|r| r.len() == 5)
-        .map(|r| Sphere::new(q0.conjugate() * (v3(r, 1) - x0), r[4]))
-        .collect();
-    assert_eq!(spheres.len(), 50);
-    let tmpl = ClumpTemplate::with_override_about(
-        "stone",
-        &spheres,
-        2500.0,
-        0.01,
-        DMat3::from_diagonal(inertia),
-        DVec3::ZERO,
-    )
-    .unwrap();
-    assert_eq!(tmpl.principal_inertia, inertia);
-    assert_eq!(tmpl.input_to_body, DQuat::IDENTITY);
     let mat = Material {
         youngs_modulus: 1e7,
         poisson_ratio: 0.3,
@@ -119,42 +86,9 @@ fn bounce(scheme: RotationScheme) -> [f64; 4] {
         tensile: true,
         ..PairProperties::default()
     };
-    let mut w = world(
-        mat,
-        props,
-        1e-5,
-        open_domain(0.5),
-        DVec3::new(0.0, 0.0, -9.81),
-    );
-    w.config.rotation = scheme;
-    let t = w.add_template(tmpl, 0).unwrap();
-    w.add_wall(plane(DVec3::ZERO, DVec3::Z, MultiContact::Sum))
-        .unwrap();
-    let id = w
-        .add_body(&BodyInit {
-            orientation: q0,
-            ..moving(t, x0, v3(r0, 4), v3(r0, 11))
-        })
-        .unwrap();
-    let b = w.body_index(id).unwrap();
-    w.bodies.angular_momentum[b] = v3(r0, 14);
-    let mut dev = [0.0f64; 4];
-    for r in &rows[1..] {
-        w.run(100).unwrap();
-        let b = w.body_index(id).unwrap();
-        let (x, v, q, om) = (
-            w.bodies.position[b],
-            w.bodies.velocity[b],
-            w.bodies.orientation[b],
-            w.bodies.angular_velocity[b],
-        );
-        let ql = DQuat::from_xyzw(r[8], r[9], r[10], r[7]);
-        dev[0] = dev[0].max((x - v3(r, 1)).length());
-        dev[1] = dev[1].max((v - v3(r, 4)).length());
-        dev[2] = dev[2].max((q - ql).length().min((q + ql).length()));
-        dev[3] = dev[3].max((om - v3(r, 11)).length() / v3(r, 11).length());
-    }
-    dev
+    let spheres = include_str!("fixtures/liggghts/bounce_spheres_step100.txt");
+    let states = run_bounce(&rows, spheres, 0.01, mat, props, 1, scheme, 1e-5, 100);
+    clump_validate::liggghts::deviation(&rows, &states)
 }
 
 #[test]

@@ -118,3 +118,35 @@ fn overflowing_mass_properties_name_the_template() {
         "{e}"
     );
 }
+
+/// The contact sub-model keys reach the material pairs: `[contact]` sets
+/// JKR, twisting and LIGGGHTS' tangential rule for every pair, a
+/// `[[pair]]` switches its pair to SJKR and keeps the rest.
+#[test]
+fn contact_sub_models_reach_the_pairs() {
+    use clump_core::contact::{CohesionLaw, TangentialLaw, TwistingLaw};
+    let contact = "tangential = \"liggghts\"\ntwisting = \"marshall\"\ncohesion = \"jkr\"\nsurface_energy = 0.05\n\
+                   [[pair]]\nmaterials = [\"rock\", \"rigid\"]\ncohesion = \"sjkr\"\ncohesion_energy_density = 1e5\n";
+    let sc = parse("", "", contact, LUMP).unwrap();
+    let w = sc.build_world().unwrap_or_else(|e| panic!("{e}"));
+    let rock = w.contact_table.get(0, 0).properties();
+    assert_eq!(
+        rock.cohesion,
+        CohesionLaw::Jkr {
+            surface_energy: 0.05
+        }
+    );
+    assert_eq!(rock.twisting, TwistingLaw::Marshall);
+    assert_eq!(rock.tangential, TangentialLaw::Liggghts);
+    let wall = w.contact_table.get(0, 1).properties();
+    assert_eq!(
+        wall.cohesion,
+        CohesionLaw::Sjkr {
+            energy_density: 1e5
+        }
+    );
+    assert_eq!(wall.twisting, TwistingLaw::Marshall);
+    assert!(w.contact_table.get(0, 0).is_extended() && w.contact_table.any_reach());
+    // the skin covers JKR's critical separation
+    assert!(w.skin() >= 2.0 * w.contact_table.get(0, 0).reach(0.005));
+}

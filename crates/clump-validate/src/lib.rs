@@ -15,13 +15,17 @@ pub mod bulk;
 pub mod case;
 pub mod chung_ooi;
 pub mod clump_cases;
+pub mod cohesion;
+pub mod contact_models;
 pub mod dem_order;
+pub mod liggghts;
 pub mod mass;
 pub mod ode;
 pub mod plot;
 pub mod report;
 pub mod rigid_body;
 pub mod setup;
+pub mod twisting;
 
 pub use case::{Case, Group, Suite};
 
@@ -49,6 +53,7 @@ pub fn run_suite(selection: Selection, dir: &Path) -> Suite {
         ("Rotation schemes inside the DEM step", dem_order::run),
         ("Mass properties", mass::run),
         ("Clump-specific dynamics", clump_cases::run),
+        ("Contact models users ask for", contact_models::run),
         ("Bulk behaviour", bulk::run),
     ];
     for (name, f) in groups {

@@ -39,6 +39,11 @@
 //! - [`tangential`]: incremental history spring (Mindlin `k_t = 8G*√(R*δ)` or
 //!   linear `k_t`), dashpot, Coulomb limit `|F_t| ≤ μF_n`; a sliding contact
 //!   keeps the limit in its elastic spring.
+//! - [`tangential::TangentialLaw::Liggghts`]: LIGGGHTS' rule (only the
+//!   spring is limited, the dashpot dropped while sliding); such pairs run
+//!   the scalar composition [`extended`].
+//! - [`cohesion`]: SJKR and JKR; [`twisting`]: twisting resistance
+//!   (both on the scalar path [`extended`]).
 //! - [`rolling`]: rolling resistance, none, CDT or EPSD.
 //! - [`time_scale`]: Rayleigh time and Hertz contact duration, for choosing a
 //!   time step.
@@ -55,7 +60,9 @@
 //! separation and the limits use `|F_n|`. The exact-restitution damping is
 //! calibrated for whichever rule the pair uses (see [`damping`]).
 
+pub mod cohesion;
 pub mod damping;
+pub mod extended;
 pub mod geometry;
 pub mod material;
 pub mod model;
@@ -65,19 +72,24 @@ pub mod rolling;
 pub mod table;
 pub mod tangential;
 pub mod time_scale;
+pub mod twisting;
 
+pub use cohesion::CohesionLaw;
 pub use damping::DampingLaw;
 pub use material::Material;
 pub use model::{ContactModel, PairProperties, SlidingLaw, SlidingOutput};
 pub use normal::NormalLaw;
 pub use rolling::RollingLaw;
 pub use table::ContactTable;
+pub use tangential::TangentialLaw;
+pub use twisting::TwistingLaw;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 /// Geometry and kinematics of one contact, all in the world frame, SI units.
+/// `overlap` may be negative only for a JKR pair (a neck under tension).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ContactInput {
     /// Unit contact normal, world frame, from `j`'s centre to `i`'s centre
@@ -93,6 +105,8 @@ pub struct ContactInput {
     pub rel_omega: DVec3,
     /// Effective radius `R* = R₁R₂/(R₁+R₂)`, m (wall: sphere radius).
     pub radius: f64,
+    /// Radius sum `R₁ + R₂`, m (wall: `∞`); read by SJKR's contact area only.
+    pub radius_sum: f64,
     /// Effective mass `m* = m₁m₂/(m₁+m₂)` of the two bodies, kg (wall: body mass).
     pub mass: f64,
     /// Time step, s (used for the history-spring increments).
@@ -106,8 +120,9 @@ pub struct ContactHistory {
     /// Tangential spring displacement `ξ`, m, world frame. After an evaluation
     /// it lies in the current tangent plane (`ξ·n = 0`).
     pub tangential: DVec3,
-    /// Rolling spring torque `M_r` on `i`, N m, world frame (EPSD only; zero
-    /// otherwise). After an evaluation it lies in the tangent plane.
+    /// Couple spring on `i`, N m, world frame: in the tangent plane the
+    /// EPSD rolling spring `M_r` (zero for other rolling laws), along the
+    /// normal the twisting spring ([`twisting`]; zero without it).
     pub rolling: DVec3,
 }
 

@@ -19,12 +19,14 @@
 //! [`damping::dashpot_coefficients`]). The pair kernel and the wall path
 //! run this one function.
 
+use super::cohesion::{jkr_critical_separation, CohesionLaw};
 use super::damping::{self, clamped_pulse_time, damping_ratio, DampingLaw};
 use super::material::{effective_modulus, effective_shear_modulus, Material};
 use super::normal::{self, NormalLaw};
 use super::rolling::{cdt, epsd, rolling_omega, RollingLaw};
-use super::tangential::{self, history_spring};
+use super::tangential::{self, history_spring, TangentialLaw};
 use super::time_scale::hertz_contact_time;
+use super::twisting::TwistingLaw;
 use super::{ContactError, ContactHistory, ContactInput, ContactOutput};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -56,11 +58,18 @@ pub struct PairProperties {
     /// and the limits use `|F_n|`, as LIGGGHTS does. [`DampingLaw::Exact`]
     /// is calibrated for either choice (see [`super::damping`]).
     pub tensile: bool,
+    /// Tangential rule ([`TangentialLaw`]): Clump's (default) or LIGGGHTS'.
+    pub tangential: TangentialLaw,
+    /// Cohesion ([`CohesionLaw`]; default none).
+    pub cohesion: CohesionLaw,
+    /// Twisting resistance ([`TwistingLaw`]; default none).
+    pub twisting: TwistingLaw,
 }
 
 impl Default for PairProperties {
     /// `e = 0.5`, `μ = 0.5`, `μ_r = 0`, Hertz, exact damping, no rolling
-    /// resistance, normal force clamped (not tensile).
+    /// resistance, normal force clamped (not tensile), Clump's tangential
+    /// rule.
     fn default() -> Self {
         PairProperties {
             restitution: 0.5,
@@ -70,6 +79,9 @@ impl Default for PairProperties {
             damping: DampingLaw::Exact,
             rolling: RollingLaw::None,
             tensile: false,
+            tangential: TangentialLaw::Clump,
+            cohesion: CohesionLaw::None,
+            twisting: TwistingLaw::None,
         }
     }
 }
@@ -168,6 +180,10 @@ pub struct ContactModel {
     rolling_friction: f64,
     rolling: RollingLaw,
     rolling_damping: f64,
+    /// The pair selects a sub-model the vectorised [`SlidingLaw`] does not
+    /// have (LIGGGHTS' tangential rule, cohesion, twisting): it runs the scalar composition
+    /// [`super::extended::evaluate`], in the pair kernel and on walls.
+    extended: bool,
 }
 
 impl ContactModel {
@@ -223,6 +239,26 @@ impl ContactModel {
                 }
             }
         }
+        match p.cohesion {
+            CohesionLaw::None => {}
+            CohesionLaw::Sjkr { energy_density: k } => {
+                if !(k >= 0.0 && k.is_finite()) {
+                    return perr(format!(
+                        "cohesion energy density must be finite and >= 0 J/m^3, got {k}"
+                    ));
+                }
+            }
+            CohesionLaw::Jkr { surface_energy: g } => {
+                if !(g >= 0.0 && g.is_finite()) {
+                    return perr(format!(
+                        "surface energy must be finite and >= 0 J/m^2, got {g}"
+                    ));
+                }
+                if p.normal != NormalLaw::Hertz {
+                    return perr("JKR cohesion needs the Hertz normal law".into());
+                }
+            }
+        }
         let (hertz, kn_coef, kt_coef, energy_factor) =
             normal::stiffness_coefficients(p.normal, e_star, g_star);
         let (gn_coef, gt_coef) = damping::dashpot_coefficients(p.normal, beta, e_star, g_star);
@@ -244,6 +280,9 @@ impl ContactModel {
             rolling_friction: p.rolling_friction,
             rolling: p.rolling,
             rolling_damping: 0.0,
+            extended: p.tangential != TangentialLaw::Clump
+                || p.cohesion != CohesionLaw::None
+                || p.twisting != TwistingLaw::None,
         })
     }
 
@@ -268,6 +307,9 @@ impl ContactModel {
     /// the rolling part [`Self::rolling_couple`].
     #[inline(always)]
     pub fn evaluate(&self, c: &ContactInput, h: &mut ContactHistory) -> ContactOutput {
+        if self.extended {
+            return super::extended::evaluate(self, c, h);
+        }
         let out = self.law.evaluate(
             c.normal,
             c.overlap,
@@ -289,6 +331,37 @@ impl ContactModel {
     /// The normal and tangential part of the law.
     pub fn sliding_law(&self) -> &SlidingLaw {
         &self.law
+    }
+
+    /// Whether the pair selects a sub-model that only the scalar
+    /// composition has ([`super::extended`]); the pair kernel then runs
+    /// [`Self::evaluate`] for it instead of the vectorised [`SlidingLaw`].
+    pub fn is_extended(&self) -> bool {
+        self.extended
+    }
+
+    /// How far apart (m, ≥ 0) the surfaces of a contact between spheres of
+    /// effective radius `r_star` (m) may move before it breaks: JKR's
+    /// critical separation `δ_c`, 0 for every other law (a contact ends at
+    /// `δ = 0`). See [`super::cohesion`].
+    pub fn reach(&self, r_star: f64) -> f64 {
+        match self.props.cohesion {
+            CohesionLaw::Jkr { surface_energy } => {
+                jkr_critical_separation(surface_energy, r_star, self.e_star)
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// JKR pull-off force magnitude `(3/2)πΓR*` (N) for effective radius
+    /// `r_star` (m); 0 without JKR cohesion.
+    pub fn pull_off_force(&self, r_star: f64) -> f64 {
+        match self.props.cohesion {
+            CohesionLaw::Jkr { surface_energy } => {
+                super::cohesion::jkr_pull_off_force(surface_energy, r_star)
+            }
+            _ => 0.0,
+        }
     }
 
     /// Whether the law has a rolling couple (a rolling law other than none).

@@ -9,6 +9,11 @@ pub struct ContactTable {
     models: Vec<ContactModel>,
     /// Some model has a rolling couple.
     rolling: bool,
+    /// Some model runs the scalar composition ([`ContactModel::is_extended`]).
+    extended: bool,
+    /// Largest [`ContactModel::reach`] at `R* = 1 m`; the reach scales as
+    /// `R*^{1/3}` (JKR's critical separation), 0 without JKR.
+    reach_coef: f64,
 }
 
 impl ContactTable {
@@ -38,7 +43,15 @@ impl ContactTable {
             }
         }
         let rolling = models.iter().any(|m| m.has_rolling());
-        Ok(Self { n, models, rolling })
+        let extended = models.iter().any(|m| m.is_extended());
+        let reach_coef = models.iter().map(|m| m.reach(1.0)).fold(0.0, f64::max);
+        Ok(Self {
+            n,
+            models,
+            rolling,
+            extended,
+            reach_coef,
+        })
     }
 
     /// The model for materials `a` and `b`.
@@ -62,5 +75,27 @@ impl ContactTable {
     /// Whether some model has a rolling couple.
     pub fn any_rolling(&self) -> bool {
         self.rolling
+    }
+
+    /// Whether some model keeps contacts beyond touching (JKR,
+    /// [`ContactModel::reach`]).
+    pub fn any_reach(&self) -> bool {
+        self.reach_coef > 0.0
+    }
+
+    /// The largest reach (m) of any model for effective radii up to
+    /// `r_star` (m): `max δ_c ∝ R*^{1/3}`; 0 without JKR.
+    pub fn max_reach(&self, r_star: f64) -> f64 {
+        if self.reach_coef > 0.0 {
+            self.reach_coef * r_star.cbrt()
+        } else {
+            0.0
+        }
+    }
+
+    /// Whether some model runs the scalar composition
+    /// ([`ContactModel::is_extended`]).
+    pub fn any_extended(&self) -> bool {
+        self.extended
     }
 }

@@ -39,8 +39,34 @@
 //! clamp (so `≥ 0`), or `|F_n|` for a pair with `tensile = true` (as
 //! LIGGGHTS). With `k_t = 0` (a linear law with `kt = 0`) there is no
 //! tangential force and the spring stays zero.
+//!
+//! # LIGGGHTS' rule ([`TangentialLaw::Liggghts`], [`liggghts_spring`])
+//! LIGGGHTS 3.8 (`tangential history`, `tangential_model_history.h`) orders
+//! the steps differently and limits only the spring:
+//! 1. `ξ ← ξ + v_t Δt`, then the normal component is removed,
+//!    `ξ ← ξ − (ξ·n) n` (projection without rescaling);
+//! 2. if the spring force alone exceeds the limit, `k_t|ξ| > μ|F_n|`, the
+//!    contact slides: `F_t = −μ|F_n| ξ/|ξ|` and `ξ = −F_t/k_t`; **the
+//!    dashpot is dropped**;
+//! 3. else it sticks: `F_t = −k_t ξ − γ_t v_t` (the total may then exceed
+//!    `μ|F_n|` by up to `γ_t|v_t|`).
 
 use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// Which rule limits the tangential force (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TangentialLaw {
+    /// Spring plus dashpot limited to `μ|F_n|`; a sliding contact keeps the
+    /// limit in its elastic spring ([`history_spring`]; default, the
+    /// vectorised pair kernel).
+    #[default]
+    Clump,
+    /// LIGGGHTS' `tangential history`: only the spring is checked against
+    /// `μ|F_n|`, the dashpot is dropped while sliding ([`liggghts_spring`]).
+    Liggghts,
+}
 
 /// Rotates `v` (world) into the plane normal to the unit vector `n`: removes
 /// its normal component and rescales the rest to the original length `|v|`.
@@ -104,5 +130,70 @@ pub fn history_spring(
         DVec3::ZERO
     } else {
         f_new
+    }
+}
+
+/// LIGGGHTS' history spring (module docs, "LIGGGHTS' rule"): tangential
+/// force on `i` (N, world), updating `xi` (m, world). Arguments as
+/// [`history_spring`]. With `k_t ≤ 0` there is no tangential force and the
+/// spring stays zero, as in [`history_spring`].
+#[inline]
+pub fn liggghts_spring(
+    xi: &mut DVec3,
+    n: DVec3,
+    v_t: DVec3,
+    dt: f64,
+    kt: f64,
+    gamma_t: f64,
+    f_max: f64,
+) -> DVec3 {
+    if kt <= 0.0 {
+        *xi = DVec3::ZERO;
+        return DVec3::ZERO;
+    }
+    let s = *xi + v_t * dt;
+    let s = s - s.dot(n) * n;
+    let mag = s.length();
+    let f_spring = -kt * s;
+    let f_shear = kt * mag;
+    if f_shear > f_max {
+        // sliding: the spring alone, rescaled to the limit; no dashpot
+        let f = f_spring * (f_max / f_shear);
+        *xi = f * (-1.0 / kt);
+        f
+    } else {
+        *xi = s;
+        f_spring - gamma_t * v_t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// LIGGGHTS' rule against hand-computed cases: sticking keeps the
+    /// dashpot (and may exceed the limit by it), sliding drops it.
+    #[test]
+    fn liggghts_rule_cases() {
+        let n = DVec3::Z;
+        // sticking: spring 100 N/m × 1 mm = 0.1 N < 0.2 N; dashpot 0.5 × 0.3
+        let mut xi = DVec3::new(0.9e-3, 0.0, 5e-4);
+        let f = liggghts_spring(&mut xi, n, DVec3::new(0.1, 0.0, 0.0), 1e-3, 100.0, 0.5, 0.2);
+        assert!((xi - DVec3::new(1e-3, 0.0, 0.0)).length() < 1e-15);
+        assert!((f - DVec3::new(-0.1 - 0.05, 0.0, 0.0)).length() < 1e-15);
+        // sticking although |F_t| = 0.25 > 0.2: only the spring is checked
+        let mut xi = DVec3::new(0.9e-3, 0.0, 0.0);
+        let f = liggghts_spring(&mut xi, n, DVec3::new(0.1, 0.0, 0.0), 1e-3, 100.0, 1.5, 0.2);
+        assert!((f.x + 0.25).abs() < 1e-15, "{f}");
+        // sliding: spring 0.3 N > 0.2 N: F_t = -0.2 N along ξ, no dashpot,
+        // spring stored at the limit (2 mm)
+        let mut xi = DVec3::new(2.9e-3, 0.0, 0.0);
+        let f = liggghts_spring(&mut xi, n, DVec3::new(0.1, 0.0, 0.0), 1e-3, 100.0, 1.5, 0.2);
+        assert!((f - DVec3::new(-0.2, 0.0, 0.0)).length() < 1e-15, "{f}");
+        assert!((xi - DVec3::new(2e-3, 0.0, 0.0)).length() < 1e-15);
+        // the default rule limits spring plus dashpot instead
+        let mut xi = DVec3::new(0.9e-3, 0.0, 0.0);
+        let f = history_spring(&mut xi, n, DVec3::new(0.1, 0.0, 0.0), 1e-3, 100.0, 1.5, 0.2);
+        assert!((f.x + 0.2).abs() < 1e-15, "{f}");
     }
 }

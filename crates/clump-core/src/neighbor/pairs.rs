@@ -212,8 +212,10 @@ impl PairList {
     }
 
     /// Collects the history of touching pairs keyed by (lower, higher) global
-    /// sphere id and oriented from the lower to the higher id.
-    pub fn save_history(&self, gid: &[u64], out: &mut HistoryMap) {
+    /// sphere id and oriented from the lower to the higher id: the pairs
+    /// with a spring, and with `keep_live` every live pair (a JKR contact
+    /// lives on while apart, with or without a spring).
+    pub fn save_history(&self, gid: &[u64], keep_live: bool, out: &mut HistoryMap) {
         out.clear();
         for i in 0..self.row_start.len().saturating_sub(1) {
             for p in self.row(i) {
@@ -221,7 +223,7 @@ impl PairList {
                     tangential: self.tangential[p],
                     rolling: self.rolling[p],
                 };
-                if h != ContactHistory::default() {
+                if h != ContactHistory::default() || (keep_live && self.topo[p].live) {
                     let (gi, gj) = (gid[i], gid[self.topo[p].j as usize]);
                     if gi < gj {
                         out.insert((gi, gj), h);

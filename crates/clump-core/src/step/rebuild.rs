@@ -22,9 +22,11 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     }
     let min_cell = 2.0 * w.max_radius() + w.skin();
     if reorganize {
-        w.neighbors
-            .pairs
-            .save_history(&w.spheres.gid, &mut w.neighbors.history_map);
+        w.neighbors.pairs.save_history(
+            &w.spheres.gid,
+            w.contact_table.any_reach(),
+            &mut w.neighbors.history_map,
+        );
         let domain = w.config.domain;
         let n = w.bodies.len();
         let keep = &mut w.scratch.keep;

@@ -182,13 +182,16 @@ impl<'a> WallPass<'a> {
             let mut used = [false; WALL_SLOTS];
             for wi in cand {
                 let wall = &self.walls[wi];
-                let k = wall.shape.contacts(
-                    self.meshes,
-                    self.sp.position(s),
-                    self.sp.state[s].radius,
-                    0.0,
-                    buf,
-                );
+                let r = self.sp.state[s].radius;
+                // a JKR contact lives on while apart by less than its reach
+                let reach = if self.table.any_reach() && key.iter().any(|&x| slot_wall(x) == wi) {
+                    self.table.get(self.sp.material[s], wall.material).reach(r)
+                } else {
+                    0.0
+                };
+                let k = wall
+                    .shape
+                    .contacts(self.meshes, self.sp.position(s), r, reach, buf);
                 let is_mesh = matches!(wall.shape, WallShape::Mesh { .. });
                 for touch in &buf[..k] {
                     let (patch, old) = if is_mesh {
@@ -200,6 +203,10 @@ impl<'a> WallPass<'a> {
                         (patch, key.iter().position(|&x| x == slot_key))
                     };
                     let slot_key = slot_key(wi, patch);
+                    if touch.overlap <= 0.0 && old.is_none() {
+                        // a near miss within the reach, not a live contact
+                        continue;
+                    }
                     let mut h = match old {
                         Some(o) => {
                             used[o] = true;
@@ -284,6 +291,16 @@ pub const MESH_MATCH_ANGLE: f64 = std::f64::consts::PI / 6.0;
 #[inline(always)]
 fn slot_key(wi: usize, sub: u16) -> u32 {
     ((wi as u32) << 16 | sub as u32) + 1
+}
+
+/// The wall of a history slot's key ([`slot_key`]); `usize::MAX` for an
+/// empty slot (key 0).
+fn slot_wall(key: u32) -> usize {
+    if key == 0 {
+        usize::MAX
+    } else {
+        ((key - 1) >> 16) as usize
+    }
 }
 
 /// History slot of the previous step that continues a mesh contact with
@@ -384,6 +401,7 @@ impl WallCtx<'_> {
             rel_velocity: v_body - v_wall,
             rel_omega: wb - wall.motion.angular_velocity,
             radius: r,
+            radius_sum: f64::INFINITY,
             mass: self.b.mass[bi],
             dt: self.dt,
         };

@@ -204,14 +204,23 @@ impl World {
     /// ([`crate::neighbor::skin::adapted_skin`]), and before the first build
     /// [`crate::neighbor::skin::SKIN_DEFAULT`] times the smallest sphere
     /// radius of any template (never zero).
+    ///
+    /// With JKR cohesion the skin is at least twice the largest critical
+    /// separation `δ_c` ([`ContactTable::max_reach`]), so that a contact
+    /// stretched to `δ_c` stays in the pair and wall lists.
     pub fn skin(&self) -> f64 {
-        self.config.skin.unwrap_or_else(|| {
+        let s = self.config.skin.unwrap_or_else(|| {
             if self.neighbors.adapted_skin > 0.0 {
                 self.neighbors.adapted_skin
             } else {
                 crate::neighbor::skin::SKIN_DEFAULT * self.min_radius()
             }
-        })
+        });
+        if self.contact_table.any_reach() {
+            s.max(2.0 * self.contact_table.max_reach(self.max_radius()))
+        } else {
+            s
+        }
     }
 
     /// Smallest sphere radius of any template, m (1 mm without templates).

@@ -129,6 +129,23 @@ pub const CONTACT_KEYS: &[Key] = &[
         "tensile",
         "Whether the normal force may be tensile (no clamp at zero).",
     ),
+    key(
+        "tangential",
+        "Tangential rule: `\"clump\"` (default) or `\"liggghts\"`.",
+    ),
+    key(
+        "cohesion",
+        "Cohesion model: `\"none\"` (default), `\"sjkr\"` or `\"jkr\"`.",
+    ),
+    key(
+        "cohesion_energy_density",
+        "SJKR cohesion energy density, J/m³.",
+    ),
+    key("surface_energy", "JKR work of adhesion, J/m²."),
+    key(
+        "twisting",
+        "Twisting resistance: `\"none\"` (default) or `\"marshall\"`.",
+    ),
 ];
 
 /// The keys of `[[pair]]` ([`RawPair`]).
@@ -148,6 +165,23 @@ pub const PAIR_KEYS: &[Key] = &[
     key(
         "tensile",
         "Whether the normal force may be tensile (no clamp at zero).",
+    ),
+    key(
+        "tangential",
+        "Tangential rule: `\"clump\"` (default) or `\"liggghts\"`.",
+    ),
+    key(
+        "cohesion",
+        "Cohesion model: `\"none\"` (default), `\"sjkr\"` or `\"jkr\"`.",
+    ),
+    key(
+        "cohesion_energy_density",
+        "SJKR cohesion energy density, J/m³.",
+    ),
+    key("surface_energy", "JKR work of adhesion, J/m²."),
+    key(
+        "twisting",
+        "Twisting resistance: `\"none\"` (default) or `\"marshall\"`.",
     ),
 ];
 

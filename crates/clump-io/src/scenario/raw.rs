@@ -4,7 +4,7 @@
 //! on every field. Validation and cross-references are resolved in
 //! [`super::build`]. See `docs/scenario.md` for the reference.
 
-use clump_core::contact::{DampingLaw, RollingLaw};
+use clump_core::contact::{DampingLaw, RollingLaw, TangentialLaw, TwistingLaw};
 use clump_core::insert::FractionBasis;
 use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::RotationScheme;
@@ -178,6 +178,18 @@ pub struct RawMaterial {
     pub density: Option<f64>,
 }
 
+/// Cohesion model name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CohesionName {
+    /// No cohesion.
+    None,
+    /// LIGGGHTS' simplified JKR (needs `cohesion_energy_density`).
+    Sjkr,
+    /// JKR (needs `surface_energy`).
+    Jkr,
+}
+
 /// Normal force law name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -210,6 +222,16 @@ pub struct RawContact {
     pub rolling: Option<RollingLaw>,
     /// Whether the normal force may be tensile (no clamp at zero).
     pub tensile: Option<bool>,
+    /// Tangential rule: `"clump"` (default) or `"liggghts"`.
+    pub tangential: Option<TangentialLaw>,
+    /// Cohesion model: `"none"` (default), `"sjkr"` or `"jkr"`.
+    pub cohesion: Option<CohesionName>,
+    /// SJKR cohesion energy density, J/m³.
+    pub cohesion_energy_density: Option<f64>,
+    /// JKR work of adhesion, J/m².
+    pub surface_energy: Option<f64>,
+    /// Twisting resistance: `"none"` (default) or `"marshall"`.
+    pub twisting: Option<TwistingLaw>,
 }
 
 /// `[[pair]]`: like `[contact]` for one pair of materials.
@@ -236,6 +258,16 @@ pub struct RawPair {
     pub rolling: Option<RollingLaw>,
     /// Whether the normal force may be tensile (no clamp at zero).
     pub tensile: Option<bool>,
+    /// Tangential rule: `"clump"` (default) or `"liggghts"`.
+    pub tangential: Option<TangentialLaw>,
+    /// Cohesion model: `"none"` (default), `"sjkr"` or `"jkr"`.
+    pub cohesion: Option<CohesionName>,
+    /// SJKR cohesion energy density, J/m³.
+    pub cohesion_energy_density: Option<f64>,
+    /// JKR work of adhesion, J/m².
+    pub surface_energy: Option<f64>,
+    /// Twisting resistance: `"none"` (default) or `"marshall"`.
+    pub twisting: Option<TwistingLaw>,
 }
 
 /// Built-in template shape name.

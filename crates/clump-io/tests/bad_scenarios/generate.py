@@ -215,6 +215,17 @@ CASES = [
     ("two_bad_inserts", chain(rep("lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1]", "lo = [-0.05, -0.05, 0.4], hi = [0.05, 0.05, 0.5]"),
         append('\n[[insert]]\nkind = "pack"\nstage = "fill"\nmix = "pebbles"\ncount = 10\nregion = { type = "box", lo = [0.2, -0.05, 0.01], hi = [0.3, 0.05, 0.1] }\n')), "lo = [0.2, -0.05",
      ["the region lies outside the domain along z", "the region lies outside the domain along x (region 0.2000 .. 0.3000 m"]),
+    # contact sub-models
+    ("tangential_typo", rep("friction = 0.3", 'friction = 0.3\ntangential = "ligghts"'), '"ligghts"',
+     ["invalid value \"ligghts\" for 'tangential' in [[pair]]", 'did you mean "liggghts"?', '"clump", "liggghts"']),
+    ("sjkr_without_density", rep("friction = 0.3", 'friction = 0.3\ncohesion = "sjkr"'), None,
+     ["missing key 'cohesion_energy_density' in [[pair]]", "cohesionEnergyDensity"]),
+    ("surface_energy_without_jkr", rep("friction = 0.5", 'friction = 0.5\ncohesion = "sjkr"\nsurface_energy = 0.05'), "surface_energy",
+     ["'surface_energy' is only used with cohesion = \"jkr\"", "this [contact] has cohesion = \"sjkr\""]),
+    ("negative_cohesion", rep("friction = 0.5", 'friction = 0.5\ncohesion = "jkr"\nsurface_energy = -0.05'), "surface_energy",
+     ["'surface_energy' must be >= 0 J/m^2, found -0.05"]),
+    ("jkr_linear", rep("friction = 0.3", 'friction = 0.3\nlaw = "linear"\nkn = 1e4\ncohesion = "jkr"\nsurface_energy = 0.05'), 'cohesion = "jkr"',
+     ["cohesion = \"jkr\" needs the Hertz normal law (this [[pair]] uses law = \"linear\")"]),
 ]
 
 # the invalid-UTF-8 case is written as bytes

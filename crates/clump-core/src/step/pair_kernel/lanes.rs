@@ -7,7 +7,7 @@
 
 use super::BATCH;
 use crate::contact::geometry::sphere_pair;
-use crate::contact::SlidingLaw;
+use crate::contact::{ContactHistory, ContactInput, ContactModel, SlidingLaw};
 use crate::par::simd::Simd;
 use glam::DVec3;
 
@@ -70,6 +70,23 @@ pub(super) struct Lanes {
     pub velocity_j: Rows3,
     /// Per-lane law, when the batch mixes models ([`Lanes::set_law`]).
     pub law: [[f64; BATCH]; 8],
+}
+
+/// One lane's contact geometry and kinematics (world frame, SI units).
+struct LaneContact {
+    /// Unit normal, `j` → `i`.
+    normal: DVec3,
+    /// Overlap, m.
+    overlap: f64,
+    /// Distances from the two centres to the contact point, m.
+    arm_i: f64,
+    arm_j: f64,
+    /// Relative velocity of the contact points, m/s.
+    vrel: DVec3,
+    /// `R*`, m.
+    radius: f64,
+    /// `m*`, kg.
+    mass: f64,
 }
 
 /// Lane `k` of a 3-vector row set.
@@ -159,9 +176,57 @@ impl Lanes {
     /// (docs/theory.md T-11), with the lever arms `c = x_s − r_cm`.
     #[inline(always)]
     fn contact(&mut self, k: usize, law: &SlidingLaw, dt: f64) {
+        let c = self.kinematics(k);
+        let mut xi = get3(&self.spring, k);
+        let out = law.evaluate(c.normal, c.overlap, c.vrel, c.radius, c.mass, dt, &mut xi);
+        set3(&mut self.spring, k, xi);
+        self.store(k, &c, out.force, out.energy, out.normal_force, out.kn);
+    }
+
+    /// Contact `k` of a pair whose model runs the scalar composition
+    /// ([`ContactModel::is_extended`]): the same geometry, kinematics and
+    /// torques as [`Self::contact`], the law and its rolling couple from
+    /// [`ContactModel::evaluate`], starting from the history `h` (updated;
+    /// the lane's spring is set to `h.tangential`).
+    #[inline(never)]
+    pub(super) fn contact_scalar(
+        &mut self,
+        k: usize,
+        model: &ContactModel,
+        h: &mut ContactHistory,
+        dt: f64,
+    ) {
+        let c = self.kinematics(k);
+        let input = ContactInput {
+            normal: c.normal,
+            overlap: c.overlap,
+            rel_velocity: c.vrel,
+            rel_omega: get3(&self.omega_i, k) - get3(&self.omega_j, k),
+            radius: c.radius,
+            radius_sum: self.radius_i[k] + self.radius_j[k],
+            mass: c.mass,
+            dt,
+        };
+        let out = model.evaluate(&input, h);
+        set3(&mut self.spring, k, h.tangential);
+        // the lane's stiffness is read only by the kernel's rolling loop,
+        // which skips these pairs (their couple is in `out.torque`)
+        self.store(k, &c, out.force, out.elastic_energy, out.normal_force, 0.0);
+        // the rolling couple, as the kernel adds it for vectorised pairs
+        let couple = out.torque * self.scale[k];
+        let (ti, tj) = (get3(&self.torque_i, k), get3(&self.torque_j, k));
+        set3(&mut self.torque_i, k, ti + couple);
+        set3(&mut self.torque_j, k, tj - couple);
+    }
+
+    /// Contact `k`'s geometry (`crate::contact::geometry`), the
+    /// contact-point relative velocity from the bodies' velocities and
+    /// angular velocities, `R*` and `m*`.
+    #[inline(always)]
+    fn kinematics(&self, k: usize) -> LaneContact {
         let (ri, rj) = (self.radius_i[k], self.radius_j[k]);
         let g = sphere_pair(get3(&self.separation, k), ri, rj);
-        let (nrm, overlap, ai, aj) = (g.normal, g.overlap, g.arm_i, g.arm_j);
+        let (nrm, ai, aj) = (g.normal, g.arm_i, g.arm_j);
         let (wi, wj) = (get3(&self.omega_i, k), get3(&self.omega_j, k));
         let (ci, cj) = (get3(&self.arm_i, k), get3(&self.arm_j, k));
         // contact-point velocities, v + ω × (x_c − r_cm), with
@@ -169,24 +234,46 @@ impl Lanes {
         let vrel = get3(&self.velocity_i, k) + wi.cross(ci - nrm * ai)
             - (get3(&self.velocity_j, k) + wj.cross(cj + nrm * aj));
         let (mi, mj) = (self.mass_i[k], self.mass_j[k]);
-        let radius = ri * rj / (ri + rj);
-        let mass = mi * mj / (mi + mj);
-        let mut xi = get3(&self.spring, k);
-        let out = law.evaluate(nrm, overlap, vrel, radius, mass, dt, &mut xi);
+        LaneContact {
+            normal: nrm,
+            overlap: g.overlap,
+            arm_i: ai,
+            arm_j: aj,
+            vrel,
+            radius: ri * rj / (ri + rj),
+            mass: mi * mj / (mi + mj),
+        }
+    }
+
+    /// Stores contact `k`'s outputs: the force `force` on `i` (unscaled,
+    /// N) scaled by the lane's multi-contact scale, its torques about the
+    /// bodies' centres of mass, and the unscaled energy, normal force and
+    /// stiffness.
+    #[inline(always)]
+    fn store(
+        &mut self,
+        k: usize,
+        c: &LaneContact,
+        force: DVec3,
+        energy: f64,
+        normal_force: f64,
+        kn: f64,
+    ) {
+        let (ci, cj) = (get3(&self.arm_i, k), get3(&self.arm_j, k));
+        let nrm = c.normal;
         let scale = self.scale[k];
-        let f = out.force * scale;
+        let f = force * scale;
         let nf = nrm.cross(f);
-        set3(&mut self.spring, k, xi);
         set3(&mut self.force, k, f);
-        set3(&mut self.torque_i, k, ci.cross(f) - nf * ai);
-        set3(&mut self.torque_j, k, -cj.cross(f) - nf * aj);
+        set3(&mut self.torque_i, k, ci.cross(f) - nf * c.arm_i);
+        set3(&mut self.torque_j, k, -cj.cross(f) - nf * c.arm_j);
         set3(&mut self.normal, k, nrm);
-        self.overlap[k] = overlap;
-        self.energy[k] = out.energy;
-        self.normal_force[k] = out.normal_force;
-        self.kn[k] = out.kn;
-        self.r_star[k] = radius;
-        self.m_star[k] = mass;
+        self.overlap[k] = c.overlap;
+        self.energy[k] = energy;
+        self.normal_force[k] = normal_force;
+        self.kn[k] = kn;
+        self.r_star[k] = c.radius;
+        self.m_star[k] = c.mass;
     }
 
     /// Every row with its field name and row index (to compare batches

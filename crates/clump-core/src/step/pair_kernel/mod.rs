@@ -5,7 +5,10 @@
 //! 1. *detect* ([`RowCtx::evaluate`]): a branch-free pass walks the
 //!    candidate pairs of the rows and compacts the touching ones into the
 //!    batch (the common non-touching pair costs one distance test; stale
-//!    state is cleared only when a pair stops touching);
+//!    state is cleared only when a pair stops touching). With JKR cohesion
+//!    a live contact counts as touching until its gap exceeds the model's
+//!    reach `δ_c` (a separate instance of the pass, so the default one is
+//!    unchanged);
 //! 2. *gather*: each touching pair's inputs (world frame: centre
 //!    separation, lever arms from the bodies' centres of mass, body
 //!    velocities and angular velocities, radii, body
@@ -20,6 +23,11 @@
 //!    with the baseline SSE2, the widest the processor has chosen at run
 //!    time (`crate::par::simd`); vector and scalar IEEE arithmetic give the
 //!    same bits;
+//!    Pairs whose model runs the scalar composition
+//!    ([`crate::contact::ContactModel::is_extended`], e.g. LIGGGHTS'
+//!    tangential rule) are evaluated again by
+//!    [`crate::contact::ContactModel::evaluate`]
+//!    from their stored history, overwriting their lanes;
 //! 4. *scatter*: rolling couples (for laws that have one), then each pair's
 //!    history is stored (and the pair marked live), its `i` side is added
 //!    to the row sum of `i`'s body and its `j` side to the column sum of
@@ -37,7 +45,7 @@
 //! pair's normal, overlap and forces.
 
 use super::force::BODY_CHUNK;
-use crate::contact::ContactInput;
+use crate::contact::{ContactHistory, ContactInput};
 use crate::neighbor::pairs::{BodyLoad, PairBody};
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
@@ -125,6 +133,24 @@ impl RowCtx<'_> {
         batch: &mut Batch,
         stats: &SharedMut<ContactStats>,
     ) {
+        if self.table.any_reach() {
+            self.evaluate_rows::<true>(bodies, run_start, batch, stats)
+        } else {
+            self.evaluate_rows::<false>(bodies, run_start, batch, stats)
+        }
+    }
+
+    /// [`Self::evaluate`]; `REACH`: some model keeps a live contact beyond
+    /// touching (JKR, [`crate::contact::ContactModel::reach`]), so the
+    /// detect pass also keeps a live pair whose gap is within its reach.
+    #[inline(always)]
+    unsafe fn evaluate_rows<const REACH: bool>(
+        &self,
+        bodies: std::ops::Range<usize>,
+        run_start: usize,
+        batch: &mut Batch,
+        stats: &SharedMut<ContactStats>,
+    ) {
         let sp = self.sp;
         let n = sp.len();
         let np = self.topo.len();
@@ -183,7 +209,16 @@ impl RowCtx<'_> {
             let si = self.sphere(i);
             let d = si.position - self.partner_position(j, t.shift);
             let rsum = si.radius + self.sphere(j).radius;
-            let touching = d.length_squared() < rsum * rsum;
+            let mut touching = d.length_squared() < rsum * rsum;
+            if REACH && !touching && t.live {
+                // a live contact that may last while apart (JKR)
+                let rj = self.sphere(j).radius;
+                let reach = self
+                    .table
+                    .by_index(self.model_index(i, p))
+                    .reach(si.radius * rj / (si.radius + rj));
+                touching = d.length() < rsum + reach;
+            }
             // branch-free compaction: the slot is always written, kept
             // only when touching (len < BATCH here)
             debug_assert!(len < BATCH);
@@ -337,10 +372,28 @@ impl RowCtx<'_> {
             None
         };
         run_law(l, len, law.as_ref(), self.dt, self.simd);
+        if table.any_extended() {
+            // pairs whose law only the scalar composition has: evaluated
+            // again from their stored history (the lanes ran the vectorised
+            // law on them, whose results are overwritten here); their
+            // rolling couple comes with it
+            for k in 0..len {
+                let model = table.by_index(batch.model[k]);
+                if model.is_extended() {
+                    let p = batch.pair[k] as usize;
+                    let mut h = ContactHistory {
+                        tangential: self.tangential.read(p),
+                        rolling: self.rolling.read(p),
+                    };
+                    l.contact_scalar(k, model, &mut h, self.dt);
+                    *self.rolling.get(p) = h.rolling;
+                }
+            }
+        }
         if table.any_rolling() {
             for k in 0..len {
                 let model = table.by_index(batch.model[k]);
-                if !model.has_rolling() {
+                if !model.has_rolling() || model.is_extended() {
                     continue;
                 }
                 let p = batch.pair[k] as usize;
@@ -352,6 +405,7 @@ impl RowCtx<'_> {
                     rel_velocity: DVec3::ZERO,
                     rel_omega: get3(&l.omega_i, k) - get3(&l.omega_j, k),
                     radius: l.r_star[k],
+                    radius_sum: l.radius_i[k] + l.radius_j[k],
                     mass: l.m_star[k],
                     dt: self.dt,
                 };

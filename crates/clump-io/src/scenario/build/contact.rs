@@ -4,7 +4,9 @@ use super::raw::*;
 use super::source::Seg;
 use super::Seg::{I, K};
 use super::{lookup, Cx, R};
-use clump_core::contact::{NormalLaw, PairProperties, RollingLaw};
+use clump_core::contact::{
+    CohesionLaw, NormalLaw, PairProperties, RollingLaw, TangentialLaw, TwistingLaw,
+};
 use std::collections::HashMap;
 
 /// The contact properties of every pair of materials, row-major
@@ -88,6 +90,11 @@ struct ContactFields {
     damping: Option<clump_core::contact::DampingLaw>,
     rolling: Option<RollingLaw>,
     tensile: Option<bool>,
+    tangential: Option<TangentialLaw>,
+    cohesion: Option<CohesionName>,
+    cohesion_energy_density: Option<f64>,
+    surface_energy: Option<f64>,
+    twisting: Option<TwistingLaw>,
 }
 
 impl ContactFields {
@@ -102,6 +109,11 @@ impl ContactFields {
             damping: c.damping,
             rolling: c.rolling,
             tensile: c.tensile,
+            tangential: c.tangential,
+            cohesion: c.cohesion,
+            cohesion_energy_density: c.cohesion_energy_density,
+            surface_energy: c.surface_energy,
+            twisting: c.twisting,
         }
     }
     fn from_pair(c: &RawPair) -> Self {
@@ -115,6 +127,11 @@ impl ContactFields {
             damping: c.damping,
             rolling: c.rolling,
             tensile: c.tensile,
+            tangential: c.tangential,
+            cohesion: c.cohesion,
+            cohesion_energy_density: c.cohesion_energy_density,
+            surface_energy: c.surface_energy,
+            twisting: c.twisting,
         }
     }
 }
@@ -159,6 +176,13 @@ fn contact_props(
     if let Some(t) = f.tensile {
         out.tensile = t;
     }
+    if let Some(t) = f.tangential {
+        out.tangential = t;
+    }
+    out.cohesion = cohesion(cx, base, what, f, dflt.cohesion)?;
+    if let Some(t) = f.twisting {
+        out.twisting = t;
+    }
     let law = f.law.unwrap_or(match dflt.normal {
         NormalLaw::Hertz => LawName::Hertz,
         NormalLaw::Linear { .. } => LawName::Linear,
@@ -196,6 +220,17 @@ fn contact_props(
             out.normal = NormalLaw::Linear { kn, kt };
         }
     }
+    if matches!(out.cohesion, CohesionLaw::Jkr { .. }) && out.normal != NormalLaw::Hertz {
+        let key = if f.cohesion.is_some() {
+            "cohesion"
+        } else {
+            "law"
+        };
+        return Err(cx
+            .src
+            .error_at_key(&p(key), format!("cohesion = \"jkr\" needs the Hertz normal law (this {what} uses law = \"linear\")"))
+            .note("help: remove law = \"linear\" (JKR's force follows from the materials and the work of adhesion), or use cohesion = \"sjkr\""));
+    }
     if out.rolling != RollingLaw::None && out.rolling_friction == 0.0 && f.rolling.is_some() {
         let w = cx.src.warning_at(
             &p("rolling"),
@@ -223,4 +258,75 @@ fn contact_props(
         cx.warnings.push(w);
     }
     Ok(out)
+}
+
+/// The cohesion model of a `[contact]` or `[[pair]]` table from `cohesion`
+/// and its parameter (`cohesion_energy_density` for SJKR, `surface_energy`
+/// for JKR); keys left out keep `dflt` (the `[contact]` model for a pair).
+fn cohesion(
+    cx: &mut Cx,
+    base: &[Seg],
+    what: &str,
+    f: &ContactFields,
+    dflt: CohesionLaw,
+) -> R<CohesionLaw> {
+    let p = |k: &'static str| {
+        let mut v = base.to_vec();
+        v.push(K(k));
+        v
+    };
+    let name = f.cohesion.unwrap_or(match dflt {
+        CohesionLaw::None => CohesionName::None,
+        CohesionLaw::Sjkr { .. } => CohesionName::Sjkr,
+        CohesionLaw::Jkr { .. } => CohesionName::Jkr,
+    });
+    let (dk, dg) = match dflt {
+        CohesionLaw::Sjkr { energy_density } => (Some(energy_density), None),
+        CohesionLaw::Jkr { surface_energy } => (None, Some(surface_energy)),
+        CohesionLaw::None => (None, None),
+    };
+    // a parameter of another model is an error, not silently ignored
+    let stray = |k: &'static str, model: &str| {
+        cx.src
+            .error_at_key(&p(k), format!("'{k}' is only used with cohesion = \"{model}\" (this {what} has cohesion = \"{}\")", format!("{name:?}").to_lowercase()))
+            .note(format!("help: add cohesion = \"{model}\", or remove '{k}'"))
+    };
+    if f.cohesion_energy_density.is_some() && name != CohesionName::Sjkr {
+        return Err(stray("cohesion_energy_density", "sjkr"));
+    }
+    if f.surface_energy.is_some() && name != CohesionName::Jkr {
+        return Err(stray("surface_energy", "jkr"));
+    }
+    Ok(match name {
+        CohesionName::None => CohesionLaw::None,
+        CohesionName::Sjkr => {
+            let k = f.cohesion_energy_density.or(dk).ok_or_else(|| {
+                cx.missing(
+                    base,
+                    what,
+                    "cohesion_energy_density",
+                    "cohesion = \"sjkr\" needs the cohesion energy density in J/m^3 (LIGGGHTS' cohesionEnergyDensity), e.g. cohesion_energy_density = 3e5",
+                )
+            })?;
+            let k = cx.nonneg(
+                &p("cohesion_energy_density"),
+                k,
+                "cohesion_energy_density",
+                "J/m^3",
+            )?;
+            CohesionLaw::Sjkr { energy_density: k }
+        }
+        CohesionName::Jkr => {
+            let g = f.surface_energy.or(dg).ok_or_else(|| {
+                cx.missing(
+                    base,
+                    what,
+                    "surface_energy",
+                    "cohesion = \"jkr\" needs the work of adhesion in J/m^2, e.g. surface_energy = 0.05",
+                )
+            })?;
+            let g = cx.nonneg(&p("surface_energy"), g, "surface_energy", "J/m^2")?;
+            CohesionLaw::Jkr { surface_energy: g }
+        }
+    })
 }
