@@ -359,7 +359,7 @@ pub const BODY_CHANGE_KEYS: &[Key] = &[
     ),
 ];
 
-/// The keys of `[output.vtk]`, `[output.thermo]` and `[output.checkpoint]` ([`RawEvery`]).
+/// The keys of `[output.vtk]`, `[output.thermo]`, `[output.checkpoint]` and `[output.contacts]` ([`RawEvery`]).
 pub const EVERY_KEYS: &[Key] = &[
     key("every", "Interval, s."),
     key("every_steps", "Interval, steps."),
@@ -393,6 +393,10 @@ pub const OUTPUT_KEYS: &[Key] = &[
     key(
         "vtk_format",
         "File format of the VTK frames: `\"vtp\"` (default) or `\"vtu\"` (for readers without PolyData, e.g. meshio).",
+    ),
+    key(
+        "contacts",
+        "Contact frames interval: contacts_<step>.vtp (one line per contact), network_<step>.csv and a bodies frame at the same step.",
     ),
 ];
 /// The keys of each `[[wall]]` type (the other keys of [`WALL_KEYS`] apply

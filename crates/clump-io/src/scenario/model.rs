@@ -213,6 +213,8 @@ pub struct OutputDef {
     pub trajectory: Option<TrajectoryDef>,
     /// File format of the VTK frames (`.vtp` or `.vtu`).
     pub vtk_format: crate::vtu::VtkFormat,
+    /// Contact frames interval, steps.
+    pub contacts: Option<u64>,
 }
 
 impl Scenario {

@@ -626,4 +626,6 @@ pub struct RawOutput {
     pub trajectory: Option<RawTrajectory>,
     /// File format of the VTK frames.
     pub vtk_format: Option<crate::vtu::VtkFormat>,
+    /// Contact frames interval.
+    pub contacts: Option<RawEvery>,
 }

@@ -50,6 +50,10 @@ pub(super) fn output(
         Some(e) => to_steps(cx, [K("output"), K("checkpoint")], e.every, e.every_steps)?,
         None => None,
     };
+    let contacts = match &o.contacts {
+        Some(e) => to_steps(cx, [K("output"), K("contacts")], e.every, e.every_steps)?,
+        None => None,
+    };
     let trajectory = match &o.trajectory {
         Some(t) => {
             let every =
@@ -82,6 +86,7 @@ pub(super) fn output(
         checkpoint,
         trajectory,
         vtk_format: o.vtk_format.unwrap_or_default(),
+        contacts,
     };
     Ok(output)
 }
