@@ -7,5 +7,8 @@
 //! `clump post` (from the saved `.vtp` frames), through one [`frame::Frame`]
 //! type; a separate crate would need both sides' types.
 
+pub mod fields;
 pub mod frame;
+pub mod grid;
+pub mod kernel;
 pub mod network;

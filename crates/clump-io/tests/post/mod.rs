@@ -13,10 +13,15 @@ use std::process::Command;
 /// last stage damps nothing extra, it only lets the bed come to rest.
 /// `output` is the `[output]` table's body.
 pub fn bed_text(count: usize, seed: u64, output: &str) -> String {
+    bed_text_steps(count, seed, 60000, output)
+}
+
+/// [`bed_text`] with `steps` steps.
+pub fn bed_text_steps(count: usize, seed: u64, steps: u64, output: &str) -> String {
     format!(
         r#"
 [simulation]
-dt = 2e-6
+dt = 5e-6
 gravity = [0.0, 0.0, -9.81]
 
 [domain]
@@ -61,7 +66,7 @@ seed = {seed}
 
 [[stage]]
 name = "settle"
-steps = 60000
+steps = {steps}
 
 [output]
 {output}
@@ -106,4 +111,22 @@ pub fn read_vtk(files: &[PathBuf]) -> Option<serde_json::Value> {
             None
         }
     }
+}
+
+/// The value of column `name` in the last row of a CSV file.
+pub fn last_column(path: &Path, name: &str) -> f64 {
+    let text = std::fs::read_to_string(path).unwrap();
+    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let k = header
+        .iter()
+        .position(|c| *c == name)
+        .unwrap_or_else(|| panic!("no column {name} in {header:?}"));
+    text.lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .nth(k)
+        .unwrap()
+        .parse()
+        .unwrap()
 }
