@@ -73,8 +73,15 @@ pub struct ContactSeries {
 }
 
 impl ContactSeries {
-    /// A new series in `dir` (the collection is written at once, empty).
-    pub fn new(dir: &Path, wall_names: Vec<String>) -> io::Result<Self> {
+    /// A new series in `dir` (the collection is written at once, empty),
+    /// with `domain.json`: the domain the frames lie in (for `clump post`).
+    pub fn new(
+        dir: &Path,
+        wall_names: Vec<String>,
+        domain: &clump_core::boundary::Domain,
+    ) -> io::Result<Self> {
+        let json = serde_json::to_string_pretty(domain).map_err(io::Error::other)?;
+        write_atomic(dir.join("domain.json"), json.as_bytes())?;
         let s = ContactSeries {
             dir: dir.to_path_buf(),
             pvd: PvdWriter::new(dir.join("contacts.pvd")),

@@ -12,3 +12,6 @@ pub mod frame;
 pub mod grid;
 pub mod kernel;
 pub mod network;
+pub mod read;
+pub mod spec;
+pub mod write;

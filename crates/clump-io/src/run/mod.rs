@@ -97,6 +97,12 @@ pub struct DriverState {
     /// Step of the last contact frame written.
     #[serde(default)]
     pub last_contacts: Option<u64>,
+    /// Next step with coarse-grained fields.
+    #[serde(default)]
+    pub next_fields: u64,
+    /// Step of the last fields written.
+    #[serde(default)]
+    pub last_fields: Option<u64>,
 }
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -306,6 +312,8 @@ impl Runner {
             last_insert_step: None,
             next_contacts: 0,
             last_contacts: None,
+            next_fields: 0,
+            last_fields: None,
         };
         Ok(Runner::assemble(scenario, world, st, out))
     }
@@ -457,6 +465,10 @@ impl Runner {
             }
         };
         let wall_time = t_start.elapsed().as_secs_f64();
+        if let Some(f) = &self.out.fields {
+            f.finish()
+                .map_err(rt("cannot write the time-averaged fields"))?;
+        }
         self.write_final_state()
             .map_err(rt("cannot write final_state.json"))?;
         let summary = RunSummary {
@@ -486,7 +498,8 @@ impl Runner {
         let o = &self.scenario.output;
         let last = step >= self.scenario.total_steps() || max_steps.is_some_and(|m| step >= m);
         let vtk = o.vtk.is_some() && self.out.vtk.is_some() && (step >= st.next_vtk || last);
-        let contacts = o.contacts.is_some() && self.out.contacts.is_some();
+        let contacts = (o.contacts.is_some() && self.out.contacts.is_some())
+            || (o.fields.is_some() && self.out.fields.is_some());
         Event {
             step,
             contacts: vtk || contacts,
@@ -516,6 +529,9 @@ impl Runner {
         }
         if o.contacts.is_some() && self.out.contacts.is_some() {
             e = e.min(st.next_contacts);
+        }
+        if o.fields.is_some() && self.out.fields.is_some() {
+            e = e.min(st.next_fields);
         }
         e.max(step + 1)
     }

@@ -61,6 +61,7 @@ pub(super) struct Outputs {
     pub(super) dir: PathBuf,
     pub(super) vtk: Option<VtkSeries>,
     pub(super) contacts: Option<ContactSeries>,
+    pub(super) fields: Option<crate::post::spec::FieldSeries>,
     pub(super) thermo: Option<ThermoWriter>,
     pub(super) trajectory: Option<TrajectoryWriter>,
     pub(super) last_checkpoint: Option<PathBuf>,
@@ -123,7 +124,7 @@ impl Outputs {
             contacts: match (o.contacts, start) {
                 (None, _) => None,
                 (Some(_), Start::Fresh { .. }) => Some(
-                    ContactSeries::new(outdir, wall_names(scenario))
+                    ContactSeries::new(outdir, wall_names(scenario), &scenario.config.domain)
                         .map_err(rt("cannot start contact output"))?,
                 ),
                 (Some(_), Start::Resume { time, .. }) => Some(
@@ -131,6 +132,10 @@ impl Outputs {
                         .map_err(rt("cannot resume contact output"))?,
                 ),
             },
+            fields: o
+                .fields
+                .as_ref()
+                .map(|(_, spec)| crate::post::spec::FieldSeries::new(outdir, spec.clone())),
             thermo: match (o.thermo, start) {
                 (None, _) => None,
                 (Some(_), Start::Fresh { .. }) => Some(
@@ -180,6 +185,16 @@ impl Runner {
                 self.st.last_contacts = Some(step);
                 self.st.next_contacts = step + every;
                 contact_frame = true;
+            }
+        }
+        if let (Some((every, _)), Some(fs)) = (&o.fields, self.out.fields.as_mut()) {
+            let due =
+                step >= self.st.next_fields || (finished && self.st.last_fields != Some(step));
+            if let (true, Some(frame)) = (due, snap.as_ref()) {
+                fs.add(frame)
+                    .map_err(rt("cannot write the coarse-grained fields"))?;
+                self.st.last_fields = Some(step);
+                self.st.next_fields = step + every;
             }
         }
         if let (Some(every), Some(vtk)) = (o.vtk, self.out.vtk.as_mut()) {

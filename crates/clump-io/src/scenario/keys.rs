@@ -398,6 +398,35 @@ pub const OUTPUT_KEYS: &[Key] = &[
         "contacts",
         "Contact frames interval: contacts_<step>.vtp (one line per contact), network_<step>.csv and a bodies frame at the same step.",
     ),
+    key("fields", "Coarse-grained fields (`[output.fields]`)."),
+];
+
+/// The keys of `[output.fields]` ([`RawFields`]).
+pub const FIELDS_KEYS: &[Key] = &[
+    key("every", "Interval, s."),
+    key("every_steps", "Interval, steps."),
+    key(
+        "axes",
+        "Grid axes, 1 to 3 of `\"x\"`, `\"y\"`, `\"z\"`; the fields are averaged over the others.",
+    ),
+    key("cells", "Cells along each grid axis (≥ 1)."),
+    key(
+        "lo",
+        "Lower end along each grid axis, m (default: the domain's).",
+    ),
+    key(
+        "hi",
+        "Upper end along each grid axis, m (default: the domain's).",
+    ),
+    key(
+        "kernel",
+        "`\"gaussian\"` (cut at 3 widths, default) or `\"lucy\"`.",
+    ),
+    key("width", "Kernel width (standard deviation), m."),
+    key(
+        "average",
+        "Also write the time average over the frames (default false).",
+    ),
 ];
 /// The keys of each `[[wall]]` type (the other keys of [`WALL_KEYS`] apply
 /// to every wall).
@@ -517,6 +546,7 @@ pub const TABLES: &[&[Key]] = &[
     EVERY_KEYS,
     TRAJECTORY_KEYS,
     OUTPUT_KEYS,
+    FIELDS_KEYS,
 ];
 
 /// The table whose keys are `names`, in order (serde lists a struct's
@@ -601,6 +631,7 @@ mod tests {
             case!(RawEvery, EVERY_KEYS),
             case!(RawTrajectory, TRAJECTORY_KEYS),
             case!(RawOutput, OUTPUT_KEYS),
+            case!(RawFields, FIELDS_KEYS),
         ];
         assert_eq!(cases.len(), TABLES.len(), "every table is checked");
         for (raw, table, fields) in cases {

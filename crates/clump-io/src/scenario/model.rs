@@ -215,6 +215,8 @@ pub struct OutputDef {
     pub vtk_format: crate::vtu::VtkFormat,
     /// Contact frames interval, steps.
     pub contacts: Option<u64>,
+    /// Coarse-grained fields: interval (steps) and request.
+    pub fields: Option<(u64, crate::post::spec::FieldSpec)>,
 }
 
 impl Scenario {

@@ -628,4 +628,32 @@ pub struct RawOutput {
     pub vtk_format: Option<crate::vtu::VtkFormat>,
     /// Contact frames interval.
     pub contacts: Option<RawEvery>,
+    /// Coarse-grained fields.
+    pub fields: Option<RawFields>,
+}
+
+/// `[output.fields]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFields {
+    /// Interval, s.
+    pub every: Option<f64>,
+    /// Interval, steps.
+    pub every_steps: Option<u64>,
+    /// Grid axes.
+    #[serde(default)]
+    pub axes: Vec<String>,
+    /// Cells per axis.
+    #[serde(default)]
+    pub cells: Vec<i64>,
+    /// Lower ends, m.
+    pub lo: Option<Vec<f64>>,
+    /// Upper ends, m.
+    pub hi: Option<Vec<f64>>,
+    /// Kernel.
+    pub kernel: Option<crate::post::kernel::Kernel>,
+    /// Kernel width, m.
+    pub width: Option<f64>,
+    /// Time average.
+    pub average: Option<bool>,
 }

@@ -261,7 +261,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     if two_d {
         planar::inserts(cx, &mut inserts, setting.gravity, &stages)?;
     }
-    let output = output::output(cx, &raw, &stages, dt, two_d)?;
+    let output = output::output(cx, &raw, &stages, dt, two_d, &setting.domain)?;
 
     let config = WorldConfig {
         domain: setting.domain,

@@ -15,6 +15,7 @@ pub(super) fn output(
     stages: &[StageDef],
     dt: f64,
     two_d: bool,
+    domain: &clump_core::boundary::Domain,
 ) -> R<OutputDef> {
     // ---------------- output
     let to_steps =
@@ -54,6 +55,10 @@ pub(super) fn output(
         Some(e) => to_steps(cx, [K("output"), K("contacts")], e.every, e.every_steps)?,
         None => None,
     };
+    let fields = match &o.fields {
+        Some(f) => Some(fields(cx, f, &to_steps, domain)?),
+        None => None,
+    };
     let trajectory = match &o.trajectory {
         Some(t) => {
             let every =
@@ -87,6 +92,107 @@ pub(super) fn output(
         trajectory,
         vtk_format: o.vtk_format.unwrap_or_default(),
         contacts,
+        fields,
     };
     Ok(output)
+}
+
+/// `[output.fields]`: interval (steps) and what to coarse-grain.
+fn fields(
+    cx: &Cx,
+    f: &RawFields,
+    to_steps: &dyn Fn(&Cx, [Seg<'static>; 2], Option<f64>, Option<u64>) -> R<Option<u64>>,
+    domain: &clump_core::boundary::Domain,
+) -> R<(u64, crate::post::spec::FieldSpec)> {
+    let at = |k: &'static str| [K("output"), K("fields"), K(k)];
+    let every =
+        to_steps(cx, [K("output"), K("fields")], f.every, f.every_steps)?.ok_or_else(|| {
+            cx.err(
+                &[K("output"), K("fields")],
+                "give 'every' (s) or 'every_steps'",
+            )
+        })?;
+    if f.axes.is_empty() || f.axes.len() > 3 {
+        return Err(cx.err(
+            &at("axes"),
+            "'axes' lists 1 to 3 of \"x\", \"y\", \"z\", e.g. axes = [\"z\"]",
+        ));
+    }
+    let mut axes = Vec::new();
+    for (j, a) in f.axes.iter().enumerate() {
+        let k = match a.as_str() {
+            "x" => 0,
+            "y" => 1,
+            "z" => 2,
+            _ => {
+                return Err(cx.err(
+                    &[K("output"), K("fields"), K("axes"), I(j)],
+                    format!("unknown axis '{a}': allowed are \"x\", \"y\", \"z\""),
+                ))
+            }
+        };
+        if axes.contains(&k) {
+            return Err(cx.err(
+                &[K("output"), K("fields"), K("axes"), I(j)],
+                format!("axis '{a}' is listed twice"),
+            ));
+        }
+        axes.push(k);
+    }
+    if f.cells.len() != axes.len() {
+        return Err(cx.err(
+            &at("cells"),
+            format!("'cells' needs one count per axis ({} axes)", axes.len()),
+        ));
+    }
+    let mut cells = Vec::new();
+    for (j, &c) in f.cells.iter().enumerate() {
+        if !(1..=100_000).contains(&c) {
+            return Err(cx.err(
+                &[K("output"), K("fields"), K("cells"), I(j)],
+                "cell counts are whole numbers from 1 to 100000",
+            ));
+        }
+        cells.push(c as usize);
+    }
+    for (key, v) in [("lo", &f.lo), ("hi", &f.hi)] {
+        if let Some(v) = v {
+            if v.len() != axes.len() || v.iter().any(|x| !x.is_finite()) {
+                return Err(cx.err(
+                    &at(key),
+                    format!(
+                        "'{key}' needs one finite coordinate (m) per axis ({} axes)",
+                        axes.len()
+                    ),
+                ));
+            }
+        }
+    }
+    let width = match f.width {
+        Some(w) => cx.positive(&at("width"), w, "width", "m")?,
+        None => {
+            return Err(cx.err(
+                &[K("output"), K("fields")],
+                "missing key 'width' (the kernel's standard deviation, m)",
+            ))
+        }
+    };
+    let spec = crate::post::spec::FieldSpec {
+        axes,
+        cells,
+        lo: f.lo.clone(),
+        hi: f.hi.clone(),
+        kernel: f.kernel.unwrap_or(crate::post::kernel::Kernel::Gaussian),
+        width,
+        average: f.average.unwrap_or(false),
+    };
+    let g = spec.grid(domain);
+    if let Some(k) = (0..g.axes.len()).find(|&k| g.lo[k] >= g.hi[k]) {
+        return Err(cx.err(
+            &at("hi"),
+            format!("'hi' must be above 'lo' along axis {}", f.axes[k]),
+        ));
+    }
+    spec.check(domain).map_err(|e| cx.err(&at("width"), e))?;
+    Ok((every, spec))
 }
