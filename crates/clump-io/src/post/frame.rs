@@ -152,6 +152,13 @@ impl Frame {
     /// The world's bodies and, when the step that ended here recorded
     /// them, its contacts.
     pub fn capture(world: &World) -> Frame {
+        let mut f = Frame::bodies_only(world);
+        f.contacts = contacts(world);
+        f
+    }
+
+    /// The world's bodies, without contacts.
+    pub fn bodies_only(world: &World) -> Frame {
         let b = &world.bodies;
         let base = base_templates(world);
         let bodies = (0..b.len())
@@ -172,13 +179,37 @@ impl Frame {
                 }
             })
             .collect();
+        Frame {
+            step: world.step,
+            time: world.time,
+            domain: world.config.domain,
+            bodies,
+            contacts: None,
+        }
+    }
+
+    /// Body storage index by id.
+    pub fn index_by_id(&self) -> std::collections::HashMap<u64, usize> {
+        self.bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (b.id, i))
+            .collect()
+    }
+}
+
+/// The contacts of the step that ended at the world's boundary, when it
+/// recorded them.
+fn contacts(world: &World) -> Option<Vec<ContactState>> {
+    let b = &world.bodies;
+    {
         let radius = |gid: u64| -> f64 {
             let i = world.body_index(gid >> SPHERE_ID_BITS).unwrap_or(0);
             let t = &world.templates[b.template[i] as usize];
             let k = (gid & ((1 << SPHERE_ID_BITS) - 1)) as usize;
             t.spheres.get(k).map_or(0.0, |s| s.radius)
         };
-        let contacts = world.contacts().ok().map(|it| {
+        world.contacts().ok().map(|it| {
             it.map(|c| {
                 let ri = radius(c.sphere_id);
                 let half = 0.5 * c.overlap;
@@ -203,22 +234,6 @@ impl Frame {
                 }
             })
             .collect()
-        });
-        Frame {
-            step: world.step,
-            time: world.time,
-            domain: world.config.domain,
-            bodies,
-            contacts,
-        }
-    }
-
-    /// Body storage index by id.
-    pub fn index_by_id(&self) -> std::collections::HashMap<u64, usize> {
-        self.bodies
-            .iter()
-            .enumerate()
-            .map(|(i, b)| (b.id, i))
-            .collect()
+        })
     }
 }

@@ -8,6 +8,7 @@
 //! type; a separate crate would need both sides' types.
 
 pub mod fields;
+pub mod flow;
 pub mod frame;
 pub mod grid;
 pub mod kernel;

@@ -103,6 +103,12 @@ pub struct DriverState {
     /// Step of the last fields written.
     #[serde(default)]
     pub last_fields: Option<u64>,
+    /// Next step with a flow.csv row.
+    #[serde(default)]
+    pub next_flow: u64,
+    /// The flow measurement's state.
+    #[serde(default)]
+    pub flow: crate::post::flow::FlowState,
 }
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -314,6 +320,8 @@ impl Runner {
             last_contacts: None,
             next_fields: 0,
             last_fields: None,
+            next_flow: 0,
+            flow: Default::default(),
         };
         Ok(Runner::assemble(scenario, world, st, out))
     }
@@ -532,6 +540,9 @@ impl Runner {
         }
         if o.fields.is_some() && self.out.fields.is_some() {
             e = e.min(st.next_fields);
+        }
+        if o.flow.is_some() && self.out.flow.is_some() {
+            e = e.min(st.next_flow);
         }
         e.max(step + 1)
     }

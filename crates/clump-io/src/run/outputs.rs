@@ -62,6 +62,7 @@ pub(super) struct Outputs {
     pub(super) vtk: Option<VtkSeries>,
     pub(super) contacts: Option<ContactSeries>,
     pub(super) fields: Option<crate::post::spec::FieldSeries>,
+    pub(super) flow: Option<crate::append::AppendLog>,
     pub(super) thermo: Option<ThermoWriter>,
     pub(super) trajectory: Option<TrajectoryWriter>,
     pub(super) last_checkpoint: Option<PathBuf>,
@@ -136,6 +137,20 @@ impl Outputs {
                 .fields
                 .as_ref()
                 .map(|(_, spec)| crate::post::spec::FieldSeries::new(outdir, spec.clone())),
+            flow: match &o.flow {
+                None => None,
+                Some((_, probes)) => Some(
+                    crate::post::flow::open_csv(
+                        &outdir.join("flow.csv"),
+                        &crate::post::flow::header(probes),
+                        match start {
+                            Start::Fresh { .. } => None,
+                            Start::Resume { step, .. } => Some(step),
+                        },
+                    )
+                    .map_err(rt("cannot open flow.csv"))?,
+                ),
+            },
             thermo: match (o.thermo, start) {
                 (None, _) => None,
                 (Some(_), Start::Fresh { .. }) => Some(
@@ -195,6 +210,15 @@ impl Runner {
                     .map_err(rt("cannot write the coarse-grained fields"))?;
                 self.st.last_fields = Some(step);
                 self.st.next_fields = step + every;
+            }
+        }
+        if let (Some((every, probes)), Some(log)) = (&o.flow, self.out.flow.as_mut()) {
+            if step >= self.st.next_flow {
+                let frame = crate::post::frame::Frame::bodies_only(&self.world);
+                let row = crate::post::flow::sample(probes, &mut self.st.flow, &frame);
+                log.append(format!("{row}\n").as_bytes())
+                    .map_err(rt("cannot write flow.csv"))?;
+                self.st.next_flow = step + every;
             }
         }
         if let (Some(every), Some(vtk)) = (o.vtk, self.out.vtk.as_mut()) {

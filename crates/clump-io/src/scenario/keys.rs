@@ -399,6 +399,20 @@ pub const OUTPUT_KEYS: &[Key] = &[
         "Contact frames interval: contacts_<step>.vtp (one line per contact), network_<step>.csv and a bodies frame at the same step.",
     ),
     key("fields", "Coarse-grained fields (`[output.fields]`)."),
+    key("flow", "Flow measurement probes (`[[output.flow]]`), written to flow.csv."),
+];
+
+/// The keys of `[[output.flow]]` ([`RawFlow`]).
+pub const FLOW_KEYS: &[Key] = &[
+    key("name", "Name of the probe (prefix of its flow.csv columns)."),
+    key("type", "`\"plane\"` (bodies crossing, with direction) or `\"region\"` (bodies held, size distribution)."),
+    key("point", "A point of the plane, m."),
+    key("normal", "Normal of the plane; crossings along it count as positive."),
+    key("lo", "Lower corner of the region (box), m."),
+    key("hi", "Upper corner of the region (box), m."),
+    key("bins", "Edges of the volume-equivalent diameter bins of the region's size distribution, m, ascending."),
+    key("every", "Sampling interval, s (the same for every probe)."),
+    key("every_steps", "Sampling interval, steps."),
 ];
 
 /// The keys of `[output.fields]` ([`RawFields`]).
@@ -547,6 +561,7 @@ pub const TABLES: &[&[Key]] = &[
     TRAJECTORY_KEYS,
     OUTPUT_KEYS,
     FIELDS_KEYS,
+    FLOW_KEYS,
 ];
 
 /// The table whose keys are `names`, in order (serde lists a struct's
@@ -632,6 +647,7 @@ mod tests {
             case!(RawTrajectory, TRAJECTORY_KEYS),
             case!(RawOutput, OUTPUT_KEYS),
             case!(RawFields, FIELDS_KEYS),
+            case!(RawFlow, FLOW_KEYS),
         ];
         assert_eq!(cases.len(), TABLES.len(), "every table is checked");
         for (raw, table, fields) in cases {

@@ -217,6 +217,8 @@ pub struct OutputDef {
     pub contacts: Option<u64>,
     /// Coarse-grained fields: interval (steps) and request.
     pub fields: Option<(u64, crate::post::spec::FieldSpec)>,
+    /// Flow measurement: interval (steps) and probes.
+    pub flow: Option<(u64, Vec<crate::post::flow::FlowProbe>)>,
 }
 
 impl Scenario {

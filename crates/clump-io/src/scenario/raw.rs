@@ -630,6 +630,34 @@ pub struct RawOutput {
     pub contacts: Option<RawEvery>,
     /// Coarse-grained fields.
     pub fields: Option<RawFields>,
+    /// Flow measurement probes.
+    #[serde(default)]
+    pub flow: Vec<RawFlow>,
+}
+
+/// `[[output.flow]]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFlow {
+    /// Name.
+    pub name: Option<String>,
+    /// `plane` or `region`.
+    #[serde(rename = "type")]
+    pub kind: Option<String>,
+    /// Plane point, m.
+    pub point: Option<[f64; 3]>,
+    /// Plane normal.
+    pub normal: Option<[f64; 3]>,
+    /// Region lower corner, m.
+    pub lo: Option<[f64; 3]>,
+    /// Region upper corner, m.
+    pub hi: Option<[f64; 3]>,
+    /// Diameter bin edges, m.
+    pub bins: Option<Vec<f64>>,
+    /// Interval, s.
+    pub every: Option<f64>,
+    /// Interval, steps.
+    pub every_steps: Option<u64>,
 }
 
 /// `[output.fields]`.
