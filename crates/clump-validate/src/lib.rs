@@ -19,6 +19,7 @@ pub mod dem_order;
 pub mod mass;
 pub mod ode;
 pub mod plot;
+pub mod plot_segments;
 pub mod report;
 pub mod rigid_body;
 pub mod setup;

@@ -92,7 +92,7 @@ pub fn body_counts(frame: &Frame) -> Option<Vec<[u32; 3]>> {
 /// The network as CSV text, one edge per line, with a header.
 pub fn csv(frame: &Frame) -> String {
     let mut s = String::from(
-        "body_i,body_j,contacts,force_x [N],force_y [N],force_z [N],branch_x [m],branch_y [m],branch_z [m]\n",
+        "body_i,body_j,contacts,force_x[N],force_y[N],force_z[N],branch_x[m],branch_y[m],branch_z[m]\n",
     );
     for e in edges(frame) {
         let _ = writeln!(

@@ -111,12 +111,12 @@ const COMPONENTS: [&str; 9] = ["xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "
 /// (vectors as `_x, _y, _z`, tensors as `_xx … _zz`), units in brackets.
 pub fn csv_1d(grid: &Grid, f: &Fields) -> String {
     let cols = columns(f);
-    let mut s = format!("{} [m]", AXES[grid.axes[0]]);
+    let mut s = format!("{}[m]", AXES[grid.axes[0]]);
     for c in &cols {
         let unit = if c.unit.is_empty() {
             String::new()
         } else {
-            format!(" [{}]", c.unit)
+            format!("[{}]", c.unit)
         };
         match c.components {
             1 => {
