@@ -505,9 +505,15 @@ impl Runner {
         let st = &self.st;
         let o = &self.scenario.output;
         let last = step >= self.scenario.total_steps() || max_steps.is_some_and(|m| step >= m);
-        let vtk = o.vtk.is_some() && self.out.vtk.is_some() && (step >= st.next_vtk || last);
-        let contacts = (o.contacts.is_some() && self.out.contacts.is_some())
-            || (o.fields.is_some() && self.out.fields.is_some());
+        let due = |on: bool, next: u64| on && (step >= next || last);
+        let vtk = due(o.vtk.is_some() && self.out.vtk.is_some(), st.next_vtk);
+        let contacts = due(
+            o.contacts.is_some() && self.out.contacts.is_some(),
+            st.next_contacts,
+        ) || due(
+            o.fields.is_some() && self.out.fields.is_some(),
+            st.next_fields,
+        );
         Event {
             step,
             contacts: vtk || contacts,

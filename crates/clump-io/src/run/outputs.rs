@@ -187,7 +187,9 @@ impl Runner {
     pub(super) fn write_outputs(&mut self, finished: bool) -> Result<(), RunError> {
         let step = self.world.step;
         let o = self.scenario.output.clone();
-        let snap = self.snap.take();
+        // a frame without bodies has nothing to show (and VTK series start
+        // at their first frame with bodies)
+        let snap = self.snap.take().filter(|f| !f.bodies.is_empty());
         // a contact frame (only where the step recorded its contacts) comes
         // with a bodies frame at the same step, for `clump post`
         let mut contact_frame = false;
