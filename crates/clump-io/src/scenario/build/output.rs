@@ -256,8 +256,13 @@ fn flow(
                         "'point' is finite and 'normal' a finite, non-zero vector",
                     ));
                 }
-                if f.lo.is_some() || f.hi.is_some() || f.bins.is_some() {
-                    return Err(cx.err(&table, "'lo', 'hi' and 'bins' belong to a region probe; a plane takes 'point' and 'normal'"));
+                let stray = [
+                    ("lo", f.lo.is_some()),
+                    ("hi", f.hi.is_some()),
+                    ("bins", f.bins.is_some()),
+                ];
+                if let Some((k, _)) = stray.iter().find(|x| x.1) {
+                    return Err(cx.err(&at(k), "'lo', 'hi' and 'bins' belong to a region probe; a plane takes 'point' and 'normal'"));
                 }
                 Probe::Plane {
                     point: p,
@@ -273,8 +278,9 @@ fn flow(
                 if !lo.is_finite() || !hi.is_finite() || (0..3).any(|a| lo[a] >= hi[a]) {
                     return Err(cx.err(&at("hi"), "'hi' must be above 'lo' along every axis (m)"));
                 }
-                if f.point.is_some() || f.normal.is_some() {
-                    return Err(cx.err(&table, "'point' and 'normal' belong to a plane probe; a region takes 'lo', 'hi' and 'bins'"));
+                let stray = [("point", f.point.is_some()), ("normal", f.normal.is_some())];
+                if let Some((k, _)) = stray.iter().find(|x| x.1) {
+                    return Err(cx.err(&at(k), "'point' and 'normal' belong to a plane probe; a region takes 'lo', 'hi' and 'bins'"));
                 }
                 let bins = f.bins.clone().unwrap_or_default();
                 if bins.len() == 1
