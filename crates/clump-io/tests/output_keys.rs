@@ -1,8 +1,10 @@
 //! Bad `[output] contacts`, `[output.fields]` and `[[output.flow]]` entries
 //! are refused with the file, the line and what is allowed.
 
+mod support;
 use clump_io::scenario::{self, Files};
 use std::path::Path;
+use support::refused;
 
 fn dir() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_scenarios")
@@ -13,29 +15,6 @@ fn with_output(extra: &str) -> String {
     let base = std::fs::read_to_string(dir().join("base_valid.toml")).unwrap();
     let i = base.find("[output]\n").expect("base has [output]") + "[output]\n".len();
     format!("{}{extra}\n{}", &base[..i], &base[i..])
-}
-
-/// `text` is refused at the line of `marker` with every string of `want`.
-fn refused(text: &str, marker: &str, want: &[&str]) {
-    let line = text[..text.find(marker).expect("marker")]
-        .matches('\n')
-        .count()
-        + 1;
-    let e = scenario::parse(
-        Path::new("case.toml"),
-        text.to_string(),
-        Files::disk(&dir()),
-    )
-    .map(|_| ())
-    .expect_err("the scenario must be refused");
-    let msg = e.to_string();
-    assert!(
-        msg.contains(&format!("case.toml:{line}:")),
-        "line {line}:\n{msg}"
-    );
-    for w in want {
-        assert!(msg.contains(w), "lacks {w:?}:\n{msg}");
-    }
 }
 
 #[test]
