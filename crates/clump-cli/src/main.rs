@@ -14,6 +14,7 @@ mod term;
 mod check_words;
 mod cmd_bench;
 mod cmd_check;
+mod cmd_post;
 mod cmd_resume;
 mod cmd_run;
 mod cmd_template;
@@ -42,6 +43,8 @@ enum Commands {
     Bench(cmd_bench::BenchArgs),
     /// Run the validation suite and write report.md with PNG plots.
     Validate(cmd_validate::ValidateArgs),
+    /// Plots, coarse-grained fields and force chains from a run's folder.
+    Post(cmd_post::PostArgs),
 }
 
 fn main() -> ExitCode {
@@ -58,6 +61,7 @@ fn main() -> ExitCode {
         Commands::Check(a) => cmd_check::run(&a),
         Commands::Resume(a) => cmd_resume::run(&a),
         Commands::Validate(a) => cmd_validate::run(&a),
+        Commands::Post(a) => cmd_post::run(&a),
         Commands::Bench(a) => match cmd_bench::run(&a) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {

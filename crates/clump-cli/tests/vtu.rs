@@ -69,7 +69,7 @@ fn vtu_frames_are_read_by_meshio() {
         text.contains("spheres 80 ['body_id', 'radius', 'velocity'] ['vertex'] 80"),
         "{text}"
     );
-    assert!(text.contains("bodies 20 ['angular_velocity', 'body_id', 'euler', 'ex', 'ey', 'ez', 'mass', 'quaternion', 'scale', 'template', 'velocity']"), "{text}");
+    assert!(text.contains("bodies 20 ['angular_velocity', 'body_id', 'contacts', 'coordination', 'euler', 'ex', 'ey', 'ez', 'force', 'inertia', 'mass', 'quaternion', 'scale', 'template', 'torque', 'velocity', 'volume', 'wall_contacts']"), "{text}");
     assert!(
         text.contains("walls ") && text.contains("'polygon'"),
         "{text}"

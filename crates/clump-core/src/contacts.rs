@@ -76,6 +76,20 @@ pub struct Contact {
     pub force_tangential: DVec3,
     /// Tangential spring `ξ` after the step, m (in the tangent plane).
     pub tangential_spring: DVec3,
+    /// The contact slides: its tangential force is at the Coulomb limit,
+    /// `|F_t| ≥ (1 − 10⁻⁹) μ|F_n|` with the pair's friction coefficient `μ`
+    /// (docs/theory.md T-30). The law caps `|F_t|` at exactly `μ|F_n|` when
+    /// the trial force exceeds it, and both are scaled alike by the
+    /// multi-contact rule, so the test reads the law's own branch back to
+    /// round-off. A frictionless contact (`μ = 0`) always slides.
+    pub sliding: bool,
+}
+
+/// Whether a contact with normal force `fnv` and tangential force `ftv`
+/// under friction coefficient `mu` is at the Coulomb limit (see
+/// [`Contact::sliding`]).
+fn at_coulomb_limit(fnv: DVec3, ftv: DVec3, mu: f64) -> bool {
+    ftv.length() >= (1.0 - 1e-9) * mu * fnv.length()
 }
 
 impl Contact {
@@ -114,6 +128,11 @@ impl Iterator for Contacts<'_> {
             let i = pairs.row[p] as usize;
             let j = t.j as usize;
             let fnv = r.normal * r.normal_force;
+            let mu = w
+                .contact_table
+                .get(sp.material[i], sp.material[j])
+                .sliding_law()
+                .friction;
             return Some(Contact {
                 sphere_id: sp.gid[i],
                 body_id: sp.gid[i] >> SPHERE_ID_BITS,
@@ -127,6 +146,7 @@ impl Iterator for Contacts<'_> {
                 force_normal: fnv,
                 force_tangential: r.force - fnv,
                 tangential_spring: pairs.tangential[p],
+                sliding: at_coulomb_limit(fnv, r.force - fnv, mu),
             });
         }
         while self.chunk < rec.wall.len() {
@@ -140,6 +160,11 @@ impl Iterator for Contacts<'_> {
             self.entry += 1;
             let s = r.sphere as usize;
             let fnv = r.normal * r.normal_force;
+            let mu = w
+                .contact_table
+                .get(sp.material[s], w.walls[r.wall as usize].material)
+                .sliding_law()
+                .friction;
             return Some(Contact {
                 sphere_id: sp.gid[s],
                 body_id: sp.gid[s] >> SPHERE_ID_BITS,
@@ -153,6 +178,7 @@ impl Iterator for Contacts<'_> {
                 force_normal: fnv,
                 force_tangential: r.force - fnv,
                 tangential_spring: r.spring,
+                sliding: at_coulomb_limit(fnv, r.force - fnv, mu),
             });
         }
         None

@@ -249,3 +249,52 @@ fn an_event_that_is_not_ahead_is_an_error() {
     let mut w = tetra_lattice_bed(2, 2, 1, None);
     assert!(w.run_driven(&mut Stuck).is_err());
 }
+
+/// The sliding flag against Coulomb's law from outside the code: bodies
+/// on the floor, set sliding along it at 1 m/s, must slide at every
+/// floor contact (the spring's trial force `k_t v dt` after one step is far
+/// above `μF_n` of a resting tetrahedron), and a flag set means the
+/// tangential force carries `μ|F_n|`.
+#[test]
+fn floor_contacts_of_bodies_set_sliding_slide() {
+    let mut w = bed();
+    w.run(4000).unwrap();
+    let mu = w
+        .contact_table
+        .get(w.walls[0].material, w.walls[0].material)
+        .sliding_law()
+        .friction;
+    let ids: Vec<u64> = w.bodies.id.clone();
+    for id in ids {
+        let v = w.bodies.velocity[w.body_index(id).unwrap()];
+        w.set_body_velocity(id, v + DVec3::new(1.0, 0.0, 0.0))
+            .unwrap();
+    }
+    recorded_step(&mut w);
+    let floor: Vec<Contact> = w
+        .contacts()
+        .unwrap()
+        .filter(|c| matches!(c.partner, Partner::Wall { wall: 0, .. }))
+        .collect();
+    assert!(floor.len() >= 30, "{} floor contacts", floor.len());
+    for c in &floor {
+        assert!(c.sliding, "floor contact of body {} sticks", c.body_id);
+        let (ft, fnm) = (c.force_tangential.length(), c.force_normal.length());
+        assert!(
+            mu > 0.0 && (ft - mu * fnm).abs() <= 1e-9 * mu * fnm,
+            "{ft} vs μF_n {}",
+            mu * fnm
+        );
+    }
+}
+
+/// One step that records its contacts.
+fn recorded_step(w: &mut World) {
+    struct Quiet;
+    impl StepHook for Quiet {}
+    let event = Event {
+        step: w.step + 1,
+        contacts: true,
+    };
+    w.advance(event, &mut Quiet).unwrap();
+}

@@ -14,7 +14,15 @@
 //!   `angular_velocity` (rad/s, world), `template` (the scenario's template
 //!   index, 0-based, in the order of `[[template]]`; the names are listed
 //!   in `manifest.json`), `scale` (the body's size factor of a mix's size
-//!   distribution, 1 otherwise), `mass` (kg).
+//!   distribution, 1 otherwise), `mass` (kg), `volume` (m³), `inertia`
+//!   (principal moments, body frame, kg m²), `force` and `torque` (the
+//!   total load of the last step, contacts and gravity, N and N m, world),
+//!   `coordination` (other bodies touched), `contacts` (sphere–sphere
+//!   contacts of its spheres), `wall_contacts` (sphere–wall contacts); the
+//!   three counts are −1 where the frame has no force evaluation recorded
+//!   (the first frame, bodies inserted at that step). Field data
+//!   `template_names`: the names that `template` indexes, so a frame
+//!   colours by shape with the names in the legend.
 //! - **walls**: one polygon per face: planes clipped to the domain box,
 //!   cylinders tessellated with [`CYLINDER_SEGMENTS`] quads over the domain's
 //!   extent along their axis, boxes as 6 quads, meshes as their triangles
@@ -29,6 +37,8 @@
 //! written atomically ([`crate::atomic`]).
 
 use crate::atomic::write_atomic;
+use crate::post::frame::base_templates;
+use crate::vtp::Vtp;
 use clump_core::boundary::Domain;
 use clump_core::wall::WallShape;
 use clump_core::world::World;
@@ -39,194 +49,6 @@ use std::path::{Path, PathBuf};
 
 /// Number of segments around a cylinder wall.
 pub const CYLINDER_SEGMENTS: usize = 64;
-
-/// Element types of the data arrays.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Ty {
-    F64,
-    I64,
-    U64,
-    I32,
-    U8,
-}
-
-impl Ty {
-    fn name(self) -> &'static str {
-        match self {
-            Ty::F64 => "Float64",
-            Ty::I64 => "Int64",
-            Ty::U64 => "UInt64",
-            Ty::I32 => "Int32",
-            Ty::U8 => "UInt8",
-        }
-    }
-}
-
-struct Array {
-    name: String,
-    ty: Ty,
-    components: usize,
-    offset: usize,
-}
-
-/// Assembles one `.vtp` file: arrays go to the appended block as they are added.
-#[derive(Default)]
-struct Vtp {
-    data: Vec<u8>,
-    point_data: Vec<Array>,
-    cell_data: Vec<Array>,
-    points: Option<Array>,
-    verts: Vec<Array>,
-    polys: Vec<Array>,
-    n_points: usize,
-    n_verts: usize,
-    n_polys: usize,
-}
-
-impl Vtp {
-    fn push_block(&mut self, name: &str, ty: Ty, components: usize, bytes: Vec<u8>) -> Array {
-        let offset = self.data.len();
-        self.data
-            .extend_from_slice(&(bytes.len() as u64).to_le_bytes());
-        self.data.extend_from_slice(&bytes);
-        Array {
-            name: name.to_string(),
-            ty,
-            components,
-            offset,
-        }
-    }
-
-    fn f64s(values: impl Iterator<Item = f64>) -> Vec<u8> {
-        let mut b = Vec::new();
-        for v in values {
-            b.extend_from_slice(&v.to_le_bytes());
-        }
-        b
-    }
-
-    fn vec3s<'a>(values: impl Iterator<Item = &'a DVec3>) -> Vec<u8> {
-        Self::f64s(values.flat_map(|v| [v.x, v.y, v.z]))
-    }
-
-    fn set_points(&mut self, pts: &[DVec3]) {
-        self.n_points = pts.len();
-        let a = self.push_block("Points", Ty::F64, 3, Self::vec3s(pts.iter()));
-        self.points = Some(a);
-    }
-
-    fn point_vec3(&mut self, name: &str, v: &[DVec3]) {
-        let a = self.push_block(name, Ty::F64, 3, Self::vec3s(v.iter()));
-        self.point_data.push(a);
-    }
-
-    fn point_f64(&mut self, name: &str, comps: usize, v: impl Iterator<Item = f64>) {
-        let a = self.push_block(name, Ty::F64, comps, Self::f64s(v));
-        self.point_data.push(a);
-    }
-
-    fn point_u64(&mut self, name: &str, v: impl Iterator<Item = u64>) {
-        let bytes: Vec<u8> = v.flat_map(|x| x.to_le_bytes()).collect();
-        let a = self.push_block(name, Ty::U64, 1, bytes);
-        self.point_data.push(a);
-    }
-
-    fn point_i32(&mut self, name: &str, v: impl Iterator<Item = i32>) {
-        let bytes: Vec<u8> = v.flat_map(|x| x.to_le_bytes()).collect();
-        let a = self.push_block(name, Ty::I32, 1, bytes);
-        self.point_data.push(a);
-    }
-
-    fn cell_i32(&mut self, name: &str, v: impl Iterator<Item = i32>) {
-        let bytes: Vec<u8> = v.flat_map(|x| x.to_le_bytes()).collect();
-        let a = self.push_block(name, Ty::I32, 1, bytes);
-        self.cell_data.push(a);
-    }
-
-    fn cell_u8(&mut self, name: &str, v: impl Iterator<Item = u8>) {
-        let bytes: Vec<u8> = v.collect();
-        let a = self.push_block(name, Ty::U8, 1, bytes);
-        self.cell_data.push(a);
-    }
-
-    /// One vertex cell per point.
-    fn vertex_cells(&mut self) {
-        let n = self.n_points as i64;
-        self.n_verts = self.n_points;
-        let conn: Vec<u8> = (0..n).flat_map(|i| i.to_le_bytes()).collect();
-        let offs: Vec<u8> = (1..=n).flat_map(|i| i.to_le_bytes()).collect();
-        let a = self.push_block("connectivity", Ty::I64, 1, conn);
-        let b = self.push_block("offsets", Ty::I64, 1, offs);
-        self.verts = vec![a, b];
-    }
-
-    /// Polygons given as lists of point indices.
-    fn polygons(&mut self, polys: &[Vec<i64>]) {
-        self.n_polys = polys.len();
-        let mut conn = Vec::new();
-        let mut offs = Vec::new();
-        let mut end = 0i64;
-        for p in polys {
-            for &i in p {
-                conn.extend_from_slice(&i.to_le_bytes());
-            }
-            end += p.len() as i64;
-            offs.extend_from_slice(&end.to_le_bytes());
-        }
-        let a = self.push_block("connectivity", Ty::I64, 1, conn);
-        let b = self.push_block("offsets", Ty::I64, 1, offs);
-        self.polys = vec![a, b];
-    }
-
-    fn finish(self) -> Vec<u8> {
-        let mut x = String::new();
-        let arr = |x: &mut String, a: &Array, indent: &str| {
-            let _ = writeln!(
-                x,
-                "{indent}<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{}\"/>",
-                a.ty.name(),
-                a.name,
-                a.components,
-                a.offset
-            );
-        };
-        x.push_str("<?xml version=\"1.0\"?>\n");
-        x.push_str("<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
-        x.push_str("  <PolyData>\n");
-        let _ = writeln!(
-            x,
-            "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"{}\">",
-            self.n_points, self.n_verts, self.n_polys
-        );
-        x.push_str("      <PointData>\n");
-        for a in &self.point_data {
-            arr(&mut x, a, "        ");
-        }
-        x.push_str("      </PointData>\n      <CellData>\n");
-        for a in &self.cell_data {
-            arr(&mut x, a, "        ");
-        }
-        x.push_str("      </CellData>\n      <Points>\n");
-        if let Some(a) = &self.points {
-            arr(&mut x, a, "        ");
-        }
-        x.push_str("      </Points>\n");
-        for (tag, list) in [("Verts", &self.verts), ("Polys", &self.polys)] {
-            if !list.is_empty() {
-                let _ = writeln!(x, "      <{tag}>");
-                for a in list {
-                    arr(&mut x, a, "        ");
-                }
-                let _ = writeln!(x, "      </{tag}>");
-            }
-        }
-        x.push_str("    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _");
-        let mut out = x.into_bytes();
-        out.extend_from_slice(&self.data);
-        out.extend_from_slice(b"\n  </AppendedData>\n</VTKFile>\n");
-        out
-    }
-}
 
 /// The spheres file (see the [module docs](self)) as bytes.
 pub fn spheres_vtp(world: &World) -> Vec<u8> {
@@ -260,10 +82,27 @@ pub fn spheres_vtp(world: &World) -> Vec<u8> {
     f.finish()
 }
 
-/// The bodies file (see the [module docs](self)) as bytes.
+/// The bodies file (see the [module docs](self)) as bytes, without contact
+/// counts.
 pub fn bodies_vtp(world: &World) -> Vec<u8> {
+    bodies_vtp_counted(world, None)
+}
+
+/// Per body id: its coordination number, sphere–sphere contacts and
+/// sphere–wall contacts ([`crate::post::network::body_counts`]).
+pub type BodyCounts = std::collections::HashMap<u64, [u32; 3]>;
+
+/// The bodies file with the contact counts of `counts` (bodies missing
+/// there, or all when `None`, get −1: no force evaluation recorded).
+pub fn bodies_vtp_counted(world: &World, counts: Option<&BodyCounts>) -> Vec<u8> {
     let b = &world.bodies;
     let mut f = Vtp::default();
+    let base = base_templates(world);
+    let names: Vec<String> = (0..base.len())
+        .filter(|&k| base[k] == k)
+        .map(|k| world.templates[k].name.clone())
+        .collect();
+    f.field_strings("template_names", &names);
     f.set_points(&b.position);
     f.point_u64("body_id", b.id.iter().copied());
     f.point_f64(
@@ -285,7 +124,6 @@ pub fn bodies_vtp(world: &World) -> Vec<u8> {
     );
     f.point_vec3("velocity", &b.velocity);
     f.point_vec3("angular_velocity", &b.angular_velocity);
-    let base = base_templates(world);
     f.point_i32(
         "template",
         b.template.iter().map(|&t| base[t as usize] as i32),
@@ -302,22 +140,28 @@ pub fn bodies_vtp(world: &World) -> Vec<u8> {
         }),
     );
     f.point_f64("mass", 1, b.mass.iter().copied());
+    f.point_f64(
+        "volume",
+        1,
+        b.template
+            .iter()
+            .map(|&t| world.templates[t as usize].volume),
+    );
+    f.point_vec3("inertia", &b.inertia);
+    f.point_vec3("force", &b.force);
+    f.point_vec3("torque", &b.torque);
+    for (k, name) in ["coordination", "contacts", "wall_contacts"]
+        .into_iter()
+        .enumerate()
+    {
+        f.point_i32(
+            name,
+            b.id.iter()
+                .map(|id| counts.and_then(|c| c.get(id)).map_or(-1, |n| n[k] as i32)),
+        );
+    }
     f.vertex_cells();
     f.finish()
-}
-
-/// For every world template, the index of the template it is a scaled copy
-/// of: the first template with the same name (insertion adds scaled copies
-/// under their base's name after the scenario's templates, whose names are
-/// unique). Scenario templates map to themselves.
-fn base_templates(world: &World) -> Vec<usize> {
-    let mut first: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
-    world
-        .templates
-        .iter()
-        .enumerate()
-        .map(|(i, t)| *first.entry(t.name.as_str()).or_insert(i))
-        .collect()
 }
 
 /// Polygon (3–6 vertices, ordered) of the plane through `p` with unit
@@ -657,6 +501,16 @@ impl VtkSeries {
     /// (ParaView shows a series' first frame at earlier times). Frames
     /// without bodies after that (e.g. an emptied hopper) are written.
     pub fn write_frame(&mut self, world: &World, label: u64) -> io::Result<()> {
+        self.write_frame_counted(world, label, None)
+    }
+
+    /// [`Self::write_frame`] with the bodies' contact counts.
+    pub fn write_frame_counted(
+        &mut self,
+        world: &World,
+        label: u64,
+        counts: Option<&BodyCounts>,
+    ) -> io::Result<()> {
         let ext = self.format.extension();
         let names = [
             format!("spheres_{label:06}.{ext}"),
@@ -667,7 +521,7 @@ impl VtkSeries {
             |name: &str, vtp: Vec<u8>| write_atomic(self.dir.join(name), &self.format.encode(vtp));
         if !world.bodies.is_empty() || !self.spheres.entries().is_empty() {
             write(&names[0], spheres_vtp(world))?;
-            write(&names[1], bodies_vtp(world))?;
+            write(&names[1], bodies_vtp_counted(world, counts))?;
             self.spheres.append(world.time, &names[0])?;
             self.bodies.append(world.time, &names[1])?;
         }

@@ -2,7 +2,9 @@
 //! support such as meshio: the same points, arrays and cells as the `.vtp`
 //! files of [`crate::vtk`], re-labelled. Vertex cells (spheres, bodies)
 //! become `VTK_VERTEX` (1), polygons (walls) `VTK_POLYGON` (7); the cell
-//! types array is appended to the raw data block.
+//! types array is appended to the raw data block. The string field data of
+//! the `.vtp` files (template names) are left out: meshio refuses String
+//! arrays (the names are in `manifest.json`).
 
 use serde::{Deserialize, Serialize};
 
@@ -56,7 +58,12 @@ pub fn to_vtu(vtp: &[u8]) -> Vec<u8> {
         .position(|w| w == DATA_START)
         .map_or(vtp.len(), |i| i + DATA_START.len());
     let end = vtp.len().saturating_sub(TRAILER.len()).max(start);
-    let head = String::from_utf8_lossy(&vtp[..start]);
+    let mut head = String::from_utf8_lossy(&vtp[..start]).into_owned();
+    // the string field data (template names) stay in the .vtp form only:
+    // meshio refuses String arrays
+    if let (Some(a), Some(b)) = (head.find("    <FieldData>"), head.find("</FieldData>\n")) {
+        head.replace_range(a..b + "</FieldData>\n".len(), "");
+    }
     let data = &vtp[start..end];
     let piece_start = head.find("<Piece ").unwrap_or(0);
     let piece_end = head[piece_start..]

@@ -3,33 +3,14 @@
 //! lists of `scenario::keys`). The region cases cover both an inline table
 //! and a `[insert.region]` table.
 
+mod support;
 use clump_io::scenario::{self, Files};
 use std::path::Path;
+use support::refused;
 
 fn base() -> String {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_scenarios");
     std::fs::read_to_string(dir.join("base_valid.toml")).unwrap()
-}
-
-/// Loads `text` and checks that the error names line `marker`'s line and
-/// contains every string of `want`.
-fn refused(text: &str, marker: &str, want: &[&str]) {
-    let line = text[..text.find(marker).expect("marker")]
-        .matches('\n')
-        .count()
-        + 1;
-    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_scenarios");
-    let e = scenario::parse(Path::new("case.toml"), text.to_string(), Files::disk(&base))
-        .map(|_| ())
-        .expect_err("the scenario must be refused");
-    let msg = e.to_string();
-    assert!(
-        msg.contains(&format!("case.toml:{line}:")),
-        "line {line}:\n{msg}"
-    );
-    for w in want {
-        assert!(msg.contains(w), "lacks {w:?}:\n{msg}");
-    }
 }
 
 const REGION: &str =

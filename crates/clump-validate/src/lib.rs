@@ -22,6 +22,7 @@ pub mod liggghts;
 pub mod mass;
 pub mod ode;
 pub mod plot;
+pub mod plot_segments;
 pub mod report;
 pub mod rigid_body;
 pub mod setup;

@@ -217,11 +217,16 @@ fn legend_corner(series: &[Series], (x0, x1, y0, y1): (f64, f64, f64, f64)) -> S
     best.1
 }
 
-/// Draws `chart` into the PNG file `path` (900×600 pixels).
-pub fn draw(path: &Path, chart: &Chart) -> Result<(), String> {
+/// Registers the embedded font as "sans-serif" (once).
+pub(crate) fn register() {
     REGISTER.call_once(|| {
         let _ = register_font("sans-serif", FontStyle::Normal, FONT);
     });
+}
+
+/// Draws `chart` into the PNG file `path` (900×600 pixels).
+pub fn draw(path: &Path, chart: &Chart) -> Result<(), String> {
+    register();
     let (x0, x1, y0, y1) = bounds(&chart.series).ok_or("no finite data to plot")?;
     let root = BitMapBackend::new(path, (900, 600)).into_drawing_area();
     let e = |e: &dyn std::fmt::Display| e.to_string();

@@ -40,6 +40,7 @@ pub use error::{RunError, UnstableRun};
 pub use manifest::final_state_json;
 pub use report::InsertionCount;
 
+use crate::post;
 use crate::scenario::Scenario;
 use clump_core::health::{HealthMonitor, Instability};
 use clump_core::insert::StreamInserter;
@@ -90,6 +91,24 @@ pub struct DriverState {
     /// Step at which bodies were last inserted.
     #[serde(default)]
     pub last_insert_step: Option<u64>,
+    /// Next step with a contact frame.
+    #[serde(default)]
+    pub next_contacts: u64,
+    /// Step of the last contact frame written.
+    #[serde(default)]
+    pub last_contacts: Option<u64>,
+    /// Next step with coarse-grained fields.
+    #[serde(default)]
+    pub next_fields: u64,
+    /// Step of the last fields written.
+    #[serde(default)]
+    pub last_fields: Option<u64>,
+    /// Next step with a flow.csv row.
+    #[serde(default)]
+    pub next_flow: u64,
+    /// The flow measurement's state.
+    #[serde(default)]
+    pub flow: crate::post::flow::FlowState,
 }
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -261,6 +280,10 @@ pub struct Runner {
     st: DriverState,
     out: Outputs,
     n_scenario_templates: usize,
+    /// The world at this boundary, with the contacts of the step that ended
+    /// here, taken before any stage change or insertion (which would make
+    /// the records stale); `None` where no contacts were recorded.
+    snap: Option<post::frame::Frame>,
 }
 
 impl Runner {
@@ -293,6 +316,12 @@ impl Runner {
             inserted: vec![0; scenario.inserts.len()],
             health: None,
             last_insert_step: None,
+            next_contacts: 0,
+            last_contacts: None,
+            next_fields: 0,
+            last_fields: None,
+            next_flow: 0,
+            flow: Default::default(),
         };
         Ok(Runner::assemble(scenario, world, st, out))
     }
@@ -336,6 +365,7 @@ impl Runner {
             st,
             out,
             n_scenario_templates: n,
+            snap: None,
         }
     }
 
@@ -404,7 +434,7 @@ impl Runner {
                 self.write_checkpoint()?;
             }
             // --- the steps to the next event
-            let event = Event::at(self.next_event(opts.max_steps));
+            let event = self.next_event(opts.max_steps);
             let limits = self.scenario.stability;
             let mut hook = StepChecks {
                 health: self
@@ -447,6 +477,10 @@ impl Runner {
             }
         };
         let wall_time = t_start.elapsed().as_secs_f64();
+        if let Some(f) = &self.out.fields {
+            f.finish()
+                .map_err(rt("cannot write the time-averaged fields"))?;
+        }
         self.write_final_state()
             .map_err(rt("cannot write final_state.json"))?;
         let summary = RunSummary {
@@ -483,10 +517,33 @@ impl Runner {
         RunError::Runtime(format!("{message}\n  {next}"))
     }
 
-    /// The step of the next event: the end of the current stage, the next
-    /// insertion of a stream, the next output row or frame, the next
-    /// checkpoint, the step limit; at least one step ahead.
-    fn next_event(&self, max_steps: Option<u64>) -> u64 {
+    /// The next event: the end of the current stage, the next insertion of
+    /// a stream, the next output row or frame, the next checkpoint, the
+    /// step limit; at least one step ahead. The step that ends there
+    /// records its contacts when a VTK or contact frame may fall there
+    /// (the frame's contact counts and contact file need them).
+    fn next_event(&self, max_steps: Option<u64>) -> Event {
+        let step = self.next_event_step(max_steps);
+        let st = &self.st;
+        let o = &self.scenario.output;
+        let last = step >= self.scenario.total_steps() || max_steps.is_some_and(|m| step >= m);
+        let due = |on: bool, next: u64| on && (step >= next || last);
+        let vtk = due(o.vtk.is_some() && self.out.vtk.is_some(), st.next_vtk);
+        let contacts = due(
+            o.contacts.is_some() && self.out.contacts.is_some(),
+            st.next_contacts,
+        ) || due(
+            o.fields.is_some() && self.out.fields.is_some(),
+            st.next_fields,
+        );
+        Event {
+            step,
+            contacts: vtk || contacts,
+        }
+    }
+
+    /// The step of the next event (see [`Self::next_event`]).
+    fn next_event_step(&self, max_steps: Option<u64>) -> u64 {
         let (st, step) = (&self.st, self.world.step);
         let o = &self.scenario.output;
         let dt = self.world.config.dt;
@@ -505,6 +562,15 @@ impl Runner {
         }
         if o.trajectory.is_some() && self.out.trajectory.is_some() {
             e = e.min(st.next_trajectory);
+        }
+        if o.contacts.is_some() && self.out.contacts.is_some() {
+            e = e.min(st.next_contacts);
+        }
+        if o.fields.is_some() && self.out.fields.is_some() {
+            e = e.min(st.next_fields);
+        }
+        if o.flow.is_some() && self.out.flow.is_some() {
+            e = e.min(st.next_flow);
         }
         e.max(step + 1)
     }

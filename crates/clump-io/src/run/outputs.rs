@@ -8,6 +8,7 @@ use crate::scenario::Scenario;
 use crate::thermo_csv::{ThermoWriter, WallColumns};
 use crate::trajectory::TrajectoryWriter;
 use crate::vtk::VtkSeries;
+use crate::vtk_contacts::ContactSeries;
 use clump_core::thermo::Thermo;
 use clump_core::world::World;
 use glam::DVec3;
@@ -34,6 +35,11 @@ fn wall_columns(scenario: &Scenario) -> Vec<WallColumns> {
         .collect()
 }
 
+/// The walls' names, by index.
+fn wall_names(scenario: &Scenario) -> Vec<String> {
+    scenario.walls.iter().map(|w| w.name.clone()).collect()
+}
+
 /// The world's thermo row with each wall's torque taken about its torque
 /// point (`T_P = T_c + (c − P) × F`, world frame), and the power each wall's
 /// rigid motion delivers to the particles, `−(F·v + T_c·ω)` (W).
@@ -54,6 +60,9 @@ fn wall_thermo(world: &World, torque_points: &[Option<DVec3>]) -> (Thermo, Vec<f
 pub(super) struct Outputs {
     pub(super) dir: PathBuf,
     pub(super) vtk: Option<VtkSeries>,
+    pub(super) contacts: Option<ContactSeries>,
+    pub(super) fields: Option<crate::post::spec::FieldSeries>,
+    pub(super) flow: Option<crate::append::AppendLog>,
     pub(super) thermo: Option<ThermoWriter>,
     pub(super) trajectory: Option<TrajectoryWriter>,
     pub(super) last_checkpoint: Option<PathBuf>,
@@ -113,6 +122,35 @@ impl Outputs {
                         .with_format(o.vtk_format),
                 ),
             },
+            contacts: match (o.contacts, start) {
+                (None, _) => None,
+                (Some(_), Start::Fresh { .. }) => Some(
+                    ContactSeries::new(outdir, wall_names(scenario), &scenario.config.domain)
+                        .map_err(rt("cannot start contact output"))?,
+                ),
+                (Some(_), Start::Resume { time, .. }) => Some(
+                    ContactSeries::resume(outdir, wall_names(scenario), time)
+                        .map_err(rt("cannot resume contact output"))?,
+                ),
+            },
+            fields: o
+                .fields
+                .as_ref()
+                .map(|(_, spec)| crate::post::spec::FieldSeries::new(outdir, spec.clone())),
+            flow: match &o.flow {
+                None => None,
+                Some((_, probes)) => Some(
+                    crate::post::flow::open_csv(
+                        &outdir.join("flow.csv"),
+                        &crate::post::flow::header(probes),
+                        match start {
+                            Start::Fresh { .. } => None,
+                            Start::Resume { step, .. } => Some(step),
+                        },
+                    )
+                    .map_err(rt("cannot open flow.csv"))?,
+                ),
+            },
             thermo: match (o.thermo, start) {
                 (None, _) => None,
                 (Some(_), Start::Fresh { .. }) => Some(
@@ -149,12 +187,57 @@ impl Runner {
     pub(super) fn write_outputs(&mut self, finished: bool) -> Result<(), RunError> {
         let step = self.world.step;
         let o = self.scenario.output.clone();
+        // a frame without bodies has nothing to show (and VTK series start
+        // at their first frame with bodies)
+        let snap = self.snap.take().filter(|f| !f.bodies.is_empty());
+        // a contact frame (only where the step recorded its contacts) comes
+        // with a bodies frame at the same step, for `clump post`
+        let mut contact_frame = false;
+        if let (Some(every), Some(cs)) = (o.contacts, self.out.contacts.as_mut()) {
+            let due =
+                step >= self.st.next_contacts || (finished && self.st.last_contacts != Some(step));
+            if let (true, Some(frame)) = (due, snap.as_ref()) {
+                cs.write_frame(frame)
+                    .map_err(rt("cannot write contact output"))?;
+                self.st.last_contacts = Some(step);
+                self.st.next_contacts = step + every;
+                contact_frame = true;
+            }
+        }
+        if let (Some((every, _)), Some(fs)) = (&o.fields, self.out.fields.as_mut()) {
+            let due =
+                step >= self.st.next_fields || (finished && self.st.last_fields != Some(step));
+            if let (true, Some(frame)) = (due, snap.as_ref()) {
+                fs.add(frame)
+                    .map_err(rt("cannot write the coarse-grained fields"))?;
+                self.st.last_fields = Some(step);
+                self.st.next_fields = step + every;
+            }
+        }
+        if let (Some((every, probes)), Some(log)) = (&o.flow, self.out.flow.as_mut()) {
+            if step >= self.st.next_flow {
+                let frame = crate::post::frame::Frame::bodies_only(&self.world);
+                let row = crate::post::flow::sample(probes, &mut self.st.flow, &frame);
+                log.append(format!("{row}\n").as_bytes())
+                    .map_err(rt("cannot write flow.csv"))?;
+                self.st.next_flow = step + every;
+            }
+        }
         if let (Some(every), Some(vtk)) = (o.vtk, self.out.vtk.as_mut()) {
-            if step >= self.st.next_vtk || (finished && self.st.last_vtk != Some(step)) {
-                vtk.write_frame(&self.world, step)
+            if step >= self.st.next_vtk
+                || contact_frame
+                || (finished && self.st.last_vtk != Some(step))
+            {
+                let counts: Option<crate::vtk::BodyCounts> = snap.as_ref().and_then(|f| {
+                    let n = crate::post::network::body_counts(f)?;
+                    Some(f.bodies.iter().map(|b| b.id).zip(n).collect())
+                });
+                vtk.write_frame_counted(&self.world, step, counts.as_ref())
                     .map_err(rt("cannot write VTK output"))?;
                 self.st.last_vtk = Some(step);
-                self.st.next_vtk = step + every;
+                if step >= self.st.next_vtk {
+                    self.st.next_vtk = step + every;
+                }
             }
         }
         if let (Some(every), Some(th)) = (o.thermo, self.out.thermo.as_mut()) {

@@ -10,6 +10,11 @@ impl Runner {
     /// Stage changes, insertion and output before a step. Returns true when
     /// all stages are done (after writing the final output).
     pub(super) fn pre_step(&mut self) -> Result<bool, RunError> {
+        self.snap = self
+            .world
+            .contacts()
+            .is_ok()
+            .then(|| crate::post::frame::Frame::capture(&self.world));
         let stages = &self.scenario.stages;
         while self.st.stage < stages.len() && self.st.step_in_stage >= stages[self.st.stage].steps {
             self.st.stage += 1;

@@ -393,7 +393,7 @@ pub const BODY_CHANGE_KEYS: &[Key] = &[
     ),
 ];
 
-/// The keys of `[output.vtk]`, `[output.thermo]` and `[output.checkpoint]` ([`RawEvery`]).
+/// The keys of `[output.vtk]`, `[output.thermo]`, `[output.checkpoint]` and `[output.contacts]` ([`RawEvery`]).
 pub const EVERY_KEYS: &[Key] = &[
     key("every", "Interval, s."),
     key("every_steps", "Interval, steps."),
@@ -427,6 +427,53 @@ pub const OUTPUT_KEYS: &[Key] = &[
     key(
         "vtk_format",
         "File format of the VTK frames: `\"vtp\"` (default) or `\"vtu\"` (for readers without PolyData, e.g. meshio).",
+    ),
+    key(
+        "contacts",
+        "Contact frames interval: contacts_<step>.vtp (one line per contact), network_<step>.csv and a bodies frame at the same step.",
+    ),
+    key("fields", "Coarse-grained fields (`[output.fields]`)."),
+    key("flow", "Flow measurement probes (`[[output.flow]]`), written to flow.csv."),
+];
+
+/// The keys of `[[output.flow]]` ([`RawFlow`]).
+pub const FLOW_KEYS: &[Key] = &[
+    key("name", "Name of the probe (prefix of its flow.csv columns)."),
+    key("type", "`\"plane\"` (bodies crossing, with direction) or `\"region\"` (bodies held, size distribution)."),
+    key("point", "A point of the plane, m."),
+    key("normal", "Normal of the plane; crossings along it count as positive."),
+    key("lo", "Lower corner of the region (box), m."),
+    key("hi", "Upper corner of the region (box), m."),
+    key("bins", "Edges of the volume-equivalent diameter bins of the region's size distribution, m, ascending."),
+    key("every", "Sampling interval, s (the same for every probe)."),
+    key("every_steps", "Sampling interval, steps."),
+];
+
+/// The keys of `[output.fields]` ([`RawFields`]).
+pub const FIELDS_KEYS: &[Key] = &[
+    key("every", "Interval, s."),
+    key("every_steps", "Interval, steps."),
+    key(
+        "axes",
+        "Grid axes, 1 to 3 of `\"x\"`, `\"y\"`, `\"z\"`; the fields are averaged over the others.",
+    ),
+    key("cells", "Cells along each grid axis (≥ 1)."),
+    key(
+        "lo",
+        "Lower end along each grid axis, m (default: the domain's).",
+    ),
+    key(
+        "hi",
+        "Upper end along each grid axis, m (default: the domain's).",
+    ),
+    key(
+        "kernel",
+        "`\"gaussian\"` (cut at 3 widths, default) or `\"lucy\"`.",
+    ),
+    key("width", "Kernel width (standard deviation), m."),
+    key(
+        "average",
+        "Also write the time average over the frames (default false).",
     ),
 ];
 /// The keys of each `[[wall]]` type (the other keys of [`WALL_KEYS`] apply
@@ -547,6 +594,8 @@ pub const TABLES: &[&[Key]] = &[
     EVERY_KEYS,
     TRAJECTORY_KEYS,
     OUTPUT_KEYS,
+    FIELDS_KEYS,
+    FLOW_KEYS,
 ];
 
 /// The table whose keys are `names`, in order (serde lists a struct's
@@ -631,6 +680,8 @@ mod tests {
             case!(RawEvery, EVERY_KEYS),
             case!(RawTrajectory, TRAJECTORY_KEYS),
             case!(RawOutput, OUTPUT_KEYS),
+            case!(RawFields, FIELDS_KEYS),
+            case!(RawFlow, FLOW_KEYS),
         ];
         assert_eq!(cases.len(), TABLES.len(), "every table is checked");
         for (raw, table, fields) in cases {

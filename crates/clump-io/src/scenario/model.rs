@@ -213,6 +213,12 @@ pub struct OutputDef {
     pub trajectory: Option<TrajectoryDef>,
     /// File format of the VTK frames (`.vtp` or `.vtu`).
     pub vtk_format: crate::vtu::VtkFormat,
+    /// Contact frames interval, steps.
+    pub contacts: Option<u64>,
+    /// Coarse-grained fields: interval (steps) and request.
+    pub fields: Option<(u64, crate::post::spec::FieldSpec)>,
+    /// Flow measurement: interval (steps) and probes.
+    pub flow: Option<(u64, Vec<crate::post::flow::FlowProbe>)>,
 }
 
 impl Scenario {

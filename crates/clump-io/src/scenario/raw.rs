@@ -658,4 +658,62 @@ pub struct RawOutput {
     pub trajectory: Option<RawTrajectory>,
     /// File format of the VTK frames.
     pub vtk_format: Option<crate::vtu::VtkFormat>,
+    /// Contact frames interval.
+    pub contacts: Option<RawEvery>,
+    /// Coarse-grained fields.
+    pub fields: Option<RawFields>,
+    /// Flow measurement probes.
+    #[serde(default)]
+    pub flow: Vec<RawFlow>,
+}
+
+/// `[[output.flow]]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFlow {
+    /// Name.
+    pub name: Option<String>,
+    /// `plane` or `region`.
+    #[serde(rename = "type")]
+    pub kind: Option<String>,
+    /// Plane point, m.
+    pub point: Option<[f64; 3]>,
+    /// Plane normal.
+    pub normal: Option<[f64; 3]>,
+    /// Region lower corner, m.
+    pub lo: Option<[f64; 3]>,
+    /// Region upper corner, m.
+    pub hi: Option<[f64; 3]>,
+    /// Diameter bin edges, m.
+    pub bins: Option<Vec<f64>>,
+    /// Interval, s.
+    pub every: Option<f64>,
+    /// Interval, steps.
+    pub every_steps: Option<u64>,
+}
+
+/// `[output.fields]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFields {
+    /// Interval, s.
+    pub every: Option<f64>,
+    /// Interval, steps.
+    pub every_steps: Option<u64>,
+    /// Grid axes.
+    #[serde(default)]
+    pub axes: Vec<String>,
+    /// Cells per axis.
+    #[serde(default)]
+    pub cells: Vec<i64>,
+    /// Lower ends, m.
+    pub lo: Option<Vec<f64>>,
+    /// Upper ends, m.
+    pub hi: Option<Vec<f64>>,
+    /// Kernel.
+    pub kernel: Option<crate::post::kernel::Kernel>,
+    /// Kernel width, m.
+    pub width: Option<f64>,
+    /// Time average.
+    pub average: Option<bool>,
 }

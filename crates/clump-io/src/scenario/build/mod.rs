@@ -342,9 +342,9 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             inserts = None;
         }
     }
-    let output = match (&stages, dt, two_d) {
-        (Some(stages), Some(dt), Some(two_d)) => {
-            cx.section(|cx| output::output(cx, &raw, stages, dt, two_d))
+    let output = match (&stages, dt, two_d, &setting) {
+        (Some(stages), Some(dt), Some(two_d), Some(setting)) => {
+            cx.section(|cx| output::output(cx, &raw, stages, dt, two_d, &setting.domain))
         }
         _ => None,
     };
