@@ -10,6 +10,7 @@ pub mod mesh_file;
 pub mod run;
 pub mod scenario;
 pub mod template_file;
+pub mod template_json;
 pub mod thermo_csv;
 pub mod trajectory;
 pub mod vtk;
