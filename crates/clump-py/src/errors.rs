@@ -8,7 +8,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
 pyo3::create_exception!(
-    _clump,
+    clump,
     ScenarioError,
     PyValueError,
     "Bad input: a scenario, checkpoint or template that cannot be used. \
@@ -16,13 +16,13 @@ pyo3::create_exception!(
      and `.key` (dotted, e.g. 'simulation.dt', or None) locate the first problem."
 );
 pyo3::create_exception!(
-    _clump,
+    clump,
     SimulationError,
     PyRuntimeError,
     "A failure while running (I/O, the engine)."
 );
 pyo3::create_exception!(
-    _clump,
+    clump,
     UnstableError,
     SimulationError,
     "The simulation became unstable (NaN/Inf, excessive overlap, energy \
@@ -67,20 +67,18 @@ pub fn scenario_error(
     err
 }
 
-/// The dotted key at a 1-based line and column of `text`
-/// (`[simulation]` + `dt` → `simulation.dt`).
-fn key_at(file: &std::path::Path, text: &str, line: usize, column: usize) -> Option<String> {
+/// The dotted key on 1-based line `line` of `text` (`[simulation]` +
+/// `dt` → `simulation.dt`).
+fn key_at(file: &std::path::Path, text: &str, line: usize) -> Option<String> {
     let start: usize = text
         .split_inclusive('\n')
         .take(line.saturating_sub(1))
         .map(str::len)
         .sum();
     let rest = text.get(start..)?;
-    let col = rest
-        .char_indices()
-        .nth(column.saturating_sub(1))
-        .map_or(rest.len(), |(i, _)| i);
-    let pos = start + col;
+    // the end of the located line: `key_at` reads the key before its `=`
+    // (or on the nearest line above, inside a multi-line value)
+    let pos = start + rest.find('\n').unwrap_or(rest.len());
     let src = Source::new(file, text.to_string());
     let key = src.key_at(pos);
     let table = src
@@ -101,8 +99,8 @@ pub fn from_scenario(py: Python<'_>, e: &ScenarioDiag, text: Option<&str>) -> Py
         .location
         .as_ref()
         .map_or((None, None), |l| (Some(l.line), Some(l.column)));
-    let key = match (text, line, column) {
-        (Some(t), Some(l), Some(c)) => key_at(&d.file, t, l, c),
+    let key = match (text, line) {
+        (Some(t), Some(l)) => key_at(&d.file, t, l),
         _ => None,
     };
     scenario_error(

@@ -117,6 +117,10 @@ impl Runner {
                     return Ok(Until::Completed);
                 }
             }
+            if self.finished() {
+                // the final boundary's work (outputs, final state) is done
+                return Ok(Until::Completed);
+            }
             if self.world.step >= target {
                 return Ok(Until::Reached);
             }
