@@ -5,7 +5,7 @@
 use crate::access::{Bodies, Spheres};
 use crate::errors::{self, from_run, value_error};
 use crate::walls::Walls;
-use clump_io::run::{Runner, Until};
+use clump_io::run::{Runner, Tally, Until};
 use clump_io::scenario::{self, Files};
 use clump_io::vtk::VtkSeries;
 use pyo3::prelude::*;
@@ -19,6 +19,8 @@ const SIGNAL_POLL: Duration = Duration::from_millis(100);
 #[pyclass(module = "clump._clump")]
 pub struct Simulation {
     pub(crate) runner: Runner,
+    /// Steps and wall time since the simulation was made (for the manifest).
+    tally: Tally,
     /// Body storage indices sorted by id (see `order`).
     pub(crate) body_order: Vec<usize>,
     /// Sphere storage indices sorted by sphere id.
@@ -33,11 +35,13 @@ impl Simulation {
     fn new(py: Python<'_>, mut runner: Runner) -> PyResult<Self> {
         let text = runner.scenario().text.clone();
         let step = runner.world().step;
+        let mut tally = Tally::start(&runner);
         runner
-            .step_until(step, true, None)
+            .step_until(step, true, None, &mut tally)
             .map_err(|e| from_run(py, e, Some(&text)))?;
         Ok(Simulation {
             runner,
+            tally,
             body_order: Vec::new(),
             sphere_order: Vec::new(),
             vtk: Vec::new(),
@@ -178,10 +182,11 @@ impl Simulation {
             let (until, step) = {
                 let mut s = slf.borrow_mut();
                 let text = s.text();
-                let runner = &mut s.runner;
+                let Simulation { runner, tally, .. } = &mut *s;
                 let until = loop {
                     let deadline = Instant::now() + SIGNAL_POLL;
-                    let r = py.allow_threads(|| runner.step_until(target, true, Some(deadline)));
+                    let r =
+                        py.allow_threads(|| runner.step_until(target, true, Some(deadline), tally));
                     match r.map_err(|e| from_run(py, e, Some(&text)))? {
                         Until::Paused => py.check_signals()?,
                         u => break u,

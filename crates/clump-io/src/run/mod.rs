@@ -40,7 +40,7 @@ pub use checkpoint::{load_checkpoint, load_checkpoint_with_id, Checkpoint};
 pub use error::{RunError, UnstableRun};
 pub use manifest::final_state_json;
 pub use report::InsertionCount;
-pub use session::Until;
+pub use session::{Tally, Until};
 
 use crate::scenario::Scenario;
 use clump_core::health::{HealthMonitor, Instability};

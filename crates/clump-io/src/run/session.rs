@@ -20,6 +20,25 @@ use clump_core::world::World;
 use std::path::Path;
 use std::time::Instant;
 
+/// What a session has done since it began (for `manifest.json`).
+#[derive(Debug, Clone, Copy)]
+pub struct Tally {
+    first_step: u64,
+    started: Instant,
+    sphere_steps: f64,
+}
+
+impl Tally {
+    /// A session of `runner` that begins now.
+    pub fn start(runner: &Runner) -> Self {
+        Tally {
+            first_step: runner.world.step,
+            started: Instant::now(),
+            sphere_steps: 0.0,
+        }
+    }
+}
+
 /// Where [`Runner::step_until`] stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Until {
@@ -93,27 +112,26 @@ impl Runner {
     /// Steps until the world's step is `target`, all stages are done, or
     /// `deadline` passes (then at the next step boundary). The step that
     /// ends at `target` records its contacts when `contacts` is true
-    /// ([`World::contacts`]). On return the boundary work of the world's
+    /// ([`World::contacts`]). `tally` counts the session's steps for the
+    /// manifest written at the end of the stages. On return the boundary work of the world's
     /// step is done, except after [`Until::Paused`].
     pub fn step_until(
         &mut self,
         target: u64,
         contacts: bool,
         deadline: Option<Instant>,
+        tally: &mut Tally,
     ) -> Result<Until, RunError> {
-        let t_start = Instant::now();
-        let first_step = self.world.step;
-        let mut sphere_steps = 0.0;
         let mut clock = ProgressClock {
-            at: t_start,
-            step: first_step,
+            at: Instant::now(),
+            step: self.world.step,
         };
         loop {
             if !self.st.pre_step_done {
                 let finished = self.pre_step()?;
                 self.st.pre_step_done = true;
                 if finished {
-                    self.finish(first_step, t_start, sphere_steps)?;
+                    self.finish(tally)?;
                     return Ok(Until::Completed);
                 }
             }
@@ -140,11 +158,16 @@ impl Runner {
                 interval: std::time::Duration::MAX,
                 clock: &mut clock,
                 end_step: target,
-                sphere_steps: &mut sphere_steps,
+                sphere_steps: &mut tally.sphere_steps,
             };
             let (how, tripped) = self.advance_checked(event, pace)?;
             if let Some(inst) = tripped {
-                let partial = self.summary(RunStatus::Completed, first_step, t_start, sphere_steps);
+                let partial = self.summary(
+                    RunStatus::Completed,
+                    tally.first_step,
+                    tally.started,
+                    tally.sphere_steps,
+                );
                 return Err(self.unstable(inst, &partial, threads()));
             }
             if how == Advance::Interrupted {
@@ -155,13 +178,13 @@ impl Runner {
 
     /// At the end of all stages: `final_state.json` and `manifest.json`
     /// in the output folder, as `clump run` writes them.
-    fn finish(
-        &mut self,
-        first_step: u64,
-        t_start: Instant,
-        sphere_steps: f64,
-    ) -> Result<(), RunError> {
-        let summary = self.summary(RunStatus::Completed, first_step, t_start, sphere_steps);
+    fn finish(&mut self, t: &Tally) -> Result<(), RunError> {
+        let summary = self.summary(
+            RunStatus::Completed,
+            t.first_step,
+            t.started,
+            t.sphere_steps,
+        );
         self.write_final_state()
             .map_err(super::error::rt("cannot write final_state.json"))?;
         self.write_manifest(&summary, threads())
