@@ -60,6 +60,7 @@ impl Bodies {
         self.sim.borrow(py).runner.world().bodies.len()
     }
 
+    /// Global body ids (N,), ascending.
     #[getter]
     fn id<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
         let mut s = self.sim.borrow_mut(py);
@@ -68,6 +69,7 @@ impl Bodies {
         column(py, &order, |i| b.id[i] as i64)
     }
 
+    /// Template index of each body (N,).
     #[getter]
     fn template<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
         let mut s = self.sim.borrow_mut(py);
@@ -76,6 +78,7 @@ impl Bodies {
         column(py, &order, |i| b.template[i] as i64)
     }
 
+    /// Template name of each body.
     #[getter]
     fn template_name(&self, py: Python<'_>) -> PyResult<Vec<String>> {
         let names: Vec<String> = self.sim.bind(py).getattr("template_names")?.extract()?;
@@ -93,6 +96,7 @@ impl Bodies {
             .collect())
     }
 
+    /// Mass (N,), kg.
     #[getter]
     fn mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let mut s = self.sim.borrow_mut(py);
@@ -101,26 +105,31 @@ impl Bodies {
         column(py, &order, |i| b.mass[i])
     }
 
+    /// Principal moments of inertia (N×3), body frame, kg m².
     #[getter]
     fn inertia<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         self.vectors(py, |b, i| b.inertia[i])
     }
 
+    /// Total force, last force evaluation (N×3), world frame, N.
     #[getter]
     fn force<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         self.vectors(py, |b, i| b.force[i])
     }
 
+    /// Total torque about the centre of mass (N×3), world frame, N m.
     #[getter]
     fn torque<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         self.vectors(py, |b, i| b.torque[i])
     }
 
+    /// Angular momentum about the centre of mass (N×3), world frame, kg m²/s.
     #[getter]
     fn angular_momentum<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         self.vectors(py, |b, i| b.angular_momentum[i])
     }
 
+    /// Centre of mass (N×3), world frame, m. Settable.
     #[getter]
     fn position<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         self.vectors(py, |b, i| b.position[i])
@@ -134,6 +143,7 @@ impl Bodies {
         })
     }
 
+    /// Centre-of-mass velocity (N×3), world frame, m/s. Settable.
     #[getter]
     fn velocity<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         self.vectors(py, |b, i| b.velocity[i])
@@ -146,6 +156,7 @@ impl Bodies {
         })
     }
 
+    /// Orientation (N×4: w, x, y, z), body → world. Settable (unit norm).
     #[getter]
     fn quaternion<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let mut s = self.sim.borrow_mut(py);
@@ -172,6 +183,7 @@ impl Bodies {
         })
     }
 
+    /// Angular velocity (N×3), world frame, rad/s. Settable.
     #[getter]
     fn omega<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         self.vectors(py, |b, i| b.angular_velocity[i])
@@ -184,6 +196,7 @@ impl Bodies {
         })
     }
 
+    /// Angular velocity (N×3), body frame, rad/s.
     #[getter]
     fn omega_body<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         self.vectors(py, |b, i| {
@@ -191,6 +204,7 @@ impl Bodies {
         })
     }
 
+    /// Force flags per world axis (N×3, bool). Settable.
     #[getter]
     fn force_flag<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<bool>> {
         self.flags(py, |b, i| b.force_flag[i])
@@ -212,6 +226,7 @@ impl Bodies {
         )
     }
 
+    /// Torque flags per world axis (N×3, bool). Settable.
     #[getter]
     fn torque_flag<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<bool>> {
         self.flags(py, |b, i| b.torque_flag[i])
@@ -292,6 +307,7 @@ impl Spheres {
         self.sim.borrow(py).runner.world().spheres().len()
     }
 
+    /// Global sphere ids (M,), ascending.
     #[getter]
     fn id<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
         let mut s = self.sim.borrow_mut(py);
@@ -300,6 +316,7 @@ impl Spheres {
         column(py, &order, |i| sp.gid[i] as i64)
     }
 
+    /// Sphere centres (M×3), world frame, m.
     #[getter]
     fn position<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let mut s = self.sim.borrow_mut(py);
@@ -308,6 +325,7 @@ impl Spheres {
         vec3s(py, &order, |i| sp.position(i))
     }
 
+    /// Radii (M,), m.
     #[getter]
     fn radius<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let mut s = self.sim.borrow_mut(py);
@@ -316,6 +334,7 @@ impl Spheres {
         column(py, &order, |i| sp.radius[i])
     }
 
+    /// Body id of each sphere (M,).
     #[getter]
     fn body<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
         let mut s = self.sim.borrow_mut(py);

@@ -16,6 +16,8 @@ use std::time::{Duration, Instant};
 /// How long the engine steps without the GIL before it looks for Ctrl-C.
 const SIGNAL_POLL: Duration = Duration::from_millis(100);
 
+/// A scenario's run: the runner of `clump run`, stepped from Python (SI
+/// units; vectors in the world frame unless named `_body`).
 #[pyclass(module = "clump._clump")]
 pub struct Simulation {
     pub(crate) runner: Runner,
@@ -95,7 +97,9 @@ fn steps_for(time: f64, dt: f64) -> PyResult<u64> {
 
 #[pymethods]
 impl Simulation {
-    /// See python/clump/__init__.pyi.
+    /// Reads and validates a scenario TOML file, as `clump run`. With
+    /// `output_dir` the scenario's outputs are written there as by `clump run -o`.
+    /// Raises ScenarioError.
     #[staticmethod]
     #[pyo3(signature = (path, output_dir=None, overwrite=false))]
     fn from_file(
@@ -108,6 +112,8 @@ impl Simulation {
         Self::open(py, scenario::load(&path), &text, output_dir, overwrite)
     }
 
+    /// A scenario from TOML text; files it names are relative to `base_dir`.
+    /// Raises ScenarioError.
     #[staticmethod]
     #[pyo3(signature = (text, base_dir=PathBuf::from("."), output_dir=None, overwrite=false, name="<string>"))]
     fn from_toml(
@@ -122,6 +128,8 @@ impl Simulation {
         Self::open(py, sc, &text, output_dir, overwrite)
     }
 
+    /// A scenario from a dict shaped like the TOML file (read like a file:
+    /// same validation and messages). Raises ScenarioError.
     #[staticmethod]
     #[pyo3(signature = (d, base_dir=PathBuf::from("."), output_dir=None, overwrite=false))]
     fn from_dict(
@@ -135,6 +143,8 @@ impl Simulation {
         Self::from_toml(py, text, base_dir, output_dir, overwrite, "<dict>")
     }
 
+    /// The run saved in a checkpoint (`save_checkpoint` or `clump run`);
+    /// it continues bit for bit. Raises ScenarioError.
     #[staticmethod]
     #[pyo3(signature = (path, output_dir=None))]
     fn from_checkpoint(
@@ -150,6 +160,11 @@ impl Simulation {
         Simulation::new(py, runner)
     }
 
+    /// Advances `steps` steps, `time` s, or to the end of the stages (never
+    /// past it), fused and without the GIL; `callback(sim)` runs at every
+    /// `every`-th step boundary and may read and steer; `False` stops.
+    /// Ctrl-C raises KeyboardInterrupt at a step boundary, state intact.
+    /// Returns the steps taken.
     #[pyo3(signature = (steps=None, time=None, callback=None, every=1))]
     fn run(
         slf: &Bound<'_, Self>,
@@ -282,6 +297,7 @@ impl Simulation {
             .collect()
     }
 
+    /// The bodies (sorted by id; arrays are copies; SI, world frame).
     #[getter]
     fn bodies(slf: &Bound<'_, Self>) -> Bodies {
         Bodies {
@@ -289,6 +305,7 @@ impl Simulation {
         }
     }
 
+    /// The spheres (sorted by sphere id; arrays are copies).
     #[getter]
     fn spheres(slf: &Bound<'_, Self>) -> Spheres {
         Spheres {
@@ -296,6 +313,7 @@ impl Simulation {
         }
     }
 
+    /// The walls by name: load (N, N m, world frame) and motion setters.
     #[getter]
     fn walls(slf: &Bound<'_, Self>) -> Walls {
         Walls {
@@ -303,10 +321,14 @@ impl Simulation {
         }
     }
 
+    /// The contacts of the last step: a dict of arrays (ids, point m,
+    /// normal, overlap m, force_normal and force_tangential N on sphere i;
+    /// world frame; copies).
     fn contacts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         crate::contacts::contacts(py, self.runner.world())
     }
 
+    /// The current thermo row: thermo.csv's columns (names with units) and values.
     fn thermo<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let (names, t, power) = self.runner.thermo_row();
         let mut values: Vec<PyObject> = Vec::with_capacity(names.len());

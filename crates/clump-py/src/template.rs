@@ -15,6 +15,8 @@ use numpy::{IntoPyArray, PyArray2};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 
+/// A multi-sphere template (spheres x, y, z, r in m, input frame) with its
+/// exact mass properties, as `clump template`.
 #[pyclass(module = "clump._clump")]
 pub struct Template {
     spheres: Vec<Sphere>,
@@ -63,6 +65,8 @@ impl Template {
 
 #[pymethods]
 impl Template {
+    /// A template of `spheres` (rows x, y, z, r; m, input frame) at
+    /// `density` (kg/m³).
     #[new]
     #[pyo3(signature = (spheres, density=1.0))]
     fn new(py: Python<'_>, spheres: &Bound<'_, PyAny>, density: f64) -> PyResult<Self> {
@@ -76,6 +80,7 @@ impl Template {
         Ok(Template::of(spheres, density))
     }
 
+    /// A LIGGGHTS-format template file (`x y z r` per line), lengths times `scale`.
     #[staticmethod]
     #[pyo3(signature = (path, scale=1.0, density=1.0))]
     fn from_file(py: Python<'_>, path: PathBuf, scale: f64, density: f64) -> PyResult<Self> {
@@ -89,6 +94,8 @@ impl Template {
         Ok(Template::of(spheres, density))
     }
 
+    /// A template generated from a closed STL/OBJ mesh, as
+    /// `clump template --from-mesh` (same options); `fidelity` holds its report.
     #[staticmethod]
     #[pyo3(signature = (path, spheres=None, tolerance=None, resolution=50, overlap=0.6, min_radius=0.0, refine=20, scale=1.0, density=1.0))]
     #[allow(clippy::too_many_arguments)]
@@ -156,7 +163,8 @@ impl Template {
         self.fidelity.as_deref().map(|t| json(py, t)).transpose()
     }
 
-    /// Exact mass properties of the union of the spheres.
+    /// Exact mass properties of the union of the spheres: the keys and
+    /// values of `clump template --json` (SI, input frame).
     fn mass_properties(&self, py: Python<'_>) -> PyResult<PyObject> {
         let p = mass_properties(&self.spheres, self.density)
             .map_err(|e| input_error(py, None, format!("template: {e}")))?;

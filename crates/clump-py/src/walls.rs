@@ -86,16 +86,19 @@ impl Wall {
 
 #[pymethods]
 impl Wall {
+    /// Wall name.
     #[getter]
     fn name(&self, py: Python<'_>) -> String {
         self.with(py, |w, i| w.walls[i].name.clone())
     }
 
+    /// Index in scenario order.
     #[getter]
     fn index(&self) -> usize {
         self.index
     }
 
+    /// Force the particles exert on the wall (3,), world frame, N.
     #[getter]
     fn force<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let f = self.with(py, |w, i| {
@@ -104,6 +107,7 @@ impl Wall {
         vec3_out(py, f)
     }
 
+    /// Torque the particles exert about the wall's centre (3,), world frame, N m.
     #[getter]
     fn torque<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let t = self.with(py, |w, i| {
@@ -112,6 +116,7 @@ impl Wall {
         vec3_out(py, t)
     }
 
+    /// Translation velocity (3,), world frame, m/s. Settable.
     #[getter]
     fn velocity<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let v = self.with(py, |w, i| w.walls[i].motion.velocity);
@@ -124,6 +129,7 @@ impl Wall {
         self.motion(py, |m| m.velocity = v)
     }
 
+    /// Angular velocity about `center` (3,), world frame, rad/s. Settable.
     #[getter]
     fn angular_velocity<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let v = self.with(py, |w, i| w.walls[i].motion.angular_velocity);
@@ -136,12 +142,14 @@ impl Wall {
         self.motion(py, |m| m.angular_velocity = v)
     }
 
+    /// Centre of rotation (3,), world frame, m.
     #[getter]
     fn center<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let v = self.with(py, |w, i| w.walls[i].motion.center);
         vec3_out(py, v)
     }
 
+    /// An inactive wall exerts no force. Settable.
     #[getter]
     fn active(&self, py: Python<'_>) -> bool {
         self.with(py, |w, i| w.walls[i].active)
