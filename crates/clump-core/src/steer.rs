@@ -58,6 +58,17 @@ impl World {
         Ok(())
     }
 
+    /// Moves the body at storage index `i` to `position` (centre of mass,
+    /// world frame, m), keeping its orientation and angular momentum bit
+    /// for bit ([`Self::set_body_pose_at`] with the same orientation would
+    /// renormalise it).
+    pub fn set_body_position_at(&mut self, i: usize, position: DVec3) -> Result<(), WorldError> {
+        finite("position", position)?;
+        self.check_index(i)?;
+        self.bodies.position[i] = position;
+        Ok(())
+    }
+
     /// [`Self::set_body_angular_velocity`] for storage index `i`.
     pub fn set_body_angular_velocity_at(
         &mut self,

@@ -138,8 +138,7 @@ impl Bodies {
     #[setter]
     fn set_position(&self, py: Python<'_>, value: &Bound<'_, PyAny>) -> PyResult<()> {
         set_rows(py, &self.sim, value, 3, "position", no_check, |w, i, r| {
-            let q = w.bodies.orientation[i];
-            w.set_body_pose_at(i, v3(r), q)
+            w.set_body_position_at(i, v3(r))
         })
     }
 
