@@ -36,11 +36,11 @@ fn set_rows(
     let mut s = sim.borrow_mut(py);
     let order = s.bodies_sorted().to_vec();
     let rows = rows_in(value, order.len(), width, what)?;
-    for (r, row) in rows.iter().enumerate() {
+    for (r, row) in rows.chunks_exact(width).enumerate() {
         check(r, row)?;
     }
     let world = s.runner.world_mut();
-    for (row, &i) in rows.iter().zip(&order) {
+    for (row, &i) in rows.chunks_exact(width).zip(&order) {
         set(world, i, row).map_err(|e| value_error(format!("{what}: {e}")))?;
     }
     Ok(())

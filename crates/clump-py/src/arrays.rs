@@ -53,14 +53,10 @@ pub fn column<'py, T: numpy::Element>(
         .into_pyarray(py)
 }
 
-/// Reads an `n`×`width` float array (any array-like), refusing other
-/// shapes and non-finite values; `what` names it in messages.
-pub fn rows_in(
-    value: &Bound<'_, PyAny>,
-    n: usize,
-    width: usize,
-    what: &str,
-) -> PyResult<Vec<Vec<f64>>> {
+/// Reads an `n`×`width` float array (any array-like) into one row-major
+/// vector, refusing other shapes and non-finite values; `what` names it in
+/// messages.
+pub fn rows_in(value: &Bound<'_, PyAny>, n: usize, width: usize, what: &str) -> PyResult<Vec<f64>> {
     let arr: PyArrayLike2<f64, AllowTypeChange> = value.extract().map_err(|_| {
         value_error(format!(
             "{what} must be a 2-D array of numbers of shape ({n}, {width})"
@@ -73,14 +69,13 @@ pub fn rows_in(
             a.shape()
         )));
     }
-    let mut out = Vec::with_capacity(n);
-    for (r, row) in a.rows().into_iter().enumerate() {
-        if let Some(x) = row.iter().find(|x| !x.is_finite()) {
-            return Err(value_error(format!(
-                "{what}: row {r} holds a non-finite value ({x}); values must be finite"
-            )));
-        }
-        out.push(row.to_vec());
+    let out: Vec<f64> = a.iter().copied().collect();
+    if let Some(k) = out.iter().position(|x| !x.is_finite()) {
+        return Err(value_error(format!(
+            "{what}: row {} holds a non-finite value ({}); values must be finite",
+            k / width,
+            out[k]
+        )));
     }
     Ok(out)
 }

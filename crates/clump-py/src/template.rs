@@ -74,7 +74,7 @@ impl Template {
         let n = spheres.len()?;
         let rows = rows_in(spheres, n, 4, "spheres")?;
         let spheres = rows
-            .iter()
+            .chunks_exact(4)
             .map(|r| Sphere::new(DVec3::new(r[0], r[1], r[2]), r[3]))
             .collect();
         Ok(Template::of(spheres, density))
