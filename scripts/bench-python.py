@@ -18,6 +18,7 @@ benchmark folder ../shared/bench/tetra-bed. Prints:
 import argparse
 import json
 import os
+import resource
 import pathlib
 import statistics
 import subprocess
@@ -32,33 +33,56 @@ REPO = pathlib.Path(__file__).resolve().parents[1]
 CLUMP = os.environ.get("CLUMP_BIN", str(REPO / "target" / "release" / "clump"))
 
 
+def cpu_self():
+    r = resource.getrusage(resource.RUSAGE_SELF)
+    return r.ru_utime + r.ru_stime
+
+
+def cpu_children():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def bench_run(steps, rounds):
+    """Wall time of the stepping loop (the CLI's manifest `wall_time_s`,
+    Python's `run` call) and CPU time (user + system, all threads) of the
+    whole job (set-up, stepping, output), which a loaded machine disturbs
+    less."""
     sc = REPO / "benches" / "tetra_bed_2000.toml"
-    cli, py_out, py_bare = [], [], []
+    res = {k: [] for k in ("cli", "py", "bare", "cli_cpu", "py_cpu", "bare_cpu")}
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
         for k in range(rounds):
             out = tmp / f"cli{k}"
+            c = cpu_children()
             subprocess.run([CLUMP, "run", str(sc), "-o", str(out), "--steps", str(steps)],
                            check=True, capture_output=True, cwd=REPO)
-            cli.append(json.loads((out / "manifest.json").read_text())["wall_time_s"])
-            sim = clump.Simulation.from_file(sc, output_dir=tmp / f"py{k}")
-            t = time.perf_counter()
-            sim.run(steps=steps)
-            py_out.append(time.perf_counter() - t)
-            sim = clump.Simulation.from_file(sc)
-            t = time.perf_counter()
-            sim.run(steps=steps)
-            py_bare.append(time.perf_counter() - t)
+            res["cli_cpu"].append(cpu_children() - c)
+            res["cli"].append(json.loads((out / "manifest.json").read_text())["wall_time_s"])
+            for key, outdir in (("py", tmp / f"py{k}"), ("bare", None)):
+                c = cpu_self()
+                sim = clump.Simulation.from_file(sc, output_dir=outdir)
+                t = time.perf_counter()
+                sim.run(steps=steps)
+                res[key].append(time.perf_counter() - t)
+                if outdir is not None:
+                    sim.save_checkpoint(outdir / "last.ckpt")  # as clump run --steps does
+                res[key + "_cpu"].append(cpu_self() - c)
+                del sim
+
     def show(name, v):
-        print(f"  {name:38s} median {statistics.median(v):7.3f} s  (runs: "
+        print(f"  {name:44s} median {statistics.median(v):7.3f} s  (runs: "
               + ", ".join(f"{x:.3f}" for x in v) + ")")
     print(f"1. tetra_bed_2000, {steps} steps, {rounds} rounds (alternating)")
-    show("clump run --steps N (loop wall time)", cli)
-    show("Python run(steps=N), same outputs", py_out)
-    show("Python run(steps=N), no output folder", py_bare)
-    r = statistics.median(py_out) / statistics.median(cli) - 1
-    print(f"  Python with outputs vs clump run: {r:+.1%} (medians)")
+    show("clump run --steps N: loop wall time", res["cli"])
+    show("Python run(steps=N), same outputs: wall", res["py"])
+    show("Python run(steps=N), no output folder: wall", res["bare"])
+    show("clump run --steps N: CPU of the job", res["cli_cpu"])
+    show("Python, same outputs: CPU of the job", res["py_cpu"])
+    show("Python, no output folder: CPU of the job", res["bare_cpu"])
+    for a, b in (("py", "cli"), ("py_cpu", "cli_cpu")):
+        r = statistics.median(res[a]) / statistics.median(res[b]) - 1
+        print(f"  Python with outputs vs clump run ({a} / {b}, medians): {r:+.1%}")
 
 
 def bench_callback(steps=20000, rounds=5):
