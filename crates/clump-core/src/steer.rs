@@ -10,6 +10,7 @@
 //! that step rebuild the lists, and adding or removing a body marks the
 //! topology for a rebuild.
 
+use crate::body::AxisFlags;
 use crate::world::{World, WorldError};
 use glam::{DQuat, DVec3};
 
@@ -22,22 +23,15 @@ impl World {
 
     /// Sets body `id`'s centre-of-mass velocity, world frame, m/s.
     pub fn set_body_velocity(&mut self, id: u64, velocity: DVec3) -> Result<(), WorldError> {
-        finite("velocity", velocity)?;
         let i = self.steer_index(id)?;
-        self.bodies.velocity[i] = velocity;
-        Ok(())
+        self.set_body_velocity_at(i, velocity)
     }
 
     /// Sets body `id`'s angular velocity, world frame, rad/s (and its
     /// angular momentum `L = R I Rᵀ ω` to match).
     pub fn set_body_angular_velocity(&mut self, id: u64, omega: DVec3) -> Result<(), WorldError> {
-        finite("angular velocity", omega)?;
         let i = self.steer_index(id)?;
-        let b = &mut self.bodies;
-        let q = b.orientation[i];
-        b.angular_velocity[i] = omega;
-        b.angular_momentum[i] = q * (b.inertia[i] * (q.inverse() * omega));
-        Ok(())
+        self.set_body_angular_velocity_at(i, omega)
     }
 
     /// Moves body `id`: centre of mass (world frame, m) and orientation
@@ -50,6 +44,53 @@ impl World {
         position: DVec3,
         orientation: DQuat,
     ) -> Result<(), WorldError> {
+        let i = self.steer_index(id)?;
+        self.set_body_pose_at(i, position, orientation)
+    }
+
+    /// [`Self::set_body_velocity`] for the body at storage index `i` (the
+    /// index into `bodies`' arrays at this boundary): for drivers that set
+    /// many bodies at once.
+    pub fn set_body_velocity_at(&mut self, i: usize, velocity: DVec3) -> Result<(), WorldError> {
+        finite("velocity", velocity)?;
+        self.check_index(i)?;
+        self.bodies.velocity[i] = velocity;
+        Ok(())
+    }
+
+    /// Moves the body at storage index `i` to `position` (centre of mass,
+    /// world frame, m), keeping its orientation and angular momentum bit
+    /// for bit ([`Self::set_body_pose_at`] with the same orientation would
+    /// renormalise it).
+    pub fn set_body_position_at(&mut self, i: usize, position: DVec3) -> Result<(), WorldError> {
+        finite("position", position)?;
+        self.check_index(i)?;
+        self.bodies.position[i] = position;
+        Ok(())
+    }
+
+    /// [`Self::set_body_angular_velocity`] for storage index `i`.
+    pub fn set_body_angular_velocity_at(
+        &mut self,
+        i: usize,
+        omega: DVec3,
+    ) -> Result<(), WorldError> {
+        finite("angular velocity", omega)?;
+        self.check_index(i)?;
+        let b = &mut self.bodies;
+        let q = b.orientation[i];
+        b.angular_velocity[i] = omega;
+        b.angular_momentum[i] = q * (b.inertia[i] * (q.inverse() * omega));
+        Ok(())
+    }
+
+    /// [`Self::set_body_pose`] for storage index `i`.
+    pub fn set_body_pose_at(
+        &mut self,
+        i: usize,
+        position: DVec3,
+        orientation: DQuat,
+    ) -> Result<(), WorldError> {
         finite("position", position)?;
         let len = orientation.length();
         if !(len.is_finite() && len > 0.0) {
@@ -57,7 +98,7 @@ impl World {
                 "orientation must be a finite, non-zero quaternion, got {orientation}"
             )));
         }
-        let i = self.steer_index(id)?;
+        self.check_index(i)?;
         let q = orientation / len;
         let b = &mut self.bodies;
         b.position[i] = position;
@@ -65,6 +106,33 @@ impl World {
         let omega = b.angular_velocity[i];
         b.angular_momentum[i] = q * (b.inertia[i] * (q.inverse() * omega));
         Ok(())
+    }
+
+    /// Sets the DOF flags of the body at storage index `i`: per world axis,
+    /// whether the force (`force_flag`) and the torque (`torque_flag`)
+    /// component acts (LIGGGHTS `fflag`/`tflag`; a frozen component keeps
+    /// its velocity or angular-momentum component).
+    pub fn set_body_dof_at(
+        &mut self,
+        i: usize,
+        force_flag: AxisFlags,
+        torque_flag: AxisFlags,
+    ) -> Result<(), WorldError> {
+        self.check_index(i)?;
+        self.bodies.force_flag[i] = force_flag;
+        self.bodies.torque_flag[i] = torque_flag;
+        Ok(())
+    }
+
+    fn check_index(&self, i: usize) -> Result<(), WorldError> {
+        if i < self.bodies.len() {
+            Ok(())
+        } else {
+            Err(WorldError::BadReference(format!(
+                "no body at storage index {i} ({} bodies)",
+                self.bodies.len()
+            )))
+        }
     }
 
     /// Removes body `id` with its spheres and their contacts.

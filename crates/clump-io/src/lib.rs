@@ -11,6 +11,7 @@ pub mod post;
 pub mod run;
 pub mod scenario;
 pub mod template_file;
+pub mod template_json;
 pub mod thermo_csv;
 pub mod trajectory;
 pub mod vtk;

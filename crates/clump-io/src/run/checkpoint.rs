@@ -41,6 +41,19 @@ impl Runner {
     /// Writes a checkpoint of the current state into the output directory
     /// (`checkpoint_<step>.ckpt`); returns its path.
     pub fn write_checkpoint(&mut self) -> Result<PathBuf, RunError> {
+        let path = self
+            .out
+            .dir
+            .join(format!("checkpoint_{:09}.ckpt", self.world.step));
+        self.write_checkpoint_to(&path)?;
+        self.out.last_checkpoint = Some(path.clone());
+        Ok(path)
+    }
+
+    /// Writes a checkpoint of the current state to `path` (any file; the
+    /// output directory's checkpoints go through [`Runner::write_checkpoint`]).
+    /// `clump resume` and [`Runner::resume`] continue from it bit for bit.
+    pub fn write_checkpoint_to(&mut self, path: &Path) -> Result<(), RunError> {
         let world = self
             .world
             .save_state()
@@ -63,22 +76,17 @@ impl Runner {
             extra_templates: extra,
             driver: self.st.clone(),
             world,
-            run_id: Some(self.out.run_id.clone()),
+            run_id: (!self.out.run_id.is_empty()).then(|| self.out.run_id.clone()),
         };
         let json = serde_json::to_string(&ck).map_err(rt("cannot encode the checkpoint"))?;
-        let path = self
-            .out
-            .dir
-            .join(format!("checkpoint_{:09}.ckpt", self.world.step));
-        write_checkpoint(&path, &json, self.scenario.fingerprint())
+        write_checkpoint(path, &json, self.scenario.fingerprint())
             .map_err(rt("cannot write the checkpoint"))?;
         tracing::info!(
             step = self.world.step,
             "checkpoint written to {}",
             path.display()
         );
-        self.out.last_checkpoint = Some(path.clone());
-        Ok(path)
+        Ok(())
     }
 }
 

@@ -7,6 +7,9 @@ use clump_core::world::World;
 
 impl Runner {
     pub(super) fn write_final_state(&self) -> std::io::Result<()> {
+        if self.out.is_detached() {
+            return Ok(());
+        }
         let json = final_state_json(&self.world);
         crate::atomic::write_atomic(self.out.dir.join("final_state.json"), json.as_bytes())
     }
@@ -26,6 +29,9 @@ impl Runner {
         threads: usize,
         status: &str,
     ) -> std::io::Result<()> {
+        if self.out.is_detached() {
+            return Ok(());
+        }
         let m = serde_json::json!({
             "program": "clump",
             "version": VERSION,

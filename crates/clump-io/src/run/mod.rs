@@ -33,18 +33,20 @@ mod manifest;
 pub mod outdir;
 mod outputs;
 mod report;
+mod session;
 mod stages;
 
 pub use checkpoint::{load_checkpoint, load_checkpoint_with_id, Checkpoint};
 pub use error::{RunError, UnstableRun};
 pub use manifest::final_state_json;
 pub use report::InsertionCount;
+pub use session::{Tally, Until};
 
 use crate::post;
 use crate::scenario::Scenario;
 use clump_core::health::{HealthMonitor, Instability};
 use clump_core::insert::StreamInserter;
-use clump_core::step::run::{Event, Flow, StepHook, StepReport};
+use clump_core::step::run::{Advance, Event, Flow, StepHook, StepReport};
 use clump_core::world::World;
 use error::rt;
 use outputs::{Outputs, Start};
@@ -110,6 +112,34 @@ pub struct DriverState {
     #[serde(default)]
     pub flow: crate::post::flow::FlowState,
 }
+impl DriverState {
+    /// The state before the first step of `scenario`.
+    pub(crate) fn fresh(scenario: &Scenario) -> Self {
+        DriverState {
+            stage: 0,
+            step_in_stage: 0,
+            stage_started: false,
+            pre_step_done: false,
+            streams: vec![None; scenario.inserts.len()],
+            next_vtk: 0,
+            next_thermo: 0,
+            next_trajectory: 0,
+            next_checkpoint: scenario.output.checkpoint.unwrap_or(u64::MAX),
+            last_vtk: None,
+            last_thermo: None,
+            inserted: vec![0; scenario.inserts.len()],
+            health: None,
+            last_insert_step: None,
+            next_contacts: 0,
+            last_contacts: None,
+            next_fields: 0,
+            last_fields: None,
+            next_flow: 0,
+            flow: Default::default(),
+        }
+    }
+}
+
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RunStatus {
@@ -222,13 +252,9 @@ struct StepChecks<'a, 'p> {
     step_in_stage: &'a mut u64,
     pre_step_done: &'a mut bool,
     stage: &'a str,
-    interrupt: Option<&'a AtomicUsize>,
-    progress: Option<&'a mut (dyn FnMut(&Progress) + 'p)>,
-    interval: Duration,
-    clock: &'a mut ProgressClock,
-    end_step: u64,
     dt: f64,
-    sphere_steps: &'a mut f64,
+    /// The caller's side: interrupt, deadline, progress, counters.
+    pace: Pace<'a, 'p>,
     /// The instability found, which ended the steps.
     tripped: Option<Instability>,
 }
@@ -239,22 +265,22 @@ impl StepHook for StepChecks<'_, '_> {
             self.tripped = Some(inst);
             return Flow::Stop;
         }
-        *self.sphere_steps += r.spheres as f64;
+        *self.pace.sphere_steps += r.spheres as f64;
         *self.step_in_stage += 1;
         *self.pre_step_done = false;
-        if let Some(cb) = self.progress.as_mut() {
-            if r.step % 16 == 0 || r.step == self.end_step {
+        if let Some(cb) = self.pace.progress.as_mut() {
+            if r.step % 16 == 0 || r.step == self.pace.end_step {
                 let now = Instant::now();
-                let el = now.duration_since(self.clock.at);
-                if el >= self.interval || r.step == self.end_step {
-                    let sps = (r.step - self.clock.step) as f64 / el.as_secs_f64().max(1e-9);
-                    self.clock.at = now;
-                    self.clock.step = r.step;
+                let el = now.duration_since(self.pace.clock.at);
+                if el >= self.pace.interval || r.step == self.pace.end_step {
+                    let sps = (r.step - self.pace.clock.step) as f64 / el.as_secs_f64().max(1e-9);
+                    self.pace.clock.at = now;
+                    self.pace.clock.step = r.step;
                     cb(&Progress {
                         time: r.time,
-                        end_time: self.end_step as f64 * self.dt,
+                        end_time: self.pace.end_step as f64 * self.dt,
                         step: r.step,
-                        end_step: self.end_step,
+                        end_step: self.pace.end_step,
                         steps_per_second: sps,
                         bodies: r.bodies,
                         spheres: r.spheres,
@@ -268,9 +294,22 @@ impl StepHook for StepChecks<'_, '_> {
     }
 
     fn stop_requested(&self) -> bool {
-        self.interrupt
+        self.pace
+            .interrupt
             .is_some_and(|f| f.load(Ordering::Relaxed) != 0)
+            || self.pace.deadline.is_some_and(|d| Instant::now() >= d)
     }
+}
+
+/// What [`Runner::advance_checked`] takes from its caller besides the event.
+struct Pace<'a, 'p> {
+    interrupt: Option<&'a AtomicUsize>,
+    deadline: Option<Instant>,
+    progress: Option<&'a mut (dyn FnMut(&Progress) + 'p)>,
+    interval: Duration,
+    clock: &'a mut ProgressClock,
+    end_step: u64,
+    sphere_steps: &'a mut f64,
 }
 
 /// A simulation ready to run (fresh or resumed).
@@ -300,29 +339,7 @@ impl Runner {
             .build_world()
             .map_err(|e| RunError::InputMessage(format!("cannot set up the simulation: {e}")))?;
         let out = Outputs::open(&scenario, outdir, Start::Fresh { overwrite })?;
-        let o = &scenario.output;
-        let st = DriverState {
-            stage: 0,
-            step_in_stage: 0,
-            stage_started: false,
-            pre_step_done: false,
-            streams: vec![None; scenario.inserts.len()],
-            next_vtk: 0,
-            next_thermo: 0,
-            next_trajectory: 0,
-            next_checkpoint: o.checkpoint.unwrap_or(u64::MAX),
-            last_vtk: None,
-            last_thermo: None,
-            inserted: vec![0; scenario.inserts.len()],
-            health: None,
-            last_insert_step: None,
-            next_contacts: 0,
-            last_contacts: None,
-            next_fields: 0,
-            last_fields: None,
-            next_flow: 0,
-            flow: Default::default(),
-        };
+        let st = DriverState::fresh(&scenario);
         Ok(Runner::assemble(scenario, world, st, out))
     }
 
@@ -428,51 +445,20 @@ impl Runner {
                 self.write_checkpoint()?;
                 break RunStatus::StepLimit;
             }
-            if self.world.step >= self.st.next_checkpoint {
-                let every = self.scenario.output.checkpoint.unwrap_or(u64::MAX);
-                self.st.next_checkpoint = self.world.step.saturating_add(every);
-                self.write_checkpoint()?;
-            }
+            self.periodic_checkpoint()?;
             // --- the steps to the next event
             let event = self.next_event(opts.max_steps);
-            let limits = self.scenario.stability;
-            let mut hook = StepChecks {
-                health: self
-                    .st
-                    .health
-                    .get_or_insert_with(|| HealthMonitor::new(limits)),
-                step_in_stage: &mut self.st.step_in_stage,
-                pre_step_done: &mut self.st.pre_step_done,
-                stage: self
-                    .scenario
-                    .stages
-                    .get(self.st.stage)
-                    .map_or("", |s| s.name.as_str()),
+            let pace = Pace {
                 interrupt: opts.interrupt.as_deref(),
+                deadline: None,
                 progress: opts.progress.as_deref_mut(),
                 interval: opts.progress_interval,
                 clock: &mut clock,
                 end_step,
-                dt: self.world.config.dt,
                 sphere_steps: &mut sphere_steps,
-                tripped: None,
             };
-            let at = self.world.step;
-            self.world
-                .advance(event, &mut hook)
-                .map_err(rt(&format!("step {at}")))?;
-            if let Some(inst) = hook.tripped.take() {
-                let partial = RunSummary {
-                    status: RunStatus::Completed,
-                    first_step,
-                    final_step: self.world.step,
-                    time: self.world.time,
-                    wall_time: t_start.elapsed().as_secs_f64(),
-                    sphere_steps,
-                    bodies: self.world.bodies.len(),
-                    spheres: self.world.spheres().len(),
-                    checkpoint: self.out.last_checkpoint.clone(),
-                };
+            if let Some(inst) = self.advance_checked(event, pace)?.1 {
+                let partial = self.summary(RunStatus::Completed, first_step, t_start, sphere_steps);
                 return Err(self.unstable(inst, &partial, opts.threads));
             }
         };
@@ -515,6 +501,53 @@ impl Runner {
             Err(e) => format!("there was no room for a checkpoint of step {step} either ({e})"),
         };
         RunError::Runtime(format!("{message}\n  {next}"))
+    }
+
+    /// The periodic checkpoint, when one is due at this boundary (a run
+    /// without an output folder keeps the schedule and writes nothing).
+    fn periodic_checkpoint(&mut self) -> Result<(), RunError> {
+        if self.world.step >= self.st.next_checkpoint {
+            let every = self.scenario.output.checkpoint.unwrap_or(u64::MAX);
+            self.st.next_checkpoint = self.world.step.saturating_add(every);
+            if !self.out.is_detached() {
+                self.write_checkpoint()?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Steps up to `event` in the engine's run loop ([`World::advance`])
+    /// under the runner's per-step checks (health, stage step count,
+    /// progress, interrupt); returns where it stopped and the instability
+    /// that ended it, if any.
+    fn advance_checked(
+        &mut self,
+        event: Event,
+        pace: Pace,
+    ) -> Result<(Advance, Option<Instability>), RunError> {
+        let limits = self.scenario.stability;
+        let mut hook = StepChecks {
+            health: self
+                .st
+                .health
+                .get_or_insert_with(|| HealthMonitor::new(limits)),
+            step_in_stage: &mut self.st.step_in_stage,
+            pre_step_done: &mut self.st.pre_step_done,
+            stage: self
+                .scenario
+                .stages
+                .get(self.st.stage)
+                .map_or("", |s| s.name.as_str()),
+            dt: self.world.config.dt,
+            pace,
+            tripped: None,
+        };
+        let at = self.world.step;
+        let how = self
+            .world
+            .advance(event, &mut hook)
+            .map_err(rt(&format!("step {at}")))?;
+        Ok((how, hook.tripped.take()))
     }
 
     /// The next event: the end of the current stage, the next insertion of

@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 
 /// The thermo columns of every wall: a power column for the walls that move
 /// at the start or are set moving by a stage.
-fn wall_columns(scenario: &Scenario) -> Vec<WallColumns> {
+pub(super) fn wall_columns(scenario: &Scenario) -> Vec<WallColumns> {
     let moving = |v: DVec3| v != DVec3::ZERO;
     scenario
         .walls
@@ -43,7 +43,7 @@ fn wall_names(scenario: &Scenario) -> Vec<String> {
 /// The world's thermo row with each wall's torque taken about its torque
 /// point (`T_P = T_c + (c − P) × F`, world frame), and the power each wall's
 /// rigid motion delivers to the particles, `−(F·v + T_c·ω)` (W).
-fn wall_thermo(world: &World, torque_points: &[Option<DVec3>]) -> (Thermo, Vec<f64>) {
+pub(super) fn wall_thermo(world: &World, torque_points: &[Option<DVec3>]) -> (Thermo, Vec<f64>) {
     let mut t = world.thermo();
     let mut power = Vec::with_capacity(t.wall_loads.len());
     for (i, (l, w)) in t.wall_loads.iter_mut().zip(&world.walls).enumerate() {
@@ -68,8 +68,9 @@ pub(super) struct Outputs {
     pub(super) last_checkpoint: Option<PathBuf>,
     /// The run's id (see [`super::outdir`]).
     pub(super) run_id: String,
-    /// The folder lock, held while the run lives.
-    pub(super) _lock: outdir::FolderLock,
+    /// The folder lock, held while the run lives; `None` for a run
+    /// without an output folder ([`Outputs::detached`]).
+    pub(super) lock: Option<outdir::FolderLock>,
 }
 
 /// Whether a run starts fresh or resumes from a checkpoint.
@@ -178,8 +179,32 @@ impl Outputs {
                 Start::Resume { checkpoint, .. } => Some(checkpoint.to_path_buf()),
             },
             run_id,
-            _lock: lock,
+            lock: Some(lock),
         })
+    }
+}
+
+impl Outputs {
+    /// No output folder: nothing is written at boundaries (a session driven
+    /// from Python or another program that reads the world itself).
+    pub(super) fn detached() -> Outputs {
+        Outputs {
+            dir: PathBuf::new(),
+            vtk: None,
+            thermo: None,
+            trajectory: None,
+            contacts: None,
+            fields: None,
+            flow: None,
+            last_checkpoint: None,
+            run_id: String::new(),
+            lock: None,
+        }
+    }
+
+    /// True without an output folder.
+    pub(super) fn is_detached(&self) -> bool {
+        self.lock.is_none()
     }
 }
 

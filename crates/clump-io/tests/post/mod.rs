@@ -93,24 +93,29 @@ pub fn run(text: &str, out: &Path) -> Runner {
 }
 
 /// The files read by the `vtk` package (JSON), or `None` with a printed
-/// note when no Python with `vtk` is found (`CLUMP_PYTHON`, else
-/// `python3`).
+/// note when no Python with `vtk` is found. Tried in order: `CLUMP_PYTHON`,
+/// `python3` on the PATH (a virtual environment's), Debian's
+/// `/usr/bin/python3` (where `.ci/run` installs `python3-vtk9`).
 pub fn read_vtk(files: &[PathBuf]) -> Option<serde_json::Value> {
-    let py = std::env::var("CLUMP_PYTHON").unwrap_or_else(|_| "python3".into());
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/post/read_vtk.py");
-    let o = Command::new(&py).arg(script).args(files).output();
-    match o {
-        Ok(o) if o.status.success() => Some(serde_json::from_slice(&o.stdout).unwrap()),
-        Ok(o) if o.status.code() == Some(3) => {
-            eprintln!("SKIPPED: the Python `vtk` package is not importable by {py} (pip install vtk; CLUMP_PYTHON=<python>)");
-            None
-        }
-        Ok(o) => panic!("{py}: {}", String::from_utf8_lossy(&o.stderr)),
-        Err(e) => {
-            eprintln!("SKIPPED: cannot start {py}: {e}");
-            None
+    let candidates: Vec<String> = match std::env::var("CLUMP_PYTHON") {
+        Ok(p) => vec![p],
+        Err(_) => vec!["python3".into(), "/usr/bin/python3".into()],
+    };
+    for py in &candidates {
+        match Command::new(py).arg(&script).args(files).output() {
+            Ok(o) if o.status.success() => return Some(serde_json::from_slice(&o.stdout).unwrap()),
+            // exit 3: this Python has no `vtk`; try the next
+            Ok(o) if o.status.code() == Some(3) => {}
+            Ok(o) => panic!("{py}: {}", String::from_utf8_lossy(&o.stderr)),
+            Err(_) => {}
         }
     }
+    eprintln!(
+        "SKIPPED: the Python `vtk` package is not importable by {} (pip install vtk, or apt-get install python3-vtk9; CLUMP_PYTHON=<python>)",
+        candidates.join(", ")
+    );
+    None
 }
 
 /// The value of column `name` in the last row of a CSV file.

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Every test suite of the repository, the README's one test command:
+#   1. the Rust suite: cargo test --workspace --release (needs no Python);
+#   2. the Python package: a virtual environment (.venv-test, or $CLUMP_VENV)
+#      with maturin, numpy, pytest and matplotlib, `pip install
+#      ./crates/clump-py` (release build) and its pytest suite, which also
+#      runs the examples in examples/python in their short form and compares
+#      against the `clump` binary built by step 1.
+# Both suites always run; the exit status is non-zero if either failed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+status=0
+echo "== Rust suite: cargo test --workspace --release --no-fail-fast"
+cargo test --workspace --release --no-fail-fast || status=1
+
+echo "== Python package: crates/clump-py"
+venv="${CLUMP_VENV:-.venv-test}"
+if [ ! -x "$venv/bin/python" ]; then
+  python3 -m venv "$venv"
+fi
+# shellcheck disable=SC1091
+source "$venv/bin/activate"
+python -m pip install -q --upgrade pip
+python -m pip install -q maturin numpy pytest matplotlib
+# maturin from the venv builds the extension (release profile, as `clump`)
+python -m pip install -q --no-build-isolation --force-reinstall --no-deps ./crates/clump-py
+export CLUMP_BIN="$PWD/target/release/clump"
+if [ ! -x "$CLUMP_BIN" ]; then
+  cargo build --release -p clump-cli
+fi
+python -m pytest -q crates/clump-py/tests || status=1
+
+if [ "$status" -ne 0 ]; then
+  echo "== FAILED: at least one suite failed (see above)"
+fi
+exit "$status"
