@@ -150,7 +150,10 @@ mod tests {
             let got = lens_radius_sq(ri * rj / (ri + rj), ri + rj, delta);
             assert!((got - want).abs() <= 1e-9 * want, "{delta}: {got} {want}");
             let wall = lens_radius_sq(ri, f64::INFINITY, delta);
-            let want = ri * ri - (ri - delta) * (ri - delta);
+            // the sphere's chord circle at depth δ: r² − (r − δ)², factored
+            // as δ(2r − δ) (the unfactored difference cancels: at δ = 1e-9 r
+            // it keeps only about six digits of its own)
+            let want = delta * (2.0 * ri - delta);
             assert!(
                 (wall - want).abs() <= 1e-12 * want,
                 "{delta}: {wall} {want}"
