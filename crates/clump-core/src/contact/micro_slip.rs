@@ -311,7 +311,8 @@ mod tests {
         }
         // at the end: full slip at μN
         assert!((drive(&mut h, k0, lim, dx, 1) - lim).abs() < 1e-12);
-        assert!(worst < 2e-4 * lim, "max deviation {worst}");
+        eprintln!("MD cycle: largest deviation {:.2e} muN", worst / lim);
+        assert!(worst < 1e-5 * lim, "max deviation {worst}");
     }
 
     /// The first-step stiffness is Mindlin's `8G*a`, and the loading curve
