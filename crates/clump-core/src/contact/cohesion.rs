@@ -150,7 +150,8 @@ mod tests {
             let got = lens_radius_sq(ri * rj / (ri + rj), ri + rj, delta);
             assert!((got - want).abs() <= 1e-9 * want, "{delta}: {got} {want}");
             let wall = lens_radius_sq(ri, f64::INFINITY, delta);
-            let want = ri * ri - (ri - delta) * (ri - delta);
+            // ri² − (ri − δ)², written without the cancellation
+            let want = delta * (2.0 * ri - delta);
             assert!(
                 (wall - want).abs() <= 1e-12 * want,
                 "{delta}: {wall} {want}"
