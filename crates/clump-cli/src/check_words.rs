@@ -144,6 +144,7 @@ pub fn contacts(sc: &Scenario, world: &World) {
                 match p.tangential {
                     clump_core::contact::TangentialLaw::Clump => "",
                     clump_core::contact::TangentialLaw::Liggghts => " (LIGGGHTS' tangential rule)",
+                    clump_core::contact::TangentialLaw::MindlinDeresiewicz => " (micro-slip tangential model, Mindlin–Deresiewicz after Thornton & Yin)",
                 },
                 match p.cohesion {
                     clump_core::contact::CohesionLaw::None => String::new(),

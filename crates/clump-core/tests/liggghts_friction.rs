@@ -67,6 +67,7 @@ fn liggghts_tutorial_two_stones() {
                     )
                 }
                 TangentialLaw::Clump => assert!(spin > 1e-2, "stone {b}: {spin:e}"),
+                TangentialLaw::MindlinDeresiewicz => unreachable!("not run here"),
             }
         }
     }

@@ -150,3 +150,36 @@ fn contact_sub_models_reach_the_pairs() {
     // the skin covers JKR's critical separation
     assert!(w.skin() >= 2.0 * w.contact_table.get(0, 0).reach(0.005));
 }
+
+/// `tangential = "mindlin_deresiewicz"` reaches its pair (an extended pair,
+/// on the scalar path); a `[[pair]]` that adds twisting to it is refused at
+/// the key, with the reason.
+#[test]
+fn micro_slip_key_reaches_the_pair() {
+    use clump_core::contact::TangentialLaw;
+    let contact =
+        "[[pair]]\nmaterials = [\"rock\", \"rigid\"]\ntangential = \"mindlin_deresiewicz\"\n";
+    let sc = parse("", "", contact, LUMP).unwrap();
+    let w = sc.build_world().unwrap_or_else(|e| panic!("{e}"));
+    let wall = w.contact_table.get(0, 1);
+    assert_eq!(
+        wall.properties().tangential,
+        TangentialLaw::MindlinDeresiewicz
+    );
+    assert!(wall.is_extended());
+    assert_eq!(
+        w.contact_table.get(0, 0).properties().tangential,
+        TangentialLaw::Clump
+    );
+    let e = parse(
+        "",
+        "",
+        &format!("{contact}rolling = \"epsd\"\nrolling_friction = 0.1\n"),
+        LUMP,
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("cannot be combined with rolling = \"epsd\"") && e.contains("history slot"),
+        "{e}"
+    );
+}

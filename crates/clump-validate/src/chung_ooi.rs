@@ -31,7 +31,7 @@ fn al_alloy() -> Material {
 fn mg_alloy() -> Material {
     material(4.0e10, 0.35, 1800.0)
 }
-fn alumina() -> Material {
+pub(crate) fn alumina() -> Material {
     material(3.8e11, 0.23, 4000.0)
 }
 fn cast_iron() -> Material {
@@ -66,7 +66,7 @@ fn two_spheres(mat: Material, n: usize, multi: MultiContact) -> Result<(Impact, 
 /// A sphere of radius `r` released just above the plane z = 0 with velocity
 /// `v` and angular velocity `omega` (world frame); returns the impact and
 /// the motion after it.
-fn onto_wall(
+pub(crate) fn onto_wall(
     mat: Material,
     p: PairProperties,
     r: f64,
@@ -395,7 +395,7 @@ fn test_3(g: &mut Group, dir: &Path) -> Result<(), String> {
 /// Analytic rebound of a sphere (κ = 2/5) on a plane with normal +z when the
 /// contact slides throughout: impulse `μ(1+e)m v_n` against the slip
 /// direction (along x). Returns `(v_x', v_z', ω_y')`.
-fn gross_sliding(v: DVec3, omega_y: f64, r: f64, e: f64, mu: f64) -> (f64, f64, f64) {
+pub(crate) fn gross_sliding(v: DVec3, omega_y: f64, r: f64, e: f64, mu: f64) -> (f64, f64, f64) {
     let vn = -v.z;
     let slip = v.x - r * omega_y; // contact-point velocity along x
     let j = mu * (1.0 + e) * vn * slip.signum();
@@ -403,7 +403,7 @@ fn gross_sliding(v: DVec3, omega_y: f64, r: f64, e: f64, mu: f64) -> (f64, f64, 
 }
 
 /// Whether the contact of [`gross_sliding`] still slips at the end of the impact.
-fn slides_throughout(v: DVec3, omega_y: f64, r: f64, e: f64, mu: f64) -> bool {
+pub(crate) fn slides_throughout(v: DVec3, omega_y: f64, r: f64, e: f64, mu: f64) -> bool {
     let slip = v.x - r * omega_y;
     slip.abs() > 3.5 * mu * (1.0 + e) * (-v.z)
 }

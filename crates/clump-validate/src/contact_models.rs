@@ -1,21 +1,147 @@
 //! Contact sub-models users ask for, each against a value from outside the
 //! code: LIGGGHTS' tangential rule and `cohesion sjkr` against LIGGGHTS 3.8
-//! itself, JKR and twisting resistance against their closed forms.
+//! itself, JKR and twisting resistance against their closed forms, the
+//! micro-slip tangential model against Maw, Barber & Fawcett (1976) and the
+//! rigid impulse solution.
 
-use crate::case::{Case, Group};
+use crate::case::{rel_err, Case, Group};
 use crate::liggghts::{after_bounce, friction_bounce, spin_error, tutorial, TUTORIAL_STONE};
+use crate::plot::{draw, Chart, Series, Style};
 use crate::Selection;
 use clump_core::contact::TangentialLaw;
 use std::path::Path;
 
 /// Runs the group.
-pub fn run(_sel: Selection, _dir: &Path) -> Group {
+pub fn run(sel: Selection, dir: &Path) -> Group {
     let mut g = Group::default();
     liggghts_rule(&mut g);
     sjkr(&mut g);
     jkr(&mut g);
     twisting(&mut g);
+    if let Err(e) = micro_slip(&mut g, sel, dir) {
+        g.cases.push(Case::error(
+            "Micro-slip (Mindlin–Deresiewicz), Chung & Ooi test 4",
+            MBF_SOURCE,
+            e,
+        ));
+    }
     g
+}
+
+const MBF_SOURCE: &str = "Maw, Barber & Fawcett (1976), solved by the method of dimensionality reduction (crates/clump-validate/src/mbf.rs)";
+
+/// `tangential = "mindlin_deresiewicz"` on Chung & Ooi's test 4: the
+/// micro-slip branch against MBF (beside the default no-slip spring), the
+/// gross-sliding branch against the rigid impulse solution.
+fn micro_slip(g: &mut Group, sel: Selection, dir: &Path) -> Result<(), String> {
+    use crate::micro_slip::{engine, incident, table, DT, MU, R};
+    let degs = [5.0, 10.0, 15.0, 20.0, 25.0, 30.0];
+    let elastic = table(&degs, 1.0)?;
+    let test4 = table(&degs, 0.98)?;
+    for r in &elastic {
+        let (dn, d_old) = ((r.new.0 - r.mbf.0).abs(), (r.old.0 - r.mbf.0).abs());
+        g.cases.push(Case {
+            name: format!(
+                "Micro-slip, Chung & Ooi test 4 (e = 1), θ = {}°: v_t'/v_t closer to MBF than the no-slip Mindlin spring's",
+                r.deg
+            ),
+            source: MBF_SOURCE.into(),
+            expected: format!("MBF {:.4}; no-slip spring {:.4} (off by {:.4})", r.mbf.0, r.old.0, d_old),
+            measured: format!("{:.4} (off by {:.4})", r.new.0, dn),
+            tolerance: "no farther than the no-slip spring".into(),
+            pass: dn <= d_old,
+        });
+        if r.deg >= 15.0 {
+            g.cases.push(Case::absolute(
+                format!(
+                    "Micro-slip, Chung & Ooi test 4 (e = 1), θ = {}°: v_t'/v_t",
+                    r.deg
+                ),
+                MBF_SOURCE,
+                r.mbf.0,
+                r.new.0,
+                5e-3,
+                "",
+            ));
+            g.cases.push(Case::relative(
+                format!(
+                    "Micro-slip, Chung & Ooi test 4 (e = 1), θ = {}°: rebound spin ω'",
+                    r.deg
+                ),
+                MBF_SOURCE,
+                r.mbf.1,
+                r.new.1,
+                5e-3,
+                "rad/s",
+            ));
+        }
+    }
+    let row = |r: &crate::micro_slip::Row| {
+        format!(
+            "| {} | {:.4} | {:.4} | {:.4} | {:.1} | {:.1} | {:.1} |",
+            r.deg, r.new.0, r.old.0, r.mbf.0, r.new.1, r.old.1, r.mbf.1
+        )
+    };
+    let head = "| θ (°) | v_t'/v_t micro-slip | no-slip spring | MBF | ω' micro-slip (rad/s) | no-slip spring | MBF |\n|---|---|---|---|---|---|---|";
+    g.notes.push(format!(
+        "Micro-slip (tangential = \"mindlin_deresiewicz\", docs/theory.md T-49) on Chung & Ooi's test 4 (alumina, R = 2.5 mm, 3.9 m/s, μ = 0.092, no spin), e = 1 (MBF's problem is elastic), dt = {DT:e} s; MBF by its own discretisation (2000 springs over 1.2 a_max, 20000 steps per contact time; halving both changes v_t'/v_t by < 1e-7):\n\n{head}\n{}",
+        elastic.iter().map(row).collect::<Vec<_>>().join("\n")
+    ));
+    g.notes.push(format!(
+        "The same with the test's e = 0.98 for the engine (MBF elastic, so this is test 4 as specified beside the elastic solution):\n\n{head}\n{}",
+        test4.iter().map(row).collect::<Vec<_>>().join("\n")
+    ));
+    g.notes.push("Finding (not asserted): below 15° the micro-slip model is much closer to MBF than the no-slip spring but not within 0.005: θ = 10°: 0.6495 against 0.6399; θ = 5°: 0.8016 against 0.7416 (ω' 67 against 88 rad/s); converged in dt (dt/8 changes v_t'/v_t by 1e-3). The deviation is the Thornton–Yin increment under a falling normal force: driven with a prescribed Hertz loading–unloading and a steady tangential displacement, it follows the exact solution while N rises and carries less tangential force while N falls (6.14 N against 6.56 N at 0.75 t_c); at small θ, where the contact sticks for most of the impact, that is most of the tangential impulse. Dropping the μΔN(1−θ) term while N falls makes it worse (0.845 at 5°).".into());
+    // the gross-sliding branch, as Chung & Ooi's test 4 with e = 0.98
+    let e = 0.98;
+    let angles: Vec<f64> = if sel == Selection::Quick {
+        vec![40.0, 60.0, 80.0]
+    } else {
+        (7..=17).map(|k| 5.0 * k as f64).collect()
+    };
+    for deg in angles {
+        let v = incident(deg);
+        if !crate::chung_ooi::slides_throughout(v, 0.0, R, e, MU) {
+            continue;
+        }
+        let (vx, vz, wy) = crate::chung_ooi::gross_sliding(v, 0.0, R, e, MU);
+        let m = engine(deg, e, TangentialLaw::MindlinDeresiewicz, DT)?;
+        let err = rel_err(m.0, vx).max(rel_err(m.2, wy)).max(rel_err(m.1, vz));
+        g.cases.push(Case {
+            name: format!("Micro-slip, Chung & Ooi test 4 (e = 0.98), θ = {deg}° (gross sliding): v_t', v_n', ω'"),
+            source: "Chung & Ooi 2011; rigid impulse theory, gross sliding".into(),
+            expected: format!("{vx:.4} m/s, {vz:.4} m/s, {wy:.2} rad/s"),
+            measured: format!("{:.4} m/s, {:.4} m/s, {:.2} rad/s (max rel. err {err:.2e})", m.0, m.1, m.2),
+            tolerance: "±1 % each".into(),
+            pass: err <= 0.01,
+        });
+    }
+    let pts =
+        |f: fn(&crate::micro_slip::Row) -> f64| elastic.iter().map(|r| (r.deg, f(r))).collect();
+    let c = Chart {
+        title: "Chung & Ooi test 4 (e = 1): tangential restitution, micro-slip branch".into(),
+        x_label: "impact angle from the normal θ (deg)".into(),
+        y_label: "v_t' / v_t".into(),
+        series: vec![
+            Series::new("MBF (1976), elastic", pts(|r| r.mbf.0), Style::Dashed),
+            Series::new(
+                "micro-slip (mindlin_deresiewicz)",
+                pts(|r| r.new.0),
+                Style::Points,
+            ),
+            Series::new(
+                "no-slip Mindlin spring (clump)",
+                pts(|r| r.old.0),
+                Style::LinePoints,
+            ),
+        ],
+    };
+    g.plot(
+        "micro_slip_test4.png",
+        "Micro-slip model against MBF and the default no-slip spring, Chung & Ooi test 4 at e = 1",
+        draw(&dir.join("micro_slip_test4.png"), &c),
+    );
+    Ok(())
 }
 
 /// `twisting = "marshall"` against the closed forms of a spinning sphere

@@ -20,6 +20,8 @@ pub mod contact_models;
 pub mod dem_order;
 pub mod liggghts;
 pub mod mass;
+pub mod mbf;
+pub mod micro_slip;
 pub mod ode;
 pub mod plot;
 pub mod plot_segments;

@@ -1,6 +1,7 @@
 //! The scalar composition of the contact law for pairs that select a
 //! sub-model the vectorised [`SlidingLaw`](super::SlidingLaw) does not have:
-//! LIGGGHTS' tangential rule ([`super::tangential::liggghts_spring`]),
+//! LIGGGHTS' tangential rule ([`super::tangential::liggghts_spring`]), the
+//! micro-slip rule ([`super::micro_slip`]),
 //! cohesion ([`super::cohesion`]: SJKR, JKR) and twisting resistance
 //! ([`super::twisting`]).
 //!
@@ -17,6 +18,7 @@
 use super::cohesion::{
     jkr_contact_radius, jkr_force_parts, jkr_pull_off_force, sjkr_force, CohesionLaw,
 };
+use super::micro_slip::micro_slip;
 use super::tangential::{self, history_spring, liggghts_spring, TangentialLaw};
 use super::twisting::{self, TwistingLaw};
 use super::{damping, normal};
@@ -81,16 +83,36 @@ pub fn evaluate(model: &ContactModel, c: &ContactInput, h: &mut ContactHistory) 
     } else {
         law.friction * (f_n + f_limit_shift).max(0.0)
     };
-    let xi = &mut h.tangential;
-    let f_t = match props.tangential {
-        TangentialLaw::Clump => history_spring(xi, n, vt, c.dt, kt, gamma_t, f_max),
-        TangentialLaw::Liggghts => liggghts_spring(xi, n, vt, c.dt, kt, gamma_t, f_max),
-    };
     // the normal spring's energy at the Hertz overlap of the stiffness scale
     // (`δ` itself without JKR; `a²/R*` with it)
     let d_h = if law.hertz { s * s / c.radius } else { d };
-    let energy =
-        normal::spring_energy(law.energy_factor, f_el, d_h) + tangential::spring_energy(kt, *xi);
+    let e_n = normal::spring_energy(law.energy_factor, f_el, d_h);
+    let xi = &mut h.tangential;
+    let (f_t, energy) = match props.tangential {
+        TangentialLaw::Clump => {
+            let f = history_spring(xi, n, vt, c.dt, kt, gamma_t, f_max);
+            (f, e_n + tangential::spring_energy(kt, *xi))
+        }
+        TangentialLaw::Liggghts => {
+            let f = liggghts_spring(xi, n, vt, c.dt, kt, gamma_t, f_max);
+            (f, e_n + tangential::spring_energy(kt, *xi))
+        }
+        TangentialLaw::MindlinDeresiewicz => {
+            // Hertz without cohesion (ContactModel::new): the normal force
+            // of the previous step at the previous overlap δ + v_n Δt
+            let d_old = d + vn * c.dt;
+            let f_n_old = if d_old > 0.0 {
+                let s_old = normal::stiffness_scale(true, c.radius, d_old);
+                let g_old = damping::dashpot(law.gn_coef, s_old, c.mass);
+                let f_el_old = normal::elastic_force(law.kn_coef * s_old, d_old);
+                damping::normal_force(f_el_old, g_old, vn, law.fn_floor).abs()
+            } else {
+                0.0
+            };
+            let (f, e_t) = micro_slip(h, n, vt, c.dt, kt, law.friction, f_n.abs(), f_n_old);
+            (f, e_n + e_t)
+        }
+    };
     // the couple spring: the twisting spring along the normal, the EPSD
     // rolling spring in the tangent plane (which that law rotates)
     let twist = props.twisting != TwistingLaw::None;

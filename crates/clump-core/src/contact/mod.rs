@@ -42,6 +42,10 @@
 //! - [`tangential::TangentialLaw::Liggghts`]: LIGGGHTS' rule (only the
 //!   spring is limited, the dashpot dropped while sliding); such pairs run
 //!   the scalar composition [`extended`].
+//! - [`micro_slip`] ([`tangential::TangentialLaw::MindlinDeresiewicz`]):
+//!   Mindlin–Deresiewicz micro-slip with loading/unloading/reloading
+//!   history (Thornton & Yin 1991; Thornton, Cummins & Cleary 2011), on the
+//!   scalar path [`extended`].
 //! - [`cohesion`]: SJKR and JKR; [`twisting`]: twisting resistance
 //!   (both on the scalar path [`extended`]).
 //! - [`rolling`]: rolling resistance, none, CDT or EPSD.
@@ -65,6 +69,7 @@ pub mod damping;
 pub mod extended;
 pub mod geometry;
 pub mod material;
+pub mod micro_slip;
 pub mod model;
 pub mod normal;
 pub mod record;
@@ -118,11 +123,14 @@ pub struct ContactInput {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct ContactHistory {
     /// Tangential spring displacement `ξ`, m, world frame. After an evaluation
-    /// it lies in the current tangent plane (`ξ·n = 0`).
+    /// it lies in the current tangent plane (`ξ·n = 0`). The micro-slip
+    /// model stores its force and a turning point here instead
+    /// ([`micro_slip`], "Storage").
     pub tangential: DVec3,
     /// Couple spring on `i`, N m, world frame: in the tangent plane the
     /// EPSD rolling spring `M_r` (zero for other rolling laws), along the
-    /// normal the twisting spring ([`twisting`]; zero without it).
+    /// normal the twisting spring ([`twisting`]; zero without it). The
+    /// micro-slip model stores a turning point here ([`micro_slip`]).
     pub rolling: DVec3,
 }
 

@@ -259,6 +259,20 @@ impl ContactModel {
                 }
             }
         }
+        if p.tangential == TangentialLaw::MindlinDeresiewicz {
+            if p.normal != NormalLaw::Hertz {
+                return perr("tangential = mindlin_deresiewicz needs the Hertz normal law".into());
+            }
+            if p.cohesion != CohesionLaw::None {
+                return perr(
+                    "tangential = mindlin_deresiewicz cannot be combined with cohesion".into(),
+                );
+            }
+            // the model uses both history slots (contact::micro_slip)
+            if p.rolling == RollingLaw::Epsd || p.twisting != TwistingLaw::None {
+                return perr("tangential = mindlin_deresiewicz cannot be combined with EPSD rolling resistance or twisting resistance (it stores its turning points in their history slot)".into());
+            }
+        }
         let (hertz, kn_coef, kt_coef, energy_factor) =
             normal::stiffness_coefficients(p.normal, e_star, g_star);
         let (gn_coef, gt_coef) = damping::dashpot_coefficients(p.normal, beta, e_star, g_star);

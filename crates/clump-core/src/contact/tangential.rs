@@ -66,6 +66,11 @@ pub enum TangentialLaw {
     /// LIGGGHTS' `tangential history`: only the spring is checked against
     /// `μ|F_n|`, the dashpot is dropped while sliding ([`liggghts_spring`]).
     Liggghts,
+    /// Micro-slip: Mindlin–Deresiewicz with loading, unloading and
+    /// reloading history after Thornton & Yin (1991) / Thornton, Cummins &
+    /// Cleary (2011) ([`super::micro_slip`]; Hertz law only, uses both
+    /// history slots).
+    MindlinDeresiewicz,
 }
 
 /// Rotates `v` (world) into the plane normal to the unit vector `n`: removes

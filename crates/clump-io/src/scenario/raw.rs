@@ -222,7 +222,8 @@ pub struct RawContact {
     pub rolling: Option<RollingLaw>,
     /// Whether the normal force may be tensile (no clamp at zero).
     pub tensile: Option<bool>,
-    /// Tangential rule: `"clump"` (default) or `"liggghts"`.
+    /// Tangential rule: `"clump"` (default), `"liggghts"` or
+    /// `"mindlin_deresiewicz"` (micro-slip).
     pub tangential: Option<TangentialLaw>,
     /// Cohesion model: `"none"` (default), `"sjkr"` or `"jkr"`.
     pub cohesion: Option<CohesionName>,
@@ -258,7 +259,8 @@ pub struct RawPair {
     pub rolling: Option<RollingLaw>,
     /// Whether the normal force may be tensile (no clamp at zero).
     pub tensile: Option<bool>,
-    /// Tangential rule: `"clump"` (default) or `"liggghts"`.
+    /// Tangential rule: `"clump"` (default), `"liggghts"` or
+    /// `"mindlin_deresiewicz"` (micro-slip).
     pub tangential: Option<TangentialLaw>,
     /// Cohesion model: `"none"` (default), `"sjkr"` or `"jkr"`.
     pub cohesion: Option<CohesionName>,

@@ -226,6 +226,8 @@ CASES = [
      ["'surface_energy' must be >= 0 J/m^2, found -0.05"]),
     ("jkr_linear", rep("friction = 0.3", 'friction = 0.3\nlaw = "linear"\nkn = 1e4\ncohesion = "jkr"\nsurface_energy = 0.05'), 'cohesion = "jkr"',
      ["cohesion = \"jkr\" needs the Hertz normal law (this [[pair]] uses law = \"linear\")"]),
+    ("micro_slip_twisting", rep("friction = 0.3", 'friction = 0.3\ntangential = "mindlin_deresiewicz"\ntwisting = "marshall"'), 'tangential = "mindlin_deresiewicz"',
+     ["tangential = \"mindlin_deresiewicz\" cannot be combined with twisting resistance (this [[pair]])", "help: remove 'twisting'"]),
 ]
 
 # the invalid-UTF-8 case is written as bytes

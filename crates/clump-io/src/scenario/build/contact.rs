@@ -231,6 +231,47 @@ fn contact_props(
             .error_at_key(&p(key), format!("cohesion = \"jkr\" needs the Hertz normal law (this {what} uses law = \"linear\")"))
             .note("help: remove law = \"linear\" (JKR's force follows from the materials and the work of adhesion), or use cohesion = \"sjkr\""));
     }
+    if out.tangential == TangentialLaw::MindlinDeresiewicz {
+        // the micro-slip model (contact::micro_slip) needs the Hertz law
+        // and both history slots
+        let clash = [
+            (
+                "law",
+                out.normal != NormalLaw::Hertz,
+                "law = \"linear\"",
+                "it needs the Hertz contact radius",
+            ),
+            (
+                "cohesion",
+                out.cohesion != CohesionLaw::None,
+                "cohesion",
+                "its normal force is Hertz's",
+            ),
+            (
+                "rolling",
+                out.rolling == RollingLaw::Epsd,
+                "rolling = \"epsd\"",
+                "it stores its turning points in the rolling spring's history slot",
+            ),
+            (
+                "twisting",
+                out.twisting != TwistingLaw::None,
+                "twisting resistance",
+                "it stores its turning points in the twisting spring's history slot",
+            ),
+        ];
+        if let Some(&(other, _, name, why)) = clash.iter().find(|c| c.1) {
+            let key = if f.tangential.is_some() {
+                "tangential"
+            } else {
+                other
+            };
+            return Err(cx
+                .src
+                .error_at_key(&p(key), format!("tangential = \"mindlin_deresiewicz\" cannot be combined with {name} (this {what}): {why}"))
+                .note(format!("help: remove '{other}', or use tangential = \"clump\" or \"liggghts\"")));
+        }
+    }
     if out.rolling != RollingLaw::None && out.rolling_friction == 0.0 && f.rolling.is_some() {
         let w = cx.src.warning_at(
             &p("rolling"),
