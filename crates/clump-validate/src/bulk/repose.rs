@@ -18,7 +18,7 @@ use crate::plot::{draw, Chart, Series, Style};
 use crate::setup::*;
 use clump_core::body::BodyInit;
 use clump_core::boundary::Domain;
-use clump_core::contact::{CohesionLaw, PairProperties, RollingLaw};
+use clump_core::contact::{PairProperties, RollingLaw};
 use clump_core::insert::{pack, Mix, Orientation, PackSpec, PackTarget, Region};
 use clump_core::shape::{ClumpTemplate, Sphere};
 use clump_core::world::World;
@@ -60,10 +60,6 @@ pub struct HeapSpec {
     pub youngs_modulus: f64,
     /// Time step as a fraction of the Rayleigh time of a sphere R.
     pub dt_fraction: f64,
-    /// Granular Bond number: JKR pull-off force of two of the clumps'
-    /// spheres, (3/2) π Γ R* with R* = R/2, over a clump's weight m g
-    /// (0: no cohesion). Sets the work of adhesion Γ of every pair.
-    pub bond: f64,
 }
 
 impl HeapSpec {
@@ -81,7 +77,6 @@ impl HeapSpec {
             skin: 0.6 * R,
             youngs_modulus: 1e6,
             dt_fraction: 0.25,
-            bond: 0.0,
         }
     }
 }
@@ -189,7 +184,6 @@ pub fn heap(spec: &HeapSpec) -> Result<Heap, String> {
         hi: DVec3::new(span, span, rp + 0.03),
         periodic: [false; 3],
     };
-    let clump = tetra(R, EDGE, mat.density)?;
     let p = PairProperties {
         restitution: 0.3,
         friction: spec.mu,
@@ -199,19 +193,13 @@ pub fn heap(spec: &HeapSpec) -> Result<Heap, String> {
         } else {
             RollingLaw::None
         },
-        cohesion: if spec.bond > 0.0 {
-            // Bo = (3/2) π Γ (R/2) / (m g)
-            CohesionLaw::Jkr {
-                surface_energy: spec.bond * clump.mass * G / (0.75 * PI * R),
-            }
-        } else {
-            CohesionLaw::None
-        },
         ..PairProperties::default()
     };
     let mut w = world(mat, p, dt, dom, DVec3::new(0.0, 0.0, -G))?;
     w.config.skin = Some(spec.skin);
-    let t = w.add_template(clump, PARTICLE).map_err(|e| e.to_string())?;
+    let t = w
+        .add_template(tetra(R, EDGE, mat.density)?, PARTICLE)
+        .map_err(|e| e.to_string())?;
     let base = pedestal(&mut w, rp, spec.seed)?;
     let br = w.templates[t as usize].bounding_radius;
     let m = w.templates[t as usize].mass;
@@ -258,8 +246,8 @@ pub fn heap(spec: &HeapSpec) -> Result<Heap, String> {
     }
     if since_most < SATURATED_AFTER {
         return Err(format!(
-            "heap μ = {}, μ_r = {}, Bo = {}, seed {}: not full after {poured} clumps",
-            spec.mu, spec.mu_r, spec.bond, spec.seed
+            "heap μ = {}, μ_r = {}, seed {}: not full after {poured} clumps",
+            spec.mu, spec.mu_r, spec.seed
         ));
     }
     let settled = settle(&mut w, 4_000, 60_000, 1e-4 * m * G * 2.0 * R)?;
@@ -330,17 +318,17 @@ pub fn heap(spec: &HeapSpec) -> Result<Heap, String> {
 }
 
 /// Seeds per configuration.
-pub(super) const SEEDS: [u64; 4] = [1, 2, 3, 4];
+const SEEDS: [u64; 4] = [1, 2, 3, 4];
 
 /// Mean ± standard error of the seeds' values.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Stat {
-    pub(super) mean: f64,
-    pub(super) se: f64,
+struct Stat {
+    mean: f64,
+    se: f64,
 }
 
 impl Stat {
-    pub(super) fn of(x: &[f64]) -> Stat {
+    fn of(x: &[f64]) -> Stat {
         let (mean, se) = super::mean_se(x);
         Stat { mean, se }
     }
@@ -358,7 +346,7 @@ struct Config {
 
 /// Whether every step of `s` rises by more than twice the combined
 /// standard error of its two ends, and the steps as text.
-pub(super) fn rises(s: &[Stat]) -> (bool, String) {
+fn rises(s: &[Stat]) -> (bool, String) {
     let ok = s.iter().all(|x| x.mean.is_finite() && x.se.is_finite())
         && s.windows(2)
             .all(|p| p[1].mean - p[0].mean > 2.0 * p[0].se.hypot(p[1].se));
