@@ -251,11 +251,19 @@ fn stretched_jkr_contact_survives_a_rebuild() {
     assert!(want < 0.0);
     // (the overlap from the centres differs from d by round-off)
     let close = |f: f64| (f - want).abs() < 1e-9 * want.abs();
-    assert!(close(force(&w)), "stretched contact: {} vs {want}", force(&w));
+    assert!(
+        close(force(&w)),
+        "stretched contact: {} vs {want}",
+        force(&w)
+    );
     // a third body: the topology changes, the lists are rebuilt
     w.add_body(&at(0.02)).unwrap();
     w.run(1).unwrap();
-    assert!(close(force(&w)), "after the rebuild: {} vs {want}", force(&w));
+    assert!(
+        close(force(&w)),
+        "after the rebuild: {} vs {want}",
+        force(&w)
+    );
     // beyond δ_c it breaks, and does not form again while apart
     w.set_body_pose(
         b,
