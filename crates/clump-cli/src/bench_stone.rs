@@ -1101,8 +1101,9 @@ mod tests {
         }
         assert_eq!(lig.len(), 20 * 50);
         // Clump's side
-        let (w, na, nb) = crate::cmd_bench::build_world(&files.scenario, None).unwrap();
+        let (mut w, na, nb) = crate::cmd_bench::build_world(&files.scenario, None).unwrap();
         assert_eq!((na, nb), (10, 10));
+        w.prepare().unwrap();
         let f = clump_final(&w);
         assert_eq!(f.pos.len(), lig.len());
         for (a, b) in f.pos.iter().zip(&lig) {
