@@ -787,22 +787,27 @@ fn run_clump_stone(
         let t0 = Instant::now();
         w.run(na)?;
         let a = t0.elapsed().as_secs_f64();
-        let t1 = Instant::now();
+        w.stage_times = Default::default();
+        let (t1, r1) = (Instant::now(), w.rebuilds);
         w.run(nb)?;
         let b = t1.elapsed().as_secs_f64();
-        let th = w.thermo();
+        let st = w.stage_times;
+        let total = st.rows().iter().map(|r| r.1).sum::<f64>().max(1e-12);
+        let shares: Vec<String> = st
+            .rows()
+            .iter()
+            .map(|(name, t)| format!("{name} {:.1} %", 100.0 * t / total))
+            .collect();
         errln!(
-            "clump: {} bodies, {} contacts, lost {}, KE {:.3e} J, rebuilds {}",
-            th.bodies,
-            th.pair_contacts + th.wall_contacts,
-            th.lost_bodies,
-            th.kinetic_translational + th.kinetic_rotational,
-            w.rebuilds
+            "clump: phase B by stage: {} ({:.2} s of {:.2} s wall; {} rebuilds, skin {:.3} mm at the end, {:.1} ns per sphere-step)",
+            shares.join(", "),
+            total,
+            b,
+            w.rebuilds - r1,
+            w.skin() * 1e3,
+            1e9 * b / (w.spheres().len() as f64 * nb.max(1) as f64)
         );
-        errln!(
-            "clump: state fingerprint {:016x}",
-            crate::cmd_bench::state_fingerprint(&w)
-        );
+        crate::cmd_bench::print_end_state(&w);
         Ok((
             Figures {
                 a_seconds: a,

@@ -1,5 +1,6 @@
 //! `clump bench`: the shared tetra-bed benchmark (../shared/bench/tetra-bed),
-//! timed phase by phase, optionally side by side with LIGGGHTS.
+//! timed phase by phase, optionally side by side with LIGGGHTS; with
+//! `--case stone-pile | stone-bed` the stone benchmarks of [`crate::bench_stone`].
 //!
 //! The case: 4-sphere tetrahedral clumps (r = 1 mm, edge 1.2 mm, ρ = 2500)
 //! fall from a common initial condition into a 40 × 40 mm box and settle;
@@ -294,16 +295,7 @@ fn run_clump(args: &BenchArgs, na: u64, nb: u64) -> Result<Figures> {
             ns * na as f64 / ca / 1e6,
             ns * nb as f64 / cb / 1e6
         );
-        let th = w.thermo();
-        errln!(
-            "clump: {} bodies, {} contacts, lost {}, KE {:.3e} J, rebuilds {}",
-            th.bodies,
-            th.pair_contacts + th.wall_contacts,
-            th.lost_bodies,
-            th.kinetic_translational + th.kinetic_rotational,
-            w.rebuilds
-        );
-        eprintln!("clump: state fingerprint {:016x}", state_fingerprint(&w));
+        print_end_state(&w);
         if let Some(p) = &args.dump {
             write_dump(&w, p)?;
         }
@@ -314,6 +306,21 @@ fn run_clump(args: &BenchArgs, na: u64, nb: u64) -> Result<Figures> {
             peak_rss_mb: peak_rss_mb(),
         })
     })
+}
+
+/// Prints (stderr) the bodies, contacts, lost bodies, kinetic energy and
+/// rebuilds of `w` at the end of a timed run, and its state fingerprint.
+pub(crate) fn print_end_state(w: &World) {
+    let th = w.thermo();
+    errln!(
+        "clump: {} bodies, {} contacts, lost {}, KE {:.3e} J, rebuilds {}",
+        th.bodies,
+        th.pair_contacts + th.wall_contacts,
+        th.lost_bodies,
+        th.kinetic_translational + th.kinetic_rotational,
+        w.rebuilds
+    );
+    errln!("clump: state fingerprint {:016x}", state_fingerprint(w));
 }
 
 /// FNV-1a hash of every body's position, velocity, angular momentum and
@@ -436,75 +443,21 @@ fn run_liggghts(args: &BenchArgs, bin: &Path, na: u64, nb: u64) -> Result<Figure
     if !ok.success() {
         bail!("gen_liggghts.py failed");
     }
-    let out = std::process::Command::new("/usr/bin/time")
-        .args(["-f", "MAXRSS_KB %M"])
-        .arg(bin)
-        .args([
-            "-in",
-            "in.bench",
-            "-var",
-            "N",
-            &args.n.to_string(),
-            "-var",
-            "ZTOP",
-            ztop,
-            "-var",
-            "NA",
-            &na.to_string(),
-            "-var",
-            "NB",
-            &nb.to_string(),
-        ])
-        .current_dir(&work)
-        .output()?;
-    let text =
-        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
-    // "Loop time of T on P procs for N steps with M atoms": the insertion
-    // include runs many 1-step loops first; phase A and B are the last loops
-    // of NA and NB steps.
-    let loop_of = |steps: u64| -> Option<f64> {
-        text.lines()
-            .filter(|l| l.starts_with("Loop time of"))
-            .filter(|l| {
-                l.split_whitespace()
-                    .nth(8)
-                    .and_then(|x| x.parse::<u64>().ok())
-                    == Some(steps)
-            })
-            .filter_map(|l| l.split_whitespace().nth(3)?.parse().ok())
-            .next_back()
-    };
-    let loops: Vec<f64> = [loop_of(na), loop_of(nb)].into_iter().flatten().collect();
-    let rss = text
-        .lines()
-        .find(|l| l.starts_with("MAXRSS_KB"))
-        .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
-        .unwrap_or(f64::NAN)
-        / 1024.0;
-    if loops.len() < 2 {
-        bail!(
-            "could not read LIGGGHTS' loop times; its output ends with:\n{}",
-            text.lines()
-                .rev()
-                .take(20)
-                .collect::<Vec<_>>()
-                .into_iter()
-                .rev()
-                .collect::<Vec<_>>()
-                .join("\n")
-        );
-    }
+    let vars = [
+        ("N", args.n.to_string()),
+        ("ZTOP", ztop.to_string()),
+        ("NA", na.to_string()),
+        ("NB", nb.to_string()),
+    ];
+    // the insertion include runs many 1-step loops first; phase A and B are
+    // the last loops of NA and NB steps
+    let figures = run_liggghts_input(bin, &work, "in.bench", &vars, na, nb, 4 * args.n)?;
     if let Some(p) = &args.dump {
         let f = work.join(format!("final_{}.dump", args.n));
         let _ = std::fs::copy(f, p.with_extension("liggghts.dump"));
     }
     let _ = std::fs::remove_dir_all(&work_root);
-    Ok(Figures {
-        a_seconds: loops[0],
-        b_seconds: loops[1],
-        spheres: 4 * args.n,
-        peak_rss_mb: rss,
-    })
+    Ok(figures)
 }
 
 /// Runs LIGGGHTS on `input` in `dir` with `vars` (`-var NAME VALUE`),
