@@ -3,6 +3,17 @@
 
 use std::process::Command;
 
+/// Runs `clump bench ARGS`, checks that it fails, and returns its stderr.
+fn refused(args: &[&str]) -> String {
+    let o = Command::new(env!("CARGO_BIN_EXE_clump"))
+        .arg("bench")
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(!o.status.success(), "{args:?} succeeded");
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
 #[test]
 fn bench_bad_options_are_named_errors() {
     for (args, needle) in [
@@ -10,13 +21,7 @@ fn bench_bad_options_are_named_errors() {
         (&["--scaling", "10000,0"][..], "--scaling"),
         (&["--scaling", "10000", "--steps", "0"][..], "--steps"),
     ] {
-        let o = Command::new(env!("CARGO_BIN_EXE_clump"))
-            .arg("bench")
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(!o.status.success(), "{args:?} succeeded");
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = refused(args);
         assert!(
             err.contains(needle) && err.contains("got 0"),
             "{args:?}: {err}"
@@ -50,13 +55,7 @@ fn stone_bench_errors_and_a_tiny_procedural_pile() {
             "--stones",
         ),
     ] {
-        let o = Command::new(env!("CARGO_BIN_EXE_clump"))
-            .arg("bench")
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(!o.status.success(), "{args:?} succeeded");
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = refused(args);
         assert!(
             err.contains(needle) && !err.contains("panicked"),
             "{args:?}: {err}"
