@@ -788,9 +788,10 @@ fn run_clump_stone(
         w.run(na)?;
         let a = t0.elapsed().as_secs_f64();
         w.stage_times = Default::default();
-        let (t1, r1) = (Instant::now(), w.rebuilds);
+        let (t1, r1, c1) = (Instant::now(), w.rebuilds, crate::cmd_bench::cpu_seconds());
         w.run(nb)?;
         let b = t1.elapsed().as_secs_f64();
+        let cb = crate::cmd_bench::cpu_seconds() - c1;
         let st = w.stage_times;
         let total = st.rows().iter().map(|r| r.1).sum::<f64>().max(1e-12);
         let shares: Vec<String> = st
@@ -799,10 +800,11 @@ fn run_clump_stone(
             .map(|(name, t)| format!("{name} {:.1} %", 100.0 * t / total))
             .collect();
         errln!(
-            "clump: phase B by stage: {} ({:.2} s of {:.2} s wall; {} rebuilds, skin {:.3} mm at the end, {:.1} ns per sphere-step)",
+            "clump: phase B by stage: {} ({:.2} s of {:.2} s wall, CPU time of all threads {:.2} s; {} rebuilds, skin {:.3} mm at the end, {:.1} ns per sphere-step)",
             shares.join(", "),
             total,
             b,
+            cb,
             w.rebuilds - r1,
             w.skin() * 1e3,
             1e9 * b / (w.spheres().len() as f64 * nb.max(1) as f64)

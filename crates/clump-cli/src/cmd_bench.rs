@@ -381,7 +381,7 @@ fn write_dump(w: &World, path: &Path) -> Result<()> {
 /// CPU time (user + system, all threads) of this process so far, s (Linux
 /// /proc/self/stat, 100 ticks per second): a load-independent companion of
 /// the wall times on a shared machine.
-fn cpu_seconds() -> f64 {
+pub(crate) fn cpu_seconds() -> f64 {
     std::fs::read_to_string("/proc/self/stat")
         .ok()
         .and_then(|s| {
