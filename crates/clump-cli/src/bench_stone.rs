@@ -892,6 +892,21 @@ fn settled_bed(
     Ok((poses, bbox))
 }
 
+/// What to prepare: stones and steps.
+#[derive(Debug, Clone, Copy)]
+pub struct Plan {
+    /// Number of stones.
+    pub n: usize,
+    /// Steps of phase A.
+    pub na: u64,
+    /// Steps of phase B.
+    pub nb: u64,
+    /// Bed: steps of the Clump-only settling.
+    pub settle: u64,
+    /// Bed: threads of the settling.
+    pub threads: usize,
+}
+
 /// Writes the case's files (initial condition, Clump scenario, LIGGGHTS
 /// input) into `dir`; for the bed, settles it first (or reuses the settled
 /// bed). Returns the files and the floor area under the bed, m².
@@ -899,13 +914,16 @@ pub fn prepare(
     case: StoneCase,
     dir: &Path,
     stone: &Stone,
-    n: usize,
-    na: u64,
-    nb: u64,
-    settle: u64,
-    threads: usize,
+    plan: &Plan,
 ) -> Result<(CaseFiles, f64)> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let Plan {
+        n,
+        na,
+        nb,
+        settle,
+        threads,
+    } = *plan;
     match case {
         StoneCase::Pile => {
             let poses = pile_poses(stone, n, 32452843)?;
@@ -947,7 +965,18 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
     } else {
         None
     };
-    let (files, footprint) = prepare(case, &dir, &stone, n, na, nb, args.bed_settle, args.threads)?;
+    let (files, footprint) = prepare(
+        case,
+        &dir,
+        &stone,
+        &Plan {
+            n,
+            na,
+            nb,
+            settle: args.bed_settle,
+            threads: args.threads,
+        },
+    )?;
     let nsph = stone.spheres.len();
     outln!(
         "{}: {n} stones of {nsph} spheres ({}; mass {:.4e} kg, bounding radius {:.1} mm), phase A {na} steps, phase B {nb} steps, clump threads {}; files in {}",
@@ -1072,7 +1101,19 @@ mod tests {
         let stone = load_stone("procedural").unwrap();
         assert_eq!(stone.spheres.len(), 50);
         let d = tmp("same");
-        let (files, _) = prepare(StoneCase::Pile, &d, &stone, 20, 10, 10, 0, 1).unwrap();
+        let (files, _) = prepare(
+            StoneCase::Pile,
+            &d,
+            &stone,
+            &Plan {
+                n: 20,
+                na: 10,
+                nb: 10,
+                settle: 0,
+                threads: 1,
+            },
+        )
+        .unwrap();
         // LIGGGHTS' side: the insertions and the template file it reads
         let ins = std::fs::read_to_string(files.liggghts.join("ins.in")).unwrap();
         let tpl = clump_io::template_file::read_template_file(&files.liggghts.join("stone.xyzr"))
