@@ -485,28 +485,29 @@ pub(crate) fn run_liggghts_input(
         .with_context(|| format!("running {} under /usr/bin/time", bin.display()))?;
     let text =
         String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
-    let loop_of = |steps: u64| -> Option<f64> {
-        text.lines()
-            .filter(|l| l.starts_with("Loop time of"))
-            .filter(|l| {
-                l.split_whitespace()
-                    .nth(8)
-                    .and_then(|x| x.parse::<u64>().ok())
-                    == Some(steps)
-            })
-            .filter_map(|l| l.split_whitespace().nth(3)?.parse().ok())
-            .next_back()
-    };
+    // "Loop time of T on P procs for N steps with M atoms": phase B is the
+    // last loop of `nb` steps, phase A the last loop of `na` steps before it
+    // (also when na = nb)
+    let loops: Vec<(u64, f64)> = text
+        .lines()
+        .filter(|l| l.starts_with("Loop time of"))
+        .filter_map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            Some((w.get(8)?.parse().ok()?, w.get(3)?.parse().ok()?))
+        })
+        .collect();
+    let ib = loops.iter().rposition(|l| l.0 == nb);
+    let ia = ib.and_then(|ib| loops[..ib].iter().rposition(|l| l.0 == na));
     let rss = text
         .lines()
         .find(|l| l.starts_with("MAXRSS_KB"))
         .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
         .unwrap_or(f64::NAN)
         / 1024.0;
-    match (loop_of(na), loop_of(nb)) {
+    match (ia, ib) {
         (Some(a), Some(b)) if out.status.success() => Ok(Figures {
-            a_seconds: a,
-            b_seconds: b,
+            a_seconds: loops[a].1,
+            b_seconds: loops[b].1,
             spheres,
             peak_rss_mb: rss,
         }),
