@@ -463,6 +463,7 @@ fn write_case(
     geometry: Geometry,
     na: u64,
     nb: u64,
+    liggghts_tangential: bool,
 ) -> Result<CaseFiles> {
     std::fs::create_dir_all(dir.join("liggghts"))
         .with_context(|| format!("creating {}", dir.join("liggghts").display()))?;
@@ -480,7 +481,7 @@ fn write_case(
          [domain]\nlo = [{}, {}, {}]\nhi = [{}, {}, {}]\n\n\
          [integrator]\nrotation = \"richardson\"\n\n\
          [[material]]\nname = \"stone\"\nyoungs_modulus = 1e7\npoisson_ratio = 0.45\ndensity = {DENSITY}\n\n\
-         [contact]\nlaw = \"hertz\"\ndamping = \"liggghts\"\nrestitution = 0.3\nfriction = 0.5\ntensile = true\n\n\
+         [contact]\nlaw = \"hertz\"\ndamping = \"liggghts\"\nrestitution = 0.3\nfriction = 0.5\ntensile = true\n{}\n\
          [[template]]\nname = \"stone\"\nmaterial = \"stone\"\nfile = \"stone.xyzr\"\n\n\
          [[insert]]\nkind = \"file\"\nstage = \"fall\"\nfile = \"ic.csv\"\nformat = \"csv\"\ntemplate = \"stone\"\norientation_frame = \"input\"\n\n\
          [[wall]]\nname = \"floor\"\nmaterial = \"stone\"\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n",
@@ -492,7 +493,12 @@ fn write_case(
         lo.z,
         hi.x,
         hi.y,
-        hi.z
+        hi.z,
+        if liggghts_tangential {
+            "tangential = \"liggghts\"\n"
+        } else {
+            ""
+        },
     )?;
     match geometry {
         Geometry::Pile => writeln!(
@@ -847,7 +853,15 @@ fn settled_bed(
         return Ok((read_ic(&cache)?, bbox));
     }
     let prep = dir.join("settle");
-    let files = write_case(&prep, stone, &lattice, Geometry::Bed(bbox), steps.max(1), 1)?;
+    let files = write_case(
+        &prep,
+        stone,
+        &lattice,
+        Geometry::Bed(bbox),
+        steps.max(1),
+        1,
+        false,
+    )?;
     errln!(
         "stone bed: settling {n} stones from the lattice in Clump alone, {steps} steps, {threads} threads (once; kept in {})",
         cache.display()
@@ -905,6 +919,8 @@ pub struct Plan {
     pub settle: u64,
     /// Bed: threads of the settling.
     pub threads: usize,
+    /// Clump uses LIGGGHTS' tangential rule.
+    pub liggghts_tangential: bool,
 }
 
 /// Writes the case's files (initial condition, Clump scenario, LIGGGHTS
@@ -923,16 +939,17 @@ pub fn prepare(
         nb,
         settle,
         threads,
+        liggghts_tangential: lt,
     } = *plan;
     match case {
         StoneCase::Pile => {
             let poses = pile_poses(stone, n, 32452843)?;
-            let files = write_case(dir, stone, &poses, Geometry::Pile, na, nb)?;
+            let files = write_case(dir, stone, &poses, Geometry::Pile, na, nb, lt)?;
             Ok((files, std::f64::consts::PI * PILE_WALL_RADIUS.powi(2)))
         }
         StoneCase::Bed => {
             let (poses, bbox) = settled_bed(dir, stone, n, 2024, settle, threads)?;
-            let files = write_case(dir, stone, &poses, Geometry::Bed(bbox), na, nb)?;
+            let files = write_case(dir, stone, &poses, Geometry::Bed(bbox), na, nb, lt)?;
             Ok((files, 4.0 * bbox.hx * bbox.hy))
         }
     }
@@ -975,6 +992,7 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
             nb,
             settle: args.bed_settle,
             threads: args.threads,
+            liggghts_tangential: args.liggghts_tangential,
         },
     )?;
     let nsph = stone.spheres.len();
@@ -1111,6 +1129,7 @@ mod tests {
                 nb: 10,
                 settle: 0,
                 threads: 1,
+                liggghts_tangential: false,
             },
         )
         .unwrap();

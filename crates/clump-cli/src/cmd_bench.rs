@@ -51,6 +51,11 @@ pub struct BenchArgs {
     /// stone bed is kept there and reused.
     #[arg(long)]
     pub work: Option<PathBuf>,
+    /// Stone cases: Clump uses LIGGGHTS' tangential rule (`tangential =
+    /// "liggghts"`, a scalar path) instead of its default, for the physics
+    /// comparison.
+    #[arg(long)]
+    pub liggghts_tangential: bool,
     /// Stone bed: steps of the Clump-only settling that makes the common
     /// initial condition from the loose lattice (done once, kept in `--work`).
     #[arg(long, default_value_t = 40000)]
