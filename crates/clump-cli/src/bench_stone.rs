@@ -1182,6 +1182,14 @@ mod tests {
         let input = std::fs::read_to_string(files.liggghts.join("in.stone")).unwrap();
         assert!(input.contains(&format!("mass {:.9e}", stone.template.mass)));
         assert!(input.contains("zcylinder 0.26"));
+        // Clump's own tangential rule unless asked for LIGGGHTS'
+        let sc = std::fs::read_to_string(&files.scenario).unwrap();
+        assert!(!sc.contains("tangential"));
+        let poses = read_ic(&d.join("ic.csv")).unwrap();
+        let f = write_case(&d.join("lt"), &stone, &poses, Geometry::Pile, 1, 1, true).unwrap();
+        let sc = std::fs::read_to_string(&f.scenario).unwrap();
+        assert!(sc.contains("tangential = \"liggghts\""));
+        crate::cmd_bench::build_world(&f.scenario, None).unwrap();
         let _ = std::fs::remove_dir_all(&d);
     }
 
