@@ -1,5 +1,6 @@
 //! `clump bench`: the shared tetra-bed benchmark (../shared/bench/tetra-bed),
-//! timed phase by phase, optionally side by side with LIGGGHTS.
+//! timed phase by phase, optionally side by side with LIGGGHTS; with
+//! `--case stone-pile | stone-bed` the stone benchmarks of [`crate::bench_stone`].
 //!
 //! The case: 4-sphere tetrahedral clumps (r = 1 mm, edge 1.2 mm, ρ = 2500)
 //! fall from a common initial condition into a 40 × 40 mm box and settle;
@@ -16,9 +17,49 @@ use clump_io::scenario::InsertSpec;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+/// The benchmark case of `clump bench`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Case {
+    /// The shared tetra bed (../shared/bench/tetra-bed).
+    Tetra,
+    /// 200 many-sphere stones falling into a cylinder r = 0.26 m (LIGGGHTS'
+    /// stone tutorial's region and materials).
+    StonePile,
+    /// 2000 stones settled in a box, the dense bed timed on its own.
+    StoneBed,
+}
+
 /// Arguments of `clump bench`.
 #[derive(Debug, Args)]
 pub struct BenchArgs {
+    /// The case: `tetra` (the shared tetra bed), `stone-pile` or `stone-bed`
+    /// (many-sphere stones, with the LIGGGHTS input generated from the same
+    /// initial condition; see `--stone`).
+    #[arg(long, value_enum, default_value_t = Case::Tetra)]
+    pub case: Case,
+    /// Stone cases: the stone. `liggghts`: LIGGGHTS' tutorial stone
+    /// `stone1.multisphere` (50 spheres, from Debian's liggghts-doc; GPL data,
+    /// not shipped); `procedural`: a shipped stand-in of the same size and
+    /// sphere count; or a file of `x y z r` rows in mm.
+    #[arg(long, default_value = "liggghts")]
+    pub stone: String,
+    /// Stone cases: number of stones (default 200 for the pile, 2000 for the bed).
+    #[arg(long)]
+    pub stones: Option<usize>,
+    /// Stone cases: folder for the generated initial condition, Clump
+    /// scenario and LIGGGHTS input (default `out/bench-<case>`); the settled
+    /// stone bed is kept there and reused.
+    #[arg(long)]
+    pub work: Option<PathBuf>,
+    /// Stone cases: Clump uses LIGGGHTS' tangential rule (`tangential =
+    /// "liggghts"`, a scalar path) instead of its default, for the physics
+    /// comparison.
+    #[arg(long)]
+    pub liggghts_tangential: bool,
+    /// Stone bed: steps of the Clump-only settling that makes the common
+    /// initial condition from the loose lattice (done once, kept in `--work`).
+    #[arg(long, default_value_t = 40000)]
+    pub bed_settle: u64,
     /// The benchmark folder (holds tetra.xyzr, ic_N.txt, liggghts/).
     #[arg(long, default_value = "../shared/bench/tetra-bed")]
     pub dir: PathBuf,
@@ -79,11 +120,18 @@ pub struct BenchArgs {
 
 /// Figures of one timed run.
 #[derive(Debug, Clone, Copy)]
-struct Figures {
-    a_seconds: f64,
-    b_seconds: f64,
-    spheres: usize,
-    peak_rss_mb: f64,
+pub(crate) struct Figures {
+    pub(crate) a_seconds: f64,
+    pub(crate) b_seconds: f64,
+    pub(crate) spheres: usize,
+    pub(crate) peak_rss_mb: f64,
+}
+
+/// The median of `key` over `v` (the upper one of an even count).
+pub(crate) fn median(v: &[Figures], key: fn(&Figures) -> f64) -> f64 {
+    let mut x: Vec<f64> = v.iter().map(key).collect();
+    x.sort_by(f64::total_cmp);
+    x[x.len() / 2]
 }
 
 /// Runs the benchmark.
@@ -93,6 +141,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     if !args.scaling.is_empty() {
         return scaling(args);
+    }
+    match args.case {
+        Case::Tetra => {}
+        Case::StonePile => {
+            return crate::bench_stone::run(args, crate::bench_stone::StoneCase::Pile)
+        }
+        Case::StoneBed => return crate::bench_stone::run(args, crate::bench_stone::StoneCase::Bed),
     }
     let rounds = args.liggghts_rounds.max(1);
     let lig = if args.liggghts_rounds > 0 {
@@ -164,7 +219,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     Ok(())
 }
 
-fn report(code: &str, round: usize, na: u64, nb: u64, f: &Figures) {
+pub(crate) fn report(code: &str, round: usize, na: u64, nb: u64, f: &Figures) {
     let ns = f.spheres as f64;
     outln!(
         "round {round} {code}: A {:.2} s ({:.3} M sph-steps/s)  B {:.2} s ({:.3} M sph-steps/s)  peak RSS {:.0} MB",
@@ -176,7 +231,7 @@ fn report(code: &str, round: usize, na: u64, nb: u64, f: &Figures) {
     );
 }
 
-fn which(name: &str) -> Option<PathBuf> {
+pub(crate) fn which(name: &str) -> Option<PathBuf> {
     std::env::var_os("PATH").and_then(|p| {
         std::env::split_paths(&p)
             .map(|d| d.join(name))
@@ -245,16 +300,7 @@ fn run_clump(args: &BenchArgs, na: u64, nb: u64) -> Result<Figures> {
             ns * na as f64 / ca / 1e6,
             ns * nb as f64 / cb / 1e6
         );
-        let th = w.thermo();
-        errln!(
-            "clump: {} bodies, {} contacts, lost {}, KE {:.3e} J, rebuilds {}",
-            th.bodies,
-            th.pair_contacts + th.wall_contacts,
-            th.lost_bodies,
-            th.kinetic_translational + th.kinetic_rotational,
-            w.rebuilds
-        );
-        eprintln!("clump: state fingerprint {:016x}", state_fingerprint(&w));
+        print_end_state(&w);
         if let Some(p) = &args.dump {
             write_dump(&w, p)?;
         }
@@ -265,6 +311,21 @@ fn run_clump(args: &BenchArgs, na: u64, nb: u64) -> Result<Figures> {
             peak_rss_mb: peak_rss_mb(),
         })
     })
+}
+
+/// Prints (stderr) the bodies, contacts, lost bodies, kinetic energy and
+/// rebuilds of `w` at the end of a timed run, and its state fingerprint.
+pub(crate) fn print_end_state(w: &World) {
+    let th = w.thermo();
+    errln!(
+        "clump: {} bodies, {} contacts, lost {}, KE {:.3e} J, rebuilds {}",
+        th.bodies,
+        th.pair_contacts + th.wall_contacts,
+        th.lost_bodies,
+        th.kinetic_translational + th.kinetic_rotational,
+        w.rebuilds
+    );
+    errln!("clump: state fingerprint {:016x}", state_fingerprint(w));
 }
 
 /// FNV-1a hash of every body's position, velocity, angular momentum and
@@ -325,7 +386,7 @@ fn write_dump(w: &World, path: &Path) -> Result<()> {
 /// CPU time (user + system, all threads) of this process so far, s (Linux
 /// /proc/self/stat, 100 ticks per second): a load-independent companion of
 /// the wall times on a shared machine.
-fn cpu_seconds() -> f64 {
+pub(crate) fn cpu_seconds() -> f64 {
     std::fs::read_to_string("/proc/self/stat")
         .ok()
         .and_then(|s| {
@@ -338,7 +399,7 @@ fn cpu_seconds() -> f64 {
 }
 
 /// Peak resident set size of this process so far, MB (Linux VmHWM).
-fn peak_rss_mb() -> f64 {
+pub(crate) fn peak_rss_mb() -> f64 {
     proc_status_mb("VmHWM:")
 }
 
@@ -387,54 +448,77 @@ fn run_liggghts(args: &BenchArgs, bin: &Path, na: u64, nb: u64) -> Result<Figure
     if !ok.success() {
         bail!("gen_liggghts.py failed");
     }
-    let out = std::process::Command::new("/usr/bin/time")
-        .args(["-f", "MAXRSS_KB %M"])
+    let vars = [
+        ("N", args.n.to_string()),
+        ("ZTOP", ztop.to_string()),
+        ("NA", na.to_string()),
+        ("NB", nb.to_string()),
+    ];
+    // the insertion include runs many 1-step loops first; phase A and B are
+    // the last loops of NA and NB steps
+    let figures = run_liggghts_input(bin, &work, "in.bench", &vars, na, nb, 4 * args.n)?;
+    if let Some(p) = &args.dump {
+        let f = work.join(format!("final_{}.dump", args.n));
+        let _ = std::fs::copy(f, p.with_extension("liggghts.dump"));
+    }
+    let _ = std::fs::remove_dir_all(&work_root);
+    Ok(figures)
+}
+
+/// Runs LIGGGHTS on `input` in `dir` with `vars` (`-var NAME VALUE`),
+/// under `/usr/bin/time` for its peak memory; phase A and B are the last
+/// loops of `na` and `nb` steps.
+pub(crate) fn run_liggghts_input(
+    bin: &Path,
+    dir: &Path,
+    input: &str,
+    vars: &[(&str, String)],
+    na: u64,
+    nb: u64,
+    spheres: usize,
+) -> Result<Figures> {
+    let mut cmd = std::process::Command::new("/usr/bin/time");
+    cmd.args(["-f", "MAXRSS_KB %M"])
         .arg(bin)
-        .args([
-            "-in",
-            "in.bench",
-            "-var",
-            "N",
-            &args.n.to_string(),
-            "-var",
-            "ZTOP",
-            ztop,
-            "-var",
-            "NA",
-            &na.to_string(),
-            "-var",
-            "NB",
-            &nb.to_string(),
-        ])
-        .current_dir(&work)
-        .output()?;
+        .args(["-in", input]);
+    for (k, v) in vars {
+        cmd.args(["-var", k, v]);
+    }
+    let out = cmd
+        .current_dir(dir)
+        .output()
+        .with_context(|| format!("running {} under /usr/bin/time", bin.display()))?;
     let text =
         String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
-    // "Loop time of T on P procs for N steps with M atoms": the insertion
-    // include runs many 1-step loops first; phase A and B are the last loops
-    // of NA and NB steps.
-    let loop_of = |steps: u64| -> Option<f64> {
-        text.lines()
-            .filter(|l| l.starts_with("Loop time of"))
-            .filter(|l| {
-                l.split_whitespace()
-                    .nth(8)
-                    .and_then(|x| x.parse::<u64>().ok())
-                    == Some(steps)
-            })
-            .filter_map(|l| l.split_whitespace().nth(3)?.parse().ok())
-            .next_back()
-    };
-    let loops: Vec<f64> = [loop_of(na), loop_of(nb)].into_iter().flatten().collect();
+    // "Loop time of T on P procs for N steps with M atoms": phase B is the
+    // last loop of `nb` steps, phase A the last loop of `na` steps before it
+    // (also when na = nb)
+    let loops: Vec<(u64, f64)> = text
+        .lines()
+        .filter(|l| l.starts_with("Loop time of"))
+        .filter_map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            Some((w.get(8)?.parse().ok()?, w.get(3)?.parse().ok()?))
+        })
+        .collect();
+    let ib = loops.iter().rposition(|l| l.0 == nb);
+    let ia = ib.and_then(|ib| loops[..ib].iter().rposition(|l| l.0 == na));
     let rss = text
         .lines()
         .find(|l| l.starts_with("MAXRSS_KB"))
         .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
         .unwrap_or(f64::NAN)
         / 1024.0;
-    if loops.len() < 2 {
-        bail!(
-            "could not read LIGGGHTS' loop times; its output ends with:\n{}",
+    match (ia, ib) {
+        (Some(a), Some(b)) if out.status.success() => Ok(Figures {
+            a_seconds: loops[a].1,
+            b_seconds: loops[b].1,
+            spheres,
+            peak_rss_mb: rss,
+        }),
+        _ => bail!(
+            "LIGGGHTS failed or its loop times could not be read (input {}); its output ends with:\n{}",
+            dir.join(input).display(),
             text.lines()
                 .rev()
                 .take(20)
@@ -443,19 +527,8 @@ fn run_liggghts(args: &BenchArgs, bin: &Path, na: u64, nb: u64) -> Result<Figure
                 .rev()
                 .collect::<Vec<_>>()
                 .join("\n")
-        );
+        ),
     }
-    if let Some(p) = &args.dump {
-        let f = work.join(format!("final_{}.dump", args.n));
-        let _ = std::fs::copy(f, p.with_extension("liggghts.dump"));
-    }
-    let _ = std::fs::remove_dir_all(&work_root);
-    Ok(Figures {
-        a_seconds: loops[0],
-        b_seconds: loops[1],
-        spheres: 4 * args.n,
-        peak_rss_mb: rss,
-    })
 }
 
 /// Spheres in the settled tile of the scaling study (about 10⁴).

@@ -11,6 +11,7 @@ use std::process::ExitCode;
 #[macro_use]
 mod term;
 
+mod bench_stone;
 mod check_words;
 mod cmd_bench;
 mod cmd_check;
@@ -39,7 +40,7 @@ enum Commands {
     Resume(cmd_resume::ResumeArgs),
     /// Mass properties of a multi-sphere template file (`x y z r` per line).
     Template(cmd_template::TemplateArgs),
-    /// The shared tetra-bed benchmark, optionally side by side with LIGGGHTS.
+    /// Benchmarks (the shared tetra bed; `--case stone-pile`, `stone-bed`), optionally side by side with LIGGGHTS.
     Bench(cmd_bench::BenchArgs),
     /// Run the validation suite and write report.md with PNG plots.
     Validate(cmd_validate::ValidateArgs),

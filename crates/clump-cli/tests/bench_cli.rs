@@ -3,6 +3,17 @@
 
 use std::process::Command;
 
+/// Runs `clump bench ARGS`, checks that it fails, and returns its stderr.
+fn refused(args: &[&str]) -> String {
+    let o = Command::new(env!("CARGO_BIN_EXE_clump"))
+        .arg("bench")
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(!o.status.success(), "{args:?} succeeded");
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
 #[test]
 fn bench_bad_options_are_named_errors() {
     for (args, needle) in [
@@ -10,16 +21,77 @@ fn bench_bad_options_are_named_errors() {
         (&["--scaling", "10000,0"][..], "--scaling"),
         (&["--scaling", "10000", "--steps", "0"][..], "--steps"),
     ] {
-        let o = Command::new(env!("CARGO_BIN_EXE_clump"))
-            .arg("bench")
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(!o.status.success(), "{args:?} succeeded");
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = refused(args);
         assert!(
             err.contains(needle) && err.contains("got 0"),
             "{args:?}: {err}"
         );
     }
+}
+
+/// The stone cases refuse a missing stone template, or no stones, with a
+/// named error (no panic), and run a tiny procedural pile end to end.
+#[test]
+fn stone_bench_errors_and_a_tiny_procedural_pile() {
+    for (args, needle) in [
+        (
+            &[
+                "--case",
+                "stone-pile",
+                "--stone",
+                "/nonexistent/stone1.multisphere",
+            ][..],
+            "no stone template file at /nonexistent/stone1.multisphere",
+        ),
+        (
+            &[
+                "--case",
+                "stone-bed",
+                "--stone",
+                "procedural",
+                "--stones",
+                "0",
+            ][..],
+            "--stones",
+        ),
+    ] {
+        let err = refused(args);
+        assert!(
+            err.contains(needle) && !err.contains("panicked"),
+            "{args:?}: {err}"
+        );
+    }
+    let work = std::env::temp_dir().join(format!("clump-bench-stone-cli-{}", std::process::id()));
+    let o = Command::new(env!("CARGO_BIN_EXE_clump"))
+        .args([
+            "bench",
+            "--case",
+            "stone-pile",
+            "--stone",
+            "procedural",
+            "--stones",
+            "10",
+        ])
+        .args(["--na", "20", "--nb", "10", "--work"])
+        .arg(&work)
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{out}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(out.contains("stone-pile: 10 stones of 50 spheres"), "{out}");
+    assert!(out.contains("physics clump"), "{out}");
+    for f in [
+        "scenario.toml",
+        "ic.csv",
+        "stone.xyzr",
+        "liggghts/in.stone",
+        "liggghts/ins.in",
+    ] {
+        assert!(work.join(f).is_file(), "{f} missing");
+    }
+    let _ = std::fs::remove_dir_all(&work);
 }
