@@ -1,0 +1,550 @@
+//! `clump bench --case stone-pile | stone-bed`: many-sphere asymmetric
+//! stones, side by side with LIGGGHTS, both codes starting from the same
+//! initial condition (the tetra-bed way).
+//!
+//! The stone is LIGGGHTS' own `stone1.multisphere` (50 spheres, radii 2.8 to
+//! 10.4 mm, about 56 × 22 × 41 mm; GPL data of Debian's `liggghts-doc`, read
+//! from the install and never shipped), or a procedurally made stone of the
+//! same size and sphere count (`--stone procedural`), or any `x y z r` file
+//! in mm. Material and contact are those of LIGGGHTS' tutorial
+//! `multisphere_stone_restitution`: E = 10 MPa, ν = 0.45, ρ = 2500 kg/m³,
+//! e = 0.3, μ = 0.5, Hertz–Mindlin with history, dt = 1e-5 s, LIGGGHTS'
+//! damping law and no tensile clamp (`limitForce off`), Richardson rotation
+//! (LIGGGHTS' `fix multisphere` scheme).
+//!
+//! The bench writes, in `--work`: the stone shifted to its centre of mass
+//! (`stone.xyzr`, m; both codes read it, and LIGGGHTS gets Clump's exact mass
+//! and inertia tensor so that both integrate the same body, instead of its
+//! Monte-Carlo estimate), the initial condition (`ic.csv`: centre of mass,
+//! quaternion mapping the file frame to the world, vz), the Clump scenario
+//! (`scenario.toml`) and the LIGGGHTS input (`liggghts/in.stone`, with
+//! `liggghts/ins.in` placing each stone at its pose).
+//!
+//! - **stone pile**: `--stones` (200) stones at random poses (seeded, no two
+//!   overlapping) in the tutorial's insertion region, the cylinder r = 0.25 m,
+//!   0.1 < z < 0.4 m, moving down at 1 m/s, fall into a cylinder r = 0.26 m
+//!   on the floor z = 0. Phase A: the fall; phase B: the pile, timed on its own.
+//! - **stone bed**: `--stones` (2000) stones on a loose lattice (each stone
+//!   along its principal axes, turned by a random half turn, jittered) in a
+//!   box of about 0.6 × 0.6 m are settled by Clump alone (`--bed-settle`
+//!   steps; the settled poses are kept in `--work` and reused), and both
+//!   codes start from the settled poses at rest: phase A re-settles (the
+//!   contact histories start from zero), phase B is the dense bed, timed on
+//!   its own.
+//!
+//! After the rounds the bench compares the physics of the two codes' final
+//! states (the last round's): bed height, packing fraction and contacts,
+//! computed the same way from the final sphere centres of both.
+
+use crate::cmd_bench::{
+    median, peak_rss_mb, report, run_liggghts_input, which, BenchArgs, Figures,
+};
+use anyhow::{bail, Context, Result};
+use clump_core::shape::sphere::Sphere;
+use clump_core::shape::template::ClumpTemplate;
+use glam::{DQuat, DVec3};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+mod case_files;
+mod physics;
+mod poses;
+mod stone;
+pub use case_files::*;
+pub use physics::*;
+pub use poses::*;
+pub use stone::*;
+
+/// LIGGGHTS' stone of the tutorial `multisphere_stone_restitution` (Debian
+/// `liggghts-doc`), 50 spheres in mm.
+pub const LIGGGHTS_STONE: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public/multisphere_stone_restitution/data/stone1.multisphere";
+
+/// The stone cases.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StoneCase {
+    /// Stones falling into a cylinder.
+    Pile,
+    /// A dense bed of stones in a box.
+    Bed,
+}
+
+impl StoneCase {
+    fn name(self) -> &'static str {
+        match self {
+            StoneCase::Pile => "stone-pile",
+            StoneCase::Bed => "stone-bed",
+        }
+    }
+}
+
+/// Density of the stone, kg/m³ (the tutorial's).
+const DENSITY: f64 = 2500.0;
+/// Radius of the pile's container, m.
+const PILE_WALL_RADIUS: f64 = 0.26;
+/// The tutorial's insertion region: cylinder radius, bottom and top, m.
+const PILE_REGION: (f64, f64, f64) = (0.25, 0.1, 0.4);
+/// Initial velocity of the pile's stones, m/s (the tutorial's).
+const PILE_VZ: f64 = -1.0;
+/// Side of the bed's box footprint, m (about).
+const BED_SIDE: f64 = 0.6;
+/// Gap between lattice cells of the bed, m.
+const BED_GAP: f64 = 0.002;
+/// LIGGGHTS' neighbour skin, m (the tutorial's 4 mm is 1.4 smallest radii;
+/// 1 mm keeps its lists as lean as Clump's).
+const LIGGGHTS_SKIN: f64 = 0.001;
+
+/// Runs Clump on `scenario` for `na` + `nb` steps; the figures and the final state.
+fn run_clump_stone(
+    scenario: &Path,
+    threads: usize,
+    skin: Option<f64>,
+    na: u64,
+    nb: u64,
+) -> Result<(Figures, FinalState)> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()?;
+    pool.install(|| {
+        let (mut w, _, _) = crate::cmd_bench::build_world(scenario, skin)?;
+        w.prepare()?;
+        let t0 = Instant::now();
+        w.run(na)?;
+        let a = t0.elapsed().as_secs_f64();
+        w.stage_times = Default::default();
+        let (t1, r1, c1) = (Instant::now(), w.rebuilds, crate::cmd_bench::cpu_seconds());
+        w.run(nb)?;
+        let b = t1.elapsed().as_secs_f64();
+        let cb = crate::cmd_bench::cpu_seconds() - c1;
+        let st = w.stage_times;
+        let total = st.rows().iter().map(|r| r.1).sum::<f64>().max(1e-12);
+        let shares: Vec<String> = st
+            .rows()
+            .iter()
+            .map(|(name, t)| format!("{name} {:.1} %", 100.0 * t / total))
+            .collect();
+        errln!(
+            "clump: phase B by stage: {} ({:.2} s of {:.2} s wall, CPU time of all threads {:.2} s; {} rebuilds, skin {:.3} mm at the end, {:.1} ns per sphere-step)",
+            shares.join(", "),
+            total,
+            b,
+            cb,
+            w.rebuilds - r1,
+            w.skin() * 1e3,
+            1e9 * b / (w.spheres().len() as f64 * nb.max(1) as f64)
+        );
+        crate::cmd_bench::print_end_state(&w);
+        Ok((
+            Figures {
+                a_seconds: a,
+                b_seconds: b,
+                spheres: w.spheres().len(),
+                peak_rss_mb: peak_rss_mb(),
+            },
+            clump_final(&w),
+        ))
+    })
+}
+
+/// Settles the bed's lattice in Clump alone (`steps` steps) and returns
+/// the settled poses at rest. Reuses `settled.csv` in `dir` when its key
+/// line matches.
+fn settled_bed(
+    dir: &Path,
+    stone: &Stone,
+    n: usize,
+    seed: u64,
+    steps: u64,
+    threads: usize,
+) -> Result<(Vec<Pose>, BedBox)> {
+    let (lattice, bbox) = bed_lattice(stone, n, seed);
+    let key = format!(
+        "# settled stone bed: stones {n}, seed {seed}, settle {steps}, stone {} ({} spheres, mass {:.9e})",
+        stone.source,
+        stone.spheres.len(),
+        stone.template.mass
+    );
+    let cache = dir.join("settled.csv");
+    let keyfile = dir.join("settled.key");
+    if cache.is_file() && std::fs::read_to_string(&keyfile).ok().as_deref() == Some(key.as_str()) {
+        errln!("stone bed: reusing the settled bed {}", cache.display());
+        return Ok((read_ic(&cache)?, bbox));
+    }
+    let prep = dir.join("settle");
+    let files = write_case(
+        &prep,
+        stone,
+        &lattice,
+        Geometry::Bed(bbox),
+        steps.max(1),
+        1,
+        false,
+    )?;
+    errln!(
+        "stone bed: settling {n} stones from the lattice in Clump alone, {steps} steps, {threads} threads (once; kept in {})",
+        cache.display()
+    );
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()?;
+    let t0 = Instant::now();
+    let poses = pool.install(|| -> Result<Vec<Pose>> {
+        let (mut w, _, _) = crate::cmd_bench::build_world(&files.scenario, None)?;
+        w.prepare()?;
+        w.run(steps)?;
+        let th = w.thermo();
+        errln!(
+            "stone bed: settled in {:.0} s: KE {:.3e} J, {} contacts, lost {}",
+            t0.elapsed().as_secs_f64(),
+            th.kinetic_translational + th.kinetic_rotational,
+            th.pair_contacts + th.wall_contacts,
+            th.lost_bodies
+        );
+        if th.lost_bodies > 0 {
+            bail!(
+                "stone bed: {} stones were lost while settling",
+                th.lost_bodies
+            );
+        }
+        let to_body = stone.template.input_to_body;
+        let mut order: Vec<usize> = (0..w.bodies.len()).collect();
+        order.sort_by_key(|&b| w.bodies.id[b]);
+        Ok(order
+            .into_iter()
+            .map(|b| Pose {
+                x: w.bodies.position[b],
+                // body → world times file → body
+                q: (w.bodies.orientation[b] * to_body).normalize(),
+                vz: 0.0,
+            })
+            .collect())
+    })?;
+    write_ic(&poses, &cache)?;
+    std::fs::write(&keyfile, &key)?;
+    Ok((poses, bbox))
+}
+
+/// What to prepare: stones and steps.
+#[derive(Debug, Clone, Copy)]
+pub struct Plan {
+    /// Number of stones.
+    pub n: usize,
+    /// Steps of phase A.
+    pub na: u64,
+    /// Steps of phase B.
+    pub nb: u64,
+    /// Bed: steps of the Clump-only settling.
+    pub settle: u64,
+    /// Bed: threads of the settling.
+    pub threads: usize,
+    /// Clump uses LIGGGHTS' tangential rule.
+    pub liggghts_tangential: bool,
+}
+
+/// Writes the case's files (initial condition, Clump scenario, LIGGGHTS
+/// input) into `dir`; for the bed, settles it first (or reuses the settled
+/// bed). Returns the files and the floor area under the bed, m².
+pub fn prepare(
+    case: StoneCase,
+    dir: &Path,
+    stone: &Stone,
+    plan: &Plan,
+) -> Result<(CaseFiles, f64)> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let Plan {
+        n,
+        na,
+        nb,
+        settle,
+        threads,
+        liggghts_tangential: lt,
+    } = *plan;
+    match case {
+        StoneCase::Pile => {
+            let poses = pile_poses(stone, n, 32452843)?;
+            let files = write_case(dir, stone, &poses, Geometry::Pile, na, nb, lt)?;
+            Ok((files, std::f64::consts::PI * PILE_WALL_RADIUS.powi(2)))
+        }
+        StoneCase::Bed => {
+            let (poses, bbox) = settled_bed(dir, stone, n, 2024, settle, threads)?;
+            let files = write_case(dir, stone, &poses, Geometry::Bed(bbox), na, nb, lt)?;
+            Ok((files, 4.0 * bbox.hx * bbox.hy))
+        }
+    }
+}
+
+/// `clump bench --case stone-pile | stone-bed`.
+pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
+    let stone = load_stone(&args.stone)?;
+    let n = args.stones.unwrap_or(match case {
+        StoneCase::Pile => 200,
+        StoneCase::Bed => 2000,
+    });
+    if n == 0 {
+        bail!("--stones: the bench needs at least one stone");
+    }
+    let (na, nb) = match case {
+        StoneCase::Pile => (args.na.unwrap_or(30000), args.nb.unwrap_or(10000)),
+        StoneCase::Bed => (args.na.unwrap_or(2000), args.nb.unwrap_or(10000)),
+    };
+    let dir = args
+        .work
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(format!("out/bench-{}", case.name())));
+    let lig = if args.liggghts_rounds > 0 {
+        let l = which("liggghts");
+        if l.is_none() {
+            errln!("liggghts is not installed (apt-get install liggghts): running Clump only");
+        }
+        l
+    } else {
+        None
+    };
+    let (files, footprint) = prepare(
+        case,
+        &dir,
+        &stone,
+        &Plan {
+            n,
+            na,
+            nb,
+            settle: args.bed_settle,
+            threads: args.threads,
+            liggghts_tangential: args.liggghts_tangential,
+        },
+    )?;
+    let nsph = stone.spheres.len();
+    outln!(
+        "{}: {n} stones of {nsph} spheres ({}; mass {:.4e} kg, bounding radius {:.1} mm), phase A {na} steps, phase B {nb} steps, clump threads {}; files in {}",
+        case.name(),
+        stone.source,
+        stone.template.mass,
+        stone.template.bounding_radius * 1e3,
+        args.threads,
+        dir.display()
+    );
+    let rounds = args.liggghts_rounds.max(1);
+    let (mut clump, mut peer) = (Vec::new(), Vec::new());
+    let (mut cfin, mut lfin) = (None, None);
+    for round in 0..rounds {
+        let (f, fin) = run_clump_stone(&files.scenario, args.threads, args.skin, na, nb)?;
+        report("clump", round, na, nb, &f);
+        clump.push(f);
+        cfin = Some(fin);
+        if let Some(bin) = &lig {
+            let vars = [("NA", na.to_string()), ("NB", nb.to_string())];
+            let f = run_liggghts_input(bin, &files.liggghts, "in.stone", &vars, na, nb, n * nsph)?;
+            report("liggghts", round, na, nb, &f);
+            peer.push(f);
+            lfin = Some(liggghts_final(&files.liggghts.join("final.dump"), nsph)?);
+        }
+    }
+    let tput = |s: f64, steps: u64| (n * nsph) as f64 * steps as f64 / s;
+    let (ca, cb) = (
+        tput(median(&clump, |f| f.a_seconds), na),
+        tput(median(&clump, |f| f.b_seconds), nb),
+    );
+    outln!(
+        "clump    (threads {}): phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s (medians), peak RSS {:.0} MB",
+        args.threads,
+        ca / 1e6,
+        cb / 1e6,
+        median(&clump, |f| f.peak_rss_mb)
+    );
+    if !peer.is_empty() {
+        let (la, lb) = (
+            tput(median(&peer, |f| f.a_seconds), na),
+            tput(median(&peer, |f| f.b_seconds), nb),
+        );
+        outln!(
+            "liggghts (serial):    phase A {:.3} M sphere-steps/s, phase B {:.3} M sphere-steps/s (medians), peak RSS {:.0} MB",
+            la / 1e6,
+            lb / 1e6,
+            median(&peer, |f| f.peak_rss_mb)
+        );
+        for (phase, key) in [
+            ("A", (|f: &Figures| f.a_seconds) as fn(&Figures) -> f64),
+            ("B", |f: &Figures| f.b_seconds),
+        ] {
+            let mut r: Vec<f64> = clump
+                .iter()
+                .zip(&peer)
+                .map(|(c, l)| key(l) / key(c))
+                .collect();
+            let list: Vec<String> = r.iter().map(|x| format!("{x:.2}x")).collect();
+            r.sort_by(f64::total_cmp);
+            outln!(
+                "phase {phase} ratio clump/liggghts per round: {}; median {:.2}x",
+                list.join(", "),
+                r[r.len() / 2]
+            );
+        }
+    }
+    let vol = stone.template.volume;
+    if let Some(c) = &cfin {
+        let pc = physics(c, vol, footprint);
+        print_physics("clump", &pc, case);
+        if let Some(l) = &lfin {
+            let pl = physics(l, vol, footprint);
+            print_physics("liggghts", &pl, case);
+            let rel = |a: f64, b: f64| 100.0 * (a - b) / b;
+            outln!(
+                "physics clump vs liggghts: mean sphere height {:+.2} %, surface {:+.2} %, packing fraction {:+.2} %, sphere contacts {:+.2} %, body contacts {:+.2} %",
+                rel(pc.mean_z, pl.mean_z),
+                rel(pc.surface, pl.surface),
+                rel(pc.phi, pl.phi),
+                rel(pc.sphere_contacts as f64, pl.sphere_contacts as f64),
+                rel(pc.body_contacts as f64, pl.body_contacts as f64)
+            );
+        }
+    }
+    Ok(())
+}
+
+fn print_physics(code: &str, p: &Physics, case: StoneCase) {
+    outln!(
+        "physics {code:8}: {} bodies, mean sphere height {:.4} m, surface {:.4} m, {} {:.4}, sphere contacts {}, body contacts {}",
+        p.bodies,
+        p.mean_z,
+        p.surface,
+        match case {
+            StoneCase::Pile => "packing fraction (of the container floor, a loose pile)",
+            StoneCase::Bed => "packing fraction",
+        },
+        p.phi,
+        p.sphere_contacts,
+        p.body_contacts
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tmp(name: &str) -> PathBuf {
+        let d =
+            std::env::temp_dir().join(format!("clump-bench-stone-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        d
+    }
+
+    /// The LIGGGHTS input and the Clump scenario describe the same bodies:
+    /// the spheres Clump builds from scenario.toml sit where LIGGGHTS'
+    /// insertions put them (pose of ins.in applied to liggghts/stone.xyzr),
+    /// and LIGGGHTS gets Clump's mass.
+    #[test]
+    fn liggghts_input_and_clump_scenario_describe_the_same_bodies() {
+        let stone = load_stone("procedural").unwrap();
+        assert_eq!(stone.spheres.len(), 50);
+        let d = tmp("same");
+        let (files, _) = prepare(
+            StoneCase::Pile,
+            &d,
+            &stone,
+            &Plan {
+                n: 20,
+                na: 10,
+                nb: 10,
+                settle: 0,
+                threads: 1,
+                liggghts_tangential: false,
+            },
+        )
+        .unwrap();
+        // LIGGGHTS' side: the insertions and the template file it reads
+        let ins = std::fs::read_to_string(files.liggghts.join("ins.in")).unwrap();
+        let tpl = clump_io::template_file::read_template_file(&files.liggghts.join("stone.xyzr"))
+            .unwrap();
+        let mut lig = Vec::new();
+        let lines: Vec<&str> = ins.lines().collect();
+        for w in lines.windows(2) {
+            if !w[0].starts_with("region r") {
+                continue;
+            }
+            let r: Vec<f64> = w[0]
+                .split_whitespace()
+                .skip(3)
+                .take(6)
+                .map(|x| x.parse().unwrap())
+                .collect();
+            let x = DVec3::new(
+                0.5 * (r[0] + r[1]),
+                0.5 * (r[2] + r[3]),
+                0.5 * (r[4] + r[5]),
+            );
+            let t: Vec<&str> = w[1].split_whitespace().collect();
+            let at = |k: &str| t.iter().position(|s| *s == k).unwrap();
+            let o = at("constant");
+            let o = o + 1 + t[o + 1..].iter().position(|s| *s == "constant").unwrap();
+            let q: Vec<f64> = t[o + 1..o + 5].iter().map(|x| x.parse().unwrap()).collect();
+            let q = DQuat::from_xyzw(q[1], q[2], q[3], q[0]);
+            let vz: f64 = t[at("vel") + 4].parse().unwrap();
+            assert_eq!(vz, PILE_VZ);
+            for s in &tpl {
+                lig.push(x + q * s.center);
+            }
+        }
+        assert_eq!(lig.len(), 20 * 50);
+        // Clump's side
+        let (mut w, na, nb) = crate::cmd_bench::build_world(&files.scenario, None).unwrap();
+        assert_eq!((na, nb), (10, 10));
+        w.prepare().unwrap();
+        let f = clump_final(&w);
+        assert_eq!(f.pos.len(), lig.len());
+        for (a, b) in f.pos.iter().zip(&lig) {
+            assert!((*a - *b).length() < 1e-9, "{a} vs {b}");
+        }
+        for b in 0..w.bodies.len() {
+            assert!((w.bodies.velocity[b] - DVec3::new(0.0, 0.0, PILE_VZ)).length() < 1e-12);
+        }
+        let input = std::fs::read_to_string(files.liggghts.join("in.stone")).unwrap();
+        assert!(input.contains(&format!("mass {:.9e}", stone.template.mass)));
+        assert!(input.contains("zcylinder 0.26"));
+        // Clump's own tangential rule unless asked for LIGGGHTS'
+        let sc = std::fs::read_to_string(&files.scenario).unwrap();
+        assert!(!sc.contains("tangential"));
+        let poses = read_ic(&d.join("ic.csv")).unwrap();
+        let f = write_case(&d.join("lt"), &stone, &poses, Geometry::Pile, 1, 1, true).unwrap();
+        let sc = std::fs::read_to_string(&f.scenario).unwrap();
+        assert!(sc.contains("tangential = \"liggghts\""));
+        crate::cmd_bench::build_world(&f.scenario, None).unwrap();
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn a_missing_stone_template_is_refused_clearly() {
+        let e = load_stone("/nonexistent/stone1.multisphere")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("no stone template file at /nonexistent/stone1.multisphere"),
+            "{e}"
+        );
+        if !Path::new(LIGGGHTS_STONE).is_file() {
+            let e = load_stone("liggghts").unwrap_err().to_string();
+            assert!(
+                e.contains("liggghts-doc") && e.contains("--stone procedural"),
+                "{e}"
+            );
+        }
+    }
+
+    /// The bed's lattice holds no overlapping stones and stays in its box.
+    #[test]
+    fn bed_lattice_is_loose_and_inside() {
+        let stone = load_stone("procedural").unwrap();
+        let (poses, b) = bed_lattice(&stone, 300, 5);
+        assert_eq!(poses.len(), 300);
+        let placed: Vec<Vec<Sphere>> = poses.iter().map(|p| placed(&stone, p).collect()).collect();
+        for (i, a) in placed.iter().enumerate() {
+            for s in a {
+                assert!(s.center.x.abs() + s.radius <= b.hx + 1e-9);
+                assert!(s.center.y.abs() + s.radius <= b.hy + 1e-9);
+                assert!(s.center.z - s.radius >= 0.0 && s.center.z + s.radius <= b.top);
+            }
+            for c in &placed[i + 1..] {
+                assert!(!overlapping(a, c));
+            }
+        }
+    }
+}
