@@ -11,8 +11,9 @@ pub struct ContactTable {
     rolling: bool,
     /// Some model runs the scalar composition ([`ContactModel::is_extended`]).
     extended: bool,
-    /// Largest [`ContactModel::reach`] at `R* = 1 m`; the reach scales as
-    /// `R*^{1/3}` (JKR's critical separation), 0 without JKR.
+    /// Largest [`ContactModel::reach`] at `R* = 1 m` of the entries that
+    /// can touch (not two rigid materials); the reach scales as `R*^{1/3}`
+    /// (JKR's critical separation), 0 without JKR.
     reach_coef: f64,
 }
 
@@ -24,11 +25,18 @@ impl ContactTable {
     ) -> Result<Self, String> {
         let n = materials.len();
         let mut models = Vec::with_capacity(n * n);
+        // the largest reach of the entries that can touch: a pair of two
+        // rigid (wall) materials never does, and its filler moduli of 1 Pa
+        // would give it a JKR critical separation ∝ E*^(−2/3) of the order
+        // of a metre, which the Verlet skin (`World::skin`) would then
+        // follow, making every sphere a candidate of every other
+        let mut reach_coef = 0.0f64;
         for a in 0..n {
             for b in 0..n {
                 let (lo, hi) = (a.min(b), a.max(b));
                 let (mut ma, mut mb) = (materials[lo], materials[hi]);
-                if ma.youngs_modulus.is_infinite() && mb.youngs_modulus.is_infinite() {
+                let both_rigid = ma.youngs_modulus.is_infinite() && mb.youngs_modulus.is_infinite();
+                if both_rigid {
                     // Two rigid (wall) materials never touch each other; the
                     // entry only fills the table.
                     ma.youngs_modulus = 1.0;
@@ -39,12 +47,14 @@ impl ContactTable {
                 }
                 let m = ContactModel::new(&ma, &mb, &props(lo, hi))
                     .map_err(|e| format!("materials {lo} and {hi}: {e}"))?;
+                if !both_rigid {
+                    reach_coef = reach_coef.max(m.reach(1.0));
+                }
                 models.push(m);
             }
         }
         let rolling = models.iter().any(|m| m.has_rolling());
         let extended = models.iter().any(|m| m.is_extended());
-        let reach_coef = models.iter().map(|m| m.reach(1.0)).fold(0.0, f64::max);
         Ok(Self {
             n,
             models,
@@ -97,5 +107,41 @@ impl ContactTable {
     /// ([`ContactModel::is_extended`]).
     pub fn any_extended(&self) -> bool {
         self.extended
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::CohesionLaw;
+
+    /// With a rigid (wall) material in the table, the reach is that of the
+    /// particle pairs, not of the rigid–rigid filler (moduli of 1 Pa).
+    #[test]
+    fn reach_ignores_the_rigid_rigid_filler() {
+        let particle = Material {
+            youngs_modulus: 1e6,
+            poisson_ratio: 0.3,
+            density: 2500.0,
+        };
+        let rigid = Material {
+            youngs_modulus: f64::INFINITY,
+            ..particle
+        };
+        let p = PairProperties {
+            cohesion: CohesionLaw::Jkr {
+                surface_energy: 0.17,
+            },
+            ..PairProperties::default()
+        };
+        let t = ContactTable::new(&[particle, rigid], |_, _| p).unwrap();
+        let r = 1e-3;
+        // particle–particle has the smaller E*, so the larger δ_c ∝ E*^(−2/3)
+        let want = t.get(0, 0).reach(r).max(t.get(0, 1).reach(r));
+        assert_eq!(want, t.get(0, 0).reach(r));
+        assert!((t.max_reach(r) - want).abs() <= 1e-12 * want);
+        // δ_c of two 1 mm spheres (R* = 0.5 mm) is a few µm
+        assert!(t.max_reach(r) < 1e-5, "{}", t.max_reach(r));
+        assert!(t.any_reach());
     }
 }
