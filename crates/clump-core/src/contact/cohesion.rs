@@ -97,16 +97,23 @@ pub fn jkr_pull_off_force(gamma: f64, r_star: f64) -> f64 {
 /// JKR contact radius `a` (m) at overlap `δ ≥ −δ_c` (m): the larger root of
 /// `δ = a²/R* − √(2πΓa/E*)`; `None` below `−δ_c` (no contact). Newton's
 /// method on `x = √a`, `f(x) = x⁴/R* − cx − δ`, `c = √(2πΓ/E*)`: `f` is
-/// convex, and from `x₀ = 2((R*δ⁺)^{1/4} + (cR*)^{1/3})`, where `f(x₀) ≥ 0`,
-/// the iterates fall monotonically to the larger root.
+/// convex, and from `x₀ = max((2R*δ⁺)^{1/4}, (2cR*)^{1/3})`, where
+/// `f(x₀) ≥ 0`, the iterates fall monotonically to the larger root.
+/// (`f(x₀) ≥ 0`: with `x₀ = (2cR*)^{1/3}`, `x₀⁴/R* = 2cx₀` and
+/// `x₀⁴ ≥ 2R*δ⁺` give `cx₀ ≥ δ`; with `x₀ = (2R*δ)^{1/4}`, `x₀⁴/R* = 2δ`
+/// and `x₀³ ≥ 2cR*` give `δ ≥ cx₀`; either way `x₀⁴/R* ≥ cx₀ + δ`.) The
+/// start lies within a factor 2^{1/3} of the root, so Newton needs a few
+/// steps; this solve runs for every JKR contact at every step.
 pub fn jkr_contact_radius(gamma: f64, r_star: f64, e_star: f64, overlap: f64) -> Option<f64> {
     let c = (2.0 * PI * gamma / e_star).sqrt();
-    let xf = (c * r_star / 4.0).cbrt(); // x at the minimum of f: 4x³/R* = c
+    let x_c = (2.0 * c * r_star).cbrt();
+    // x at the minimum of f, where 4x³/R* = c: (cR*/4)^{1/3} = x_c/2
+    let xf = 0.5 * x_c;
     let fmin = xf.powi(4) / r_star - c * xf - overlap;
     if fmin > 0.0 {
         return None;
     }
-    let mut x = 2.0 * ((r_star * overlap.max(0.0)).sqrt().sqrt() + (c * r_star).cbrt());
+    let mut x = x_c.max((2.0 * r_star * overlap.max(0.0)).sqrt().sqrt());
     for _ in 0..100 {
         let f = x.powi(4) / r_star - c * x - overlap;
         let df = 4.0 * x.powi(3) / r_star - c;
@@ -175,6 +182,24 @@ mod tests {
             assert!(a >= (PI * g * r * r / (8.0 * e)).cbrt() * (1.0 - 1e-9));
         }
         assert!(jkr_contact_radius(g, r, e, -dc * 1.000_001).is_none());
+        // a sweep over the range of the start's two branches (δ from −δ_c
+        // to 10⁴ δ_c, where the Hertz term dominates) and over Γ/E*: the
+        // root satisfies the relation and lies right of the minimum
+        for (g, e) in [(0.05, 1e7), (0.17, 5.5e5), (1e-3, 1e10)] {
+            let dc = jkr_critical_separation(g, r, e);
+            let c = (2.0 * PI * g / e).sqrt();
+            let af = (PI * g * r * r / (8.0 * e)).cbrt();
+            for k in 0..=200 {
+                let d = dc * ((1e4f64).powf(k as f64 / 200.0) - 1.999_999);
+                let a = jkr_contact_radius(g, r, e, d).unwrap();
+                let back = a * a / r - (c * c * a).sqrt();
+                assert!(
+                    (back - d).abs() < 1e-12 * dc.max(d.abs()),
+                    "{g} {e} {d}: {back}"
+                );
+                assert!(a >= af * (1.0 - 1e-9), "{g} {e} {d}");
+            }
+        }
         // at δ = 0: F = −(4/3)πΓR*
         let a = jkr_contact_radius(g, r, e, 0.0).unwrap();
         let (h, ad) = jkr_force_parts(g, r, e, a);
