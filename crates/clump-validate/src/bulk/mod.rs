@@ -1,11 +1,12 @@
 //! Bulk behaviour of many bodies (full suite only): random packings of
 //! spheres, equipartition in an elastic gas of clumps, the angle of repose
-//! of tetra-clump heaps and Beverloo hopper discharge. Sizes and time steps
-//! are chosen so that the whole group runs in minutes on two cores (the
-//! independent runs of a series side by side, see [`run_parallel`]); each
-//! case states them.
+//! of tetra-clump heaps, dry and cohesive, and Beverloo hopper discharge.
+//! Sizes and time steps are chosen so that the whole group runs in minutes
+//! on two cores (the independent runs of a series side by side, see
+//! [`run_parallel`]); each case states them.
 //! World frame: z up, gravity −z.
 
+pub mod cohesive_heap;
 pub mod equipartition;
 pub mod hopper;
 pub mod packing;
@@ -134,10 +135,15 @@ pub fn run(sel: Selection, dir: &Path) -> Group {
         return g;
     }
     type Part = fn(&mut Group, &Path) -> Result<(), String>;
-    let parts: [(&str, &str, Part); 4] = [
+    let parts: [(&str, &str, Part); 5] = [
         ("random packings", "REFERENCE.md §4", packing::run),
         ("equipartition", "equipartition theorem", equipartition::run),
         ("angle of repose", "published trend", repose::run),
+        (
+            "cohesive angle of repose",
+            "published trend",
+            cohesive_heap::run,
+        ),
         ("hopper discharge", "REFERENCE.md §4", hopper::run),
     ];
     for (name, src, f) in parts {
