@@ -12,10 +12,16 @@
 //!
 //! The series asserted is Bo = 0, 0.1, 0.3, 1. At Bo = 3 this heap (a
 //! pedestal 7.5 sphere diameters in radius) no longer shows a repose
-//! angle: it grows as a steep mound and fails in blocks, and the angle
-//! when the pour stops depends on where in that cycle it stops. That point
-//! is run and reported beside the case, not asserted (see [`run`]'s
-//! notes; the report gives its figures).
+//! angle: it grows as a steep mound and fails in large avalanches, and the
+//! angle when the pour stops depends on where in that cycle it stops. That
+//! point is run and reported beside the case, not asserted (see [`run`]'s
+//! notes; the report gives its figures). Traced batch by batch (seed 4),
+//! the clumps at rest went from 269 to 181 within two batches; 211 were at
+//! rest when the pour stopped and 171 were left on the pedestal after the
+//! heap settled. On the dry series' 22-mm pedestal the same seed had at
+//! most 724 clumps at rest, kept 579 and ended at 43.2°, below the Bo-1
+//! heap of seed 1 there (50.5°), so a larger heap still (beyond this
+//! suite's budget) would be needed to carry the series further.
 
 use super::repose::{heap, rise_case, Heap, HeapSpec, Stat, SEEDS};
 use crate::case::Group;
@@ -126,18 +132,19 @@ pub fn run(g: &mut Group, dir: &Path) -> Result<(), String> {
     let top = stats.last().expect("a series");
     let b = angle(&block);
     let most = |hs: &[Heap]| hs.iter().map(|h| h.largest_drop).max().unwrap_or(0);
+    let last = BONDS[BONDS.len() - 1];
     g.notes.push(format!(
-        "cohesive angle of repose beyond the series, Bo {BLOCK_BOND} (not asserted): {}. Against Bo {}: {:.1} ± {:.1}°. The heaps grow as steep mounds and fail in blocks (largest avalanche up to {} clumps, against up to {} at Bo {} and {} without cohesion), and stop, by the pour's rule, at some point of that growth–collapse cycle, so the angle spreads over the seeds ({:.1}° to {:.1}°) and is no longer a property of the material: a pedestal {:.1} sphere diameters in radius is too small a heap for this cohesion.",
+        "cohesive angle of repose beyond the series, Bo {BLOCK_BOND} (not asserted): {}. Against Bo {last}: {:.1} ± {:.1}°. The angle no longer rises, and it spreads over the seeds from {:.1}° to {:.1}° (standard error {:.1}°, at most {:.1}° in the series). These heaps grow as steep mounds that fail in large avalanches (the largest {} clumps, against {} at Bo {last} and {} without cohesion), and the pour's stop rule catches each at some point of that growth–collapse cycle: on a pedestal {:.1} sphere diameters in radius the angle at this cohesion is no longer a property of the material.",
         per_seed(BLOCK_BOND, &block),
-        BONDS[BONDS.len() - 1],
         top.mean,
         top.se,
-        most(&block),
-        most(&heaps[heaps.len() - 1]),
-        BONDS[BONDS.len() - 1],
-        most(&heaps[0]),
         block.iter().map(|h| h.angle).fold(f64::INFINITY, f64::min),
         block.iter().map(|h| h.angle).fold(f64::NEG_INFINITY, f64::max),
+        b.se,
+        stats.iter().map(|s| s.se).fold(0.0, f64::max),
+        most(&block),
+        most(&heaps[heaps.len() - 1]),
+        most(&heaps[0]),
         PEDESTAL_RADIUS / 2e-3,
     ));
     let c = Chart {
