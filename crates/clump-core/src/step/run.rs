@@ -175,6 +175,9 @@ impl World {
                 event: event.step,
             });
         }
+        if self.part.is_some() {
+            return self.advance_partitioned(event, hook);
+        }
         while self.step < event.step {
             let interrupt = hook.stop_requested();
             if interrupt && self.phase.first_half_done.is_none() {
@@ -195,6 +198,45 @@ impl World {
             }
         }
         Ok(Advance::Reached)
+    }
+
+    /// [`Self::advance`] of a world split over ranks: unfused steps of this
+    /// rank's part, a stop request honoured when any rank has one, and the
+    /// whole world gathered on every rank at the end (the driver's boundary
+    /// work sees it whole). Every rank takes the same decisions: the hook
+    /// sees the statistics summed over the ranks.
+    fn advance_partitioned<H: StepHook + ?Sized>(
+        &mut self,
+        event: Event,
+        hook: &mut H,
+    ) -> Result<Advance, StepError> {
+        let mut end = Advance::Reached;
+        while self.step < event.step {
+            let interrupt = hook.stop_requested();
+            if self.any_rank(interrupt) {
+                end = Advance::Interrupted;
+                break;
+            }
+            let last = self.step + 1 == event.step;
+            self.neighbors.records.set_recording(last && event.contacts);
+            self.step_partitioned()?;
+            let report = StepReport {
+                step: self.step,
+                time: self.time,
+                bodies: self.bodies.len(),
+                spheres: self.spheres.len(),
+                stats: &self.stats,
+            };
+            let stop = hook.end_of_step(&report) == Flow::Stop;
+            if self.any_rank(stop) {
+                end = Advance::Tripped;
+                break;
+            }
+        }
+        if self.part.as_ref().is_some_and(|p| p.local) {
+            crate::partition::join::join(self)?;
+        }
+        Ok(end)
     }
 
     /// Runs the world under `driver` until a hook or a stop request ends

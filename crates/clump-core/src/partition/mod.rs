@@ -1,0 +1,158 @@
+//! A world split over several processes (ranks): spatial decomposition with
+//! whole ghost clumps, for MPI (the `clump-mpi` crate supplies the
+//! communicator; [`ThreadComm`] runs ranks as threads of one process, for
+//! tests).
+//!
+//! Each rank keeps the bodies whose centre of mass lies in its region
+//! (*owned*) and, as *ghosts*, every other body whose centre of mass lies
+//! within the halo of that region: `h = 2 R_max + skin`, with `R_max` the
+//! largest distance from a template's centre of mass to the far side of
+//! one of its spheres. A candidate pair needs its spheres within
+//! `r_i + r_j + skin` at the last build, so its bodies' centres are within
+//! `h`: every pair of an owned body is in the rank's list, and its force
+//! and torque are summed there complete. Nothing is set by the user.
+//!
+//! **Same bits at any rank count.** A rank's bodies are kept in the order
+//! the whole world would have (the Morton order of the full set, ties by
+//! id), its pair list is built on the whole world's grid, so every row and
+//! column of an owned sphere holds the same pairs in the same order as one
+//! process would: each owned body's force and torque are the same sums in
+//! the same order, hence the same bits. Ghost bodies take the state of
+//! their owner after every step (their own force sums are incomplete).
+//!
+//! **Rebuilds and events.** At a neighbour rebuild, and at every event of
+//! the run loop (output, insertion, checkpoint, stage change), the owned
+//! parts are gathered into the whole world on every rank
+//! ([`join`]), which then reorganises (wraps, drops lost bodies,
+//! Morton-sorts) exactly as one process does, re-balances the regions
+//! (recursive coordinate bisection on sphere counts, [`regions`]) and keeps
+//! its own part again ([`restrict`]). Contact histories thus go wherever
+//! their bodies go. The drivers see the whole world at every event, so
+//! insertion, output, checkpoints and steering work unchanged; only rank 0
+//! writes files. The price: each rebuild moves every body to every rank
+//! (docs/scaling.md says where that stops scaling).
+//!
+//! Statistics and wall loads are summed per rank and then over ranks in
+//! rank order: the same on every rank, but not bit for bit those of one
+//! process (the body states are).
+
+mod comm;
+pub(crate) mod ghosts;
+pub(crate) mod join;
+pub mod regions;
+pub(crate) mod restrict;
+
+pub use comm::{Comm, ThreadComm};
+pub use regions::Regions;
+
+use crate::world::World;
+
+/// This rank's part of a world: which of its bodies are its own, where the
+/// others come from, and where its own go as ghosts.
+pub struct Part {
+    /// The communicator.
+    pub(crate) comm: Box<dyn Comm>,
+    /// The regions of the last balance.
+    pub(crate) regions: Regions,
+    /// True while the world holds this rank's part only; false while it
+    /// holds the whole world (at an event).
+    pub(crate) local: bool,
+    /// Per local body: owned by this rank.
+    pub(crate) owned: Vec<bool>,
+    /// Per local body: its storage index in the whole world.
+    pub(crate) global_index: Vec<u32>,
+    /// Per neighbouring rank, the owned bodies (local indices, ascending)
+    /// it holds as ghosts.
+    pub(crate) send: Vec<(usize, Vec<u32>)>,
+    /// Per owning rank, the ghosts (local indices, ascending) it sends.
+    pub(crate) recv: Vec<(usize, Vec<u32>)>,
+    /// The halo of the last restriction, m.
+    pub(crate) halo: f64,
+    /// Bytes and messages this rank sent (ghost states, gathers).
+    pub traffic: Traffic,
+}
+
+/// What a rank sent, for the cost model (docs/scaling.md).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Traffic {
+    /// Ghost-state bytes sent in the steps.
+    pub ghost_bytes: u64,
+    /// Ghost-state messages sent.
+    pub ghost_messages: u64,
+    /// Bytes this rank contributed to gathers of the whole world.
+    pub gather_bytes: u64,
+    /// Gathers of the whole world (rebuilds and events).
+    pub gathers: u64,
+    /// Small collective calls (flags, statistics).
+    pub reductions: u64,
+    /// Sum over steps of the ghost bodies held (halo fraction = this over
+    /// the sum of local bodies).
+    pub ghost_body_steps: u64,
+    /// Sum over steps of the local bodies held.
+    pub local_body_steps: u64,
+}
+
+/// A summary of a rank's part, for reports.
+#[derive(Debug, Clone, Copy)]
+pub struct PartInfo {
+    /// This rank.
+    pub rank: usize,
+    /// Number of ranks.
+    pub size: usize,
+    /// The halo of the last build, m.
+    pub halo: f64,
+    /// What this rank sent.
+    pub traffic: Traffic,
+}
+
+impl World {
+    /// Splits this world over the ranks of `comm`: from now on every
+    /// [`World::advance`] steps this rank's part only, and hands the whole
+    /// world back at its end. Call on every rank with the same world (the
+    /// scenario built alike on each); the world keeps its forces.
+    pub fn partition(&mut self, comm: Box<dyn Comm>) -> Result<(), crate::step::StepError> {
+        if !self.phase.forces_ready {
+            self.prepare()?;
+        }
+        let size = comm.size();
+        self.part = Some(Box::new(Part {
+            comm,
+            regions: Regions::single(&self.config.domain, size),
+            local: false,
+            owned: Vec::new(),
+            global_index: Vec::new(),
+            send: Vec::new(),
+            recv: Vec::new(),
+            halo: 0.0,
+            traffic: Traffic::default(),
+        }));
+        Ok(())
+    }
+
+    /// This rank and the number of ranks, the halo and traffic, when the
+    /// world is partitioned.
+    pub fn part_info(&self) -> Option<PartInfo> {
+        self.part.as_ref().map(|p| PartInfo {
+            rank: p.comm.rank(),
+            size: p.comm.size(),
+            halo: p.halo,
+            traffic: p.traffic,
+        })
+    }
+
+    /// True on the rank that writes files (rank 0, or an unpartitioned world).
+    pub fn is_root(&self) -> bool {
+        self.part.as_ref().map_or(true, |p| p.comm.rank() == 0)
+    }
+
+    /// True on every rank when any rank's `flag` is (a no-op without a partition).
+    pub fn any_rank(&mut self, flag: bool) -> bool {
+        match self.part.as_mut() {
+            Some(p) => {
+                p.traffic.reductions += 1;
+                p.comm.all_gather(&[flag as u8]).iter().any(|m| m[0] != 0)
+            }
+            None => flag,
+        }
+    }
+}
