@@ -43,7 +43,7 @@ fn run_ranks(
         .map(|comm| {
             std::thread::spawn(move || {
                 let mut w = make();
-                w.partition(Box::new(comm)).unwrap();
+                w.partition(Box::new(comm));
                 for _ in 0..rounds {
                     w.run(steps).unwrap();
                 }

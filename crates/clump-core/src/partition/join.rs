@@ -130,3 +130,24 @@ pub(crate) fn join(w: &mut World) -> Result<(), StepError> {
     part.recv.clear();
     Ok(())
 }
+
+/// One step of the whole world on every rank, as one process takes it (the
+/// step before an event: its statistics, wall loads and contact records are
+/// then one process's). The world is gathered first if it is
+/// split, and stays whole.
+pub(crate) fn whole_step(w: &mut World) -> Result<(), StepError> {
+    if w.part.as_ref().is_some_and(|p| p.local) {
+        join(w)?;
+    }
+    let part = w.part.take();
+    let result = (|| {
+        if w.neighbors.history_pending {
+            // the whole world's pair list, from the build poses
+            crate::step::rebuild::rebuild(w, false)?;
+            w.rebuilds = w.rebuilds.saturating_sub(1);
+        }
+        w.step_fused(false)
+    })();
+    w.part = part;
+    result
+}

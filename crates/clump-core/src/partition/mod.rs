@@ -109,11 +109,8 @@ impl World {
     /// Splits this world over the ranks of `comm`: from now on every
     /// [`World::advance`] steps this rank's part only, and hands the whole
     /// world back at its end. Call on every rank with the same world (the
-    /// scenario built alike on each); the world keeps its forces.
-    pub fn partition(&mut self, comm: Box<dyn Comm>) -> Result<(), crate::step::StepError> {
-        if !self.phase.forces_ready {
-            self.prepare()?;
-        }
+    /// scenario built alike on each).
+    pub fn partition(&mut self, comm: Box<dyn Comm>) {
         let size = comm.size();
         self.part = Some(Box::new(Part {
             comm,
@@ -126,7 +123,6 @@ impl World {
             halo: 0.0,
             traffic: Traffic::default(),
         }));
-        Ok(())
     }
 
     /// This rank and the number of ranks, the halo and traffic, when the

@@ -75,8 +75,17 @@ impl World {
     /// current state, so that the first step starts with valid forces. Called
     /// automatically by [`World::step`].
     pub fn prepare(&mut self) -> Result<(), StepError> {
-        rebuild::rebuild(self, true)?;
-        force::compute(self);
+        // a partitioned world is whole between steps (at an event): every
+        // rank prepares it whole, as one process does; the next step splits it
+        let part = self.part.take();
+        if part.as_ref().is_some_and(|p| p.local) {
+            self.part = part;
+            crate::partition::join::join(self)?;
+            return self.prepare();
+        }
+        let done = rebuild::rebuild(self, true).map(|()| force::compute(self));
+        self.part = part;
+        done?;
         self.phase.forces_ready = true;
         Ok(())
     }
@@ -155,6 +164,13 @@ impl World {
         if !local && !dirty {
             // at an event the world is whole: keep this rank's part (a
             // restart's rebuild from the build poses, bit for bit)
+            if !self.neighbors.history_pending {
+                self.neighbors.pairs.save_history(
+                    &self.spheres.gid,
+                    self.contact_table.any_reach(),
+                    &mut self.neighbors.history_map,
+                );
+            }
             rebuild::rebuild(self, false)?;
             self.rebuilds = self.rebuilds.saturating_sub(1);
         }

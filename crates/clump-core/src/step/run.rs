@@ -211,6 +211,11 @@ impl World {
         hook: &mut H,
     ) -> Result<Advance, StepError> {
         let mut end = Advance::Reached;
+        if !self.phase.forces_ready {
+            // the whole world's first forces (or after new bodies), as one
+            // process takes them; the rebuild splits it
+            self.prepare()?;
+        }
         while self.step < event.step {
             let interrupt = hook.stop_requested();
             if self.any_rank(interrupt) {
@@ -218,8 +223,15 @@ impl World {
                 break;
             }
             let last = self.step + 1 == event.step;
-            self.neighbors.records.set_recording(last && event.contacts);
-            self.step_partitioned()?;
+            if last {
+                // the step before an event runs whole on every rank, as one
+                // process takes it: its statistics, wall loads and contact
+                // records (for output) are then one process's, bit for bit
+                self.neighbors.records.set_recording(event.contacts);
+                crate::partition::join::whole_step(self)?;
+            } else {
+                self.step_partitioned()?;
+            }
             let report = StepReport {
                 step: self.step,
                 time: self.time,
