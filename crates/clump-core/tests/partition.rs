@@ -87,6 +87,13 @@ fn a_settling_periodic_bed_has_the_same_bits_on_1_to_4_ranks() {
                     "{ranks} ranks, rank {rank}: {traffic:?}"
                 );
                 assert!(traffic.ghost_body_steps < traffic.local_body_steps);
+                // rebuilds move bodies between neighbours: the whole world
+                // is gathered at events only (two per round at most)
+                assert!(
+                    traffic.gathers <= 2 * rounds as u64 && rebuilds > traffic.gathers,
+                    "{ranks} ranks: {} gathers for {rebuilds} rebuilds",
+                    traffic.gathers
+                );
             }
             assert_eq!(rebuilds, serial.rebuilds, "{ranks} ranks: rebuild count");
             assert!(

@@ -32,20 +32,18 @@
 //! writes files. The price: each rebuild moves every body to every rank
 //! (docs/scaling.md says where that stops scaling).
 //!
+//! This module holds the part's data and the communicator; the stages that
+//! split, gather and rebuild a world are in `step/partition/`.
+//!
 //! Statistics and wall loads are summed per rank and then over ranks in
 //! rank order: the same on every rank, but not bit for bit those of one
 //! process (the body states are).
 
 mod comm;
-pub(crate) mod ghosts;
-pub(crate) mod join;
 pub mod regions;
-pub(crate) mod restrict;
 
 pub use comm::{Comm, ThreadComm};
 pub use regions::Regions;
-
-use crate::world::World;
 
 /// This rank's part of a world: which of its bodies are its own, where the
 /// others come from, and where its own go as ghosts.
@@ -59,8 +57,10 @@ pub struct Part {
     pub(crate) local: bool,
     /// Per local body: owned by this rank.
     pub(crate) owned: Vec<bool>,
-    /// Per local body: its storage index in the whole world.
-    pub(crate) global_index: Vec<u32>,
+    /// Per local body: its place in the whole world's storage order (a key
+    /// that sorts as that order: the index in the whole world after a
+    /// split of it, the Morton key and id after a rebuild of the parts).
+    pub(crate) order: Vec<(u64, u64)>,
     /// Per neighbouring rank, the owned bodies (local indices, ascending)
     /// it holds as ghosts.
     pub(crate) send: Vec<(usize, Vec<u32>)>,
@@ -103,52 +103,4 @@ pub struct PartInfo {
     pub halo: f64,
     /// What this rank sent.
     pub traffic: Traffic,
-}
-
-impl World {
-    /// Splits this world over the ranks of `comm`: from now on every
-    /// [`World::advance`] steps this rank's part only, and hands the whole
-    /// world back at its end. Call on every rank with the same world (the
-    /// scenario built alike on each).
-    pub fn partition(&mut self, comm: Box<dyn Comm>) {
-        let size = comm.size();
-        self.part = Some(Box::new(Part {
-            comm,
-            regions: Regions::single(&self.config.domain, size),
-            local: false,
-            owned: Vec::new(),
-            global_index: Vec::new(),
-            send: Vec::new(),
-            recv: Vec::new(),
-            halo: 0.0,
-            traffic: Traffic::default(),
-        }));
-    }
-
-    /// This rank and the number of ranks, the halo and traffic, when the
-    /// world is partitioned.
-    pub fn part_info(&self) -> Option<PartInfo> {
-        self.part.as_ref().map(|p| PartInfo {
-            rank: p.comm.rank(),
-            size: p.comm.size(),
-            halo: p.halo,
-            traffic: p.traffic,
-        })
-    }
-
-    /// True on the rank that writes files (rank 0, or an unpartitioned world).
-    pub fn is_root(&self) -> bool {
-        self.part.as_ref().map_or(true, |p| p.comm.rank() == 0)
-    }
-
-    /// True on every rank when any rank's `flag` is (a no-op without a partition).
-    pub fn any_rank(&mut self, flag: bool) -> bool {
-        match self.part.as_mut() {
-            Some(p) => {
-                p.traffic.reductions += 1;
-                p.comm.all_gather(&[flag as u8]).iter().any(|m| m[0] != 0)
-            }
-            None => flag,
-        }
-    }
 }

@@ -201,6 +201,39 @@ impl Regions {
         d2
     }
 
+    /// The ranks other than `rank` whose regions come within `reach` of
+    /// its region (periodic images included), ascending. Symmetric: `a` is
+    /// a partner of `b` exactly when `b` is one of `a`.
+    pub fn partners(&self, rank: usize, reach: f64) -> Vec<usize> {
+        let Some((lo, hi)) = self.region(rank) else {
+            return Vec::new();
+        };
+        let l = self.domain.size();
+        let mut out: Vec<usize> = self
+            .cells
+            .iter()
+            .filter_map(|c| match c.node {
+                Node::Leaf { rank: r } if r != rank => Some((r, c.lo, c.hi)),
+                _ => None,
+            })
+            .filter(|&(_, blo, bhi)| {
+                let mut d2 = 0.0;
+                for a in 0..3 {
+                    let gap = |s: f64| (blo[a] + s - hi[a]).max(lo[a] - (bhi[a] + s)).max(0.0);
+                    let mut d = gap(0.0);
+                    if self.domain.periodic[a] {
+                        d = d.min(gap(l[a])).min(gap(-l[a]));
+                    }
+                    d2 += d * d;
+                }
+                d2 <= reach * reach
+            })
+            .map(|(r, _, _)| r)
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
     /// The region box of `rank` (world frame, m).
     pub fn region(&self, rank: usize) -> Option<(DVec3, DVec3)> {
         self.cells.iter().find_map(|c| match c.node {

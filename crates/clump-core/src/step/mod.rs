@@ -38,6 +38,7 @@ pub mod force;
 pub mod integrate;
 pub mod kinematics;
 mod pair_kernel;
+mod partition;
 pub mod rebuild;
 pub mod run;
 mod wall_contacts;
@@ -80,7 +81,7 @@ impl World {
         let part = self.part.take();
         if part.as_ref().is_some_and(|p| p.local) {
             self.part = part;
-            crate::partition::join::join(self)?;
+            partition::join::join(self)?;
             return self.prepare();
         }
         let done = rebuild::rebuild(self, true).map(|()| force::compute(self));
@@ -155,7 +156,7 @@ impl World {
     /// from their owners, and the statistics and wall loads summed over
     /// the ranks.
     pub(crate) fn step_partitioned(&mut self) -> Result<(), StepError> {
-        use crate::partition::{ghosts, join};
+        use partition::ghosts;
         let dt = self.config.dt;
         let mut times = self.stage_times;
         let mut t = Instant::now();
@@ -185,9 +186,12 @@ impl World {
         let stale = self.any_rank(moved_out) || dirty;
         if stale {
             if self.part.as_ref().is_some_and(|p| p.local) {
-                join::join(self)?;
+                // bodies move to their new ranks, neighbours only
+                partition::migrate::rebuild(self)?;
+            } else {
+                // the whole world (new bodies): rebuilt whole, then split
+                rebuild::rebuild(self, true)?;
             }
-            rebuild::rebuild(self, true)?;
             lap(&mut times.neighbor, &mut t);
         } else if wall_started {
             rebuild::refresh_wall_list(self);

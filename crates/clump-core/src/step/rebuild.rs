@@ -105,7 +105,7 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     // on the whole world's grid
     let partitioned = w.part.is_some();
     let mut carry = std::mem::take(&mut w.scratch.wall_carry);
-    let grid = crate::partition::restrict::restrict(w, min_cell, &mut carry);
+    let grid = super::partition::restrict::restrict(w, min_cell, &mut carry);
     w.scratch.wall_carry = carry;
     w.neighbors.grid = grid?;
     let sp = &w.spheres;

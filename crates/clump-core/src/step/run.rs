@@ -228,7 +228,7 @@ impl World {
                 // process takes it: its statistics, wall loads and contact
                 // records (for output) are then one process's, bit for bit
                 self.neighbors.records.set_recording(event.contacts);
-                crate::partition::join::whole_step(self)?;
+                super::partition::join::whole_step(self)?;
             } else {
                 self.step_partitioned()?;
             }
@@ -246,7 +246,7 @@ impl World {
             }
         }
         if self.part.as_ref().is_some_and(|p| p.local) {
-            crate::partition::join::join(self)?;
+            super::partition::join::join(self)?;
         }
         Ok(end)
     }

@@ -2,8 +2,8 @@
 //! owned bodies and their ghosts, in the whole world's order, and the lists
 //! of who sends whose state after each step.
 
-use super::regions::Regions;
 use crate::neighbor::CellGrid;
+use crate::partition::Regions;
 use crate::step::rebuild::{rebuild_sphere_topology, reference_positions_from_poses};
 use crate::step::StepError;
 use crate::world::World;
@@ -58,29 +58,10 @@ pub(crate) fn restrict(
     let cost: Vec<u32> = (0..at.len()).map(|b| first[b + 1] - first[b]).collect();
     part.regions = Regions::balance(&domain, &at, &cost, size);
     part.halo = halo(w);
-    let mut send: Vec<Vec<u32>> = vec![Vec::new(); size];
-    let mut recv: Vec<Vec<u32>> = vec![Vec::new(); size];
-    let mut perm = Vec::new();
-    part.owned.clear();
-    part.global_index.clear();
-    let mut near = Vec::new();
-    for (b, &x) in at.iter().enumerate() {
-        let owner = part.regions.owner(x);
-        part.regions.near(x, part.halo, &mut near);
-        let local = perm.len() as u32;
-        if owner == me {
-            for &r in near.iter().filter(|&&r| r != me) {
-                send[r].push(local);
-            }
-        } else if near.contains(&me) {
-            recv[owner].push(local);
-        } else {
-            continue;
-        }
-        perm.push(b as u32);
-        part.owned.push(owner == me);
-        part.global_index.push(b as u32);
-    }
+    let roles = Roles::of(&part.regions, part.halo, me, size, &at);
+    let perm = roles.keep.clone();
+    part.order.clear();
+    part.order.extend(perm.iter().map(|&b| (b as u64, 0)));
     let kept_carry: Vec<u32> = perm
         .iter()
         .flat_map(|&b| carry[first[b as usize] as usize..first[b as usize + 1] as usize].iter())
@@ -97,17 +78,65 @@ pub(crate) fn restrict(
     rebuild_sphere_topology(w);
     // reference positions from the build poses, as a restart computes them
     reference_positions_from_poses(w);
-    part.send = send
-        .into_iter()
-        .enumerate()
-        .filter(|(_, l)| !l.is_empty())
-        .collect();
-    part.recv = recv
-        .into_iter()
-        .enumerate()
-        .filter(|(_, l)| !l.is_empty())
-        .collect();
+    roles.install(&mut part);
     part.local = true;
     w.part = Some(part);
     Ok(grid)
+}
+
+/// What each body of a rank's part is to it: kept (owned or ghost), and for
+/// the kept ones who sends whose state after each step.
+pub(crate) struct Roles {
+    /// The bodies kept (indices into the positions given), ascending.
+    pub keep: Vec<u32>,
+    /// Per kept body: owned here.
+    pub owned: Vec<bool>,
+    /// Per rank, the kept owned bodies (indices among the kept) it holds as ghosts.
+    pub send: Vec<Vec<u32>>,
+    /// Per rank, the kept ghosts (indices among the kept) it owns.
+    pub recv: Vec<Vec<u32>>,
+}
+
+impl Roles {
+    /// The roles for rank `me` of bodies at `at` (wrapped build positions of
+    /// their centres of mass, in storage order).
+    pub fn of(regions: &Regions, halo: f64, me: usize, size: usize, at: &[DVec3]) -> Roles {
+        let mut r = Roles {
+            keep: Vec::new(),
+            owned: Vec::new(),
+            send: vec![Vec::new(); size],
+            recv: vec![Vec::new(); size],
+        };
+        let mut near = Vec::new();
+        for (b, &x) in at.iter().enumerate() {
+            let owner = regions.owner(x);
+            regions.near(x, halo, &mut near);
+            let local = r.keep.len() as u32;
+            if owner == me {
+                for &k in near.iter().filter(|&&k| k != me) {
+                    r.send[k].push(local);
+                }
+            } else if near.contains(&me) {
+                r.recv[owner].push(local);
+            } else {
+                continue;
+            }
+            r.keep.push(b as u32);
+            r.owned.push(owner == me);
+        }
+        r
+    }
+
+    /// Stores the owned flags and the ghost lists in the part.
+    pub fn install(self, part: &mut crate::partition::Part) {
+        let lists = |v: Vec<Vec<u32>>| -> Vec<(usize, Vec<u32>)> {
+            v.into_iter()
+                .enumerate()
+                .filter(|(_, l)| !l.is_empty())
+                .collect()
+        };
+        part.owned = self.owned;
+        part.send = lists(self.send);
+        part.recv = lists(self.recv);
+    }
 }

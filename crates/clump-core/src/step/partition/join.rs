@@ -16,8 +16,8 @@ use serde::{Deserialize, Serialize};
 /// One rank's owned bodies, as sent to every rank.
 #[derive(Serialize, Deserialize, Default)]
 struct Owned {
-    /// Storage index of each body in the whole world at the last build.
-    global_index: Vec<u32>,
+    /// Each body's place in the whole world's storage order.
+    order: Vec<(u64, u64)>,
     bodies: Bodies,
     reference_pose: Vec<(DVec3, DQuat)>,
     /// Histories of the pairs with at least one owned sphere.
@@ -39,7 +39,7 @@ fn owned(w: &World) -> Owned {
     let (key, hist) = w.neighbors.wall_list.per_sphere(w.spheres.len());
     for &b in &keep {
         let b = b as usize;
-        out.global_index.push(part.global_index[b]);
+        out.order.push(part.order[b]);
         out.reference_pose.push(w.neighbors.reference_pose[b]);
         let s = w.spheres.of_body(b);
         out.wall_key.extend_from_slice(&key[s.clone()]);
@@ -78,9 +78,9 @@ pub(crate) fn join(w: &mut World) -> Result<(), StepError> {
         })?);
     }
     // every body once, by its place in the whole world
-    let mut order: Vec<(u32, usize, usize)> = Vec::new();
+    let mut order: Vec<((u64, u64), usize, usize)> = Vec::new();
     for (r, p) in parts.iter().enumerate() {
-        order.extend(p.global_index.iter().enumerate().map(|(k, &g)| (g, r, k)));
+        order.extend(p.order.iter().enumerate().map(|(k, &g)| (g, r, k)));
     }
     order.sort_unstable();
     let mut all_bodies = Bodies::default();
@@ -125,7 +125,7 @@ pub(crate) fn join(w: &mut World) -> Result<(), StepError> {
     let part = w.part.as_mut().expect("a partitioned world");
     part.local = false;
     part.owned.clear();
-    part.global_index.clear();
+    part.order.clear();
     part.send.clear();
     part.recv.clear();
     Ok(())
