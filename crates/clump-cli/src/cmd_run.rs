@@ -151,10 +151,22 @@ pub fn drive(
         s.throughput(),
         nthreads
     );
-    if ranks.size() > 1 {
+    if let Some(p) = runner.world().part_info() {
+        let t = p.traffic;
+        let steps = t.steps.max(1) as f64;
+        let owned = t.local_body_steps.saturating_sub(t.ghost_body_steps).max(1) as f64;
         outln!(
-            "ranks: {} (the world split by recursive coordinate bisection; rank 0's figures above)",
-            ranks.size()
+            "ranks: {} (regions by recursive coordinate bisection; halo {:.3e} m); rank 0: halo fraction {:.3} (ghost bodies per owned body), ghost states {:.0} B and {:.2} messages per step, {} neighbour rebuilds ({:.0} B and {:.2} messages each), {} whole-world gathers ({:.0} B each)",
+            p.size,
+            p.halo,
+            t.ghost_body_steps as f64 / owned,
+            t.ghost_bytes as f64 / steps,
+            t.ghost_messages as f64 / steps,
+            t.rebuilds,
+            t.migrate_bytes as f64 / t.rebuilds.max(1) as f64,
+            t.migrate_messages as f64 / t.rebuilds.max(1) as f64,
+            t.gathers,
+            t.gather_bytes as f64 / t.gathers.max(1) as f64,
         );
     }
     report_bodies(&runner);

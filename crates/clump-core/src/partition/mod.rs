@@ -20,24 +20,30 @@
 //! the same order, hence the same bits. Ghost bodies take the state of
 //! their owner after every step (their own force sums are incomplete).
 //!
-//! **Rebuilds and events.** At a neighbour rebuild, and at every event of
-//! the run loop (output, insertion, checkpoint, stage change), the owned
-//! parts are gathered into the whole world on every rank
-//! ([`join`]), which then reorganises (wraps, drops lost bodies,
-//! Morton-sorts) exactly as one process does, re-balances the regions
-//! (recursive coordinate bisection on sphere counts, [`regions`]) and keeps
-//! its own part again ([`restrict`]). Contact histories thus go wherever
-//! their bodies go. The drivers see the whole world at every event, so
+//! **Rebuilds.** When any rank's sphere has moved past half the skin, every
+//! rank rebuilds: it wraps its owned bodies, drops the lost ones and sends
+//! each body to its new owner and to the ranks within the halo of it, with
+//! its wall slots and the histories of its pairs (neighbours only); the
+//! whole world's grids come from bounding boxes reduced over the ranks. The
+//! ranks sort their bodies by the whole world's Morton key and id, as one
+//! process does.
+//!
+//! **Events.** At every event of the run loop (output, insertion,
+//! checkpoint, stage change) the whole world is gathered on every rank, in
+//! one process's order, and the step before it runs whole: the drivers see
+//! one process's world, statistics, wall loads and contact records, so
 //! insertion, output, checkpoints and steering work unchanged; only rank 0
-//! writes files. The price: each rebuild moves every body to every rank
+//! writes files. The regions are re-balanced (recursive coordinate
+//! bisection on sphere counts, [`regions`]) when the world is split again.
+//! The price: each event moves every body to every rank
 //! (docs/scaling.md says where that stops scaling).
 //!
 //! This module holds the part's data and the communicator; the stages that
 //! split, gather and rebuild a world are in `step/partition/`.
 //!
-//! Statistics and wall loads are summed per rank and then over ranks in
-//! rank order: the same on every rank, but not bit for bit those of one
-//! process (the body states are).
+//! Between events, the statistics of a step (the health check's input) are
+//! summed per rank and then over ranks in rank order: the same on every
+//! rank, but not bit for bit one process's (the body states are).
 
 mod comm;
 pub mod regions;
@@ -79,6 +85,15 @@ pub struct Traffic {
     pub ghost_bytes: u64,
     /// Ghost-state messages sent.
     pub ghost_messages: u64,
+    /// Bytes of bodies this rank sent at neighbour rebuilds (migration and
+    /// new ghosts).
+    pub migrate_bytes: u64,
+    /// Messages of those rebuilds.
+    pub migrate_messages: u64,
+    /// Neighbour rebuilds of the parts.
+    pub rebuilds: u64,
+    /// Steps of the part (whole steps before events not counted).
+    pub steps: u64,
     /// Bytes this rank contributed to gathers of the whole world.
     pub gather_bytes: u64,
     /// Gathers of the whole world (rebuilds and events).

@@ -216,9 +216,20 @@ impl World {
             // process takes them; the rebuild splits it
             self.prepare()?;
         }
-        while self.step < event.step {
-            let interrupt = hook.stop_requested();
-            if self.any_rank(interrupt) {
+        // a stop asked by the hook after a step is or-ed over the ranks with
+        // the stop requests before the next (one reduction per step)
+        let mut tripped = false;
+        loop {
+            let flags = [tripped, hook.stop_requested()];
+            let [trip, interrupt] = self.any_ranks(flags);
+            if trip {
+                end = Advance::Tripped;
+                break;
+            }
+            if self.step >= event.step {
+                break;
+            }
+            if interrupt {
                 end = Advance::Interrupted;
                 break;
             }
@@ -239,11 +250,7 @@ impl World {
                 spheres: self.spheres.len(),
                 stats: &self.stats,
             };
-            let stop = hook.end_of_step(&report) == Flow::Stop;
-            if self.any_rank(stop) {
-                end = Advance::Tripped;
-                break;
-            }
+            tripped = hook.end_of_step(&report) == Flow::Stop;
         }
         if self.part.as_ref().is_some_and(|p| p.local) {
             super::partition::join::join(self)?;

@@ -79,6 +79,7 @@ pub(crate) fn refresh(w: &mut World) {
     let ghosts = part.owned.iter().filter(|&&o| !o).count() as u64;
     part.traffic.ghost_body_steps += ghosts;
     part.traffic.local_body_steps += part.owned.len() as u64;
+    part.traffic.steps += 1;
 }
 
 /// Replaces this rank's statistics and wall loads (of its owned bodies and

@@ -178,8 +178,8 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
     let mut sends = Vec::with_capacity(partners.len());
     for &r in &partners {
         let bytes = encode(&out[r])?;
-        part.traffic.ghost_bytes += bytes.len() as u64;
-        part.traffic.ghost_messages += 1;
+        part.traffic.migrate_bytes += bytes.len() as u64;
+        part.traffic.migrate_messages += 1;
         sends.push((r, bytes));
     }
     let got = part.comm.exchange(&sends, &partners);
@@ -266,6 +266,7 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         .live_entries(ns, &mut w.scratch.wall_carry);
     build_wall_lists(w);
     w.rebuilds += 1;
+    part.traffic.rebuilds += 1;
 
     // 6. who owns what, and who sends whose state
     let at: Vec<DVec3> = w.bodies.position.clone();

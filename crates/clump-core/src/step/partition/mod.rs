@@ -49,12 +49,19 @@ impl World {
 
     /// True on every rank when any rank's `flag` is (a no-op without a partition).
     pub fn any_rank(&mut self, flag: bool) -> bool {
+        self.any_ranks([flag])[0]
+    }
+
+    /// Each flag or-ed over the ranks, in one reduction.
+    pub fn any_ranks<const N: usize>(&mut self, flags: [bool; N]) -> [bool; N] {
         match self.part.as_mut() {
             Some(p) => {
                 p.traffic.reductions += 1;
-                p.comm.all_gather(&[flag as u8]).iter().any(|m| m[0] != 0)
+                let mine = flags.map(|f| f as u8);
+                let all = p.comm.all_gather(&mine);
+                std::array::from_fn(|k| all.iter().any(|m| m[k] != 0))
             }
-            None => flag,
+            None => flags,
         }
     }
 }
