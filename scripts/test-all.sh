@@ -5,8 +5,10 @@
 #      with maturin, numpy, pytest and matplotlib, `pip install
 #      ./crates/clump-py` (release build) and its pytest suite, which also
 #      runs the examples in examples/python in their short form and compares
-#      against the `clump` binary built by step 1.
-# Both suites always run; the exit status is non-zero if either failed.
+#      against the `clump` binary built by step 1;
+#   3. the MPI suite: `clump` built with the `mpi` feature (OpenMPI), run by
+#      `mpirun -np 2, 3, 4` against one process (crates/clump-cli/tests/mpi.rs).
+# Every suite always runs; the exit status is non-zero if either failed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -30,6 +32,15 @@ if [ ! -x "$CLUMP_BIN" ]; then
   cargo build --release -p clump-cli
 fi
 python -m pytest -q crates/clump-py/tests || status=1
+deactivate
+
+echo "== MPI suite: cargo test --release -p clump-cli --features mpi --test mpi"
+if command -v mpirun >/dev/null 2>&1; then
+  cargo test --release -p clump-cli --features mpi --test mpi || status=1
+else
+  echo "error: mpirun not found (Debian: openmpi-bin libopenmpi-dev); the MPI suite cannot run"
+  status=1
+fi
 
 if [ "$status" -ne 0 ]; then
   echo "== FAILED: at least one suite failed (see above)"

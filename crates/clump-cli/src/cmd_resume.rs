@@ -2,6 +2,7 @@
 
 use crate::cmd_run::progress::init_logging;
 use crate::cmd_run::{drive, error_exit};
+use crate::ranks::Ranks;
 use clap::Args;
 use clump_io::run::Runner;
 use std::path::PathBuf;
@@ -28,14 +29,30 @@ pub struct ResumeArgs {
 /// Runs `clump resume`.
 pub fn run(args: &ResumeArgs) -> ExitCode {
     init_logging();
-    let runner = match Runner::resume(&args.checkpoint, args.outdir.as_deref()) {
+    let ranks = Ranks::start();
+    // rank 0 continues the run's files; the others keep the schedule in a
+    // scratch folder
+    let scratch = (!ranks.is_root()).then(|| ranks.outdir(std::path::Path::new(".")));
+    let mut runner = match Runner::resume(
+        &args.checkpoint,
+        scratch.as_deref().or(args.outdir.as_deref()),
+    ) {
         Ok(r) => r,
-        Err(e) => return error_exit(&e),
+        Err(e) => {
+            let code = error_exit(&e);
+            ranks.fail(2);
+            return code;
+        }
     };
     let at = runner.world().step;
     if let Some(n) = args.steps.filter(|&n| n <= at) {
         errln!("error: --steps {n} is not after the checkpoint's step {at}; nothing would be run\n  = help: --steps counts from the start of the original run: give a step above {at}");
         return ExitCode::from(2);
     }
-    drive(runner, args.threads, args.steps)
+    ranks.split(&mut runner);
+    let code = drive(runner, args.threads, args.steps, &ranks);
+    if let Some(d) = &scratch {
+        ranks.finish(d);
+    }
+    code
 }

@@ -1,5 +1,6 @@
 //! `clump run SCENARIO [-o OUTDIR] [--threads N] [--steps N]`.
 
+use crate::ranks::Ranks;
 use clap::Args;
 use clump_io::run::{RunError, RunOptions, RunStatus, Runner};
 use clump_io::scenario;
@@ -69,7 +70,12 @@ pub fn install_signals() -> Arc<AtomicUsize> {
 
 /// Runs `runner` to the end (or the step limit / a signal) in a pool of
 /// `threads`, with progress display and summary; returns the exit status.
-pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>) -> ExitCode {
+pub fn drive(
+    mut runner: Runner,
+    threads: Option<usize>,
+    max_steps: Option<u64>,
+    ranks: &Ranks,
+) -> ExitCode {
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         if n == 0 {
@@ -88,7 +94,7 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
     let flag = install_signals();
     let total = runner.scenario().total_steps();
     let end_step = max_steps.map_or(total, |m| m.min(total));
-    let mut display = Display::new(end_step, runner.world().step);
+    let mut display = Display::new(end_step, runner.world().step, ranks.is_root());
     let interval = display.interval();
     let nthreads = pool.current_num_threads();
     tracing::info!(
@@ -113,8 +119,21 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
     display.finish();
     let s = match result {
         Ok(s) => s,
-        Err(e) => return error_exit(&e),
+        Err(e) => {
+            if ranks.size() > 1 {
+                err!("rank {} of {}: ", ranks.rank(), ranks.size());
+            }
+            let code = error_exit(&e);
+            ranks.fail(if e.is_input() { 2 } else { 1 });
+            return code;
+        }
     };
+    if !ranks.is_root() {
+        return match s.status {
+            RunStatus::Interrupted(sig) => ExitCode::from((128 + sig).clamp(0, 255) as u8),
+            _ => ExitCode::SUCCESS,
+        };
+    }
     let status = match s.status {
         RunStatus::Completed => "completed",
         RunStatus::StepLimit => "stopped at the --steps limit",
@@ -132,6 +151,24 @@ pub fn drive(mut runner: Runner, threads: Option<usize>, max_steps: Option<u64>)
         s.throughput(),
         nthreads
     );
+    if let Some(p) = runner.world().part_info() {
+        let t = p.traffic;
+        let steps = t.steps.max(1) as f64;
+        let owned = t.local_body_steps.saturating_sub(t.ghost_body_steps).max(1) as f64;
+        outln!(
+            "ranks: {} (regions by recursive coordinate bisection; halo {:.3e} m); rank 0: halo fraction {:.3} (ghost bodies per owned body), ghost states {:.0} B and {:.2} messages per step, {} neighbour rebuilds ({:.0} B and {:.2} messages each), {} whole-world gathers ({:.0} B each)",
+            p.size,
+            p.halo,
+            t.ghost_body_steps as f64 / owned,
+            t.ghost_bytes as f64 / steps,
+            t.ghost_messages as f64 / steps,
+            t.rebuilds,
+            t.migrate_bytes as f64 / t.rebuilds.max(1) as f64,
+            t.migrate_messages as f64 / t.rebuilds.max(1) as f64,
+            t.gathers,
+            t.gather_bytes as f64 / t.gathers.max(1) as f64,
+        );
+    }
     report_bodies(&runner);
     outln!("output: {}", runner.outdir().display());
     if let Some(c) = &s.checkpoint {
@@ -220,11 +257,20 @@ pub fn run(args: &RunArgs) -> ExitCode {
         .outdir
         .clone()
         .unwrap_or_else(|| default_outdir(&sc, &args.scenario));
-    let runner = match Runner::new_in(sc, &outdir, args.overwrite) {
+    let ranks = Ranks::start();
+    let mine = ranks.outdir(&outdir);
+    let mut runner = match Runner::new_in(sc, &mine, args.overwrite || !ranks.is_root()) {
         Ok(r) => r,
-        Err(e) => return error_exit(&e),
+        Err(e) => {
+            let code = error_exit(&e);
+            ranks.fail(2);
+            return code;
+        }
     };
-    drive(runner, args.threads, args.steps)
+    ranks.split(&mut runner);
+    let code = drive(runner, args.threads, args.steps, &ranks);
+    ranks.finish(&mine);
+    code
 }
 
 /// Logging (tracing) and progress display shared by `run` and `resume`.
@@ -279,6 +325,7 @@ pub mod progress {
     /// The ETA follows the recent rate (see [`RecentRate`]).
     pub struct Display {
         bar: Option<ProgressBar>,
+        shown: bool,
         last_line: Instant,
         line_every: Duration,
         rate: RecentRate,
@@ -332,8 +379,9 @@ pub mod progress {
 
     impl Display {
         /// A display for a run ending at `end_step`.
-        pub fn new(end_step: u64, start_step: u64) -> Self {
-            if std::io::stderr().is_terminal() {
+        /// A display; `shown = false` (an MPI rank other than 0) shows nothing.
+        pub fn new(end_step: u64, start_step: u64, shown: bool) -> Self {
+            if shown && std::io::stderr().is_terminal() {
                 let pb = ProgressBar::with_draw_target(
                     Some(end_step),
                     ProgressDrawTarget::stderr_with_hz(4),
@@ -350,6 +398,7 @@ pub mod progress {
                 let _ = BAR.set(pb.clone());
                 Display {
                     bar: Some(pb),
+                    shown,
                     last_line: Instant::now(),
                     line_every: Duration::from_secs(5),
                     rate: RecentRate::default(),
@@ -357,6 +406,7 @@ pub mod progress {
             } else {
                 Display {
                     bar: None,
+                    shown,
                     last_line: Instant::now(),
                     line_every: Duration::from_secs(5),
                     rate: RecentRate::default(),
@@ -375,6 +425,9 @@ pub mod progress {
 
         /// Shows one progress report.
         pub fn update(&mut self, p: &clump_io::run::Progress) {
+            if !self.shown {
+                return;
+            }
             let rate = self.rate.update(p.steps_per_second, Instant::now());
             let eta = eta(p.end_step.saturating_sub(p.step), rate);
             let msg = format!(

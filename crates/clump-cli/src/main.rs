@@ -21,6 +21,7 @@ mod cmd_run;
 mod cmd_template;
 mod cmd_validate;
 mod memory;
+mod ranks;
 
 /// Clump: a DEM simulator for rigid clumps of overlapping spheres.
 #[derive(Parser)]

@@ -119,6 +119,26 @@ impl Bodies {
         self.start_step.push(init.start_step);
     }
 
+    /// Appends every body of `other`, in its order.
+    pub fn append(&mut self, other: &Bodies) {
+        self.id.extend_from_slice(&other.id);
+        self.template.extend_from_slice(&other.template);
+        self.position.extend_from_slice(&other.position);
+        self.velocity.extend_from_slice(&other.velocity);
+        self.orientation.extend_from_slice(&other.orientation);
+        self.angular_momentum
+            .extend_from_slice(&other.angular_momentum);
+        self.angular_velocity
+            .extend_from_slice(&other.angular_velocity);
+        self.force.extend_from_slice(&other.force);
+        self.torque.extend_from_slice(&other.torque);
+        self.mass.extend_from_slice(&other.mass);
+        self.inertia.extend_from_slice(&other.inertia);
+        self.force_flag.extend_from_slice(&other.force_flag);
+        self.torque_flag.extend_from_slice(&other.torque_flag);
+        self.start_step.extend_from_slice(&other.start_step);
+    }
+
     /// Reorders all arrays so that new index `k` holds old index `perm[k]`.
     /// `perm` may be shorter than `len()`: bodies not listed are dropped.
     pub fn permute(&mut self, perm: &[u32]) {

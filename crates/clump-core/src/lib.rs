@@ -35,6 +35,7 @@ pub mod math;
 pub mod multi_contact;
 pub mod neighbor;
 pub mod par;
+pub mod partition;
 pub mod rotation;
 pub mod shape;
 pub mod sphere;

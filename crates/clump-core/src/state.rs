@@ -64,15 +64,24 @@ impl World {
         if !self.phase.forces_ready {
             self.prepare()?;
         }
-        let mut map = std::mem::take(&mut self.neighbors.history_map);
-        self.neighbors.pairs.save_history(
-            &self.spheres.gid,
-            self.contact_table.any_reach(),
-            &mut map,
-        );
-        let mut pair_history: Vec<_> = map.drain().collect();
+        let mut pair_history: Vec<_> = if self.neighbors.history_pending {
+            self.neighbors
+                .history_map
+                .iter()
+                .map(|(k, h)| (*k, *h))
+                .collect()
+        } else {
+            let mut map = std::mem::take(&mut self.neighbors.history_map);
+            self.neighbors.pairs.save_history(
+                &self.spheres.gid,
+                self.contact_table.any_reach(),
+                &mut map,
+            );
+            let v = map.drain().collect();
+            self.neighbors.history_map = map;
+            v
+        };
         pair_history.sort_by_key(|e| e.0);
-        self.neighbors.history_map = map;
         let (wall_key, wall_hist) = self.neighbors.wall_list.per_sphere(self.spheres.len());
         Ok(WorldState {
             config: self.config,

@@ -18,6 +18,54 @@ pub struct CellGrid {
     pub periodic: [bool; 3],
 }
 
+/// The bounding box and number of points a grid is built for (positions
+/// wrapped into the periodic box), world frame, m.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Extent {
+    /// Lower corner (+∞ when empty).
+    pub lo: DVec3,
+    /// Upper corner (−∞ when empty).
+    pub hi: DVec3,
+    /// Number of points.
+    pub count: u64,
+}
+
+impl Extent {
+    /// No points.
+    pub fn empty() -> Self {
+        Extent {
+            lo: DVec3::splat(f64::INFINITY),
+            hi: DVec3::splat(f64::NEG_INFINITY),
+            count: 0,
+        }
+    }
+
+    /// Adds one point (wrapped into the periodic box).
+    pub fn add(&mut self, domain: &Domain, p: DVec3) {
+        let w = domain.wrap(p);
+        self.lo = self.lo.min(w);
+        self.hi = self.hi.max(w);
+        self.count += 1;
+    }
+
+    /// The extent of `positions`.
+    pub fn of(domain: &Domain, positions: &[DVec3]) -> Self {
+        let mut e = Extent::empty();
+        for &p in positions {
+            e.add(domain, p);
+        }
+        e
+    }
+
+    /// The extent of both (min and max are exact: the order of merging
+    /// does not matter).
+    pub fn merge(&mut self, o: &Extent) {
+        self.lo = self.lo.min(o.lo);
+        self.hi = self.hi.max(o.hi);
+        self.count += o.count;
+    }
+}
+
 /// Largest number of cells the grid may have per sphere (bounds memory when
 /// spheres are sparse in a large box).
 const MAX_CELLS_PER_SPHERE: usize = 8;
@@ -27,22 +75,23 @@ impl CellGrid {
     /// edge `min_cell` (m). Returns an error message if a periodic axis is
     /// shorter than three cells.
     pub fn new(domain: &Domain, positions: &[DVec3], min_cell: f64) -> Result<Self, String> {
-        let mut lo = DVec3::splat(f64::INFINITY);
-        let mut hi = DVec3::splat(f64::NEG_INFINITY);
-        for &p in positions {
-            let w = domain.wrap(p);
-            lo = lo.min(w);
-            hi = hi.max(w);
-        }
-        if positions.is_empty() {
+        Self::from_extent(domain, &Extent::of(domain, positions), min_cell)
+    }
+
+    /// The grid [`CellGrid::new`] builds for points with extent `e` (the
+    /// extent of a whole world assembled from its ranks' parts).
+    pub fn from_extent(domain: &Domain, e: &Extent, min_cell: f64) -> Result<Self, String> {
+        let (mut lo, mut hi) = (e.lo, e.hi);
+        if e.count == 0 {
             lo = domain.lo;
             hi = domain.hi;
         }
+        let positions_len = e.count as usize;
         let mut g = CellGrid {
             periodic: domain.periodic,
             ..Default::default()
         };
-        let max_cells = (positions.len().max(1) * MAX_CELLS_PER_SPHERE) as f64;
+        let max_cells = (positions_len.max(1) * MAX_CELLS_PER_SPHERE) as f64;
         let mut min_cell = min_cell;
         loop {
             let mut total = 1.0;

@@ -31,6 +31,9 @@ pub(crate) struct NeighborState {
     pub reference_pose: Vec<(DVec3, DQuat)>,
     /// Contact histories carried across a rebuild, keyed by sphere ids.
     pub history_map: HistoryMap,
+    /// The histories are in `history_map` and the pair list is not built
+    /// (a world joined from its ranks, between an event and its next step).
+    pub history_pending: bool,
     /// The cell grid of the last build.
     pub grid: CellGrid,
     /// Per-contact records of the last step asked to keep them.

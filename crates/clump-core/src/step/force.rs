@@ -95,6 +95,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         record,
         simd: crate::par::simd::simd(),
         prefetch: w.spheres.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
+        counted: w.part.as_ref().map(|p| &p.owned[..]),
     };
     let stats = SharedMut::new(stats);
     // the chunks are the gather's body chunks, so that a body's rows never
@@ -198,8 +199,12 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         scratch,
         config,
         stats,
+        part,
         ..
     } = w;
+    // a partitioned world counts its owned bodies only in the statistics
+    // and wall loads (its ghosts are counted by their owners)
+    let owned = part.as_ref().map(|p| &p.owned[..]);
     let crate::neighbor::NeighborState {
         pairs,
         wall_list,
@@ -355,7 +360,17 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                 if e > e0 {
                     // SAFETY: the entries e0..e are body bi's, chunk c's.
                     unsafe {
-                        wall_pass.body(bi, com, e0..e, c, wcounts, touch_buf, stat, &mut f, &mut m)
+                        wall_pass.body(
+                            bi,
+                            com,
+                            e0..e,
+                            c,
+                            wcounts,
+                            touch_buf,
+                            owned.map_or(true, |o| o[bi]).then_some(&mut *stat),
+                            &mut f,
+                            &mut m,
+                        )
                     };
                 }
                 // the body's velocities as local values, kicked, then stored
@@ -383,16 +398,20 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                 // the kick (a force that would fling a body out of the
                 // domain shows here, before the body is removed)
                 let ke = 0.5 * b.mass[bi] * v.length_squared() + 0.5 * om.dot(l);
-                stat.kinetic_energy += ke;
-                stat.total_mass += b.mass[bi];
-                if ke > stat.max_body_kinetic_energy {
-                    stat.max_body_kinetic_energy = ke;
-                    stat.max_kinetic_body = b.id[bi];
-                }
-                if stat.non_finite_body == 0
-                    && !(ke.is_finite() && com.is_finite() && f.is_finite() && m.is_finite())
-                {
-                    stat.non_finite_body = b.id[bi];
+                if owned.is_some_and(|o| !o[bi]) {
+                    // a ghost: its owner counts it
+                } else {
+                    stat.kinetic_energy += ke;
+                    stat.total_mass += b.mass[bi];
+                    if ke > stat.max_body_kinetic_energy {
+                        stat.max_body_kinetic_energy = ke;
+                        stat.max_kinetic_body = b.id[bi];
+                    }
+                    if stat.non_finite_body == 0
+                        && !(ke.is_finite() && com.is_finite() && f.is_finite() && m.is_finite())
+                    {
+                        stat.non_finite_body = b.id[bi];
+                    }
                 }
                 if let Some(h) = next {
                     // SAFETY: body bi (and its spheres) is handled by this

@@ -38,6 +38,7 @@ pub mod force;
 pub mod integrate;
 pub mod kinematics;
 mod pair_kernel;
+mod partition;
 pub mod rebuild;
 pub mod run;
 mod wall_contacts;
@@ -75,8 +76,17 @@ impl World {
     /// current state, so that the first step starts with valid forces. Called
     /// automatically by [`World::step`].
     pub fn prepare(&mut self) -> Result<(), StepError> {
-        rebuild::rebuild(self, true)?;
-        force::compute(self);
+        // a partitioned world is whole between steps (at an event): every
+        // rank prepares it whole, as one process does; the next step splits it
+        let part = self.part.take();
+        if part.as_ref().is_some_and(|p| p.local) {
+            self.part = part;
+            partition::join::join(self)?;
+            return self.prepare();
+        }
+        let done = rebuild::rebuild(self, true).map(|()| force::compute(self));
+        self.part = part;
+        done?;
         self.phase.forces_ready = true;
         Ok(())
     }
@@ -128,6 +138,70 @@ impl World {
         if fuse {
             self.phase.first_half_done = Some(next_stale);
         }
+        lap(&mut times.gather, &mut t);
+        self.stage_times = times;
+        self.step += 1;
+        self.time = self.step as f64 * dt;
+        let rec = &mut self.neighbors.records;
+        rec.step = rec.recording.then_some(self.step);
+        rec.recording = false;
+        Ok(())
+    }
+
+    /// One step of a world split over ranks ([`crate::partition`]), never
+    /// fused. The same stages as [`World::step_fused`] on this rank's part,
+    /// plus what the ranks exchange: whether any sphere moved past half the
+    /// skin (then every rank rebuilds: the whole world is gathered,
+    /// reorganised and split again), after the gather the ghosts' new state
+    /// from their owners, and the statistics and wall loads summed over
+    /// the ranks.
+    pub(crate) fn step_partitioned(&mut self) -> Result<(), StepError> {
+        use partition::ghosts;
+        let dt = self.config.dt;
+        let mut times = self.stage_times;
+        let mut t = Instant::now();
+        let local = self.part.as_ref().is_some_and(|p| p.local);
+        let dirty = self.phase.topology_dirty;
+        if !local && !dirty {
+            // at an event the world is whole: keep this rank's part (a
+            // restart's rebuild from the build poses, bit for bit)
+            if !self.neighbors.history_pending {
+                self.neighbors.pairs.save_history(
+                    &self.spheres.gid,
+                    self.contact_table.any_reach(),
+                    &mut self.neighbors.history_map,
+                );
+            }
+            rebuild::rebuild(self, false)?;
+            self.rebuilds = self.rebuilds.saturating_sub(1);
+        }
+        // a whole world with new bodies takes its first half whole, as one
+        // process does, and is split at the rebuild that follows
+        let moved_out = integrate::initial(self, !dirty);
+        for w in &mut self.walls {
+            w.advance(dt);
+        }
+        let wall_started = self.neighbors.wall_cull & !rebuild::static_walls(&self.walls) != 0;
+        lap(&mut times.initial, &mut t);
+        let stale = self.any_rank(moved_out) || dirty;
+        if stale {
+            if self.part.as_ref().is_some_and(|p| p.local) {
+                // bodies move to their new ranks, neighbours only
+                partition::migrate::rebuild(self)?;
+            } else {
+                // the whole world (new bodies): rebuilt whole, then split
+                rebuild::rebuild(self, true)?;
+            }
+            lap(&mut times.neighbor, &mut t);
+        } else if wall_started {
+            rebuild::refresh_wall_list(self);
+            lap(&mut times.neighbor, &mut t);
+        }
+        force::pair_forces(self);
+        lap(&mut times.pair, &mut t);
+        force::gather(self, true, None);
+        ghosts::refresh(self);
+        ghosts::reduce(self);
         lap(&mut times.gather, &mut t);
         self.stage_times = times;
         self.step += 1;

@@ -22,11 +22,14 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     }
     let min_cell = 2.0 * w.max_radius() + w.skin();
     if reorganize {
-        w.neighbors.pairs.save_history(
-            &w.spheres.gid,
-            w.contact_table.any_reach(),
-            &mut w.neighbors.history_map,
-        );
+        // a world joined from its ranks holds its histories in the map
+        if !w.neighbors.history_pending {
+            w.neighbors.pairs.save_history(
+                &w.spheres.gid,
+                w.contact_table.any_reach(),
+                &mut w.neighbors.history_map,
+            );
+        }
         let domain = w.config.domain;
         let n = w.bodies.len();
         let keep = &mut w.scratch.keep;
@@ -88,29 +91,23 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     } else {
         // positions at the last build, recomputed from the stored poses
         rebuild_sphere_topology(w);
-        let current: Vec<_> = w
-            .bodies
-            .position
-            .iter()
-            .zip(&w.bodies.orientation)
-            .map(|(&x, &q)| (x, q))
-            .collect();
-        for (b, &(x, q)) in w.neighbors.reference_pose.iter().enumerate() {
-            w.bodies.position[b] = x;
-            w.bodies.orientation[b] = q;
-        }
-        update_spheres(w);
-        w.neighbors.reference_position.clear();
-        w.neighbors.reference_position.extend(w.spheres.positions());
-        for (b, (x, q)) in current.into_iter().enumerate() {
-            w.bodies.position[b] = x;
-            w.bodies.orientation[b] = q;
-        }
-        update_spheres(w);
+        reference_positions_from_poses(w);
         w.phase.topology_dirty = false;
+        if w.part.is_some() {
+            // each sphere continues its own wall slots (filtered below)
+            let n = w.spheres.len();
+            w.neighbors
+                .wall_list
+                .live_entries(n, &mut w.scratch.wall_carry);
+        }
     }
-    w.neighbors.grid = CellGrid::new(&w.config.domain, &w.neighbors.reference_position, min_cell)
-        .map_err(StepError::Neighbor)?;
+    // a partitioned world keeps its rank's part here, and builds its lists
+    // on the whole world's grid
+    let partitioned = w.part.is_some();
+    let mut carry = std::mem::take(&mut w.scratch.wall_carry);
+    let grid = super::partition::restrict::restrict(w, min_cell, &mut carry);
+    w.scratch.wall_carry = carry;
+    w.neighbors.grid = grid?;
     let sp = &w.spheres;
     let inp = BuildInput {
         position: &w.neighbors.reference_position,
@@ -126,8 +123,9 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         &w.neighbors.history_map,
     );
     w.neighbors.history_map.clear();
+    w.neighbors.history_pending = false;
     w.neighbors.pairs.refresh_bodies(&w.bodies);
-    if reorganize {
+    if reorganize || partitioned {
         build_wall_lists(w);
     } else {
         // the spheres kept their order: each continues its own slots
@@ -135,6 +133,32 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     }
     w.rebuilds += 1;
     Ok(())
+}
+
+/// Sets the reference positions of the spheres (the skin check's) from
+/// the bodies' poses at the last build, and then the spheres' current
+/// positions from the current poses (a restart, a rank's part, and a world
+/// joined from its ranks compute them so).
+pub(crate) fn reference_positions_from_poses(w: &mut World) {
+    let current: Vec<_> = w
+        .bodies
+        .position
+        .iter()
+        .zip(&w.bodies.orientation)
+        .map(|(&x, &q)| (x, q))
+        .collect();
+    for (b, &(x, q)) in w.neighbors.reference_pose.iter().enumerate() {
+        w.bodies.position[b] = x;
+        w.bodies.orientation[b] = q;
+    }
+    update_spheres(w);
+    w.neighbors.reference_position.clear();
+    w.neighbors.reference_position.extend(w.spheres.positions());
+    for (b, (x, q)) in current.into_iter().enumerate() {
+        w.bodies.position[b] = x;
+        w.bodies.orientation[b] = q;
+    }
+    update_spheres(w);
 }
 
 /// Chooses the skin of the new lists from the motion since the last build

@@ -175,6 +175,9 @@ impl World {
                 event: event.step,
             });
         }
+        if self.part.is_some() {
+            return self.advance_partitioned(event, hook);
+        }
         while self.step < event.step {
             let interrupt = hook.stop_requested();
             if interrupt && self.phase.first_half_done.is_none() {
@@ -195,6 +198,64 @@ impl World {
             }
         }
         Ok(Advance::Reached)
+    }
+
+    /// [`Self::advance`] of a world split over ranks: unfused steps of this
+    /// rank's part, a stop request honoured when any rank has one, and the
+    /// whole world gathered on every rank at the end (the driver's boundary
+    /// work sees it whole). Every rank takes the same decisions: the hook
+    /// sees the statistics summed over the ranks.
+    fn advance_partitioned<H: StepHook + ?Sized>(
+        &mut self,
+        event: Event,
+        hook: &mut H,
+    ) -> Result<Advance, StepError> {
+        let mut end = Advance::Reached;
+        if !self.phase.forces_ready {
+            // the whole world's first forces (or after new bodies), as one
+            // process takes them; the rebuild splits it
+            self.prepare()?;
+        }
+        // a stop asked by the hook after a step is or-ed over the ranks with
+        // the stop requests before the next (one reduction per step)
+        let mut tripped = false;
+        loop {
+            let flags = [tripped, hook.stop_requested()];
+            let [trip, interrupt] = self.any_ranks(flags);
+            if trip {
+                end = Advance::Tripped;
+                break;
+            }
+            if self.step >= event.step {
+                break;
+            }
+            if interrupt {
+                end = Advance::Interrupted;
+                break;
+            }
+            let last = self.step + 1 == event.step;
+            if last {
+                // the step before an event runs whole on every rank, as one
+                // process takes it: its statistics, wall loads and contact
+                // records (for output) are then one process's, bit for bit
+                self.neighbors.records.set_recording(event.contacts);
+                super::partition::join::whole_step(self)?;
+            } else {
+                self.step_partitioned()?;
+            }
+            let report = StepReport {
+                step: self.step,
+                time: self.time,
+                bodies: self.bodies.len(),
+                spheres: self.spheres.len(),
+                stats: &self.stats,
+            };
+            tripped = hook.end_of_step(&report) == Flow::Stop;
+        }
+        if self.part.as_ref().is_some_and(|p| p.local) {
+            super::partition::join::join(self)?;
+        }
+        Ok(end)
     }
 
     /// Runs the world under `driver` until a hook or a stop request ends

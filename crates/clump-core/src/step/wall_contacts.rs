@@ -124,7 +124,7 @@ impl<'a> WallPass<'a> {
         c: usize,
         wcounts: &mut PartnerCounts,
         buf: &mut [WallTouch; MAX_TOUCHES_PER_WALL],
-        stat: &mut ContactStats,
+        mut stat: Option<&mut ContactStats>,
         f: &mut DVec3,
         m: &mut DVec3,
     ) {
@@ -235,17 +235,21 @@ impl<'a> WallPass<'a> {
                     }
                     *f += fw * scale;
                     *m += mw * scale;
-                    // SAFETY: row c of the chunk loads belongs to this chunk only.
-                    let load = unsafe { self.loads.get(c * self.nw + wi) };
-                    load.force -= fw * scale;
-                    load.torque -= tw * scale;
-                    stat.wall_contacts += 1;
-                    stat.elastic_energy += energy * scale;
-                    let ratio = touch.overlap / self.sp.state[s].radius;
-                    if ratio > stat.max_overlap_ratio {
-                        stat.max_overlap_ratio = ratio;
-                        stat.max_overlap_bodies = [self.b.id[bi], 0];
-                        stat.max_overlap_wall = wi as u32 + 1;
+                    // a ghost body (partitioned world) adds neither: its
+                    // owner does
+                    if let Some(stat) = stat.as_deref_mut() {
+                        // SAFETY: row c of the chunk loads belongs to this chunk only.
+                        let load = unsafe { self.loads.get(c * self.nw + wi) };
+                        load.force -= fw * scale;
+                        load.torque -= tw * scale;
+                        stat.wall_contacts += 1;
+                        stat.elastic_energy += energy * scale;
+                        let ratio = touch.overlap / self.sp.state[s].radius;
+                        if ratio > stat.max_overlap_ratio {
+                            stat.max_overlap_ratio = ratio;
+                            stat.max_overlap_bodies = [self.b.id[bi], 0];
+                            stat.max_overlap_wall = wi as u32 + 1;
+                        }
                     }
                     if n_new < WALL_SLOTS {
                         new_key[n_new] = slot_key;

@@ -108,6 +108,9 @@ pub struct World {
     /// Working arrays of the step, reused so that steps do not allocate,
     /// and the learned thread balance; never part of the simulated state.
     pub(crate) scratch: Scratch,
+    /// This rank's part when the world is split over ranks
+    /// ([`World::partition`]); `None` in one process.
+    pub(crate) part: Option<Box<crate::partition::Part>>,
 }
 
 impl World {
@@ -131,6 +134,7 @@ impl World {
             neighbors: NeighborState::default(),
             phase: StepPhase::default(),
             scratch: Scratch::default(),
+            part: None,
         }
     }
 

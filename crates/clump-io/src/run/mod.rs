@@ -396,6 +396,12 @@ impl Runner {
         &self.world
     }
 
+    /// Splits the world over the ranks of `comm` (every rank runs the same
+    /// scenario; see `clump_core::partition`).
+    pub fn partition(&mut self, comm: Box<dyn clump_core::partition::Comm>) {
+        self.world.partition(comm);
+    }
+
     /// The output directory.
     pub fn outdir(&self) -> &Path {
         &self.out.dir

@@ -107,6 +107,9 @@ pub(super) struct RowCtx<'a> {
     /// prefetches further ahead ([`LARGE_AHEAD`]) and also the partner
     /// body's data.
     pub prefetch: bool,
+    /// Per body: its pairs count in the statistics (a partitioned world
+    /// counts the pairs in the rows of its owned bodies only); `None`: all.
+    pub counted: Option<&'a [bool]>,
 }
 
 impl RowCtx<'_> {
@@ -488,6 +491,9 @@ impl RowCtx<'_> {
             let t = self.topo.get(p);
             if !t.live {
                 t.live = true;
+            }
+            if self.counted.is_some_and(|c| !c[bi]) {
+                continue;
             }
             let overlap = l.overlap[k];
             // the statistics of the pair's chunk (a batch may span chunks)

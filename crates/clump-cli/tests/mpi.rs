@@ -1,0 +1,215 @@
+//! `mpirun -np N clump run`: the world split over N ranks gives one
+//! process's files bit for bit (bodies, spheres, walls, contacts, thermo,
+//! the final state, the checkpoint's world), at 2 and 4 ranks, on the
+//! examples in short versions (stones: stream insertion onto a floor;
+//! drum: a rotating mesh wall), a periodic box with clumps crossing its
+//! sides, and a restart at 3 ranks from a checkpoint written at 2.
+//! Built only with the `mpi` feature (scripts/test-all.sh runs it).
+#![cfg(feature = "mpi")]
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn out_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("clump-mpi-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+/// `clump ARGS` on `np` ranks (`np = 0`: without mpirun), one thread each.
+fn clump(np: usize, args: &[&str]) {
+    let bin = env!("CARGO_BIN_EXE_clump");
+    let mut c = if np == 0 {
+        Command::new(bin)
+    } else {
+        let mut c = Command::new("mpirun");
+        c.args([
+            "--oversubscribe",
+            "--allow-run-as-root",
+            "-np",
+            &np.to_string(),
+            bin,
+        ]);
+        c
+    };
+    // shared memory without cross-memory attach (containers may forbid it)
+    c.env("OMPI_MCA_btl_vader_single_copy_mechanism", "none");
+    c.args(args).args(["--threads", "1"]).current_dir(repo());
+    let out = c
+        .output()
+        .expect("mpirun (Debian: openmpi-bin) must be installed for the MPI tests");
+    assert!(
+        out.status.success(),
+        "clump {args:?} on {np} ranks failed:\n{}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The world state of a checkpoint, part by part, as bytes (the checkpoint
+/// file also holds the run's id and paths, which differ between runs).
+fn world_of(checkpoint: &Path) -> Vec<(&'static str, Vec<u8>)> {
+    let bytes = std::fs::read(checkpoint).unwrap();
+    let (_, mut world, _) = clump_io::run::load_checkpoint(&bytes, checkpoint).unwrap();
+    let s = world.save_state().unwrap();
+    let j = |v: serde_json::Result<Vec<u8>>| v.unwrap();
+    vec![
+        ("bodies", j(serde_json::to_vec(&s.bodies))),
+        ("pair histories", j(serde_json::to_vec(&s.pair_history))),
+        (
+            "wall slots",
+            j(serde_json::to_vec(&(&s.wall_key, &s.wall_hist))),
+        ),
+        ("wall loads", j(serde_json::to_vec(&s.wall_loads))),
+        ("build poses", j(serde_json::to_vec(&s.reference_pose))),
+        ("statistics", j(serde_json::to_vec(&s.stats))),
+        (
+            "counters",
+            j(serde_json::to_vec(&(
+                s.step,
+                s.rebuilds,
+                s.lost,
+                s.next_id,
+                s.built_step,
+            ))),
+        ),
+        ("skin", s.adapted_skin.to_bits().to_le_bytes().to_vec()),
+    ]
+}
+
+/// The parts of two checkpoints' worlds that differ.
+fn differing(a: &Path, b: &Path) -> Vec<&'static str> {
+    world_of(a)
+        .into_iter()
+        .zip(world_of(b))
+        .filter(|(x, y)| x.1 != y.1)
+        .map(|(x, _)| x.0)
+        .collect()
+}
+
+/// Every file of `a` but the manifest (wall times, paths) equals `b`'s;
+/// checkpoints compare by their world.
+fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
+    let mut names: Vec<_> = std::fs::read_dir(a)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    names.sort();
+    let mut checked = 0;
+    for n in names {
+        let s = n.to_string_lossy();
+        if s == "manifest.json" || s.starts_with('.') {
+            continue;
+        }
+        let (fa, fb) = (a.join(&n), b.join(&n));
+        assert!(fb.exists(), "{what}: {s} is missing");
+        if s.ends_with(".ckpt") {
+            let d = differing(&fa, &fb);
+            assert!(
+                d.is_empty(),
+                "{what}: the checkpoint's world differs in {d:?}"
+            );
+        } else {
+            assert!(
+                std::fs::read(&fa).unwrap() == std::fs::read(&fb).unwrap(),
+                "{what}: {s} differs from one process's"
+            );
+        }
+        checked += 1;
+    }
+    assert!(checked > 5, "{what}: only {checked} files compared");
+}
+
+fn same_bits_at_2_and_4_ranks(name: &str, scenario: &str, steps: &str) {
+    let serial = out_dir(&format!("{name}-1"));
+    clump(
+        0,
+        &[
+            "run",
+            scenario,
+            "-o",
+            serial.to_str().unwrap(),
+            "--steps",
+            steps,
+        ],
+    );
+    for np in [2, 4] {
+        let d = out_dir(&format!("{name}-{np}"));
+        clump(
+            np,
+            &["run", scenario, "-o", d.to_str().unwrap(), "--steps", steps],
+        );
+        assert_same_outputs(&serial, &d, &format!("{name} on {np} ranks"));
+        let _ = std::fs::remove_dir_all(&d);
+    }
+    let _ = std::fs::remove_dir_all(&serial);
+}
+
+#[test]
+fn stream_insertion_onto_a_floor_has_the_same_bits() {
+    same_bits_at_2_and_4_ranks("stones", "examples/stones.toml", "3000");
+}
+
+#[test]
+fn a_rotating_drum_has_the_same_bits() {
+    same_bits_at_2_and_4_ranks("drum", "examples/drum.toml", "1500");
+}
+
+#[test]
+fn clumps_crossing_periodic_sides_have_the_same_bits() {
+    same_bits_at_2_and_4_ranks(
+        "periodic",
+        "crates/clump-cli/tests/fixtures/periodic_straddle.toml",
+        "1000",
+    );
+}
+
+#[test]
+fn a_restart_on_3_ranks_from_a_checkpoint_of_2_continues_bit_for_bit() {
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_straddle.toml";
+    let serial = out_dir("restart-1");
+    clump(
+        0,
+        &[
+            "run",
+            scenario,
+            "-o",
+            serial.to_str().unwrap(),
+            "--steps",
+            "1000",
+        ],
+    );
+    let two = out_dir("restart-2");
+    clump(
+        2,
+        &[
+            "run",
+            scenario,
+            "-o",
+            two.to_str().unwrap(),
+            "--steps",
+            "500",
+        ],
+    );
+    let ckpt = two.join("checkpoint_000000500.ckpt");
+    assert!(
+        ckpt.exists(),
+        "no checkpoint at step 500 in {}",
+        two.display()
+    );
+    clump(3, &["resume", ckpt.to_str().unwrap(), "--steps", "1000"]);
+    let d = differing(
+        &serial.join("checkpoint_000001000.ckpt"),
+        &two.join("checkpoint_000001000.ckpt"),
+    );
+    assert!(
+        d.is_empty(),
+        "the run resumed on 3 ranks differs from one process's in {d:?}"
+    );
+    let _ = std::fs::remove_dir_all(&serial);
+    let _ = std::fs::remove_dir_all(&two);
+}

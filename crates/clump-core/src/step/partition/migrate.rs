@@ -1,0 +1,285 @@
+//! A neighbour rebuild of a split world without gathering it: every rank
+//! reorganises its own bodies (wrap, lost ones out) and sends each to the
+//! ranks that hold it after the build (its new owner and the ranks within
+//! the halo), with its wall slots and the histories of its pairs; only
+//! numbers that do not depend on an order go to every rank (the largest
+//! displacement for the skin, the bounding boxes of the grids, the lost
+//! counts). The part then sorts its bodies by the whole world's Morton key
+//! (on the whole world's grid) and id, which is the whole world's order
+//! restricted to them, and builds its lists on the whole world's grid: the
+//! result is what a gather, one process's rebuild and a split give, bit for
+//! bit (`join` + `restrict`), at the cost of messages between neighbours.
+
+use super::restrict::{halo, Roles};
+use crate::body::Bodies;
+use crate::contact::ContactHistory;
+use crate::lost::LostBodies;
+use crate::neighbor::grid::Extent;
+use crate::neighbor::pairs::{BuildInput, HistoryMap};
+use crate::neighbor::sort::morton;
+use crate::neighbor::walls::{WallList, WALL_SLOTS};
+use crate::neighbor::CellGrid;
+use crate::sphere::SPHERE_ID_BITS;
+use crate::step::kinematics::{sphere_position, update_spheres};
+use crate::step::rebuild::{build_wall_lists, rebuild_sphere_topology};
+use crate::step::StepError;
+use crate::world::World;
+use glam::{DMat3, DVec3};
+use serde::{Deserialize, Serialize};
+
+/// Bodies moving to a rank, with what travels with them.
+#[derive(Serialize, Deserialize, Default)]
+struct Moving {
+    bodies: Bodies,
+    wall_key: Vec<[u32; WALL_SLOTS]>,
+    wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
+    pair_history: Vec<((u64, u64), ContactHistory)>,
+}
+
+/// What every rank contributes to the whole world's numbers.
+#[derive(Serialize, Deserialize)]
+struct Totals {
+    displacement2: f64,
+    bodies: Extent,
+    spheres: Extent,
+    lost: LostBodies,
+}
+
+fn encode<T: Serialize>(v: &T) -> Result<Vec<u8>, StepError> {
+    postcard::to_stdvec(v).map_err(|e| StepError::Neighbor(format!("partition: encoding: {e}")))
+}
+
+fn decode<'a, T: Deserialize<'a>>(b: &'a [u8], from: usize) -> Result<T, StepError> {
+    postcard::from_bytes(b)
+        .map_err(|e| StepError::Neighbor(format!("partition: message from rank {from}: {e}")))
+}
+
+/// Rebuilds the neighbour lists of this rank's part (see the module docs).
+pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
+    let mut part = w.part.take().expect("a partitioned world");
+    let (me, size) = (part.comm.rank(), part.comm.size());
+    let domain = w.config.domain;
+    let n = w.bodies.len();
+
+    // 1. this rank's share of the whole world's numbers
+    let sp = &w.spheres;
+    let mut d2 = 0.0f64;
+    for b in (0..n).filter(|&b| part.owned[b]) {
+        for s in sp.of_body(b) {
+            d2 = d2.max(
+                sp.position(s)
+                    .distance_squared(w.neighbors.reference_position[s]),
+            );
+        }
+    }
+    let mut totals = Totals {
+        displacement2: d2,
+        bodies: Extent::empty(),
+        spheres: Extent::empty(),
+        lost: LostBodies::default(),
+    };
+    let mut keep = Vec::new();
+    for b in (0..n).filter(|&b| part.owned[b]) {
+        let x = w.bodies.position[b];
+        totals.bodies.add(&domain, x);
+        if let Some(cause) = domain.exit_cause(x) {
+            totals.lost.record(cause);
+            continue;
+        }
+        let x = domain.wrap(x);
+        w.bodies.position[b] = x;
+        let t = w.bodies.template[b] as usize;
+        let rot = DMat3::from_quat(w.bodies.orientation[b]);
+        let (f0, f1) = (w.templates.first[t], w.templates.first[t + 1]);
+        for k in f0..f1 {
+            totals.spheres.add(
+                &domain,
+                sphere_position(x, &rot, w.templates.offset[k as usize]),
+            );
+        }
+        keep.push(b);
+    }
+    part.traffic.reductions += 1;
+    let all = part.comm.all_gather(&encode(&totals)?);
+    let mut whole = Totals {
+        displacement2: 0.0,
+        bodies: Extent::empty(),
+        spheres: Extent::empty(),
+        lost: LostBodies::default(),
+    };
+    for (r, bytes) in all.iter().enumerate() {
+        let t: Totals = decode(bytes, r)?;
+        whole.displacement2 = whole.displacement2.max(t.displacement2);
+        whole.bodies.merge(&t.bodies);
+        whole.spheres.merge(&t.spheres);
+        let l = &mut whole.lost;
+        for (a, b) in l.through_side.iter_mut().zip(t.lost.through_side) {
+            *a += b;
+        }
+        l.not_finite += t.lost.not_finite;
+        l.removed += t.lost.removed;
+    }
+
+    // 2. the skin, as one process adapts it, and the lost bodies
+    if w.config.skin.is_none() && w.step > w.neighbors.built_step {
+        w.neighbors.adapted_skin = crate::neighbor::skin::adapted_skin(
+            w.min_radius(),
+            whole.displacement2.sqrt(),
+            w.step - w.neighbors.built_step,
+        );
+    }
+    w.neighbors.built_step = w.step;
+    let l = &mut w.lost;
+    for (a, b) in l.through_side.iter_mut().zip(whole.lost.through_side) {
+        *a += b;
+    }
+    l.not_finite += whole.lost.not_finite;
+    l.removed += whole.lost.removed;
+
+    // 3. each kept body to its new owner and the ranks within the halo
+    part.halo = halo(w);
+    let mut history = HistoryMap::default();
+    w.neighbors
+        .pairs
+        .save_history(&w.spheres.gid, w.contact_table.any_reach(), &mut history);
+    let mut by_body: rustc_hash::FxHashMap<u64, Vec<((u64, u64), ContactHistory)>> =
+        Default::default();
+    for (&(a, b), &h) in &history {
+        let (ba, bb) = (a >> SPHERE_ID_BITS, b >> SPHERE_ID_BITS);
+        by_body.entry(ba).or_default().push(((a, b), h));
+        if bb != ba {
+            by_body.entry(bb).or_default().push(((a, b), h));
+        }
+    }
+    let (wall_key, wall_hist) = w.neighbors.wall_list.per_sphere(w.spheres.len());
+    let mut out: Vec<Moving> = (0..size).map(|_| Moving::default()).collect();
+    let mut near = Vec::new();
+    let mut one = Bodies::default();
+    for &b in &keep {
+        let x = w.bodies.position[b];
+        part.regions.near(x, part.halo, &mut near);
+        near.push(part.regions.owner(x));
+        near.sort_unstable();
+        near.dedup();
+        w.bodies.permute_into(&[b as u32], &mut one);
+        let s = w.spheres.of_body(b);
+        let hist = by_body.get(&w.bodies.id[b]);
+        for &r in &near {
+            let m = &mut out[r];
+            m.bodies.append(&one);
+            m.wall_key.extend_from_slice(&wall_key[s.clone()]);
+            m.wall_hist.extend_from_slice(&wall_hist[s.clone()]);
+            if let Some(h) = hist {
+                m.pair_history.extend_from_slice(h);
+            }
+        }
+    }
+    let partners = part.regions.partners(me, 2.0 * part.halo);
+    let mut sends = Vec::with_capacity(partners.len());
+    for &r in &partners {
+        let bytes = encode(&out[r])?;
+        part.traffic.migrate_bytes += bytes.len() as u64;
+        part.traffic.migrate_messages += 1;
+        sends.push((r, bytes));
+    }
+    let got = part.comm.exchange(&sends, &partners);
+    let mut arrived = vec![std::mem::take(&mut out[me])];
+    for (bytes, &r) in got.iter().zip(&partners) {
+        arrived.push(decode(bytes, r)?);
+    }
+
+    // 4. the part in the whole world's order: Morton key on the whole
+    // world's grid, then id
+    let min_cell = 2.0 * w.max_radius() + w.skin();
+    let body_grid =
+        CellGrid::from_extent(&domain, &whole.bodies, min_cell).map_err(StepError::Neighbor)?;
+    let sphere_grid =
+        CellGrid::from_extent(&domain, &whole.spheres, min_cell).map_err(StepError::Neighbor)?;
+    let mut all_bodies = Bodies::default();
+    let (mut key, mut hist) = (Vec::new(), Vec::new());
+    let map = &mut w.neighbors.history_map;
+    map.clear();
+    for m in arrived {
+        all_bodies.append(&m.bodies);
+        key.extend(m.wall_key);
+        hist.extend(m.wall_hist);
+        map.extend(m.pair_history);
+    }
+    let mut first = vec![0usize];
+    for &t in &all_bodies.template {
+        let t = t as usize;
+        let ns = (w.templates.first[t + 1] - w.templates.first[t]) as usize;
+        first.push(first.last().copied().unwrap_or(0) + ns);
+    }
+    let mut sorted: Vec<((u64, u64), u32)> = (0..all_bodies.len())
+        .map(|b| {
+            let k = morton(body_grid.coords(all_bodies.position[b]));
+            ((k, all_bodies.id[b]), b as u32)
+        })
+        .collect();
+    sorted.sort_unstable();
+    let perm: Vec<u32> = sorted.iter().map(|e| e.1).collect();
+    all_bodies.permute_into(&perm, &mut w.bodies);
+    let (mut k2, mut h2) = (
+        Vec::with_capacity(key.len()),
+        Vec::with_capacity(hist.len()),
+    );
+    for &b in &perm {
+        let s = first[b as usize]..first[b as usize + 1];
+        k2.extend_from_slice(&key[s.clone()]);
+        h2.extend_from_slice(&hist[s]);
+    }
+
+    // 5. the lists, as one process's rebuild makes them
+    w.neighbors.wall_list = WallList::from_per_sphere(&k2, &h2);
+    rebuild_sphere_topology(w);
+    update_spheres(w);
+    w.neighbors.reference_pose.clear();
+    w.neighbors.reference_pose.extend(
+        w.bodies
+            .position
+            .iter()
+            .zip(&w.bodies.orientation)
+            .map(|(&x, &q)| (x, q)),
+    );
+    w.neighbors.reference_position.clear();
+    w.neighbors.reference_position.extend(w.spheres.positions());
+    w.phase.topology_dirty = false;
+    w.neighbors.grid = sphere_grid;
+    let sp = &w.spheres;
+    let inp = BuildInput {
+        position: &w.neighbors.reference_position,
+        radius: &sp.radius,
+        body: &sp.body,
+        gid: &sp.gid,
+        skin: w.skin(),
+    };
+    w.neighbors
+        .pairs
+        .build(&w.neighbors.grid, &domain, &inp, &w.neighbors.history_map);
+    w.neighbors.history_map.clear();
+    w.neighbors.history_pending = false;
+    w.neighbors.pairs.refresh_bodies(&w.bodies);
+    let ns = w.spheres.len();
+    w.neighbors
+        .wall_list
+        .live_entries(ns, &mut w.scratch.wall_carry);
+    build_wall_lists(w);
+    w.rebuilds += 1;
+    part.traffic.rebuilds += 1;
+
+    // 6. who owns what, and who sends whose state
+    let at: Vec<DVec3> = w.bodies.position.clone();
+    let roles = Roles::of(&part.regions, part.halo, me, size, &at);
+    if roles.keep.len() != at.len() {
+        return Err(StepError::Neighbor(format!(
+            "partition: rank {me} received {} bodies it does not hold",
+            at.len() - roles.keep.len()
+        )));
+    }
+    part.order = sorted.iter().map(|e| e.0).collect();
+    roles.install(&mut part);
+    part.local = true;
+    w.part = Some(part);
+    Ok(())
+}

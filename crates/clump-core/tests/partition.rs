@@ -1,0 +1,109 @@
+//! A world split over ranks (threads here, MPI in clump-mpi) gives the same
+//! bits as one process: every body's final state, at 1 to 4 ranks, through
+//! neighbour rebuilds (bodies migrate between ranks), periodic boundaries
+//! and a wall, and through events (the world gathered whole and split
+//! again).
+
+use clump_core::partition::ThreadComm;
+use clump_core::testbed::tetra_lattice_bed;
+use clump_core::world::World;
+
+/// Every body's id, template and state, as bits, in storage order.
+fn fingerprint(w: &World) -> Vec<u64> {
+    let b = &w.bodies;
+    let mut out = Vec::new();
+    for i in 0..b.len() {
+        out.push(b.id[i]);
+        for v in [
+            b.position[i],
+            b.velocity[i],
+            b.angular_momentum[i],
+            b.angular_velocity[i],
+            b.force[i],
+            b.torque[i],
+        ] {
+            out.extend(v.to_array().map(f64::to_bits));
+        }
+        out.extend(b.orientation[i].to_array().map(f64::to_bits));
+    }
+    out
+}
+
+/// Runs `make()` on `ranks` threads, each advancing `rounds` × `steps`
+/// steps (an event between rounds); returns each rank's final whole world's
+/// fingerprint and the step count.
+fn run_ranks(
+    ranks: usize,
+    make: fn() -> World,
+    steps: u64,
+    rounds: usize,
+) -> Vec<(Vec<u64>, u64, u64, clump_core::partition::Traffic)> {
+    let handles: Vec<_> = ThreadComm::group(ranks)
+        .into_iter()
+        .map(|comm| {
+            std::thread::spawn(move || {
+                let mut w = make();
+                w.partition(Box::new(comm));
+                for _ in 0..rounds {
+                    w.run(steps).unwrap();
+                }
+                let traffic = w.part_info().unwrap().traffic;
+                (fingerprint(&w), w.step, w.rebuilds, traffic)
+            })
+        })
+        .collect();
+    handles.into_iter().map(|h| h.join().unwrap()).collect()
+}
+
+fn bed() -> World {
+    tetra_lattice_bed(6, 6, 4, None)
+}
+
+#[test]
+fn a_settling_periodic_bed_has_the_same_bits_on_1_to_4_ranks() {
+    let (steps, rounds) = (2500, 4);
+    let mut serial = bed();
+    serial.run(steps * rounds as u64).unwrap();
+    let want = fingerprint(&serial);
+    assert!(
+        serial.rebuilds > 3,
+        "too few rebuilds to test migration: {}",
+        serial.rebuilds
+    );
+    assert!(
+        serial.stats.pair_contacts > 50,
+        "the bed must be in contact: {} contacts",
+        serial.stats.pair_contacts
+    );
+    for ranks in 1..=4 {
+        for (rank, (got, step, rebuilds, traffic)) in
+            run_ranks(ranks, bed, steps, rounds).into_iter().enumerate()
+        {
+            assert_eq!(step, serial.step);
+            if ranks > 1 {
+                // the ranks did share the bed: ghosts were sent every step
+                assert!(
+                    // every step of the parts (all but the whole steps
+                    // before the events) sent ghost states
+                    traffic.steps + rounds as u64 >= step
+                        && traffic.ghost_messages >= traffic.steps
+                        && traffic.ghost_body_steps > 0,
+                    "{ranks} ranks, rank {rank}: {traffic:?}"
+                );
+                assert!(traffic.ghost_body_steps < traffic.local_body_steps);
+                // rebuilds move bodies between neighbours: the whole world
+                // is gathered at events only (two per round at most)
+                assert!(
+                    traffic.gathers <= 2 * rounds as u64 && rebuilds > traffic.gathers,
+                    "{ranks} ranks: {} gathers for {rebuilds} rebuilds",
+                    traffic.gathers
+                );
+            }
+            assert_eq!(rebuilds, serial.rebuilds, "{ranks} ranks: rebuild count");
+            assert!(
+                got == want,
+                "{ranks} ranks, rank {rank}: body states differ from one process"
+            );
+        }
+    }
+}
