@@ -116,6 +116,7 @@ pub fn run(g: &mut Group, dir: &Path) -> Result<(), String> {
         "Bo",
         &BONDS,
         &stats,
+        SEEDS.len(),
     ));
     g.notes.push(format!(
         "cohesive angle of repose: the repose case's heap and measure (μ = {MU}, μ_r = 0, {} seeds) on a pedestal of radius {:.0} mm, domain top {:.0} mm, with JKR cohesion (Hertz law, work of adhesion Γ = Bo m g / ((3/4) π R) for every pair, clump–pedestal included: the pull-off force (3/2) π Γ R* of two spheres R = 1 mm, R* = R/2, is Bo times a clump's weight m g). Per seed, cone angle (deg) / clumps poured / clumps left on the pedestal / largest avalanche (the largest fall, between two batches, of the clumps at rest on the pedestal) / wall time (s): {}",
