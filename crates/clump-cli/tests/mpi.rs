@@ -3,7 +3,8 @@
 //! the final state, the checkpoint's world), at 2 and 4 ranks, on the
 //! examples in short versions (stones: stream insertion onto a floor;
 //! drum: a rotating mesh wall), a periodic box with clumps crossing its
-//! sides, and a restart at 3 ranks from a checkpoint written at 2.
+//! sides, a restart at 3 ranks from a checkpoint written at 2, and SIGTERM
+//! on 2 ranks (one checkpoint of the whole world, which resumes bit for bit).
 //! Built only with the `mpi` feature (scripts/test-all.sh runs it).
 #![cfg(feature = "mpi")]
 
@@ -212,4 +213,69 @@ fn a_restart_on_3_ranks_from_a_checkpoint_of_2_continues_bit_for_bit() {
     );
     let _ = std::fs::remove_dir_all(&serial);
     let _ = std::fs::remove_dir_all(&two);
+}
+
+#[test]
+fn sigterm_on_two_ranks_checkpoints_the_whole_world_at_one_step() {
+    let bin = env!("CARGO_BIN_EXE_clump");
+    let d = out_dir("sigterm");
+    let mut child = Command::new("mpirun")
+        .args(["--oversubscribe", "--allow-run-as-root", "-np", "2", bin])
+        .args(["run", "examples/stones.toml", "-o", d.to_str().unwrap()])
+        .args(["--threads", "1"])
+        .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+        .current_dir(repo())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("mpirun must be installed");
+    // the handlers are installed before the first thermo row is written
+    let t0 = std::time::Instant::now();
+    while std::fs::read_to_string(d.join("thermo.csv")).map_or(0, |s| s.lines().count()) < 10 {
+        assert!(t0.elapsed().as_secs() < 300, "no thermo rows after 300 s");
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    let st = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(st.success());
+    // mpirun forwards the signal to the ranks; its own exit status is
+    // OpenMPI's (4.1.4 may even crash after forwarding), the run's is in
+    // the manifest
+    let _ = child.wait();
+    let m: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("manifest.json")).unwrap()).unwrap();
+    assert!(
+        m["status"].as_str().unwrap().starts_with("interrupted"),
+        "{m}"
+    );
+    let step = m["final_step"].as_u64().unwrap();
+    let ckpt = d.join(format!("checkpoint_{step:09}.ckpt"));
+    assert!(ckpt.is_file(), "no checkpoint at the interrupt step {step}");
+    // one process, resumed from it, repeats an uninterrupted run
+    let target = (step + 200).to_string();
+    clump(0, &["resume", ckpt.to_str().unwrap(), "--steps", &target]);
+    let straight = out_dir("sigterm-straight");
+    clump(
+        0,
+        &[
+            "run",
+            "examples/stones.toml",
+            "-o",
+            straight.to_str().unwrap(),
+            "--steps",
+            &target,
+        ],
+    );
+    let d2 = differing(
+        &d.join(format!("checkpoint_{:09}.ckpt", step + 200)),
+        &straight.join(format!("checkpoint_{:09}.ckpt", step + 200)),
+    );
+    assert!(
+        d2.is_empty(),
+        "interrupted on 2 ranks and resumed: {d2:?} differ"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_dir_all(&straight);
 }

@@ -24,17 +24,19 @@
 //! rank rebuilds: it wraps its owned bodies, drops the lost ones and sends
 //! each body to its new owner and to the ranks within the halo of it, with
 //! its wall slots and the histories of its pairs (neighbours only); the
-//! whole world's grids come from bounding boxes reduced over the ranks. The
-//! ranks sort their bodies by the whole world's Morton key and id, as one
-//! process does.
+//! whole world's grids come from bounding boxes reduced over the ranks, and
+//! the regions are re-balanced on a sample of every rank's bodies (at most
+//! 256 positions each). The ranks sort their bodies by the whole world's
+//! Morton key and id, as one process does.
 //!
 //! **Events.** At every event of the run loop (output, insertion,
 //! checkpoint, stage change) the whole world is gathered on every rank, in
 //! one process's order, and the step before it runs whole: the drivers see
 //! one process's world, statistics, wall loads and contact records, so
 //! insertion, output, checkpoints and steering work unchanged; only rank 0
-//! writes files. The regions are re-balanced (recursive coordinate
-//! bisection on sphere counts, [`regions`]) when the world is split again.
+//! writes files. The regions are re-balanced on every body (recursive
+//! coordinate bisection on sphere counts, [`regions`]) when the world is
+//! split again.
 //! The price: each event moves every body to every rank
 //! (docs/scaling.md says where that stops scaling).
 //!

@@ -1,5 +1,6 @@
 //! The ranks' regions: recursive coordinate bisection of the domain on
-//! measured cost (sphere counts), redone at every neighbour build.
+//! sphere counts, redone at every neighbour build (on a sample of the
+//! bodies) and whenever a whole world is split (on all of them).
 //!
 //! The domain box is cut across its longest side so that the two halves'
 //! costs are in proportion to their numbers of ranks, then each half in
@@ -199,39 +200,6 @@ impl Regions {
             d2 += d * d;
         }
         d2
-    }
-
-    /// The ranks other than `rank` whose regions come within `reach` of
-    /// its region (periodic images included), ascending. Symmetric: `a` is
-    /// a partner of `b` exactly when `b` is one of `a`.
-    pub fn partners(&self, rank: usize, reach: f64) -> Vec<usize> {
-        let Some((lo, hi)) = self.region(rank) else {
-            return Vec::new();
-        };
-        let l = self.domain.size();
-        let mut out: Vec<usize> = self
-            .cells
-            .iter()
-            .filter_map(|c| match c.node {
-                Node::Leaf { rank: r } if r != rank => Some((r, c.lo, c.hi)),
-                _ => None,
-            })
-            .filter(|&(_, blo, bhi)| {
-                let mut d2 = 0.0;
-                for a in 0..3 {
-                    let gap = |s: f64| (blo[a] + s - hi[a]).max(lo[a] - (bhi[a] + s)).max(0.0);
-                    let mut d = gap(0.0);
-                    if self.domain.periodic[a] {
-                        d = d.min(gap(l[a])).min(gap(-l[a]));
-                    }
-                    d2 += d * d;
-                }
-                d2 <= reach * reach
-            })
-            .map(|(r, _, _)| r)
-            .collect();
-        out.sort_unstable();
-        out
     }
 
     /// The region box of `rank` (world frame, m).

@@ -1,10 +1,12 @@
 //! A neighbour rebuild of a split world without gathering it: every rank
 //! reorganises its own bodies (wrap, lost ones out) and sends each to the
 //! ranks that hold it after the build (its new owner and the ranks within
-//! the halo), with its wall slots and the histories of its pairs; only
-//! numbers that do not depend on an order go to every rank (the largest
+//! the halo), with its wall slots and the histories of its pairs. Only
+//! small numbers go to every rank: those that no order changes (the largest
 //! displacement for the skin, the bounding boxes of the grids, the lost
-//! counts). The part then sorts its bodies by the whole world's Morton key
+//! counts), a sample of at most 256 body positions per rank on which every
+//! rank re-balances the regions alike, and each rank's list of
+//! destinations. The part then sorts its bodies by the whole world's Morton key
 //! (on the whole world's grid) and id, which is the whole world's order
 //! restricted to them, and builds its lists on the whole world's grid: the
 //! result is what a gather, one process's rebuild and a split give, bit for
@@ -43,7 +45,14 @@ struct Totals {
     bodies: Extent,
     spheres: Extent,
     lost: LostBodies,
+    /// A sample of the kept owned bodies for the balance: a position (the
+    /// first of each run of `stride` bodies in storage order, which is
+    /// Morton order: neighbours) and the run's sphere count.
+    sample: Vec<(DVec3, u32)>,
 }
+
+/// Largest number of sample points a rank sends for the balance.
+const SAMPLE: usize = 256;
 
 fn encode<T: Serialize>(v: &T) -> Result<Vec<u8>, StepError> {
     postcard::to_stdvec(v).map_err(|e| StepError::Neighbor(format!("partition: encoding: {e}")))
@@ -77,6 +86,7 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         bodies: Extent::empty(),
         spheres: Extent::empty(),
         lost: LostBodies::default(),
+        sample: Vec::new(),
     };
     let mut keep = Vec::new();
     for b in (0..n).filter(|&b| part.owned[b]) {
@@ -99,6 +109,13 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         }
         keep.push(b);
     }
+    let stride = keep.len().div_ceil(SAMPLE).max(1);
+    for run in keep.chunks(stride) {
+        let spheres: usize = run.iter().map(|&b| w.spheres.of_body(b).len()).sum();
+        totals
+            .sample
+            .push((w.bodies.position[run[0]], spheres as u32));
+    }
     part.traffic.reductions += 1;
     let all = part.comm.all_gather(&encode(&totals)?);
     let mut whole = Totals {
@@ -106,6 +123,7 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         bodies: Extent::empty(),
         spheres: Extent::empty(),
         lost: LostBodies::default(),
+        sample: Vec::new(),
     };
     for (r, bytes) in all.iter().enumerate() {
         let t: Totals = decode(bytes, r)?;
@@ -118,7 +136,11 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         }
         l.not_finite += t.lost.not_finite;
         l.removed += t.lost.removed;
+        whole.sample.extend(t.sample);
     }
+    // the regions re-balanced on the sample (the same on every rank)
+    let (at, cost): (Vec<DVec3>, Vec<u32>) = whole.sample.iter().copied().unzip();
+    part.regions = crate::partition::Regions::balance(&domain, &at, &cost, size);
 
     // 2. the skin, as one process adapts it, and the lost bodies
     if w.config.skin.is_none() && w.step > w.neighbors.built_step {
@@ -174,17 +196,31 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
             }
         }
     }
-    let partners = part.regions.partners(me, 2.0 * part.halo);
-    let mut sends = Vec::with_capacity(partners.len());
-    for &r in &partners {
-        let bytes = encode(&out[r])?;
+    // who sends to whom: each rank's destinations, to every rank (the
+    // regions moved, so neighbours are not known beforehand)
+    let dest: Vec<u32> = (0..size)
+        .filter(|&r| r != me && !out[r].bodies.is_empty())
+        .map(|r| r as u32)
+        .collect();
+    part.traffic.reductions += 1;
+    let lists = part.comm.all_gather(&encode(&dest)?);
+    let mut sources = Vec::new();
+    for (r, bytes) in lists.iter().enumerate() {
+        let d: Vec<u32> = decode(bytes, r)?;
+        if d.contains(&(me as u32)) {
+            sources.push(r);
+        }
+    }
+    let mut sends = Vec::with_capacity(dest.len());
+    for &r in &dest {
+        let bytes = encode(&out[r as usize])?;
         part.traffic.migrate_bytes += bytes.len() as u64;
         part.traffic.migrate_messages += 1;
-        sends.push((r, bytes));
+        sends.push((r as usize, bytes));
     }
-    let got = part.comm.exchange(&sends, &partners);
+    let got = part.comm.exchange(&sends, &sources);
     let mut arrived = vec![std::mem::take(&mut out[me])];
-    for (bytes, &r) in got.iter().zip(&partners) {
+    for (bytes, &r) in got.iter().zip(&sources) {
         arrived.push(decode(bytes, r)?);
     }
 
