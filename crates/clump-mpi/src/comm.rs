@@ -50,8 +50,11 @@ pub struct MpiComm {
 }
 
 // SAFETY: MPI is initialised with `Threading::Serialized`, and a partitioned
-// world makes its calls from one thread at a time (the thread that steps it).
+// world makes its calls from one thread at a time (the thread that steps
+// it; the calls that communicate take `&mut self`).
 unsafe impl Send for MpiComm {}
+// SAFETY: as above; shared references only read the rank and the size.
+unsafe impl Sync for MpiComm {}
 
 impl Comm for MpiComm {
     fn rank(&self) -> usize {

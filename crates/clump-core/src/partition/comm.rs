@@ -6,7 +6,7 @@ use std::sync::{Arc, Barrier, Mutex};
 /// The messages a partitioned world sends: gathers to every rank and
 /// point-to-point exchanges with known partners. Every rank calls the same
 /// collective calls in the same order.
-pub trait Comm: Send {
+pub trait Comm: Send + Sync {
     /// This rank, `0..size`.
     fn rank(&self) -> usize;
     /// Number of ranks.
@@ -25,13 +25,15 @@ struct Shared {
 }
 
 /// Ranks as threads of one process (tests, and checking a decomposition
-/// without MPI): channels between every pair, a barrier for gathers.
+/// without MPI): channels between every pair, a barrier for gathers. (The
+/// receivers sit behind a mutex only so that a world holding this is
+/// `Sync`; one thread uses it.)
 pub struct ThreadComm {
     rank: usize,
     size: usize,
     shared: Arc<Shared>,
     to: Vec<Sender<Vec<u8>>>,
-    from: Vec<Receiver<Vec<u8>>>,
+    from: Mutex<Vec<Receiver<Vec<u8>>>>,
 }
 
 impl ThreadComm {
@@ -61,7 +63,7 @@ impl ThreadComm {
                 size,
                 shared: shared.clone(),
                 to: t.into_iter().map(Option::unwrap).collect(),
-                from: r.into_iter().map(Option::unwrap).collect(),
+                from: Mutex::new(r.into_iter().map(Option::unwrap).collect()),
             })
             .collect()
     }
@@ -91,9 +93,10 @@ impl Comm for ThreadComm {
                 .send(bytes.clone())
                 .expect("a rank thread ended during an exchange");
         }
+        let rx = self.from.get_mut().expect("one thread uses a rank");
         from.iter()
             .map(|&s| {
-                self.from[s]
+                rx[s]
                     .recv()
                     .expect("a rank thread ended during an exchange")
             })
