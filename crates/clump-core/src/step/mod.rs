@@ -140,12 +140,18 @@ impl World {
         }
         lap(&mut times.gather, &mut t);
         self.stage_times = times;
+        self.end_step();
+        Ok(())
+    }
+
+    /// The step count and time after a step; the contact records, if this
+    /// step kept them, are the records of this step.
+    fn end_step(&mut self) {
         self.step += 1;
-        self.time = self.step as f64 * dt;
+        self.time = self.step as f64 * self.config.dt;
         let rec = &mut self.neighbors.records;
         rec.step = rec.recording.then_some(self.step);
         rec.recording = false;
-        Ok(())
     }
 
     /// One step of a world split over ranks ([`crate::partition`]), never
@@ -204,11 +210,7 @@ impl World {
         ghosts::reduce(self);
         lap(&mut times.gather, &mut t);
         self.stage_times = times;
-        self.step += 1;
-        self.time = self.step as f64 * dt;
-        let rec = &mut self.neighbors.records;
-        rec.step = rec.recording.then_some(self.step);
-        rec.recording = false;
+        self.end_step();
         Ok(())
     }
 }

@@ -76,18 +76,7 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
             .permute_into(&w.scratch.perm, &mut w.scratch.bodies);
         std::mem::swap(&mut w.bodies, &mut w.scratch.bodies);
         rebuild_sphere_topology(w);
-        update_spheres(w);
-        w.neighbors.reference_pose.clear();
-        w.neighbors.reference_pose.extend(
-            w.bodies
-                .position
-                .iter()
-                .zip(&w.bodies.orientation)
-                .map(|(&x, &q)| (x, q)),
-        );
-        w.neighbors.reference_position.clear();
-        w.neighbors.reference_position.extend(w.spheres.positions());
-        w.phase.topology_dirty = false;
+        references_at_current_poses(w);
     } else {
         // positions at the last build, recomputed from the stored poses
         rebuild_sphere_topology(w);
@@ -108,6 +97,37 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     let grid = super::partition::restrict::restrict(w, min_cell, &mut carry);
     w.scratch.wall_carry = carry;
     w.neighbors.grid = grid?;
+    build_pair_list(w);
+    if reorganize || partitioned {
+        build_wall_lists(w);
+    } else {
+        // the spheres kept their order: each continues its own slots
+        refresh_wall_list(w);
+    }
+    w.rebuilds += 1;
+    Ok(())
+}
+
+/// Makes the current poses the build's: sphere positions from the poses,
+/// and these as the reference poses and positions of the skin check.
+pub(crate) fn references_at_current_poses(w: &mut World) {
+    update_spheres(w);
+    w.neighbors.reference_pose.clear();
+    w.neighbors.reference_pose.extend(
+        w.bodies
+            .position
+            .iter()
+            .zip(&w.bodies.orientation)
+            .map(|(&x, &q)| (x, q)),
+    );
+    w.neighbors.reference_position.clear();
+    w.neighbors.reference_position.extend(w.spheres.positions());
+    w.phase.topology_dirty = false;
+}
+
+/// Builds the pair list at the reference positions on `w.neighbors.grid`,
+/// each pair continuing its history from the history map (then emptied).
+pub(crate) fn build_pair_list(w: &mut World) {
     let sp = &w.spheres;
     let inp = BuildInput {
         position: &w.neighbors.reference_position,
@@ -125,14 +145,6 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
     w.neighbors.history_map.clear();
     w.neighbors.history_pending = false;
     w.neighbors.pairs.refresh_bodies(&w.bodies);
-    if reorganize || partitioned {
-        build_wall_lists(w);
-    } else {
-        // the spheres kept their order: each continues its own slots
-        refresh_wall_list(w);
-    }
-    w.rebuilds += 1;
-    Ok(())
 }
 
 /// Sets the reference positions of the spheres (the skin check's) from

@@ -186,13 +186,7 @@ impl World {
             let last = self.step + 1 == event.step;
             self.neighbors.records.set_recording(last && event.contacts);
             self.step_fused(!last && !interrupt)?;
-            let report = StepReport {
-                step: self.step,
-                time: self.time,
-                bodies: self.bodies.len(),
-                spheres: self.spheres.len(),
-                stats: &self.stats,
-            };
+            let report = self.report();
             if hook.end_of_step(&report) == Flow::Stop {
                 return Ok(Advance::Tripped);
             }
@@ -243,19 +237,24 @@ impl World {
             } else {
                 self.step_partitioned()?;
             }
-            let report = StepReport {
-                step: self.step,
-                time: self.time,
-                bodies: self.bodies.len(),
-                spheres: self.spheres.len(),
-                stats: &self.stats,
-            };
+            let report = self.report();
             tripped = hook.end_of_step(&report) == Flow::Stop;
         }
         if self.part.as_ref().is_some_and(|p| p.local) {
             super::partition::join::join(self)?;
         }
         Ok(end)
+    }
+
+    /// What the step just taken reports to the hook.
+    fn report(&self) -> StepReport<'_> {
+        StepReport {
+            step: self.step,
+            time: self.time,
+            bodies: self.bodies.len(),
+            spheres: self.spheres.len(),
+            stats: &self.stats,
+        }
     }
 
     /// Runs the world under `driver` until a hook or a stop request ends

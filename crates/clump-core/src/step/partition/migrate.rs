@@ -17,13 +17,15 @@ use crate::body::Bodies;
 use crate::contact::ContactHistory;
 use crate::lost::LostBodies;
 use crate::neighbor::grid::Extent;
-use crate::neighbor::pairs::{BuildInput, HistoryMap};
+use crate::neighbor::pairs::HistoryMap;
 use crate::neighbor::sort::morton;
 use crate::neighbor::walls::{WallList, WALL_SLOTS};
 use crate::neighbor::CellGrid;
 use crate::sphere::SPHERE_ID_BITS;
-use crate::step::kinematics::{sphere_position, update_spheres};
-use crate::step::rebuild::{build_wall_lists, rebuild_sphere_topology};
+use crate::step::kinematics::sphere_position;
+use crate::step::rebuild::{
+    build_pair_list, build_wall_lists, rebuild_sphere_topology, references_at_current_poses,
+};
 use crate::step::StepError;
 use crate::world::World;
 use glam::{DMat3, DVec3};
@@ -269,33 +271,9 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
     // 5. the lists, as one process's rebuild makes them
     w.neighbors.wall_list = WallList::from_per_sphere(&k2, &h2);
     rebuild_sphere_topology(w);
-    update_spheres(w);
-    w.neighbors.reference_pose.clear();
-    w.neighbors.reference_pose.extend(
-        w.bodies
-            .position
-            .iter()
-            .zip(&w.bodies.orientation)
-            .map(|(&x, &q)| (x, q)),
-    );
-    w.neighbors.reference_position.clear();
-    w.neighbors.reference_position.extend(w.spheres.positions());
-    w.phase.topology_dirty = false;
+    references_at_current_poses(w);
     w.neighbors.grid = sphere_grid;
-    let sp = &w.spheres;
-    let inp = BuildInput {
-        position: &w.neighbors.reference_position,
-        radius: &sp.radius,
-        body: &sp.body,
-        gid: &sp.gid,
-        skin: w.skin(),
-    };
-    w.neighbors
-        .pairs
-        .build(&w.neighbors.grid, &domain, &inp, &w.neighbors.history_map);
-    w.neighbors.history_map.clear();
-    w.neighbors.history_pending = false;
-    w.neighbors.pairs.refresh_bodies(&w.bodies);
+    build_pair_list(w);
     let ns = w.spheres.len();
     w.neighbors
         .wall_list
