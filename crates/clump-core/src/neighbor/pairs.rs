@@ -134,9 +134,14 @@ pub struct PairList {
     pub first_feed: Vec<u32>,
     cell_start: Vec<u32>,
     cell_items: Vec<u32>,
+    /// Centre and radius of each sphere of `cell_items`, in the same (cell)
+    /// order: the scan reads a cell's spheres from one contiguous run.
+    cell_xr: Vec<[f64; 4]>,
     sphere_cell: Vec<[i64; 3]>,
     counts: Vec<u32>,
     cursor: Vec<u32>,
+    /// Scratch of the build: per body, one past its last sphere.
+    body_end: Vec<u32>,
     /// Scratch of the build: the candidates found by each block of rows.
     block_topo: Vec<Vec<PairTopo>>,
 }
@@ -267,15 +272,30 @@ impl PairList {
             self.cell_items[self.cursor[k] as usize] = s as u32;
             self.cursor[k] += 1;
         }
+        self.cell_xr.clear();
+        self.cell_xr.extend(self.cell_items.iter().map(|&s| {
+            let (x, r) = (inp.position[s as usize], inp.radius[s as usize]);
+            [x.x, x.y, x.z, r]
+        }));
 
         // 2. count candidates per sphere (j > i, other body)
+        self.body_end.clear();
+        for (s, &b) in inp.body.iter().enumerate() {
+            let b = b as usize;
+            if self.body_end.len() <= b {
+                self.body_end.resize(b + 1, 0);
+            }
+            self.body_end[b] = s as u32 + 1;
+        }
         let ctx = Search {
             grid,
             domain,
             inp,
             cell_start: &self.cell_start,
             cell_items: &self.cell_items,
+            cell_xr: &self.cell_xr,
             sphere_cell: &self.sphere_cell,
+            body_end: &self.body_end,
             length: domain.size(),
             half: 0.5 * domain.size(),
         };
@@ -423,7 +443,9 @@ struct Search<'a> {
     inp: &'a BuildInput<'a>,
     cell_start: &'a [u32],
     cell_items: &'a [u32],
+    cell_xr: &'a [[f64; 4]],
     sphere_cell: &'a [[i64; 3]],
+    body_end: &'a [u32],
     length: DVec3,
     half: DVec3,
 }
@@ -472,6 +494,13 @@ impl Search<'_> {
     }
 
     /// The candidates of `i` among the spheres of cells `k0..k1`.
+    ///
+    /// A cell's spheres are in ascending storage order, and a body's
+    /// spheres are contiguous, so the partners `j > i` on other bodies are
+    /// the cell's spheres from the first one past the end of `i`'s body:
+    /// each cell is cut there by a binary search, and only the rest get the
+    /// distance test. On stones of 50 spheres most spheres near `i` are its
+    /// own stone's or lie before it.
     #[inline(always)]
     fn scan(
         &self,
@@ -483,30 +512,32 @@ impl Search<'_> {
     ) {
         let inp = self.inp;
         let xi = inp.position[i];
-        let ri = inp.radius[i];
-        let bi = inp.body[i];
+        let ri = inp.radius[i] + inp.skin;
+        let first = self.body_end[inp.body[i] as usize].max(i as u32 + 1);
         let any_periodic = self.domain.periodic.iter().any(|&p| p);
-        let items = &self.cell_items[self.cell_start[k0] as usize..self.cell_start[k1] as usize];
-        for &j in items {
-            let ju = j as usize;
-            let mut d = xi - inp.position[ju];
-            let mut shift = [0i8; 3];
-            if any_periodic {
-                // minimum image; the division only runs for pairs that
-                // straddle the boundary
-                for a in 0..3 {
-                    if self.domain.periodic[a] && d[a].abs() > self.half[a] {
-                        let s = -(d[a] / self.length[a]).round();
-                        shift[a] = s as i8;
-                        d[a] += s * self.length[a];
+        for k in k0..k1 {
+            let (c0, c1) = (self.cell_start[k] as usize, self.cell_start[k + 1] as usize);
+            let c0 = c0 + self.cell_items[c0..c1].partition_point(|&j| j < first);
+            for (&j, xr) in self.cell_items[c0..c1].iter().zip(&self.cell_xr[c0..c1]) {
+                let mut d = xi - DVec3::new(xr[0], xr[1], xr[2]);
+                let mut shift = [0i8; 3];
+                if any_periodic {
+                    // minimum image; the division only runs for pairs that
+                    // straddle the boundary
+                    for a in 0..3 {
+                        if self.domain.periodic[a] && d[a].abs() > self.half[a] {
+                            let s = -(d[a] / self.length[a]).round();
+                            shift[a] = s as i8;
+                            d[a] += s * self.length[a];
+                        }
                     }
                 }
-            }
-            let cut = ri + inp.radius[ju] + inp.skin;
-            let hit = (ju > i) & (inp.body[ju] != bi) & (d.length_squared() < cut * cut);
-            if hit {
-                f(j, shift);
-                *count += 1;
+                let cut = ri + xr[3];
+                if d.length_squared() < cut * cut {
+                    debug_assert!(j as usize > i && inp.body[j as usize] != inp.body[i]);
+                    f(j, shift);
+                    *count += 1;
+                }
             }
         }
     }
