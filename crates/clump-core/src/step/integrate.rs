@@ -189,15 +189,44 @@ impl FirstHalf {
             (*pb).velocity = *v;
             (*pb).angular_velocity = *om;
         }
+        match &self.sst {
+            Some(sst) => self.move_spheres(i, x, &rot, sst),
+            None => false,
+        }
+    }
+
+    /// Places body `i`'s spheres at its new pose (centre `x`, rotation
+    /// `rot`) and tells whether one moved more than half the skin since the
+    /// last build.
+    ///
+    /// The spheres, offsets and reference positions are taken as local
+    /// slices first: written through `sst`'s pointer, a store could alias
+    /// the pointers and the skin limit held in `self`, which the loop would
+    /// then reload for every sphere.
+    ///
+    /// # Safety
+    /// As [`FirstHalf::apply`]; the sphere topology is current.
+    #[inline(always)]
+    unsafe fn move_spheres(
+        &self,
+        i: usize,
+        x: DVec3,
+        rot: &DMat3,
+        sst: &SharedMut<crate::sphere::SphereState>,
+    ) -> bool {
+        let o0 = self.tfirst.read(self.kicks.tmpl.read(i) as usize) as usize;
+        let (s0, s1) = (self.first.read(i) as usize, self.first.read(i + 1) as usize);
+        let n = s1 - s0;
+        debug_assert!(s1 <= sst.len() && s1 <= self.xref.len() && o0 + n <= self.toff.len());
+        let state = std::slice::from_raw_parts_mut(sst.ptr(s0), n);
+        let xref = std::slice::from_raw_parts(self.xref.as_ptr().add(s0), n);
+        let offset = std::slice::from_raw_parts(self.toff.as_ptr().add(o0), n);
+        let limit2 = self.limit2;
         let mut stale = false;
-        if let Some(sst) = &self.sst {
-            let o0 = self.tfirst.read(self.kicks.tmpl.read(i) as usize) as usize;
-            let (s0, s1) = (self.first.read(i) as usize, self.first.read(i + 1) as usize);
-            for (k, s) in (s0..s1).enumerate() {
-                let px = sphere_position(x, &rot, self.toff.read(o0 + k));
-                (*sst.ptr(s)).position = px;
-                stale |= skin::moved_too_far(px, self.xref.read(s), self.limit2);
-            }
+        for ((st, &off), &x0) in state.iter_mut().zip(offset).zip(xref) {
+            let px = sphere_position(x, rot, off);
+            st.position = px;
+            stale |= skin::moved_too_far(px, x0, limit2);
         }
         stale
     }

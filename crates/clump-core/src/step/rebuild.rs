@@ -198,8 +198,10 @@ fn adapt_skin(w: &mut World) {
         .fold(0.0f64, f64::max);
     w.neighbors.adapted_skin = crate::neighbor::skin::adapted_skin(
         w.min_radius(),
+        w.max_adapted_skin(),
         d2.sqrt(),
         w.step - w.neighbors.built_step,
+        w.max_template_spheres(),
     );
 }
 

@@ -242,6 +242,37 @@ impl World {
         }
     }
 
+    /// The thickest skin the adaptive skin may choose, m: [`SKIN_MAX`]
+    /// times the largest radius, but thin enough that every periodic axis
+    /// keeps three neighbour cells of `2 r_max + skin`, and never below the
+    /// thinnest ([`crate::neighbor::skin::SKIN_MIN`] times the smallest
+    /// radius).
+    ///
+    /// [`SKIN_MAX`]: crate::neighbor::skin::SKIN_MAX
+    pub fn max_adapted_skin(&self) -> f64 {
+        use crate::neighbor::skin::{SKIN_MAX, SKIN_MIN};
+        let r_max = self.max_radius();
+        let d = &self.config.domain;
+        let size = d.size();
+        let mut s = SKIN_MAX * r_max;
+        for a in 0..3 {
+            if d.periodic[a] {
+                s = s.min(size[a] / 3.0 - 2.0 * r_max);
+            }
+        }
+        s.max(SKIN_MIN * self.min_radius())
+    }
+
+    /// Most spheres in any template (1 without templates): the skin's cost
+    /// model reads it ([`crate::neighbor::skin::adapted_skin`]).
+    pub fn max_template_spheres(&self) -> usize {
+        let f = &self.templates.first;
+        f.windows(2)
+            .map(|w| (w[1] - w[0]) as usize)
+            .max()
+            .unwrap_or(1)
+    }
+
     /// Largest sphere radius of any template, m.
     pub fn max_radius(&self) -> f64 {
         self.templates.radius.iter().cloned().fold(0.0, f64::max)

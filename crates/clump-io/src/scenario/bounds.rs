@@ -112,7 +112,9 @@ pub fn finite_particle_stiffness(
 /// Each periodic axis must hold at least 3 neighbour cells. A cell is at
 /// least the largest sphere diameter (templates scaled by the largest size
 /// factor of any mix) plus the thickest Verlet skin the run may choose
-/// (`skin`, else [`SKIN_MAX`] × the smallest radius `r_min`, m).
+/// (`skin`, else [`SKIN_MAX`] × the smallest radius `r_min`, m; an adapted
+/// skin thicker than that is limited at run time to keep three cells,
+/// `clump_core::world::World::max_adapted_skin`).
 pub fn periodic_cells(
     src: &Source,
     domain: &Domain,
