@@ -285,6 +285,7 @@ fn run_clump(args: &BenchArgs, na: u64, nb: u64) -> Result<Figures> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads)
         .build()?;
+    reset_peak_rss();
     pool.install(|| {
         let (mut w, _, _) = build_world(&scenario_path(args), args.skin)?;
         w.prepare()?;
@@ -398,9 +399,25 @@ pub(crate) fn cpu_seconds() -> f64 {
         .unwrap_or(f64::NAN)
 }
 
-/// Peak resident set size of this process so far, MB (Linux VmHWM).
+/// Peak resident set size of this process so far, MB (Linux VmHWM), or
+/// since the last [`reset_peak_rss`].
 pub(crate) fn peak_rss_mb() -> f64 {
     proc_status_mb("VmHWM:")
+}
+
+/// Starts a round's memory figure afresh, as if in a new process: hands the
+/// heap that earlier rounds freed back to the system (glibc `malloc_trim`;
+/// freed but kept, it would stay resident) and resets the peak to the
+/// resident set now (Linux `/proc/self/clear_refs`, value 5). Without it, a
+/// later round's peak is the high-water mark of every round before it.
+/// Does nothing where either is missing.
+pub(crate) fn reset_peak_rss() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: malloc_trim only returns free heap pages to the system.
+    unsafe {
+        libc::malloc_trim(0);
+    }
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
 }
 
 /// Resident memory of this process now, MB (Linux; NaN elsewhere).

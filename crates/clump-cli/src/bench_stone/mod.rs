@@ -105,6 +105,7 @@ fn run_clump_stone(
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()?;
+    crate::cmd_bench::reset_peak_rss();
     pool.install(|| {
         let (mut w, _, _) = crate::cmd_bench::build_world(scenario, skin)?;
         w.prepare()?;

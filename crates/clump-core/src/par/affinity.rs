@@ -22,6 +22,23 @@ pub(crate) const PAIR_LOOP: usize = 1;
 /// Index of the gather's [`Balance`].
 pub(crate) const GATHER_LOOP: usize = 2;
 
+/// Spheres a body chunk aims at (see [`body_chunk`]).
+const CHUNK_SPHERES: usize = 128;
+/// Most bodies per chunk.
+const MAX_BODY_CHUNK: usize = 32;
+
+/// Bodies per chunk of the pair stage (the rows of their spheres), of the
+/// gather and of the first half step, for clumps of up to `k` spheres:
+/// about [`CHUNK_SPHERES`] spheres, at most [`MAX_BODY_CHUNK`] bodies (32
+/// tetrahedra, 2 stones of 50 spheres). The threads' runs are cut at chunk
+/// boundaries, so a chunk of 32 stones (1 600 spheres) left 200 stones in 7
+/// chunks, which two threads cannot share evenly. Fixed by the templates,
+/// never by the thread count, so that the chunked reductions of wall loads
+/// and statistics are the same for any number of threads.
+pub(crate) fn body_chunk(k: usize) -> usize {
+    (CHUNK_SPHERES / k.max(1)).clamp(1, MAX_BODY_CHUNK)
+}
+
 /// Cost of the body chunks `0..c` of `chunk` bodies each, from the
 /// cumulative per-body cost `body_cost` (`World::body_cost`, `nb + 1`
 /// entries); one unit per body when that is out of date.
@@ -132,7 +149,11 @@ pub(crate) fn for_each_run(
     let runs = threads.min(MAX_RUNS);
     balance.reset(runs);
     let total = cost(n) as f64;
-    // first chunk whose cost before it reaches the shares of runs 0..t
+    // the chunk boundary nearest to the shares of runs 0..t: with few
+    // chunks (200 stones are 7 chunks), the first boundary past the target
+    // gave the first run 4 chunks of 7 for an even share, and the learned
+    // shares, which weigh the cost each run got through per unit time,
+    // never moved it back
     let start = |t: usize| {
         if t == runs {
             return n;
@@ -147,7 +168,15 @@ pub(crate) fn for_each_run(
                 hi = mid;
             }
         }
-        lo
+        let (below, above) = (
+            target - cost(lo.saturating_sub(1)) as f64,
+            cost(lo) as f64 - target,
+        );
+        if lo > 0 && below < above {
+            lo - 1
+        } else {
+            lo
+        }
     };
     let mut cuts = [0usize; MAX_RUNS + 1];
     for (t, c) in cuts.iter_mut().enumerate().take(runs + 1) {

@@ -30,12 +30,6 @@ use crate::world::World;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Bodies per chunk of the pair stage (the rows of their spheres) and of
-/// the gather. Fixed (never derived from the thread count) so that the
-/// chunked reductions of wall loads and statistics are the same for any
-/// number of threads.
-pub const BODY_CHUNK: usize = 32;
-
 /// Entries of the wall list ahead whose sphere's state the gather prefetches.
 const ENTRY_PREFETCH: usize = 8;
 
@@ -65,7 +59,8 @@ pub(crate) fn pair_forces(w: &mut World) {
         w.neighbors.pairs.scale.clear();
     }
     let nb = w.bodies.len();
-    let nchunks = nb.div_ceil(BODY_CHUNK);
+    let chunk = w.body_chunk();
+    let nchunks = nb.div_ceil(chunk);
     let stats = &mut w.scratch.chunk_pair_stats;
     stats.clear();
     stats.resize(nchunks, ContactStats::default());
@@ -96,6 +91,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         simd: crate::par::simd::simd(),
         prefetch: w.spheres.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
         counted: w.part.as_ref().map(|p| &p.owned[..]),
+        body_chunk: chunk,
     };
     let stats = SharedMut::new(stats);
     // the chunks are the gather's body chunks, so that a body's rows never
@@ -103,17 +99,15 @@ pub(crate) fn pair_forces(w: &mut World) {
     // candidate pair
     let (row_start, first) = (rows.row_start, &w.spheres.body_first);
     let cost = |c: usize| {
-        let s = first
-            .get((c * BODY_CHUNK).min(nb))
-            .map_or(0, |&s| s as usize);
+        let s = first.get((c * chunk).min(nb)).map_or(0, |&s| s as usize);
         row_start.get(s).map_or(0, |&p| p as u64) + s as u64
     };
     let balance = &mut w.scratch.balance[PAIR_LOOP];
     // one run of chunks per thread, one batch per run: a batch may span
     // chunks (the statistics go to each pair's own chunk, in pair order)
     for_each_run(nchunks, cost, balance, |run| {
-        let b0 = run.start * BODY_CHUNK;
-        let b1 = (run.end * BODY_CHUNK).min(nb);
+        let b0 = run.start * chunk;
+        let b1 = (run.end * chunk).min(nb);
         if b0 >= b1 {
             return;
         }
@@ -133,6 +127,7 @@ pub(crate) fn pair_forces(w: &mut World) {
 /// bodies `A` and `B` (storage `A < B`) lie in the rows of `A`'s spheres,
 /// because a body's spheres are contiguous in storage order.
 fn average_scales(w: &mut World) {
+    let chunk = w.body_chunk();
     let domain = w.config.domain;
     let any_periodic = domain.periodic.iter().any(|&p| p);
     let sp = &w.spheres;
@@ -152,10 +147,10 @@ fn average_scales(w: &mut World) {
         let rsum = sp.radius[i] + sp.radius[j];
         sp.position(i).distance_squared(xj) < rsum * rsum
     };
-    (0..nb.div_ceil(BODY_CHUNK)).into_par_iter().for_each_init(
-        PartnerCounts::default,
-        |counts, c| {
-            for bi in c * BODY_CHUNK..((c + 1) * BODY_CHUNK).min(nb) {
+    (0..nb.div_ceil(chunk))
+        .into_par_iter()
+        .for_each_init(PartnerCounts::default, |counts, c| {
+            for bi in c * chunk..((c + 1) * chunk).min(nb) {
                 counts.clear();
                 let spheres = sp.of_body(bi);
                 for i in spheres.clone() {
@@ -173,8 +168,7 @@ fn average_scales(w: &mut World) {
                     }
                 }
             }
-        },
-    );
+        });
 }
 
 /// Per body: sum the pair loads of its spheres, evaluate its sphere–wall
@@ -188,6 +182,7 @@ fn average_scales(w: &mut World) {
 /// in the cache; the result is then whether a sphere moved more than half
 /// the skin (else false).
 pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool {
+    let chunk = w.body_chunk();
     let World {
         bodies,
         templates,
@@ -227,7 +222,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     } = scratch;
     let nb = bodies.len();
     let nw = walls.len();
-    let nchunks = nb.div_ceil(BODY_CHUNK);
+    let nchunks = nb.div_ceil(chunk);
     chunk_stats.clear();
     chunk_stats.resize(nchunks, ContactStats::default());
     chunk_wall_loads.clear();
@@ -280,7 +275,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     );
     for_each_chunk_with(
         nchunks,
-        body_chunk_cost(body_cost, nb, BODY_CHUNK),
+        body_chunk_cost(body_cost, nb, chunk),
         &mut balance[GATHER_LOOP],
         || {
             (
@@ -291,8 +286,8 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         |(wcounts, touch_buf), c| {
             // SAFETY: chunk c's statistics slot is written by chunk c only.
             let stat = unsafe { stats_out.get(c) };
-            let b0 = c * BODY_CHUNK;
-            let b1 = (b0 + BODY_CHUNK).min(nb);
+            let b0 = c * chunk;
+            let b1 = (b0 + chunk).min(nb);
             // the chunk's entries of the wall list, ascending with its bodies
             let (mut e, e_end) = (
                 wall_pass.chunk_start[c] as usize,

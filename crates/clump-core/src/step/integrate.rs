@@ -29,15 +29,18 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
     let half = unsafe { FirstHalf::new(w, w.step, spheres) };
     let (force, torque) = (&w.bodies.force, &w.bodies.torque);
     let any_stale = AtomicBool::new(false);
-    let cost = body_chunk_cost(&w.scratch.body_cost, n, BODY_BLOCK);
+    // the gather's chunks, so that a thread moves the bodies whose forces
+    // it gathers (see crate::par::affinity); any size gives the same results
+    let block = w.body_chunk();
+    let cost = body_chunk_cost(&w.scratch.body_cost, n, block);
     for_each_chunk_with(
-        n.div_ceil(BODY_BLOCK),
+        n.div_ceil(block),
         cost,
         &mut w.scratch.balance[INITIAL_LOOP],
         || (),
         |_, blk| {
             let mut stale = false;
-            for i in blk * BODY_BLOCK..((blk + 1) * BODY_BLOCK).min(n) {
+            for i in blk * block..((blk + 1) * block).min(n) {
                 // SAFETY: each body index is handled by exactly one block;
                 // i < n.
                 unsafe {
@@ -246,11 +249,6 @@ fn driven_turn(q: &mut glam::DQuat, l: &mut DVec3, om: DVec3, inertia: DVec3, dt
     *l = rot * (inertia * (rot.transpose() * om));
     rot
 }
-
-/// Bodies per block of the first half step: the gather's chunk, so that a
-/// thread moves the bodies whose forces it gathers (see
-/// [`crate::par::affinity`]); any size gives the same results.
-const BODY_BLOCK: usize = super::force::BODY_CHUNK;
 
 /// The second half kick, `v += F dt/(2 m')`, `L += M dt/(2 f_a)`, ω from L
 /// (world frame), of one body at a time: the force gather

@@ -2,7 +2,6 @@
 //! left the domain, Morton-sort the bodies, rebuild the sphere topology and
 //! the pair list (history carried by global sphere ids).
 
-use super::force::BODY_CHUNK;
 use super::kinematics::update_spheres;
 use super::StepError;
 use crate::neighbor::pairs::BuildInput;
@@ -232,7 +231,7 @@ pub(crate) fn build_wall_lists(w: &mut World) {
         &w.scratch.wall_carry,
         &w.scratch.wall_list,
         &sp.body_first,
-        BODY_CHUNK,
+        w.body_chunk(),
     );
     w.scratch.body_cost.clear();
     w.scratch.body_cost.push(0);

@@ -263,6 +263,12 @@ impl World {
         s.max(SKIN_MIN * self.min_radius())
     }
 
+    /// Bodies per chunk of the per-step loops
+    /// ([`crate::par::affinity::body_chunk`]), from the templates.
+    pub(crate) fn body_chunk(&self) -> usize {
+        crate::par::affinity::body_chunk(self.max_template_spheres())
+    }
+
     /// Most spheres in any template (1 without templates): the skin's cost
     /// model reads it ([`crate::neighbor::skin::adapted_skin`]).
     pub fn max_template_spheres(&self) -> usize {

@@ -44,7 +44,6 @@
 //! contact records ([`crate::contacts`]), the scatter also stores each
 //! pair's normal, overlap and forces.
 
-use super::force::BODY_CHUNK;
 use crate::contact::{ContactHistory, ContactInput};
 use crate::neighbor::pairs::{BodyLoad, PairBody};
 use crate::par::prefetch::prefetch;
@@ -110,6 +109,8 @@ pub(super) struct RowCtx<'a> {
     /// Per body: its pairs count in the statistics (a partitioned world
     /// counts the pairs in the rows of its owned bodies only); `None`: all.
     pub counted: Option<&'a [bool]>,
+    /// Bodies per statistics chunk ([`crate::par::affinity::body_chunk`]).
+    pub body_chunk: usize,
 }
 
 impl RowCtx<'_> {
@@ -439,7 +440,7 @@ impl RowCtx<'_> {
             }
             None => BodyLoad::default(),
         };
-        let mut chunk = body / BODY_CHUNK;
+        let mut chunk = body / self.body_chunk;
         let mut stat = *stats.get(chunk);
         for k in 0..len {
             let p = batch.pair[k] as usize;
@@ -448,7 +449,7 @@ impl RowCtx<'_> {
                 self.finish_row(body, li);
                 body = bi;
                 li = BodyLoad::default();
-                let c = body / BODY_CHUNK;
+                let c = body / self.body_chunk;
                 if c != chunk {
                     *stats.get(chunk) = stat;
                     chunk = c;
