@@ -440,7 +440,11 @@ impl RowCtx<'_> {
             }
             None => BodyLoad::default(),
         };
-        let mut chunk = body / self.body_chunk;
+        let bc = self.body_chunk;
+        let mut chunk = body / bc;
+        // bodies ascend within a batch: a division only on entering a new
+        // chunk, not on every new body
+        let mut chunk_end = (chunk + 1) * bc;
         let mut stat = *stats.get(chunk);
         for k in 0..len {
             let p = batch.pair[k] as usize;
@@ -449,10 +453,10 @@ impl RowCtx<'_> {
                 self.finish_row(body, li);
                 body = bi;
                 li = BodyLoad::default();
-                let c = body / self.body_chunk;
-                if c != chunk {
+                if body >= chunk_end {
                     *stats.get(chunk) = stat;
-                    chunk = c;
+                    chunk = body / bc;
+                    chunk_end = (chunk + 1) * bc;
                     stat = *stats.get(chunk);
                 }
             }
