@@ -456,11 +456,11 @@ impl Search<'_> {
     /// cell's spheres in storage order); returns the count.
     ///
     /// The three cells of a stencil row along x are contiguous in the cell
-    /// list, so a row is one slice of spheres unless it wraps around a
+    /// list, so a row is one range of cells unless it wraps around a
     /// periodic x boundary (then cell by cell, in the same order). Each
-    /// sphere is tested without an early exit: `j ≤ i`, same body and out
-    /// of range are folded into one rarely true condition (skipping `j ≤ i`
-    /// first was a branch on a coin toss, 40 % of the build).
+    /// cell drops its spheres up to the end of `i`'s body at once
+    /// ([`Search::scan`]); the rest get the distance test without an early
+    /// exit.
     #[inline]
     fn visit(&self, i: usize, mut f: impl FnMut(u32, [i8; 3])) -> u32 {
         let grid = self.grid;
