@@ -65,7 +65,7 @@ fn skin_cost(k: usize) -> f64 {
 /// With the spheres moving at up to `u = d_max/steps` per step, a list of
 /// skin `s` lasts `s/(2u)` steps; per step it costs a rebuild share
 /// `2uR/s` plus candidate pairs `c s`. The sum is least at
-/// `s = √(2Ru/c)` ([`skin_cost`]), clamped to [`SKIN_MIN`] times the
+/// `s = √(2Ru/c)` (`skin_cost`), clamped to [`SKIN_MIN`] times the
 /// smallest radius `r_min` (m) below and to `s_max` (m) above. Depends only
 /// on the state and the templates, so every thread count, every rank count
 /// and a restarted run choose the same skin.
