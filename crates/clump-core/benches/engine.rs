@@ -26,6 +26,7 @@ fn neighbor_build(c: &mut Criterion) {
         position: &position,
         radius: &sp.radius,
         body: &sp.body,
+        body_first: &sp.body_first,
         gid: &sp.gid,
         skin: 0.5e-3,
     };

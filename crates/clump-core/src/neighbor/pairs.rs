@@ -140,8 +140,6 @@ pub struct PairList {
     sphere_cell: Vec<[i64; 3]>,
     counts: Vec<u32>,
     cursor: Vec<u32>,
-    /// Scratch of the build: per body, one past its last sphere.
-    body_end: Vec<u32>,
     /// Scratch of the build: the candidates found by each block of rows.
     block_topo: Vec<Vec<PairTopo>>,
 }
@@ -181,6 +179,9 @@ pub struct BuildInput<'a> {
     pub radius: &'a [f64],
     /// Owner body (storage index).
     pub body: &'a [u32],
+    /// First sphere of each body; the last entry is the number of spheres
+    /// (a body's spheres are contiguous).
+    pub body_first: &'a [u32],
     /// Global sphere ids.
     pub gid: &'a [u64],
     /// Verlet skin, m.
@@ -279,14 +280,6 @@ impl PairList {
         }));
 
         // 2. count candidates per sphere (j > i, other body)
-        self.body_end.clear();
-        for (s, &b) in inp.body.iter().enumerate() {
-            let b = b as usize;
-            if self.body_end.len() <= b {
-                self.body_end.resize(b + 1, 0);
-            }
-            self.body_end[b] = s as u32 + 1;
-        }
         let ctx = Search {
             grid,
             domain,
@@ -295,7 +288,6 @@ impl PairList {
             cell_items: &self.cell_items,
             cell_xr: &self.cell_xr,
             sphere_cell: &self.sphere_cell,
-            body_end: &self.body_end,
             length: domain.size(),
             half: 0.5 * domain.size(),
         };
@@ -445,7 +437,6 @@ struct Search<'a> {
     cell_items: &'a [u32],
     cell_xr: &'a [[f64; 4]],
     sphere_cell: &'a [[i64; 3]],
-    body_end: &'a [u32],
     length: DVec3,
     half: DVec3,
 }
@@ -513,7 +504,7 @@ impl Search<'_> {
         let inp = self.inp;
         let xi = inp.position[i];
         let ri = inp.radius[i] + inp.skin;
-        let first = self.body_end[inp.body[i] as usize].max(i as u32 + 1);
+        let first = inp.body_first[inp.body[i] as usize + 1].max(i as u32 + 1);
         let any_periodic = self.domain.periodic.iter().any(|&p| p);
         for k in k0..k1 {
             let (c0, c1) = (self.cell_start[k] as usize, self.cell_start[k + 1] as usize);

@@ -19,6 +19,8 @@ pub struct TemplateSet {
     pub(crate) offset: Vec<DVec3>,
     /// Radius of each template sphere, m.
     pub(crate) radius: Vec<f64>,
+    /// Most spheres in any template (1 while there is none).
+    max_spheres: usize,
 }
 
 impl Default for TemplateSet {
@@ -29,6 +31,7 @@ impl Default for TemplateSet {
             first: vec![0],
             offset: Vec::new(),
             radius: Vec::new(),
+            max_spheres: 1,
         }
     }
 }
@@ -46,6 +49,7 @@ impl TemplateSet {
 
     /// Appends a template (its material checked by the caller); returns its index.
     pub(crate) fn push(&mut self, template: ClumpTemplate, material: u16) -> u32 {
+        self.max_spheres = self.max_spheres.max(template.spheres.len());
         for s in &template.spheres {
             self.offset.push(s.center);
             self.radius.push(s.radius);
@@ -54,6 +58,11 @@ impl TemplateSet {
         self.list.push(template);
         self.material.push(material);
         self.list.len() as u32 - 1
+    }
+
+    /// Most spheres in any template (1 while there is none).
+    pub fn max_spheres(&self) -> usize {
+        self.max_spheres
     }
 
     /// The templates as a mutable slice, for the step's shared-pointer

@@ -132,6 +132,7 @@ pub(crate) fn build_pair_list(w: &mut World) {
         position: &w.neighbors.reference_position,
         radius: &sp.radius,
         body: &sp.body,
+        body_first: &sp.body_first,
         gid: &sp.gid,
         skin: w.skin(),
     };
@@ -195,13 +196,7 @@ fn adapt_skin(w: &mut World) {
                 .distance_squared(w.neighbors.reference_position[s])
         })
         .fold(0.0f64, f64::max);
-    w.neighbors.adapted_skin = crate::neighbor::skin::adapted_skin(
-        w.min_radius(),
-        w.max_adapted_skin(),
-        d2.sqrt(),
-        w.step - w.neighbors.built_step,
-        w.max_template_spheres(),
-    );
+    w.neighbors.adapted_skin = w.adapted_skin(d2.sqrt());
 }
 
 /// Builds the wall Verlet list ([`crate::neighbor::walls`]) at the

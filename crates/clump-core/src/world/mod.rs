@@ -263,6 +263,20 @@ impl World {
         s.max(SKIN_MIN * self.min_radius())
     }
 
+    /// The skin (m) the adaptive skin chooses for the next lists when the
+    /// spheres moved at most `d_max` (m) since the last build
+    /// ([`crate::neighbor::skin::adapted_skin`], within
+    /// [`World::max_adapted_skin`]).
+    pub(crate) fn adapted_skin(&self, d_max: f64) -> f64 {
+        crate::neighbor::skin::adapted_skin(
+            self.min_radius(),
+            self.max_adapted_skin(),
+            d_max,
+            self.step - self.neighbors.built_step,
+            self.max_template_spheres(),
+        )
+    }
+
     /// Bodies per chunk of the per-step loops
     /// ([`crate::par::affinity::body_chunk`]), from the templates.
     pub(crate) fn body_chunk(&self) -> usize {
@@ -272,11 +286,7 @@ impl World {
     /// Most spheres in any template (1 without templates): the skin's cost
     /// model reads it ([`crate::neighbor::skin::adapted_skin`]).
     pub fn max_template_spheres(&self) -> usize {
-        let f = &self.templates.first;
-        f.windows(2)
-            .map(|w| (w[1] - w[0]) as usize)
-            .max()
-            .unwrap_or(1)
+        self.templates.max_spheres()
     }
 
     /// Largest sphere radius of any template, m.

@@ -146,13 +146,7 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
 
     // 2. the skin, as one process adapts it, and the lost bodies
     if w.config.skin.is_none() && w.step > w.neighbors.built_step {
-        w.neighbors.adapted_skin = crate::neighbor::skin::adapted_skin(
-            w.min_radius(),
-            w.max_adapted_skin(),
-            whole.displacement2.sqrt(),
-            w.step - w.neighbors.built_step,
-            w.max_template_spheres(),
-        );
+        w.neighbors.adapted_skin = w.adapted_skin(whole.displacement2.sqrt());
     }
     w.neighbors.built_step = w.step;
     let l = &mut w.lost;
