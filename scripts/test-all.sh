@@ -39,9 +39,12 @@ else
 fi
 deactivate
 
-echo "== MPI suite: cargo test --release -p clump-cli --features mpi --test mpi"
+echo "== MPI suite: cargo test --release -p clump-cli --features mpi --test mpi -- --test-threads=1"
 if command -v mpirun >/dev/null 2>&1; then
-  cargo test --release -p clump-cli --features mpi --test mpi || status=1
+  # one test at a time: parallel mpirun jobs oversubscribe the cores, and
+  # mpirun gives SIGTERMed ranks only 1 s (odls_base_sigkill_timeout) to
+  # write their checkpoint
+  cargo test --release -p clump-cli --features mpi --test mpi -- --test-threads=1 || status=1
 else
   echo "error: mpirun not found (Debian: openmpi-bin libopenmpi-dev); the MPI suite cannot run"
   status=1
