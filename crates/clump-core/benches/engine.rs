@@ -29,6 +29,7 @@ fn neighbor_build(c: &mut Criterion) {
         body_first: &sp.body_first,
         gid: &sp.gid,
         skin: 0.5e-3,
+        rolling: false,
     };
     let mut list = PairList::default();
     let hist = HistoryMap::default();

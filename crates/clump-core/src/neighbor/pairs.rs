@@ -103,14 +103,19 @@ pub struct PairList {
     pub tangential: Vec<DVec3>,
     /// Rolling spring of each pair (parallel to `topo`), world frame, N m,
     /// oriented from `i` to `j` ([`ContactHistory::rolling`]). Kept apart
-    /// from the tangential springs: laws without rolling resistance never
-    /// touch it, so the pair kernel streams half the history bytes.
+    /// from the tangential springs, and empty unless some law has rolling
+    /// resistance or is composed by the scalar path
+    /// ([`BuildInput::rolling`], [`PairList::keep_rolling`]): the others
+    /// never touch it, so a candidate pair costs 24 bytes less.
     pub rolling: Vec<DVec3>,
     /// What each pair contributes to the body of its sphere `j` (parallel
     /// to `topo`; torque about that body's centre of mass), recorded only
     /// when that body is on a seam between two threads' runs (see
     /// `body`), and zero for a pair that does not touch: the gather sums
-    /// such a body's column through `col_pair` ([`column_sum`]).
+    /// such a body's column through `col_pair` ([`column_sum`]). Empty,
+    /// like the column lists, until a pair stage runs on several threads
+    /// ([`PairList::prepare_seams`]): one run has no seam, and the 48
+    /// bytes a pair are most of a candidate's storage.
     pub load_j: Vec<BodyLoad>,
     /// Per body: its state as the contacts read it, and its column sum
     /// ([`PairBody::col`]). (Summed per body rather than per sphere, the
@@ -137,11 +142,16 @@ pub struct PairList {
     /// Centre and radius of each sphere of `cell_items`, in the same (cell)
     /// order: the scan reads a cell's spheres from one contiguous run.
     cell_xr: Vec<[f64; 4]>,
-    sphere_cell: Vec<[i64; 3]>,
-    counts: Vec<u32>,
+    /// Linear cell index of each sphere (4 bytes a sphere rather than 24
+    /// for the coordinates, which the search recomputes once per sphere).
+    sphere_cell: Vec<u32>,
     cursor: Vec<u32>,
-    /// Scratch of the build: the candidates found by each block of rows.
+    /// Scratch of the build: the candidates found by each block of rows
+    /// (unused on one thread, where the search writes `topo` directly).
     block_topo: Vec<Vec<PairTopo>>,
+    /// The column lists, `first_feed` and `load_j` are built for the
+    /// current list ([`PairList::prepare_seams`]).
+    seams_ready: bool,
 }
 
 /// The column sum of body `b` from the pairs' own records: the `j` sides
@@ -186,6 +196,9 @@ pub struct BuildInput<'a> {
     pub gid: &'a [u64],
     /// Verlet skin, m.
     pub skin: f64,
+    /// Keep rolling springs: some law of the contact table has rolling
+    /// resistance or is composed by the scalar path.
+    pub rolling: bool,
 }
 
 impl PairList {
@@ -198,6 +211,60 @@ impl PairList {
             pb.velocity = b.velocity[i];
             pb.angular_velocity = b.angular_velocity[i];
             pb.mass = b.mass[i];
+        }
+    }
+
+    /// Gives every pair a rolling spring (zero) if the list has none: the
+    /// contact table now has a law that keeps one.
+    pub fn keep_rolling(&mut self) {
+        if self.rolling.len() != self.topo.len() {
+            self.rolling.clear();
+            self.rolling.resize(self.topo.len(), DVec3::ZERO);
+        }
+    }
+
+    /// Builds what a pair stage split into several threads' runs needs and
+    /// one run does not, once per build: each body's column list
+    /// (`col_start`, `col_pair`), the first row feeding it (`first_feed`),
+    /// and a zero `j`-side load per pair (`load_j`). `body` is each
+    /// sphere's owner, as at the build.
+    pub fn prepare_seams(&mut self, body: &[u32]) {
+        if self.seams_ready {
+            return;
+        }
+        self.seams_ready = true;
+        let acc = self.topo.len();
+        self.load_j.clear();
+        self.load_j.resize(acc, BodyLoad::default());
+        // the pairs whose j belongs to each body, ascending
+        let nb = self.body.len();
+        self.col_start.clear();
+        self.col_start.resize(nb + 1, 0);
+        for t in &self.topo {
+            self.col_start[body[t.j as usize] as usize + 1] += 1;
+        }
+        for b in 0..nb {
+            self.col_start[b + 1] += self.col_start[b];
+        }
+        self.cursor.clear();
+        self.cursor.extend_from_slice(&self.col_start[..nb]);
+        self.col_pair.clear();
+        self.col_pair.resize(acc, 0);
+        for (p, t) in self.topo.iter().enumerate() {
+            let c = &mut self.cursor[body[t.j as usize] as usize];
+            self.col_pair[*c as usize] = p as u32;
+            *c += 1;
+        }
+        // a body's spheres are contiguous: its first sphere is the first
+        // with its owner index
+        self.first_feed.clear();
+        self.first_feed.resize(nb, u32::MAX);
+        for (s, &b) in body.iter().enumerate().rev() {
+            self.first_feed[b as usize] = s as u32;
+        }
+        for (p, t) in self.topo.iter().enumerate() {
+            let b = body[t.j as usize] as usize;
+            self.first_feed[b] = self.first_feed[b].min(self.row[p]);
         }
     }
 
@@ -227,7 +294,7 @@ impl PairList {
             for p in self.row(i) {
                 let h = ContactHistory {
                     tangential: self.tangential[p],
-                    rolling: self.rolling[p],
+                    rolling: self.rolling.get(p).copied().unwrap_or_default(),
                 };
                 if h != ContactHistory::default() || (keep_live && self.topo[p].live) {
                     let (gi, gj) = (gid[i], gid[self.topo[p].j as usize]);
@@ -253,13 +320,17 @@ impl PairList {
         let n = inp.position.len();
         // 1. bin spheres into cells (counting sort)
         self.sphere_cell.clear();
-        self.sphere_cell
-            .extend(inp.position.iter().map(|&x| grid.coords(domain.wrap(x))));
+        self.sphere_cell.extend(
+            inp.position
+                .iter()
+                .map(|&x| grid.index(grid.coords(domain.wrap(x))) as u32),
+        );
         let ncell = grid.len();
+        debug_assert!(ncell <= u32::MAX as usize);
         self.cell_start.clear();
         self.cell_start.resize(ncell + 1, 0);
-        for c in &self.sphere_cell {
-            self.cell_start[grid.index(*c) + 1] += 1;
+        for &k in &self.sphere_cell {
+            self.cell_start[k as usize + 1] += 1;
         }
         for k in 0..ncell {
             self.cell_start[k + 1] += self.cell_start[k];
@@ -268,8 +339,8 @@ impl PairList {
         self.cursor.extend_from_slice(&self.cell_start[..ncell]);
         self.cell_items.clear();
         self.cell_items.resize(n, 0);
-        for (s, c) in self.sphere_cell.iter().enumerate() {
-            let k = grid.index(*c);
+        for (s, &k) in self.sphere_cell.iter().enumerate() {
+            let k = k as usize;
             self.cell_items[self.cursor[k] as usize] = s as u32;
             self.cursor[k] += 1;
         }
@@ -291,19 +362,35 @@ impl PairList {
             length: domain.size(),
             half: 0.5 * domain.size(),
         };
-        // one search per sphere, block by block: each block's candidates go
-        // to its own scratch list (kept from build to build, so no
-        // allocation once they are large enough), then are concatenated in
-        // block order (searching twice, to count and then to fill, cost
-        // twice as much)
+        // one search per sphere. On several threads, block by block: each
+        // block's candidates go to its own scratch list (kept from build to
+        // build, so no allocation once they are large enough), then are
+        // concatenated in block order (searching twice, to count and then
+        // to fill, cost twice as much). On one thread the scratch copy
+        // would only add 8 bytes a pair to the peak memory.
+        // each row's count goes to row_start[i + 1], summed into the
+        // offsets below
         let nblocks = n.div_ceil(BLOCK);
-        if self.block_topo.len() < nblocks {
-            self.block_topo.resize_with(nblocks, Vec::new);
-        }
-        self.counts.clear();
-        self.counts.resize(n, 0);
-        {
-            let counts = crate::par::shared::SharedMut::new(&mut self.counts);
+        self.row_start.clear();
+        self.row_start.resize(n + 1, 0);
+        let serial = rayon::current_num_threads() == 1 || nblocks <= 1;
+        if serial {
+            // the same searches in the same order, straight into the list
+            self.topo.clear();
+            for i in 0..n {
+                self.row_start[i + 1] = ctx.visit(i, |j, shift| {
+                    self.topo.push(PairTopo {
+                        j,
+                        shift,
+                        live: false,
+                    })
+                });
+            }
+        } else {
+            if self.block_topo.len() < nblocks {
+                self.block_topo.resize_with(nblocks, Vec::new);
+            }
+            let counts = crate::par::shared::SharedMut::new(&mut self.row_start[1..]);
             self.block_topo[..nblocks]
                 .par_iter_mut()
                 .enumerate()
@@ -324,17 +411,15 @@ impl PairList {
         }
 
         // 3. row offsets, and the rows in order
-        self.row_start.clear();
-        self.row_start.push(0);
-        let mut acc = 0u32;
-        for &c in &self.counts {
-            acc += c;
-            self.row_start.push(acc);
+        for i in 0..n {
+            self.row_start[i + 1] += self.row_start[i];
         }
-        let acc = acc as usize;
-        self.topo.clear();
-        for b in &self.block_topo[..nblocks] {
-            self.topo.extend_from_slice(b);
+        let acc = self.row_start[n] as usize;
+        if !serial {
+            self.topo.clear();
+            for b in &self.block_topo[..nblocks] {
+                self.topo.extend_from_slice(b);
+            }
         }
         debug_assert_eq!(self.topo.len(), acc);
         self.row.clear();
@@ -351,9 +436,12 @@ impl PairList {
         self.tangential.clear();
         self.tangential.resize(acc, DVec3::ZERO);
         self.rolling.clear();
-        self.rolling.resize(acc, DVec3::ZERO);
+        if inp.rolling {
+            self.rolling.resize(acc, DVec3::ZERO);
+        }
         self.load_j.clear();
-        self.load_j.resize(acc, BodyLoad::default());
+        self.col_pair.clear();
+        self.seams_ready = false;
         self.scale.clear();
         if !history.is_empty() {
             let tan = crate::par::shared::SharedMut::new(&mut self.tangential);
@@ -375,47 +463,20 @@ impl PairList {
                         // SAFETY: pair p belongs to row i only.
                         unsafe {
                             *tan.get(p) = h.tangential;
-                            *rol.get(p) = h.rolling;
+                            if rol.len() > p {
+                                *rol.get(p) = h.rolling;
+                            }
                         }
                     }
                 }
             });
         }
 
-        // 6. per-body column lists (pairs whose j belongs to the body),
-        //    ascending; a body's spheres are contiguous: its first sphere is
-        //    the first with its owner index
+        // 6. the bodies' packed state (the column lists wait for a pair
+        //    stage on several threads: prepare_seams)
         let nb = inp.body.last().map_or(0, |&b| b as usize + 1);
         self.body.clear();
         self.body.resize(nb, PairBody::default());
-        self.col_start.clear();
-        self.col_start.resize(nb + 1, 0);
-        for t in &self.topo {
-            self.col_start[inp.body[t.j as usize] as usize + 1] += 1;
-        }
-        for b in 0..nb {
-            self.col_start[b + 1] += self.col_start[b];
-        }
-        self.cursor.clear();
-        self.cursor.extend_from_slice(&self.col_start[..nb]);
-        self.col_pair.clear();
-        self.col_pair.resize(acc, 0);
-        for (p, t) in self.topo.iter().enumerate() {
-            let c = &mut self.cursor[inp.body[t.j as usize] as usize];
-            self.col_pair[*c as usize] = p as u32;
-            *c += 1;
-        }
-        self.first_feed.clear();
-        self.first_feed.resize(nb, u32::MAX);
-        for (s, &b) in inp.body.iter().enumerate().rev() {
-            self.first_feed[b as usize] = s as u32;
-        }
-        for i in 0..n {
-            for p in self.row(i) {
-                let b = inp.body[self.topo[p].j as usize] as usize;
-                self.first_feed[b] = self.first_feed[b].min(i as u32);
-            }
-        }
     }
 }
 
@@ -436,7 +497,7 @@ struct Search<'a> {
     cell_start: &'a [u32],
     cell_items: &'a [u32],
     cell_xr: &'a [[f64; 4]],
-    sphere_cell: &'a [[i64; 3]],
+    sphere_cell: &'a [u32],
     length: DVec3,
     half: DVec3,
 }
@@ -455,7 +516,7 @@ impl Search<'_> {
     #[inline]
     fn visit(&self, i: usize, mut f: impl FnMut(u32, [i8; 3])) -> u32 {
         let grid = self.grid;
-        let c = self.sphere_cell[i];
+        let c = grid.coords_of(self.sphere_cell[i] as usize);
         let mut count = 0;
         for dz in -1..=1i64 {
             let Some(z) = grid.wrap(c[2] + dz, 2) else {

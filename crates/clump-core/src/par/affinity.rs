@@ -129,6 +129,12 @@ pub(crate) fn for_each_chunk_with<S>(
     });
 }
 
+/// Whether [`for_each_run`] cuts `n` chunks into several runs in the
+/// current rayon pool (else it makes the one run `0..n`).
+pub(crate) fn several_runs(n: usize) -> bool {
+    rayon::current_num_threads() > 1 && n > 1
+}
+
 /// Calls `f(run)` for contiguous runs of chunks that together cover `0..n`
 /// once, one run per thread. `cost(c)` is the estimated cost of chunks
 /// `0..c` (non-decreasing, `cost(0) = 0`): the chunks are cut into as many
@@ -141,11 +147,11 @@ pub(crate) fn for_each_run(
     balance: &mut Balance,
     f: impl Fn(std::ops::Range<usize>) + Sync,
 ) {
-    let threads = rayon::current_num_threads();
-    if threads <= 1 || n <= 1 {
+    if !several_runs(n) {
         f(0..n);
         return;
     }
+    let threads = rayon::current_num_threads();
     let runs = threads.min(MAX_RUNS);
     balance.reset(runs);
     let total = cost(n) as f64;

@@ -19,7 +19,7 @@ use super::wall_contacts::WallPass;
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::column_sum;
 use crate::par::affinity::{
-    body_chunk_cost, for_each_chunk_with, for_each_run, GATHER_LOOP, PAIR_LOOP,
+    body_chunk_cost, for_each_chunk_with, for_each_run, several_runs, GATHER_LOOP, PAIR_LOOP,
 };
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
@@ -66,6 +66,13 @@ pub(crate) fn pair_forces(w: &mut World) {
     stats.resize(nchunks, ContactStats::default());
     w.scratch.body_ready.resize(nb, false);
     let pairs = &mut w.neighbors.pairs;
+    if several_runs(nchunks) {
+        // several runs: the seams' column lists and j-side loads
+        pairs.prepare_seams(&w.spheres.body);
+    }
+    if w.contact_table.any_rolling() || w.contact_table.any_extended() {
+        pairs.keep_rolling();
+    }
     let records = &mut w.neighbors.records;
     if records.recording {
         records.pair.resize(pairs.topo.len(), Default::default());

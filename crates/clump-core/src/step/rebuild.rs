@@ -135,6 +135,7 @@ pub(crate) fn build_pair_list(w: &mut World) {
         body_first: &sp.body_first,
         gid: &sp.gid,
         skin: w.skin(),
+        rolling: w.contact_table.any_rolling() || w.contact_table.any_extended(),
     };
     w.neighbors.pairs.build(
         &w.neighbors.grid,
@@ -283,6 +284,20 @@ pub(crate) fn rebuild_sphere_topology(w: &mut World) {
     sp.radius.clear();
     sp.material.clear();
     sp.body_first.clear();
+    // exactly the spheres' number: grown by doubling, the tables would
+    // hold up to twice the memory they use
+    let total: usize = w
+        .bodies
+        .template
+        .iter()
+        .map(|&t| (w.templates.first[t as usize + 1] - w.templates.first[t as usize]) as usize)
+        .sum();
+    sp.body.reserve_exact(total);
+    sp.index_in_template.reserve_exact(total);
+    sp.gid.reserve_exact(total);
+    sp.radius.reserve_exact(total);
+    sp.material.reserve_exact(total);
+    sp.body_first.reserve_exact(w.bodies.len() + 1);
     for (b, (&t, &id)) in w.bodies.template.iter().zip(&w.bodies.id).enumerate() {
         sp.body_first.push(sp.body.len() as u32);
         let (s0, s1) = (

@@ -79,10 +79,10 @@ pub(super) struct RowCtx<'a> {
     /// Tangential spring per pair, m (written).
     pub tangential: SharedMut<DVec3>,
     /// Rolling spring per pair, N m (written by laws with rolling
-    /// resistance only).
+    /// resistance only; empty when no law has one).
     pub rolling: SharedMut<DVec3>,
     /// `j`-side loads of the pairs whose `j`'s body is on a seam, in pair
-    /// order ([`PairList::load_j`]; written).
+    /// order ([`PairList::load_j`]; written; empty on one run).
     ///
     /// [`PairList::load_j`]: crate::neighbor::PairList::load_j
     pub load_j: SharedMut<BodyLoad>,
@@ -90,7 +90,8 @@ pub(super) struct RowCtx<'a> {
     /// (rad/s), mass (kg), and the column sum, written for the bodies
     /// complete in their thread's run ([`PairBody`]).
     pub body: SharedMut<PairBody>,
-    /// First row feeding each body's columns ([`PairList::first_feed`]).
+    /// First row feeding each body's columns ([`PairList::first_feed`];
+    /// empty on one run).
     ///
     /// [`PairList::first_feed`]: crate::neighbor::PairList::first_feed
     pub first_feed: &'a [u32],
@@ -165,8 +166,11 @@ impl RowCtx<'_> {
         let spheres = at(first, bodies.start) as usize..at(first, bodies.end) as usize;
         debug_assert!(spheres.end <= n);
         (batch.run_start, batch.run_end) = (run_start, spheres.end);
+        // one run (one thread) has every body complete in it, and no
+        // column lists (`first_feed` is empty)
+        let whole = run_start == 0 && spheres.end == n;
         for b in bodies.clone() {
-            *self.body_ready.get(b) = at(self.first_feed, b) as usize >= run_start;
+            *self.body_ready.get(b) = whole || at(self.first_feed, b) as usize >= run_start;
         }
         batch.carry = None;
         // the batch length lives in a register during the detect pass
@@ -272,18 +276,24 @@ impl RowCtx<'_> {
     }
 
     /// Clears what a contact left on the pairs `ps`, which no longer touch:
-    /// the live flag, the springs and the `j`-side load.
+    /// the live flag, the springs and the `j`-side load (the last two where
+    /// the list keeps them).
     ///
     /// # Safety
     /// As [`Self::evaluate`]: the pairs lie in this thread's rows.
     #[inline(always)]
     unsafe fn clear_pairs(&self, ps: &[u32]) {
+        let (rolling, seams) = (self.rolling.len() != 0, self.load_j.len() != 0);
         for &p in ps {
             let p = p as usize;
             self.topo.get(p).live = false;
             *self.tangential.get(p) = DVec3::ZERO;
-            *self.rolling.get(p) = DVec3::ZERO;
-            *self.load_j.get(p) = BodyLoad::default();
+            if rolling {
+                *self.rolling.get(p) = DVec3::ZERO;
+            }
+            if seams {
+                *self.load_j.get(p) = BodyLoad::default();
+            }
         }
     }
 
