@@ -25,6 +25,9 @@ pub const WALL_SLOTS: usize = 4;
 /// Marks a sphere without a carried entry in [`WallList::build`]'s `carry`.
 pub const NO_ENTRY: u32 = u32::MAX;
 
+/// Spheres whose near walls the build finds in one parallel pass.
+const NEAR_BLOCK: usize = 8192;
+
 /// Entries of the wall Verlet list (structure of arrays, ascending sphere).
 #[derive(Debug, Default, Clone)]
 pub struct WallList {
@@ -39,7 +42,8 @@ pub struct WallList {
     pub hist: Vec<[ContactHistory; WALL_SLOTS]>,
     /// First entry of each chunk of `chunk` bodies, `len = chunks + 1`.
     pub chunk_start: Vec<u32>,
-    /// Per sphere: the walls (< 64) near it at the build (build scratch).
+    /// Per sphere of one block of the build: the walls (< 64) near it
+    /// (build scratch).
     near: Vec<u64>,
 }
 
@@ -121,42 +125,50 @@ impl WallList {
     ) {
         let n = position.len();
         self.clear();
-        self.near.resize(n, 0);
-        self.near
-            .par_iter_mut()
-            .enumerate()
-            .with_min_len(1024)
-            .for_each(|(s, near)| {
-                let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
-                let mut m = 0u64;
-                for (wi, wall) in walls.iter().enumerate().take(64) {
-                    if wall
-                        .shape
-                        .contacts(meshes, position[s], radius[s], skin, &mut buf)
-                        > 0
-                    {
-                        m |= 1 << wi;
-                    }
-                }
-                *near = m;
-            });
         let all = walls.len() > 64;
-        for s in 0..n {
-            let mask = self.near[s] | moving;
-            let from = carry.get(s).copied().unwrap_or(NO_ENTRY);
-            if mask == 0 && !all && from == NO_ENTRY {
-                continue;
-            }
-            self.sphere.push(s as u32);
-            self.mask.push(mask);
-            match old.key.get(from as usize) {
-                Some(k) => {
-                    self.key.push(*k);
-                    self.hist.push(old.hist[from as usize]);
+        // the near walls of a block of spheres at a time (in parallel), then
+        // the block's entries in sphere order: the scratch is one block,
+        // not 8 bytes for every sphere
+        for b0 in (0..n).step_by(NEAR_BLOCK) {
+            let b1 = (b0 + NEAR_BLOCK).min(n);
+            self.near.clear();
+            self.near.resize(b1 - b0, 0);
+            self.near
+                .par_iter_mut()
+                .enumerate()
+                .with_min_len(1024)
+                .for_each(|(k, near)| {
+                    let s = b0 + k;
+                    let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
+                    let mut m = 0u64;
+                    for (wi, wall) in walls.iter().enumerate().take(64) {
+                        if wall
+                            .shape
+                            .contacts(meshes, position[s], radius[s], skin, &mut buf)
+                            > 0
+                        {
+                            m |= 1 << wi;
+                        }
+                    }
+                    *near = m;
+                });
+            for s in b0..b1 {
+                let mask = self.near[s - b0] | moving;
+                let from = carry.get(s).copied().unwrap_or(NO_ENTRY);
+                if mask == 0 && !all && from == NO_ENTRY {
+                    continue;
                 }
-                None => {
-                    self.key.push([0; WALL_SLOTS]);
-                    self.hist.push([ContactHistory::default(); WALL_SLOTS]);
+                self.sphere.push(s as u32);
+                self.mask.push(mask);
+                match old.key.get(from as usize) {
+                    Some(k) => {
+                        self.key.push(*k);
+                        self.hist.push(old.hist[from as usize]);
+                    }
+                    None => {
+                        self.key.push([0; WALL_SLOTS]);
+                        self.hist.push([ContactHistory::default(); WALL_SLOTS]);
+                    }
                 }
             }
         }
