@@ -27,14 +27,18 @@ pub enum Case {
     StonePile,
     /// 2000 stones settled in a box, the dense bed timed on its own.
     StoneBed,
+    /// 200 stones of two shapes in three sizes each (six templates) falling
+    /// into the stone pile's cylinder.
+    StoneMix,
 }
 
 /// Arguments of `clump bench`.
 #[derive(Debug, Args)]
 pub struct BenchArgs {
-    /// The case: `tetra` (the shared tetra bed), `stone-pile` or `stone-bed`
-    /// (many-sphere stones, with the LIGGGHTS input generated from the same
-    /// initial condition; see `--stone`).
+    /// The case: `tetra` (the shared tetra bed), `stone-pile`, `stone-bed` or
+    /// `stone-mix` (many-sphere stones, with the LIGGGHTS input generated
+    /// from the same initial condition; see `--stone`; the mix takes the
+    /// `--stone` and a procedural stone, each in three sizes).
     #[arg(long, value_enum, default_value_t = Case::Tetra)]
     pub case: Case,
     /// Stone cases: the stone. `liggghts`: LIGGGHTS' tutorial stone
@@ -43,7 +47,8 @@ pub struct BenchArgs {
     /// sphere count; or a file of `x y z r` rows in mm.
     #[arg(long, default_value = "liggghts")]
     pub stone: String,
-    /// Stone cases: number of stones (default 200 for the pile, 2000 for the bed).
+    /// Stone cases: number of stones (default 200 for the pile and the mix,
+    /// 2000 for the bed).
     #[arg(long)]
     pub stones: Option<usize>,
     /// Stone cases: folder for the generated initial condition, Clump
@@ -148,6 +153,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             return crate::bench_stone::run(args, crate::bench_stone::StoneCase::Pile)
         }
         Case::StoneBed => return crate::bench_stone::run(args, crate::bench_stone::StoneCase::Bed),
+        Case::StoneMix => return crate::bench_stone::run(args, crate::bench_stone::StoneCase::Mix),
     }
     let rounds = args.liggghts_rounds.max(1);
     let lig = if args.liggghts_rounds > 0 {

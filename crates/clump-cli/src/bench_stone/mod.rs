@@ -1,4 +1,4 @@
-//! `clump bench --case stone-pile | stone-bed`: many-sphere asymmetric
+//! `clump bench --case stone-pile | stone-bed | stone-mix`: many-sphere asymmetric
 //! stones, side by side with LIGGGHTS, both codes starting from the same
 //! initial condition (the tetra-bed way).
 //!
@@ -31,6 +31,10 @@
 //!   codes start from the settled poses at rest: phase A re-settles (the
 //!   contact histories start from zero), phase B is the dense bed, timed on
 //!   its own.
+//! - **stone mix**: the pile with several templates and a size
+//!   distribution ([`mix_stones`]): the `--stone` and a procedural stone,
+//!   each at 0.75, 1 and 1.25 times its size (number fractions 0.3, 0.4,
+//!   0.3 of each shape's half), six templates of 50 spheres.
 //!
 //! After the rounds the bench compares the physics of the two codes' final
 //! states (the last round's): bed height, packing fraction and contacts,
@@ -67,6 +71,8 @@ pub enum StoneCase {
     Pile,
     /// A dense bed of stones in a box.
     Bed,
+    /// Stones of several shapes and sizes falling into a cylinder.
+    Mix,
 }
 
 impl StoneCase {
@@ -74,6 +80,7 @@ impl StoneCase {
         match self {
             StoneCase::Pile => "stone-pile",
             StoneCase::Bed => "stone-bed",
+            StoneCase::Mix => "stone-mix",
         }
     }
 }
@@ -174,7 +181,7 @@ fn settled_bed(
     let prep = dir.join("settle");
     let files = write_case(
         &prep,
-        stone,
+        std::slice::from_ref(stone),
         &lattice,
         Geometry::Bed(bbox),
         steps.max(1),
@@ -213,6 +220,7 @@ fn settled_bed(
         Ok(order
             .into_iter()
             .map(|b| Pose {
+                kind: 0,
                 x: w.bodies.position[b],
                 // body → world times file → body
                 q: (w.bodies.orientation[b] * to_body).normalize(),
@@ -244,13 +252,15 @@ pub struct Plan {
 
 /// Writes the case's files (initial condition, Clump scenario, LIGGGHTS
 /// input) into `dir`; for the bed, settles it first (or reuses the settled
-/// bed). Returns the files and the floor area under the bed, m².
+/// bed). `stones` are the case's stones with their number fractions (one
+/// for the pile and the bed, whose first stone is used). Returns the files,
+/// the poses and the floor area under the bed, m².
 pub fn prepare(
     case: StoneCase,
     dir: &Path,
-    stone: &Stone,
+    stones: &[(Stone, f64)],
     plan: &Plan,
-) -> Result<(CaseFiles, f64)> {
+) -> Result<(CaseFiles, Vec<Pose>, f64)> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let Plan {
         n,
@@ -260,16 +270,20 @@ pub fn prepare(
         threads,
         liggghts_tangential: lt,
     } = *plan;
+    let (list, fractions): (Vec<Stone>, Vec<f64>) = stones.iter().cloned().unzip();
     match case {
-        StoneCase::Pile => {
-            let poses = pile_poses(stone, n, 32452843)?;
-            let files = write_case(dir, stone, &poses, Geometry::Pile, na, nb, lt)?;
-            Ok((files, std::f64::consts::PI * PILE_WALL_RADIUS.powi(2)))
+        StoneCase::Pile | StoneCase::Mix => {
+            let kinds = kinds_by_fraction(n, &fractions);
+            let poses = pile_poses(&list, &kinds, 32452843)?;
+            let files = write_case(dir, &list, &poses, Geometry::Pile, na, nb, lt)?;
+            let area = std::f64::consts::PI * PILE_WALL_RADIUS.powi(2);
+            Ok((files, poses, area))
         }
         StoneCase::Bed => {
-            let (poses, bbox) = settled_bed(dir, stone, n, 2024, settle, threads)?;
+            let stone = &list[..1];
+            let (poses, bbox) = settled_bed(dir, &stone[0], n, 2024, settle, threads)?;
             let files = write_case(dir, stone, &poses, Geometry::Bed(bbox), na, nb, lt)?;
-            Ok((files, 4.0 * bbox.hx * bbox.hy))
+            Ok((files, poses, 4.0 * bbox.hx * bbox.hy))
         }
     }
 }
@@ -277,15 +291,19 @@ pub fn prepare(
 /// `clump bench --case stone-pile | stone-bed`.
 pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
     let stone = load_stone(&args.stone)?;
+    let stones = match case {
+        StoneCase::Mix => mix_stones(&stone)?,
+        _ => vec![(stone, 1.0)],
+    };
     let n = args.stones.unwrap_or(match case {
-        StoneCase::Pile => 200,
+        StoneCase::Pile | StoneCase::Mix => 200,
         StoneCase::Bed => 2000,
     });
     if n == 0 {
         bail!("--stones: the bench needs at least one stone");
     }
     let (na, nb) = match case {
-        StoneCase::Pile => (args.na.unwrap_or(30000), args.nb.unwrap_or(10000)),
+        StoneCase::Pile | StoneCase::Mix => (args.na.unwrap_or(30000), args.nb.unwrap_or(10000)),
         StoneCase::Bed => (args.na.unwrap_or(2000), args.nb.unwrap_or(10000)),
     };
     let dir = args
@@ -301,10 +319,10 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
     } else {
         None
     };
-    let (files, footprint) = prepare(
+    let (files, poses, footprint) = prepare(
         case,
         &dir,
-        &stone,
+        &stones,
         &Plan {
             n,
             na,
@@ -314,13 +332,26 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
             liggghts_tangential: args.liggghts_tangential,
         },
     )?;
-    let nsph = stone.spheres.len();
+    // spheres of each body in initial-condition order, and in all
+    let per_body: Vec<usize> = poses
+        .iter()
+        .map(|p| stones[p.kind].0.spheres.len())
+        .collect();
+    let nsph_total: usize = per_body.iter().sum();
+    for (k, (s, _)) in stones.iter().enumerate() {
+        let count = poses.iter().filter(|p| p.kind == k).count();
+        outln!(
+            "{}: stone {k}: {count} of {n}, {} spheres ({}; mass {:.4e} kg, bounding radius {:.1} mm)",
+            case.name(),
+            s.spheres.len(),
+            s.source,
+            s.template.mass,
+            s.template.bounding_radius * 1e3,
+        );
+    }
     outln!(
-        "{}: {n} stones of {nsph} spheres ({}; mass {:.4e} kg, bounding radius {:.1} mm), phase A {na} steps, phase B {nb} steps, clump threads {}; files in {}",
+        "{}: {n} stones, {nsph_total} spheres, phase A {na} steps, phase B {nb} steps, clump threads {}; files in {}",
         case.name(),
-        stone.source,
-        stone.template.mass,
-        stone.template.bounding_radius * 1e3,
         args.threads,
         dir.display()
     );
@@ -334,13 +365,17 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
         cfin = Some(fin);
         if let Some(bin) = &lig {
             let vars = [("NA", na.to_string()), ("NB", nb.to_string())];
-            let f = run_liggghts_input(bin, &files.liggghts, "in.stone", &vars, na, nb, n * nsph)?;
+            let f =
+                run_liggghts_input(bin, &files.liggghts, "in.stone", &vars, na, nb, nsph_total)?;
             report("liggghts", round, na, nb, &f);
             peer.push(f);
-            lfin = Some(liggghts_final(&files.liggghts.join("final.dump"), nsph)?);
+            lfin = Some(liggghts_final(
+                &files.liggghts.join("final.dump"),
+                &per_body,
+            )?);
         }
     }
-    let tput = |s: f64, steps: u64| (n * nsph) as f64 * steps as f64 / s;
+    let tput = |s: f64, steps: u64| nsph_total as f64 * steps as f64 / s;
     let (ca, cb) = (
         tput(median(&clump, |f| f.a_seconds), na),
         tput(median(&clump, |f| f.b_seconds), nb),
@@ -381,7 +416,12 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
             );
         }
     }
-    let vol = stone.template.volume;
+    // the mean volume of the initial condition's bodies
+    let vol = poses
+        .iter()
+        .map(|p| stones[p.kind].0.template.volume)
+        .sum::<f64>()
+        / n as f64;
     if let Some(c) = &cfin {
         let pc = physics(c, vol, footprint);
         print_physics("clump", &pc, case);
@@ -409,7 +449,9 @@ fn print_physics(code: &str, p: &Physics, case: StoneCase) {
         p.mean_z,
         p.surface,
         match case {
-            StoneCase::Pile => "packing fraction (of the container floor, a loose pile)",
+            StoneCase::Pile | StoneCase::Mix => {
+                "packing fraction (of the container floor, a loose pile)"
+            }
             StoneCase::Bed => "packing fraction",
         },
         p.phi,
@@ -429,21 +471,25 @@ mod tests {
         d
     }
 
-    /// The LIGGGHTS input and the Clump scenario describe the same bodies:
-    /// the spheres Clump builds from scenario.toml sit where LIGGGHTS'
-    /// insertions put them (pose of ins.in applied to liggghts/stone.xyzr),
-    /// and LIGGGHTS gets Clump's mass.
-    #[test]
-    fn liggghts_input_and_clump_scenario_describe_the_same_bodies() {
-        let stone = load_stone("procedural").unwrap();
-        assert_eq!(stone.spheres.len(), 50);
-        let d = tmp("same");
-        let (files, _) = prepare(
-            StoneCase::Pile,
+    /// Writes `case` for `stones` in a temporary folder, and checks that the
+    /// LIGGGHTS input and the Clump scenario describe the same bodies: the
+    /// spheres Clump builds from scenario.toml sit where LIGGGHTS'
+    /// insertions put them (the pose of ins.in applied to the stone file of
+    /// the insertion's distribution), and LIGGGHTS gets Clump's mass of
+    /// each stone. Returns the folder, the files and the poses.
+    fn same_bodies(
+        case: StoneCase,
+        stones: &[(Stone, f64)],
+        n: usize,
+        name: &str,
+    ) -> (PathBuf, CaseFiles, Vec<Pose>) {
+        let d = tmp(name);
+        let (files, poses, _) = prepare(
+            case,
             &d,
-            &stone,
+            stones,
             &Plan {
-                n: 20,
+                n,
                 na: 10,
                 nb: 10,
                 settle: 0,
@@ -452,10 +498,15 @@ mod tests {
             },
         )
         .unwrap();
-        // LIGGGHTS' side: the insertions and the template file it reads
+        let ns = stones.len();
+        // LIGGGHTS' side: the insertions and the template files it reads
         let ins = std::fs::read_to_string(files.liggghts.join("ins.in")).unwrap();
-        let tpl = clump_io::template_file::read_template_file(&files.liggghts.join("stone.xyzr"))
-            .unwrap();
+        let tpl: Vec<Vec<Sphere>> = (0..ns)
+            .map(|k| {
+                let f = files.liggghts.join(format!("{}.xyzr", stone_name(k, ns)));
+                clump_io::template_file::read_template_file(&f).unwrap()
+            })
+            .collect();
         let mut lig = Vec::new();
         let lines: Vec<&str> = ins.lines().collect();
         for w in lines.windows(2) {
@@ -481,15 +532,19 @@ mod tests {
             let q = DQuat::from_xyzw(q[1], q[2], q[3], q[0]);
             let vz: f64 = t[at("vel") + 4].parse().unwrap();
             assert_eq!(vz, PILE_VZ);
-            for s in &tpl {
+            let pdd = t[at("distributiontemplate") + 1];
+            let k: usize = pdd.strip_prefix("pdd").unwrap().parse::<usize>().unwrap() - 1;
+            for s in &tpl[k] {
                 lig.push(x + q * s.center);
             }
         }
-        assert_eq!(lig.len(), 20 * 50);
+        let total: usize = poses.iter().map(|p| stones[p.kind].0.spheres.len()).sum();
+        assert_eq!(lig.len(), total);
         // Clump's side
         let (mut w, na, nb) = crate::cmd_bench::build_world(&files.scenario, None).unwrap();
         assert_eq!((na, nb), (10, 10));
         w.prepare().unwrap();
+        assert_eq!(w.templates.len(), ns);
         let f = clump_final(&w);
         assert_eq!(f.pos.len(), lig.len());
         for (a, b) in f.pos.iter().zip(&lig) {
@@ -499,16 +554,71 @@ mod tests {
             assert!((w.bodies.velocity[b] - DVec3::new(0.0, 0.0, PILE_VZ)).length() < 1e-12);
         }
         let input = std::fs::read_to_string(files.liggghts.join("in.stone")).unwrap();
-        assert!(input.contains(&format!("mass {:.9e}", stone.template.mass)));
+        for (s, _) in stones {
+            assert!(input.contains(&format!("mass {:.9e}", s.template.mass)));
+        }
         assert!(input.contains("zcylinder 0.26"));
+        (d, files, poses)
+    }
+
+    #[test]
+    fn liggghts_input_and_clump_scenario_describe_the_same_bodies() {
+        let stone = load_stone("procedural").unwrap();
+        assert_eq!(stone.spheres.len(), 50);
+        let (d, files, _) = same_bodies(StoneCase::Pile, &[(stone.clone(), 1.0)], 20, "same");
         // Clump's own tangential rule unless asked for LIGGGHTS'
         let sc = std::fs::read_to_string(&files.scenario).unwrap();
         assert!(!sc.contains("tangential"));
         let poses = read_ic(&d.join("ic.csv")).unwrap();
-        let f = write_case(&d.join("lt"), &stone, &poses, Geometry::Pile, 1, 1, true).unwrap();
+        let f = write_case(
+            &d.join("lt"),
+            std::slice::from_ref(&stone),
+            &poses,
+            Geometry::Pile,
+            1,
+            1,
+            true,
+        )
+        .unwrap();
         let sc = std::fs::read_to_string(&f.scenario).unwrap();
         assert!(sc.contains("tangential = \"liggghts\""));
         crate::cmd_bench::build_world(&f.scenario, None).unwrap();
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    /// The mix: six templates (two shapes in three sizes), each body built
+    /// by both codes from its own template; the size classes hold the
+    /// numbers their fractions give, and each is the stone scaled (mass as
+    /// the cube of the scale, from the exact mass properties).
+    #[test]
+    fn the_mix_gives_each_body_its_own_template_in_both_codes() {
+        let stone = load_stone("procedural").unwrap();
+        let mix = mix_stones(&stone).unwrap();
+        assert_eq!(mix.len(), 6);
+        for (k, (s, _)) in mix.iter().enumerate() {
+            let (scale, _) = MIX_SIZES[k % 3];
+            let base = &mix[3 * (k / 3) + 1].0;
+            let r = s.template.mass / base.template.mass;
+            assert!(
+                (r - scale.powi(3)).abs() < 1e-9 * r,
+                "stone {k}: mass ratio {r}"
+            );
+        }
+        let (d, _, poses) = same_bodies(StoneCase::Mix, &mix, 40, "mix");
+        let count = |k: usize| poses.iter().filter(|p| p.kind == k).count();
+        // 40 stones, half of each shape: 6, 8, 6 of each (0.3, 0.4, 0.3)
+        for k in 0..6 {
+            assert_eq!(count(k), [6, 8, 6][k % 3], "stone {k}");
+        }
+        // LIGGGHTS numbers spheres body by body: unequal counts map back
+        let dump = d.join("final.dump");
+        std::fs::write(
+            &dump,
+            "ITEM: ATOMS id x y z radius\n1 0 0 0 1\n2 0 0 0 1\n3 0 0 0 1\n4 0 0 0 1\n5 0 0 0 1\n",
+        )
+        .unwrap();
+        let f = liggghts_final(&dump, &[2, 1, 2]).unwrap();
+        assert_eq!(f.body, vec![0, 0, 1, 2, 2]);
         let _ = std::fs::remove_dir_all(&d);
     }
 
@@ -535,6 +645,7 @@ mod tests {
     fn bed_lattice_is_loose_and_inside() {
         let stone = load_stone("procedural").unwrap();
         let (poses, b) = bed_lattice(&stone, 300, 5);
+        assert!(poses.iter().all(|p| p.kind == 0));
         assert_eq!(poses.len(), 300);
         let placed: Vec<Vec<Sphere>> = poses.iter().map(|p| placed(&stone, p).collect()).collect();
         for (i, a) in placed.iter().enumerate() {

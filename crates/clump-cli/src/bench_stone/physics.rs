@@ -31,8 +31,9 @@ pub(super) fn clump_final(w: &clump_core::world::World) -> FinalState {
 }
 
 /// The final state in a LIGGGHTS dump (`id x y z radius`, sorted by id;
-/// LIGGGHTS numbers the spheres of each inserted body consecutively).
-pub(super) fn liggghts_final(path: &Path, per_body: usize) -> Result<FinalState> {
+/// LIGGGHTS numbers the spheres of each inserted body consecutively, and
+/// `per_body` are the bodies' sphere counts in insertion order).
+pub(super) fn liggghts_final(path: &Path, per_body: &[usize]) -> Result<FinalState> {
     let text =
         std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
     let lines: Vec<&str> = text.lines().collect();
@@ -58,11 +59,19 @@ pub(super) fn liggghts_final(path: &Path, per_body: usize) -> Result<FinalState>
         rows.push((v[ci] as usize, DVec3::new(v[cx], v[cy], v[cz]), v[cr]));
     }
     rows.sort_by_key(|r| r.0);
+    // the body of sphere id k (1-based): the first whose spheres end past it
+    let ends: Vec<usize> = per_body
+        .iter()
+        .scan(0, |acc, &c| {
+            *acc += c;
+            Some(*acc)
+        })
+        .collect();
     let mut f = FinalState::default();
     for (id, x, r) in rows {
         f.pos.push(x);
         f.rad.push(r);
-        f.body.push((id - 1) / per_body.max(1));
+        f.body.push(ends.partition_point(|&e| e < id));
     }
     Ok(f)
 }
@@ -77,7 +86,8 @@ pub struct Physics {
     /// Surface height: mean over 40 mm columns of the footprint (those
     /// holding a sphere) of the highest sphere top, m.
     pub surface: f64,
-    /// Bulk packing fraction: bodies × stone volume / (footprint × surface).
+    /// Bulk packing fraction: bodies × mean body volume / (footprint ×
+    /// surface).
     pub phi: f64,
     /// Overlapping sphere pairs of different bodies.
     pub sphere_contacts: usize,
@@ -85,9 +95,10 @@ pub struct Physics {
     pub body_contacts: usize,
 }
 
-/// Bed height, packing fraction and contacts of `f` (`footprint`: floor
-/// area under the bed, m², for the packing fraction).
-pub fn physics(f: &FinalState, stone_volume: f64, footprint: f64) -> Physics {
+/// Bed height, packing fraction and contacts of `f` (`body_volume`: the
+/// bodies' mean volume, m³; `footprint`: floor area under the bed, m², for
+/// the packing fraction).
+pub fn physics(f: &FinalState, body_volume: f64, footprint: f64) -> Physics {
     let n = f.pos.len();
     if n == 0 {
         return Physics::default();
@@ -103,7 +114,7 @@ pub fn physics(f: &FinalState, stone_volume: f64, footprint: f64) -> Physics {
         *t = t.max(p.z + r);
     }
     let surface = tops.values().sum::<f64>() / tops.len() as f64;
-    let phi = bodies as f64 * stone_volume / (footprint * surface);
+    let phi = bodies as f64 * body_volume / (footprint * surface);
     // contacts: a cell list of side 2 r_max
     let rmax = f.rad.iter().copied().fold(0.0, f64::max);
     let h = 2.0 * rmax;

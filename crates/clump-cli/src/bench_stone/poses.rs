@@ -3,11 +3,13 @@
 
 use super::*;
 
-/// One body of the initial condition: centre of mass (m), quaternion mapping
-/// the stone file's frame (shifted to the centre of mass) to the world, and
-/// vertical velocity (m/s).
+/// One body of the initial condition: its stone (template index), centre of
+/// mass (m), quaternion mapping the stone file's frame (shifted to the
+/// centre of mass) to the world, and vertical velocity (m/s).
 #[derive(Debug, Clone, Copy)]
 pub struct Pose {
+    /// Index of the body's stone among the case's stones.
+    pub kind: usize,
     /// Centre of mass, m.
     pub x: DVec3,
     /// File frame → world.
@@ -33,17 +35,47 @@ pub(super) fn overlapping(a: &[Sphere], b: &[Sphere]) -> bool {
     })
 }
 
-/// The pile's initial condition: `n` stones at random poses in the tutorial's
-/// region (every sphere inside the cylinder r = 0.25 m, 0.1 < z < 0.4 m), no
-/// two overlapping (random sequential addition, seeded).
-pub fn pile_poses(stone: &Stone, n: usize, seed: u64) -> Result<Vec<Pose>> {
+/// How many of `n` bodies each of the `fractions` gets (largest remainders,
+/// ties to the first), as the list of kinds in the order given.
+pub fn kinds_by_fraction(n: usize, fractions: &[f64]) -> Vec<usize> {
+    let total: f64 = fractions.iter().sum();
+    let exact: Vec<f64> = fractions.iter().map(|f| n as f64 * f / total).collect();
+    let mut count: Vec<usize> = exact.iter().map(|x| x.floor() as usize).collect();
+    let mut order: Vec<usize> = (0..fractions.len()).collect();
+    order.sort_by(|&a, &b| {
+        (exact[b] - exact[b].floor())
+            .total_cmp(&(exact[a] - exact[a].floor()))
+            .then(a.cmp(&b))
+    });
+    let short = n - count.iter().sum::<usize>();
+    for &k in order.iter().take(short) {
+        count[k] += 1;
+    }
+    count
+        .iter()
+        .enumerate()
+        .flat_map(|(k, &c)| std::iter::repeat(k).take(c))
+        .collect()
+}
+
+/// The pile's initial condition: a stone of each of `kinds` (indices into
+/// `stones`) at a random pose in the tutorial's region (every sphere inside
+/// the cylinder r = 0.25 m, 0.1 < z < 0.4 m), no two overlapping (random
+/// sequential addition, seeded; the largest stones are placed first).
+pub fn pile_poses(stones: &[Stone], kinds: &[usize], seed: u64) -> Result<Vec<Pose>> {
     let (rr, z0, z1) = PILE_REGION;
-    let rb = stone.template.bounding_radius;
+    let n = kinds.len();
+    let mut kinds = kinds.to_vec();
+    let rb = |k: usize| stones[k].template.bounding_radius;
+    kinds.sort_by(|&a, &b| rb(b).total_cmp(&rb(a)).then(a.cmp(&b)));
+    let rb_max = kinds.first().map_or(0.0, |&k| rb(k));
     let mut rng = Rng(seed);
     let mut poses: Vec<Pose> = Vec::new();
     let mut placed_spheres: Vec<Vec<Sphere>> = Vec::new();
     let mut tries = 0u64;
     while poses.len() < n {
+        let kind = kinds[poses.len()];
+        let stone = &stones[kind];
         tries += 1;
         if tries > 2_000_000 {
             bail!(
@@ -53,7 +85,12 @@ pub fn pile_poses(stone: &Stone, n: usize, seed: u64) -> Result<Vec<Pose>> {
         }
         let x = DVec3::new(rng.range(-rr, rr), rng.range(-rr, rr), rng.range(z0, z1));
         let q = rng.quat();
-        let p = Pose { x, q, vz: PILE_VZ };
+        let p = Pose {
+            kind,
+            x,
+            q,
+            vz: PILE_VZ,
+        };
         let sp: Vec<Sphere> = placed(stone, &p).collect();
         let inside = sp.iter().all(|s| {
             s.center.truncate().length() + s.radius <= rr
@@ -66,7 +103,7 @@ pub fn pile_poses(stone: &Stone, n: usize, seed: u64) -> Result<Vec<Pose>> {
         let clash = poses
             .iter()
             .zip(&placed_spheres)
-            .any(|(o, osp)| (o.x - x).length() < 2.0 * rb && overlapping(&sp, osp));
+            .any(|(o, osp)| (o.x - x).length() < rb(kind) + rb_max && overlapping(&sp, osp));
         if clash {
             continue;
         }
@@ -146,6 +183,7 @@ pub fn bed_lattice(stone: &Stone, n: usize, seed: u64) -> (Vec<Pose>, BedBox) {
             // the turned stone's box is centred on turn · mid
             let x = centre + jitter - turn * mid;
             poses.push(Pose {
+                kind: 0,
                 x,
                 q: (turn * t.input_to_body).normalize(),
                 vz: 0.0,
@@ -156,20 +194,22 @@ pub fn bed_lattice(stone: &Stone, n: usize, seed: u64) -> (Vec<Pose>, BedBox) {
     (poses, BedBox { hx, hy, top })
 }
 
-/// Writes the initial condition `ic.csv` (Clump's CSV body file).
+/// Writes the initial condition `ic.csv` (Clump's CSV body file; the
+/// template column is the stone's index among the scenario's templates).
 pub fn write_ic(poses: &[Pose], path: &Path) -> Result<()> {
-    let mut s = String::from("x,y,z,qw,qx,qy,qz,vz\n");
+    let mut s = String::from("template,x,y,z,qw,qx,qy,qz,vz\n");
     for p in poses {
         writeln!(
             s,
-            "{:.12e},{:.12e},{:.12e},{:.15},{:.15},{:.15},{:.15},{}",
-            p.x.x, p.x.y, p.x.z, p.q.w, p.q.x, p.q.y, p.q.z, p.vz
+            "{},{:.12e},{:.12e},{:.12e},{:.15},{:.15},{:.15},{:.15},{}",
+            p.kind, p.x.x, p.x.y, p.x.z, p.q.w, p.q.x, p.q.y, p.q.z, p.vz
         )?;
     }
     std::fs::write(path, s).with_context(|| format!("writing {}", path.display()))
 }
 
-/// Reads an `ic.csv` written by [`write_ic`].
+/// Reads an `ic.csv` written by [`write_ic`] (or by its earlier form
+/// without the template column: one stone).
 pub fn read_ic(path: &Path) -> Result<Vec<Pose>> {
     let text =
         std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
@@ -180,10 +220,13 @@ pub fn read_ic(path: &Path) -> Result<Vec<Pose>> {
             .map(|x| x.trim().parse::<f64>())
             .collect::<Result<_, _>>()
             .with_context(|| format!("{}:{}: not a number", path.display(), i + 1))?;
-        if v.len() != 8 {
-            bail!("{}:{}: expected 8 columns", path.display(), i + 1);
-        }
+        let (kind, v) = match v.len() {
+            8 => (0, &v[..]),
+            9 => (v[0] as usize, &v[1..]),
+            _ => bail!("{}:{}: expected 8 or 9 columns", path.display(), i + 1),
+        };
         out.push(Pose {
+            kind,
             x: DVec3::new(v[0], v[1], v[2]),
             q: DQuat::from_xyzw(v[4], v[5], v[6], v[3]),
             vz: v[7],

@@ -45,6 +45,12 @@ pub fn load_stone(spec: &str) -> Result<Stone> {
             (path.to_string(), s)
         }
     };
+    stone_from_mm(source, mm)
+}
+
+/// The stone of spheres `mm` (mm, any frame): in metres, shifted to its
+/// centre of mass, with its exact mass properties.
+fn stone_from_mm(source: String, mm: Vec<Sphere>) -> Result<Stone> {
     if mm.is_empty() {
         bail!("--stone: {source} holds no spheres");
     }
@@ -65,6 +71,54 @@ pub fn load_stone(spec: &str) -> Result<Stone> {
         spheres,
         template,
     })
+}
+
+impl Stone {
+    /// The stone scaled by `s` about its centre of mass: a size class of a
+    /// mix, with its own exact mass properties.
+    pub fn scaled(&self, s: f64, source: String) -> Result<Stone> {
+        let spheres: Vec<Sphere> = self
+            .spheres
+            .iter()
+            .map(|p| Sphere::new(p.center * s, p.radius * s))
+            .collect();
+        let template = ClumpTemplate::from_spheres("stone", &spheres, DENSITY)
+            .map_err(|e| anyhow::anyhow!("{source}: {e}"))?;
+        Ok(Stone {
+            source,
+            spheres,
+            template,
+        })
+    }
+}
+
+/// Linear scales of the mix's size classes and their number fractions
+/// (per shape): a size distribution of 0.75, 1 and 1.25 times the stone,
+/// the middle class the most common.
+pub const MIX_SIZES: [(f64, f64); 3] = [(0.75, 0.3), (1.0, 0.4), (1.25, 0.3)];
+
+/// The templates of the mixed case and the number fraction of each: two
+/// shapes, `base` (the `--stone`) and a procedural stone (another seed when
+/// `base` is the procedural one itself), each in the size classes of
+/// [`MIX_SIZES`], half the stones of each shape.
+pub fn mix_stones(base: &Stone) -> Result<Vec<(Stone, f64)>> {
+    let other_seed = if base.source.starts_with("procedural") {
+        11
+    } else {
+        7
+    };
+    let other = stone_from_mm(
+        format!("procedural (seeded {other_seed}, 50 spheres)"),
+        procedural_stone(50, other_seed),
+    )?;
+    let mut out = Vec::new();
+    for shape in [base, &other] {
+        for (s, f) in MIX_SIZES {
+            let source = format!("{} x {s}", shape.source);
+            out.push((shape.scaled(s, source)?, 0.5 * f));
+        }
+    }
+    Ok(out)
 }
 
 /// SplitMix64: a tiny seeded generator, so that the initial conditions and
