@@ -16,6 +16,14 @@ work=$(realpath -m "${2:-out/tetra-peers}")
 shared=$(realpath ../shared/bench/tetra-bed)
 clump=$(realpath target/release/clump)
 py=${PYTHON:-python3}
+if ! "$py" -c 'import numpy, scipy' 2>/dev/null; then
+    echo "$py has no numpy or scipy: install them (Debian: python3-numpy python3-scipy) or name another interpreter with PYTHON=..." >&2
+    exit 2
+fi
+# `clump bench` runs the shared generator with the `python3` found first on
+# PATH: make that the interpreter just checked
+pydir=$(dirname "$(command -v "$py")")
+export PATH="$pydir:$PATH"
 mkdir -p "$work"
 cp "$shared/make_ic.py" "$shared/tetra.xyzr" "$shared/lammps/in.bench" "$shared/lammps/gen_lammps.py" "$work/"
 (
