@@ -82,7 +82,7 @@ fn stone_bench_errors_and_a_tiny_procedural_pile() {
         "{out}{}",
         String::from_utf8_lossy(&o.stderr)
     );
-    assert!(out.contains("stone-pile: 10 stones of 50 spheres"), "{out}");
+    assert!(out.contains("stone-pile: 10 stones, 500 spheres"), "{out}");
     assert!(out.contains("physics clump"), "{out}");
     for f in [
         "scenario.toml",
@@ -92,6 +92,36 @@ fn stone_bench_errors_and_a_tiny_procedural_pile() {
         "liggghts/ins.in",
     ] {
         assert!(work.join(f).is_file(), "{f} missing");
+    }
+    let _ = std::fs::remove_dir_all(&work);
+    // the mixed case: six templates, each with its file for both codes
+    let o = Command::new(env!("CARGO_BIN_EXE_clump"))
+        .args([
+            "bench",
+            "--case",
+            "stone-mix",
+            "--stone",
+            "procedural",
+            "--stones",
+            "12",
+        ])
+        .args(["--na", "20", "--nb", "10", "--work"])
+        .arg(&work)
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{out}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(out.contains("stone-mix: 12 stones, 600 spheres"), "{out}");
+    for k in 0..6 {
+        assert!(
+            out.contains(&format!("stone-mix: stone {k}: 2 of 12")),
+            "{out}"
+        );
+        assert!(work.join(format!("liggghts/stone{k}.xyzr")).is_file());
     }
     let _ = std::fs::remove_dir_all(&work);
 }
