@@ -228,7 +228,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 pub(crate) fn report(code: &str, round: usize, na: u64, nb: u64, f: &Figures) {
     let ns = f.spheres as f64;
     outln!(
-        "round {round} {code}: A {:.2} s ({:.3} M sph-steps/s)  B {:.2} s ({:.3} M sph-steps/s)  peak RSS {:.0} MB",
+        "round {round} {code}: A {:.2} s ({:.3} M sph-steps/s)  B {:.2} s ({:.3} M sph-steps/s)  peak RSS {:.1} MB",
         f.a_seconds,
         ns * na as f64 / f.a_seconds / 1e6,
         f.b_seconds,

@@ -143,18 +143,6 @@ impl CellGrid {
         (c[0] as usize) + self.dims[0] * ((c[1] as usize) + self.dims[1] * (c[2] as usize))
     }
 
-    /// Integer coordinates of the cell with linear index `k`
-    /// ([`CellGrid::index`]'s inverse).
-    #[inline]
-    pub fn coords_of(&self, k: usize) -> [i64; 3] {
-        let (d0, d1) = (self.dims[0], self.dims[1]);
-        [
-            (k % d0) as i64,
-            ((k / d0) % d1) as i64,
-            (k / (d0 * d1)) as i64,
-        ]
-    }
-
     /// Total number of cells.
     pub fn len(&self) -> usize {
         self.dims[0] * self.dims[1] * self.dims[2]

@@ -142,9 +142,6 @@ pub struct PairList {
     /// Centre and radius of each sphere of `cell_items`, in the same (cell)
     /// order: the scan reads a cell's spheres from one contiguous run.
     cell_xr: Vec<[f64; 4]>,
-    /// Linear cell index of each sphere (4 bytes a sphere rather than 24
-    /// for the coordinates, which the search recomputes once per sphere).
-    sphere_cell: Vec<u32>,
     cursor: Vec<u32>,
     /// Scratch of the build: the candidates found by each block of rows
     /// (unused on one thread, where the search writes `topo` directly).
@@ -319,18 +316,14 @@ impl PairList {
     ) {
         let n = inp.position.len();
         // 1. bin spheres into cells (counting sort)
-        self.sphere_cell.clear();
-        self.sphere_cell.extend(
-            inp.position
-                .iter()
-                .map(|&x| grid.index(grid.coords(domain.wrap(x))) as u32),
-        );
+        //    (each sphere's cell is computed where it is needed, here twice
+        //    and once in the search, rather than kept per sphere)
+        let cell = |x: DVec3| grid.index(grid.coords(domain.wrap(x)));
         let ncell = grid.len();
-        debug_assert!(ncell <= u32::MAX as usize);
         self.cell_start.clear();
         self.cell_start.resize(ncell + 1, 0);
-        for &k in &self.sphere_cell {
-            self.cell_start[k as usize + 1] += 1;
+        for &x in inp.position {
+            self.cell_start[cell(x) + 1] += 1;
         }
         for k in 0..ncell {
             self.cell_start[k + 1] += self.cell_start[k];
@@ -339,8 +332,8 @@ impl PairList {
         self.cursor.extend_from_slice(&self.cell_start[..ncell]);
         self.cell_items.clear();
         self.cell_items.resize(n, 0);
-        for (s, &k) in self.sphere_cell.iter().enumerate() {
-            let k = k as usize;
+        for (s, &x) in inp.position.iter().enumerate() {
+            let k = cell(x);
             self.cell_items[self.cursor[k] as usize] = s as u32;
             self.cursor[k] += 1;
         }
@@ -358,7 +351,6 @@ impl PairList {
             cell_start: &self.cell_start,
             cell_items: &self.cell_items,
             cell_xr: &self.cell_xr,
-            sphere_cell: &self.sphere_cell,
             length: domain.size(),
             half: 0.5 * domain.size(),
         };
@@ -497,7 +489,6 @@ struct Search<'a> {
     cell_start: &'a [u32],
     cell_items: &'a [u32],
     cell_xr: &'a [[f64; 4]],
-    sphere_cell: &'a [u32],
     length: DVec3,
     half: DVec3,
 }
@@ -516,7 +507,7 @@ impl Search<'_> {
     #[inline]
     fn visit(&self, i: usize, mut f: impl FnMut(u32, [i8; 3])) -> u32 {
         let grid = self.grid;
-        let c = grid.coords_of(self.sphere_cell[i] as usize);
+        let c = grid.coords(self.domain.wrap(self.inp.position[i]));
         let mut count = 0;
         for dz in -1..=1i64 {
             let Some(z) = grid.wrap(c[2] + dz, 2) else {

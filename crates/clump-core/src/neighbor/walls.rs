@@ -69,6 +69,28 @@ impl WallList {
         }
     }
 
+    /// Appends to `out`, for each sphere of `spheres` (storage indices of
+    /// this list's build), its entry when its slots hold a contact, else
+    /// [`NO_ENTRY`]: [`WallList::live_entries`] for one body's spheres,
+    /// without a table over all spheres.
+    pub fn append_live_entries(&self, spheres: std::ops::Range<usize>, out: &mut Vec<u32>) {
+        let mut e = self
+            .sphere
+            .partition_point(|&s| (s as usize) < spheres.start);
+        for s in spheres {
+            if self.sphere.get(e).is_some_and(|&x| x as usize == s) {
+                out.push(if self.key[e][0] != 0 {
+                    e as u32
+                } else {
+                    NO_ENTRY
+                });
+                e += 1;
+            } else {
+                out.push(NO_ENTRY);
+            }
+        }
+    }
+
     /// The slots of every sphere (storage order, `n` spheres): empty for a
     /// sphere without an entry (the checkpoint form).
     pub fn per_sphere(

@@ -57,14 +57,14 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         // the new order, the entry of the old wall list it continues; bodies
         // added since the last build (indices ≥ old count) start empty
         let old_n = w.spheres.body_first.len().saturating_sub(1);
-        let live = &mut w.scratch.wall_live;
-        w.neighbors.wall_list.live_entries(w.spheres.len(), live);
         let carry = &mut w.scratch.wall_carry;
         carry.clear();
         for &ob in &w.scratch.perm {
             let ob = ob as usize;
             if ob < old_n {
-                carry.extend_from_slice(&live[w.spheres.of_body(ob)]);
+                w.neighbors
+                    .wall_list
+                    .append_live_entries(w.spheres.of_body(ob), carry);
             } else {
                 let t = w.bodies.template[ob] as usize;
                 let ns = (w.templates.first[t + 1] - w.templates.first[t]) as usize;

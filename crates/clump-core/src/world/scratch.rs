@@ -21,8 +21,6 @@ pub(crate) struct Scratch {
     /// Rebuild: per sphere, the entry of the previous wall list whose
     /// contact slots it continues.
     pub wall_carry: Vec<u32>,
-    /// Rebuild: the live entries of the previous wall list.
-    pub wall_live: Vec<u32>,
     /// Rebuild: sort keys.
     pub keys: Vec<(u64, u64, u32)>,
     /// Gather: statistics per body chunk.
