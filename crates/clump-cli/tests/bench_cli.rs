@@ -62,26 +62,7 @@ fn stone_bench_errors_and_a_tiny_procedural_pile() {
         );
     }
     let work = std::env::temp_dir().join(format!("clump-bench-stone-cli-{}", std::process::id()));
-    let o = Command::new(env!("CARGO_BIN_EXE_clump"))
-        .args([
-            "bench",
-            "--case",
-            "stone-pile",
-            "--stone",
-            "procedural",
-            "--stones",
-            "10",
-        ])
-        .args(["--na", "20", "--nb", "10", "--work"])
-        .arg(&work)
-        .output()
-        .unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
-    assert!(
-        o.status.success(),
-        "{out}{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let out = tiny_stone_bench("stone-pile", 10, &work);
     assert!(out.contains("stone-pile: 10 stones, 500 spheres"), "{out}");
     assert!(out.contains("physics clump"), "{out}");
     for f in [
@@ -95,26 +76,7 @@ fn stone_bench_errors_and_a_tiny_procedural_pile() {
     }
     let _ = std::fs::remove_dir_all(&work);
     // the mixed case: six templates, each with its file for both codes
-    let o = Command::new(env!("CARGO_BIN_EXE_clump"))
-        .args([
-            "bench",
-            "--case",
-            "stone-mix",
-            "--stone",
-            "procedural",
-            "--stones",
-            "12",
-        ])
-        .args(["--na", "20", "--nb", "10", "--work"])
-        .arg(&work)
-        .output()
-        .unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
-    assert!(
-        o.status.success(),
-        "{out}{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let out = tiny_stone_bench("stone-mix", 12, &work);
     assert!(out.contains("stone-mix: 12 stones, 600 spheres"), "{out}");
     for k in 0..6 {
         assert!(
@@ -124,4 +86,23 @@ fn stone_bench_errors_and_a_tiny_procedural_pile() {
         assert!(work.join(format!("liggghts/stone{k}.xyzr")).is_file());
     }
     let _ = std::fs::remove_dir_all(&work);
+}
+
+/// `clump bench --case <case>` with the procedural stone, `stones` stones
+/// and 20 + 10 steps, into `work`; its stdout (it must succeed).
+fn tiny_stone_bench(case: &str, stones: usize, work: &std::path::Path) -> String {
+    let o = Command::new(env!("CARGO_BIN_EXE_clump"))
+        .args(["bench", "--case", case, "--stone", "procedural", "--stones"])
+        .arg(stones.to_string())
+        .args(["--na", "20", "--nb", "10", "--work"])
+        .arg(work)
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(
+        o.status.success(),
+        "{out}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    out
 }

@@ -64,31 +64,31 @@ fn stone_from_mm(source: String, mm: Vec<Sphere>) -> Result<Stone> {
         .iter()
         .map(|s| Sphere::new(s.center - t0.input_center_of_mass, s.radius))
         .collect();
-    let template = ClumpTemplate::from_spheres("stone", &spheres, DENSITY)
-        .map_err(|e| anyhow::anyhow!("--stone {source}: {e}"))?;
-    Ok(Stone {
-        source,
-        spheres,
-        template,
-    })
+    Stone::centred(source, spheres)
 }
 
 impl Stone {
-    /// The stone scaled by `s` about its centre of mass: a size class of a
-    /// mix, with its own exact mass properties.
-    pub fn scaled(&self, s: f64, source: String) -> Result<Stone> {
-        let spheres: Vec<Sphere> = self
-            .spheres
-            .iter()
-            .map(|p| Sphere::new(p.center * s, p.radius * s))
-            .collect();
+    /// The stone of `spheres` (m, centred on their centre of mass), with its
+    /// exact mass properties.
+    fn centred(source: String, spheres: Vec<Sphere>) -> Result<Stone> {
         let template = ClumpTemplate::from_spheres("stone", &spheres, DENSITY)
-            .map_err(|e| anyhow::anyhow!("{source}: {e}"))?;
+            .map_err(|e| anyhow::anyhow!("--stone {source}: {e}"))?;
         Ok(Stone {
             source,
             spheres,
             template,
         })
+    }
+
+    /// The stone scaled by `s` about its centre of mass: a size class of a
+    /// mix, with its own exact mass properties.
+    pub fn scaled(&self, s: f64, source: String) -> Result<Stone> {
+        let spheres = self
+            .spheres
+            .iter()
+            .map(|p| Sphere::new(p.center * s, p.radius * s))
+            .collect();
+        Stone::centred(source, spheres)
     }
 }
 

@@ -108,6 +108,13 @@ impl ContactTable {
     pub fn any_extended(&self) -> bool {
         self.extended
     }
+
+    /// Whether the pairs need a rolling spring (N m, world frame): some
+    /// model has a rolling couple or runs the scalar composition, which
+    /// carries the rolling and twisting springs.
+    pub fn keeps_rolling_spring(&self) -> bool {
+        self.rolling || self.extended
+    }
 }
 
 #[cfg(test)]

@@ -235,23 +235,15 @@ impl PairList {
         self.load_j.resize(acc, BodyLoad::default());
         // the pairs whose j belongs to each body, ascending
         let nb = self.body.len();
-        self.col_start.clear();
-        self.col_start.resize(nb + 1, 0);
-        for t in &self.topo {
-            self.col_start[body[t.j as usize] as usize + 1] += 1;
-        }
-        for b in 0..nb {
-            self.col_start[b + 1] += self.col_start[b];
-        }
-        self.cursor.clear();
-        self.cursor.extend_from_slice(&self.col_start[..nb]);
-        self.col_pair.clear();
-        self.col_pair.resize(acc, 0);
-        for (p, t) in self.topo.iter().enumerate() {
-            let c = &mut self.cursor[body[t.j as usize] as usize];
-            self.col_pair[*c as usize] = p as u32;
-            *c += 1;
-        }
+        let topo = &self.topo;
+        counting_sort(
+            acc,
+            nb,
+            |p| body[topo[p].j as usize] as usize,
+            &mut self.col_start,
+            &mut self.cursor,
+            &mut self.col_pair,
+        );
         // a body's spheres are contiguous: its first sphere is the first
         // with its owner index
         self.first_feed.clear();
@@ -319,24 +311,14 @@ impl PairList {
         //    (each sphere's cell is computed where it is needed, here twice
         //    and once in the search, rather than kept per sphere)
         let cell = |x: DVec3| grid.index(grid.coords(domain.wrap(x)));
-        let ncell = grid.len();
-        self.cell_start.clear();
-        self.cell_start.resize(ncell + 1, 0);
-        for &x in inp.position {
-            self.cell_start[cell(x) + 1] += 1;
-        }
-        for k in 0..ncell {
-            self.cell_start[k + 1] += self.cell_start[k];
-        }
-        self.cursor.clear();
-        self.cursor.extend_from_slice(&self.cell_start[..ncell]);
-        self.cell_items.clear();
-        self.cell_items.resize(n, 0);
-        for (s, &x) in inp.position.iter().enumerate() {
-            let k = cell(x);
-            self.cell_items[self.cursor[k] as usize] = s as u32;
-            self.cursor[k] += 1;
-        }
+        counting_sort(
+            n,
+            grid.len(),
+            |s| cell(inp.position[s]),
+            &mut self.cell_start,
+            &mut self.cursor,
+            &mut self.cell_items,
+        );
         self.cell_xr.clear();
         self.cell_xr.extend(self.cell_items.iter().map(|&s| {
             let (x, r) = (inp.position[s as usize], inp.radius[s as usize]);
@@ -469,6 +451,37 @@ impl PairList {
         let nb = inp.body.last().map_or(0, |&b| b as usize + 1);
         self.body.clear();
         self.body.resize(nb, PairBody::default());
+    }
+}
+
+/// Stable counting sort of items `0..n` into `buckets` buckets by `key`
+/// (called twice per item): `start` gets the offsets (`buckets + 1`),
+/// `items` the items bucket by bucket, ascending within each; `cursor` is
+/// scratch.
+fn counting_sort(
+    n: usize,
+    buckets: usize,
+    key: impl Fn(usize) -> usize,
+    start: &mut Vec<u32>,
+    cursor: &mut Vec<u32>,
+    items: &mut Vec<u32>,
+) {
+    start.clear();
+    start.resize(buckets + 1, 0);
+    for i in 0..n {
+        start[key(i) + 1] += 1;
+    }
+    for k in 0..buckets {
+        start[k + 1] += start[k];
+    }
+    cursor.clear();
+    cursor.extend_from_slice(&start[..buckets]);
+    items.clear();
+    items.resize(n, 0);
+    for i in 0..n {
+        let c = &mut cursor[key(i)];
+        items[*c as usize] = i as u32;
+        *c += 1;
     }
 }
 

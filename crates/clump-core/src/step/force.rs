@@ -70,7 +70,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         // several runs: the seams' column lists and j-side loads
         pairs.prepare_seams(&w.spheres.body);
     }
-    if w.contact_table.any_rolling() || w.contact_table.any_extended() {
+    if w.contact_table.keeps_rolling_spring() {
         pairs.keep_rolling();
     }
     let records = &mut w.neighbors.records;

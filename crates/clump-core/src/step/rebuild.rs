@@ -135,7 +135,7 @@ pub(crate) fn build_pair_list(w: &mut World) {
         body_first: &sp.body_first,
         gid: &sp.gid,
         skin: w.skin(),
-        rolling: w.contact_table.any_rolling() || w.contact_table.any_extended(),
+        rolling: w.contact_table.keeps_rolling_spring(),
     };
     w.neighbors.pairs.build(
         &w.neighbors.grid,
