@@ -10,9 +10,12 @@
 //! - [`skin`]: the rebuild trigger: any sphere displaced by more than half the
 //!   skin since the last build, which counts rotation because it measures the
 //!   sphere centres themselves.
+//! - [`body_bounds`]: bounding spheres of many-sphere bodies, with which the
+//!   pair search skips a neighbour body's spheres out of reach at once.
 //! - [`walls`]: the wall Verlet list, the spheres with a wall to test and
 //!   their sphere–wall contact slots.
 
+mod body_bounds;
 pub mod grid;
 pub mod pairs;
 pub mod skin;
