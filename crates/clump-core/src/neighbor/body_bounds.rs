@@ -11,7 +11,6 @@
 //! [`BodyBounds::out_of_reach`]), so the list, and its order, are the same
 //! with or without the filter.
 
-use crate::boundary::Domain;
 use glam::DVec3;
 
 /// Mean spheres per body from which the search uses the bounding spheres:
@@ -34,8 +33,12 @@ pub(crate) struct BodyBounds {
 }
 
 impl BodyBounds {
-    /// Whether the search of `n` spheres on `nb` bodies uses the filter.
-    pub(crate) fn pays(n: usize, nb: usize) -> bool {
+    /// Whether the search uses the filter, for bodies owning the spheres
+    /// `body_first[b]..body_first[b + 1]` (the last entry is the number of
+    /// spheres).
+    pub(crate) fn pays(body_first: &[u32]) -> bool {
+        let nb = body_first.len().saturating_sub(1);
+        let n = body_first.last().map_or(0, |&n| n as usize);
         nb > 0 && n >= MIN_SPHERES_PER_BODY * nb
     }
 
@@ -64,18 +67,25 @@ impl BodyBounds {
 
     /// True when no sphere of body `b` lies within `reach` (m: the sphere's
     /// radius plus the skin) of the point `x` (world frame, m), the
-    /// distance taken as the minimum image on the periodic axes of `domain`.
+    /// distance taken as the minimum image on the `periodic` axes of a box
+    /// of edges `length` (m).
     /// A sphere `j` of `b` passes the search's test only if
     /// `|x − x_j| < reach + r_j`, and then, by the triangle inequality
     /// (which the minimum image obeys), `|x − c_b| < reach + r_b`.
     #[inline(always)]
-    pub(crate) fn out_of_reach(&self, b: usize, x: DVec3, reach: f64, domain: &Domain) -> bool {
+    pub(crate) fn out_of_reach(
+        &self,
+        b: usize,
+        x: DVec3,
+        reach: f64,
+        periodic: [bool; 3],
+        length: DVec3,
+    ) -> bool {
         let [cx, cy, cz, rb] = self.bound[b];
         let mut d = x - DVec3::new(cx, cy, cz);
         for a in 0..3 {
-            if domain.periodic[a] {
-                let l = domain.hi[a] - domain.lo[a];
-                d[a] -= l * (d[a] / l).round();
+            if periodic[a] {
+                d[a] -= length[a] * (d[a] / length[a]).round();
             }
         }
         let r = reach + rb;
@@ -86,6 +96,7 @@ impl BodyBounds {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::boundary::Domain;
     use crate::neighbor::pairs::{BuildInput, HistoryMap, PairList};
     use crate::neighbor::CellGrid;
     use rand::{Rng, SeedableRng};
@@ -127,7 +138,7 @@ mod tests {
             body_first.push(position.len() as u32);
         }
         let gid: Vec<u64> = (0..position.len() as u64).collect();
-        assert!(BodyBounds::pays(position.len(), nb));
+        assert!(BodyBounds::pays(&body_first));
         let inp = BuildInput {
             position: &position,
             radius: &radius,

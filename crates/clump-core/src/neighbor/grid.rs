@@ -133,8 +133,8 @@ impl CellGrid {
         for a in 0..3 {
             // truncation, not floor: they differ only on (-1, 0), which the
             // clamp sends to cell 0 either way, and the floor is a library
-            // call on the baseline x86-64 target (a tenth of a stone pile's
-            // neighbour build)
+            // call on the baseline x86-64 target (about 3 % of a stone
+            // pile's rebuild)
             let k = ((x[a] - self.origin[a]) / self.cell[a]) as i64;
             c[a] = k.clamp(0, self.dims[a] as i64 - 1);
         }

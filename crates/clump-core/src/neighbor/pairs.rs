@@ -331,8 +331,7 @@ impl PairList {
             let (x, r) = (inp.position[s as usize], inp.radius[s as usize]);
             [x.x, x.y, x.z, r]
         }));
-        let nb = inp.body_first.len().saturating_sub(1);
-        let bounded = BodyBounds::pays(n, nb);
+        let bounded = BodyBounds::pays(inp.body_first);
         #[cfg(test)]
         let bounded = bounded && !self.unbounded;
         if bounded {
@@ -571,10 +570,12 @@ impl Search<'_> {
     ///
     /// A cell's spheres are in ascending storage order, and a body's
     /// spheres are contiguous, so the partners `j > i` on other bodies are
-    /// the cell's spheres from the first one past the end of `i`'s body:
-    /// each cell is cut there by a binary search, and only the rest get the
-    /// distance test. On stones of 50 spheres most spheres near `i` are its
-    /// own stone's or lie before it.
+    /// the cell's spheres from the first one past the end of `i`'s body: a
+    /// cell wholly before it is passed over, one wholly after it taken
+    /// whole, any other cut there by a binary search; only the rest get the
+    /// distance test (on many-sphere bodies, only the runs of bodies within
+    /// reach, see [`BodyBounds`]). On stones of 50 spheres most spheres near
+    /// `i` are its own stone's or lie before it.
     #[inline(always)]
     fn scan(
         &self,
@@ -617,7 +618,7 @@ impl Search<'_> {
                         } else {
                             c + self.cell_items[c..c1].partition_point(|&j| j < next_body)
                         };
-                        if !bounds.out_of_reach(b, xi, ri, self.domain) {
+                        if !bounds.out_of_reach(b, xi, ri, self.domain.periodic, self.length) {
                             self.test(i, xi, ri, any_periodic, c..end, f, count);
                         }
                         c = end;
