@@ -12,10 +12,13 @@
 //!   sphere centres themselves.
 //! - [`body_bounds`]: bounding spheres of many-sphere bodies, with which the
 //!   pair search skips a neighbour body's spheres out of reach at once.
+//! - [`carry`]: contact histories carried across a rebuild that re-sorts
+//!   the bodies, by storage index (global ids for a checkpoint or ranks).
 //! - [`walls`]: the wall Verlet list, the spheres with a wall to test and
 //!   their sphere–wall contact slots.
 
 mod body_bounds;
+pub(crate) mod carry;
 pub mod grid;
 pub mod pairs;
 pub mod skin;

@@ -1,6 +1,7 @@
 //! The half list of candidate sphere pairs and their contact state.
 
 use super::body_bounds::BodyBounds;
+use super::carry::HistoryCarry;
 use super::grid::CellGrid;
 use crate::boundary::Domain;
 use crate::contact::ContactHistory;
@@ -313,6 +314,22 @@ impl PairList {
         inp: &BuildInput,
         history: &HistoryMap,
     ) {
+        self.build_from(grid, domain, inp, Carried::ById(history))
+    }
+
+    /// [`PairList::build`], keeping the history of pairs found in `carry`
+    /// (the list before a re-sort, by storage index).
+    pub(crate) fn build_carried(
+        &mut self,
+        grid: &CellGrid,
+        domain: &Domain,
+        inp: &BuildInput,
+        carry: &HistoryCarry,
+    ) {
+        self.build_from(grid, domain, inp, Carried::ByIndex(carry))
+    }
+
+    fn build_from(&mut self, grid: &CellGrid, domain: &Domain, inp: &BuildInput, history: Carried) {
         let n = inp.position.len();
         // 1. bin spheres into cells (counting sort)
         //    (each sphere's cell is computed where it is needed, here twice
@@ -431,7 +448,11 @@ impl PairList {
         self.col_pair.clear();
         self.seams_ready = false;
         self.scale.clear();
-        if !history.is_empty() {
+        let any = match history {
+            Carried::ById(map) => !map.is_empty(),
+            Carried::ByIndex(carry) => !carry.is_empty(),
+        };
+        if any {
             let tan = crate::par::shared::SharedMut::new(&mut self.tangential);
             let rol = crate::par::shared::SharedMut::new(&mut self.rolling);
             let topo = crate::par::shared::SharedMut::new(&mut self.topo);
@@ -440,11 +461,16 @@ impl PairList {
                 for p in rows[i] as usize..rows[i + 1] as usize {
                     // SAFETY: pair p belongs to row i only.
                     let t = unsafe { topo.get(p) };
-                    let (gi, gj) = (gid[i], gid[t.j as usize]);
-                    let old = if gi < gj {
-                        history.get(&(gi, gj)).copied()
-                    } else {
-                        history.get(&(gj, gi)).map(|h| reversed(*h))
+                    let old = match history {
+                        Carried::ById(map) => {
+                            let (gi, gj) = (gid[i], gid[t.j as usize]);
+                            if gi < gj {
+                                map.get(&(gi, gj)).copied()
+                            } else {
+                                map.get(&(gj, gi)).map(|h| reversed(*h))
+                            }
+                        }
+                        Carried::ByIndex(carry) => carry.get(i, t.j as usize),
                     };
                     if let Some(h) = old {
                         t.live = true;
@@ -499,10 +525,20 @@ fn counting_sort(
     }
 }
 
+/// Where a build finds the histories of the pairs that persist.
+#[derive(Clone, Copy)]
+enum Carried<'a> {
+    /// Keyed by global sphere ids, lower first (a checkpoint, a world
+    /// joined from its ranks).
+    ById(&'a HistoryMap),
+    /// The list before a re-sort, by storage index.
+    ByIndex(&'a HistoryCarry),
+}
+
 /// The history of a pair seen from the other side (`j` to `i`): both springs
 /// are relative quantities of `i` with respect to `j`, so they change sign.
 #[inline]
-fn reversed(h: ContactHistory) -> ContactHistory {
+pub(crate) fn reversed(h: ContactHistory) -> ContactHistory {
     ContactHistory {
         tangential: -h.tangential,
         rolling: -h.rolling,

@@ -4,6 +4,7 @@
 
 use super::kinematics::update_spheres;
 use super::StepError;
+use crate::neighbor::carry::{old_body_index, NONE};
 use crate::neighbor::pairs::BuildInput;
 use crate::neighbor::walls::NO_ENTRY;
 use crate::neighbor::{sort, CellGrid};
@@ -15,19 +16,28 @@ use crate::world::World;
 /// list is rebuilt from the stored reference poses only (used on restart so
 /// that a resumed run matches an uninterrupted one bit for bit).
 pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
+    w.scratch.carry.active = false;
     if reorganize {
         adapt_skin(w);
         w.neighbors.built_step = w.step;
     }
     let min_cell = 2.0 * w.max_radius() + w.skin();
     if reorganize {
-        // a world joined from its ranks holds its histories in the map
-        if !w.neighbors.history_pending {
+        // a world joined from its ranks holds its histories in the map; a
+        // rank's part is re-sorted once more below (restrict), so its
+        // histories go by global id too; otherwise they are carried by
+        // storage index (neighbor::carry)
+        if w.neighbors.history_pending {
+        } else if w.part.is_some() {
             w.neighbors.pairs.save_history(
                 &w.spheres.gid,
                 w.contact_table.any_reach(),
                 &mut w.neighbors.history_map,
             );
+        } else {
+            w.scratch
+                .carry
+                .save(&w.neighbors.pairs, &w.spheres, w.contact_table.any_reach());
         }
         let domain = w.config.domain;
         let n = w.bodies.len();
@@ -53,20 +63,25 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
             &mut w.scratch.perm,
             &mut w.scratch.keys,
         );
+        // each body of the new order in the last build's sphere topology
+        old_body_index(
+            &w.spheres,
+            &w.bodies.id,
+            &w.scratch.perm,
+            &mut w.scratch.old_body,
+        );
         // carry wall-contact slots along with their spheres: per sphere in
         // the new order, the entry of the old wall list it continues; bodies
-        // added since the last build (indices ≥ old count) start empty
-        let old_n = w.spheres.body_first.len().saturating_sub(1);
+        // added since the last build start empty
         let carry = &mut w.scratch.wall_carry;
         carry.clear();
-        for &ob in &w.scratch.perm {
-            let ob = ob as usize;
-            if ob < old_n {
+        for (&cur, &ob) in w.scratch.perm.iter().zip(&w.scratch.old_body) {
+            if ob != NONE {
                 w.neighbors
                     .wall_list
-                    .append_live_entries(w.spheres.of_body(ob), carry);
+                    .append_live_entries(w.spheres.of_body(ob as usize), carry);
             } else {
-                let t = w.bodies.template[ob] as usize;
+                let t = w.bodies.template[cur as usize] as usize;
                 let ns = (w.templates.first[t + 1] - w.templates.first[t]) as usize;
                 carry.extend(std::iter::repeat(NO_ENTRY).take(ns));
             }
@@ -75,6 +90,11 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
             .permute_into(&w.scratch.perm, &mut w.scratch.bodies);
         std::mem::swap(&mut w.bodies, &mut w.scratch.bodies);
         rebuild_sphere_topology(w);
+        if w.scratch.carry.active {
+            w.scratch
+                .carry
+                .map_spheres(&w.scratch.old_body, &w.spheres.body_first);
+        }
         references_at_current_poses(w);
     } else {
         // positions at the last build, recomputed from the stored poses
@@ -137,12 +157,22 @@ pub(crate) fn build_pair_list(w: &mut World) {
         skin: w.skin(),
         rolling: w.contact_table.keeps_rolling_spring(),
     };
-    w.neighbors.pairs.build(
-        &w.neighbors.grid,
-        &w.config.domain,
-        &inp,
-        &w.neighbors.history_map,
-    );
+    if w.scratch.carry.active {
+        w.neighbors.pairs.build_carried(
+            &w.neighbors.grid,
+            &w.config.domain,
+            &inp,
+            &w.scratch.carry,
+        );
+        w.scratch.carry.active = false;
+    } else {
+        w.neighbors.pairs.build(
+            &w.neighbors.grid,
+            &w.config.domain,
+            &inp,
+            &w.neighbors.history_map,
+        );
+    }
     w.neighbors.history_map.clear();
     w.neighbors.history_pending = false;
     w.neighbors.pairs.refresh_bodies(&w.bodies);

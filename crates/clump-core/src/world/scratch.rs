@@ -2,6 +2,7 @@
 //! rebuilds do not allocate) and where the world is within its step.
 
 use crate::body::Bodies;
+use crate::neighbor::carry::HistoryCarry;
 use crate::neighbor::walls::WallList;
 use crate::par::affinity::Balance;
 use crate::stats::ContactStats;
@@ -21,6 +22,11 @@ pub(crate) struct Scratch {
     /// Rebuild: per sphere, the entry of the previous wall list whose
     /// contact slots it continues.
     pub wall_carry: Vec<u32>,
+    /// Rebuild: per body of the new order, its index in the last build's
+    /// sphere topology ([`crate::neighbor::carry::NONE`]: added since).
+    pub old_body: Vec<u32>,
+    /// Rebuild: the old list's pair histories, for the new list.
+    pub carry: HistoryCarry,
     /// Rebuild: sort keys.
     pub keys: Vec<(u64, u64, u32)>,
     /// Gather: statistics per body chunk.
