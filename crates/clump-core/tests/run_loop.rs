@@ -232,6 +232,72 @@ fn a_removed_body_is_gone_and_the_rest_run_on() {
     assert!(w.remove_body(id).is_err());
 }
 
+/// After a driver removes a body, the rebuild carries every other sphere's
+/// wall contacts to that same sphere. The bodies behind the removed one
+/// have shifted storage indices while the spheres still hold the old
+/// topology, so a carry by index alone would hand them their neighbour's
+/// contacts. The reference is the same sliding bed rebuilt and evaluated without
+/// the removal: a sphere–wall contact depends on its own body and the wall
+/// only, so each remaining sphere's wall springs must be the same bits.
+#[test]
+fn a_removal_keeps_each_sphere_its_wall_contacts() {
+    let wall_springs = |w: &mut World| {
+        let s = w.save_state().unwrap();
+        let mut by_gid = std::collections::HashMap::new();
+        for (g, (keys, hist)) in w
+            .spheres()
+            .gid
+            .iter()
+            .zip(s.wall_key.iter().zip(&s.wall_hist))
+        {
+            for (k, h) in keys.iter().zip(hist) {
+                if h.tangential != DVec3::ZERO {
+                    by_gid.insert((*g, *k), h.tangential.to_array().map(f64::to_bits));
+                }
+            }
+        }
+        by_gid
+    };
+    // a layer landed on the floor, then slid along it for a few steps:
+    // every floor contact holds a spring
+    let sliding = || {
+        let mut w = tetra_lattice_bed(6, 6, 1, None);
+        w.run(6000).unwrap(); // landed on the floor
+        for id in w.bodies.id.clone() {
+            w.set_body_velocity(id, DVec3::new(0.02, 0.01, 0.0))
+                .unwrap();
+        }
+        w.run(20).unwrap();
+        w
+    };
+    let mut reference = sliding();
+    reference.prepare().unwrap(); // a rebuild and an evaluation, as below
+    let reference = wall_springs(&mut reference);
+    let mut w = sliding();
+    // the first body in storage: every other one shifts down by one
+    let removed = w.bodies.id[0];
+    w.remove_body(removed).unwrap();
+    let after = wall_springs(&mut w);
+    let expected: std::collections::HashMap<_, _> = reference
+        .into_iter()
+        .filter(|((g, _), _)| g >> clump_core::sphere::SPHERE_ID_BITS != removed)
+        .collect();
+    assert!(
+        expected.len() > 30,
+        "too few wall springs to compare: {}",
+        expected.len()
+    );
+    assert_eq!(after.len(), expected.len(), "wall contacts lost or gained");
+    for (key, bits) in &expected {
+        assert!(
+            after.get(key) == Some(bits),
+            "sphere {:#x}, wall slot {}: spring differs",
+            key.0,
+            key.1
+        );
+    }
+}
+
 /// A driver whose event is not ahead is an error, not a hang.
 struct Stuck;
 impl StepHook for Stuck {}
