@@ -240,9 +240,18 @@ fn sigterm_on_two_ranks_checkpoints_the_whole_world_at_one_step() {
         .status()
         .unwrap();
     assert!(st.success());
-    // mpirun forwards the signal to the ranks; its own exit status is
-    // OpenMPI's (4.1.4 may even crash after forwarding), the run's is in
-    // the manifest
+    // mpirun forwards the signal to the ranks (and SIGKILLs them a second
+    // later, docs/scaling.md); its own exit status is Open MPI's (4.1.4 may
+    // even crash after forwarding, or hang with its ranks unreaped: then it
+    // is killed here, and the manifest decides)
+    let t1 = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if t1.elapsed().as_secs() > 120 {
+            let _ = child.kill();
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
     let _ = child.wait();
     let m: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(d.join("manifest.json")).unwrap()).unwrap();

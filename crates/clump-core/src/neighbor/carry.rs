@@ -58,9 +58,11 @@ impl HistoryCarry {
         self.rolling.clear();
         self.old_first.clear();
         self.old_first.extend_from_slice(&sp.body_first);
-        let rows = pairs.row_start.len().saturating_sub(1);
+        // a list not built on these spheres (none built yet) carries nothing
+        let n = sp.body_first.last().map_or(0, |&s| s as usize);
+        let rows = if pairs.row_start.len() == n + 1 { n } else { 0 };
         let with_rolling = !pairs.rolling.is_empty();
-        self.row_start.reserve(rows + 1);
+        self.row_start.reserve(n + 1);
         self.row_start.push(0);
         for i in 0..rows {
             for p in pairs.row(i) {
@@ -84,6 +86,7 @@ impl HistoryCarry {
             }
             self.row_start.push(self.j.len() as u32);
         }
+        self.row_start.resize(n + 1, self.j.len() as u32);
         self.active = true;
     }
 
