@@ -301,6 +301,26 @@ impl StepHook for StepChecks<'_, '_> {
     }
 }
 
+/// SIGINT's number (POSIX).
+const SIGINT: usize = 2;
+/// SIGTERM's number (POSIX).
+const SIGTERM: usize = 15;
+
+/// The signal a step boundary stops for, the same on every rank of a world
+/// split over ranks: a signal reaches the ranks one by one, and a rank that
+/// stopped on its own flag while another stepped on would leave that one
+/// waiting in the step's reduction for ever. `mine` is this process's
+/// flag (0: none); a rank without a signal of its own takes SIGTERM when
+/// some rank has one, else SIGINT. Without a partition, `mine`.
+fn rank_consistent_signal(w: &mut World, mine: usize) -> usize {
+    let [int, other] = w.any_ranks([mine == SIGINT, mine != 0 && mine != SIGINT]);
+    match (mine, other, int) {
+        (0, true, _) => SIGTERM,
+        (0, false, true) => SIGINT,
+        _ => mine,
+    }
+}
+
 /// What [`Runner::advance_checked`] takes from its caller besides the event.
 struct Pace<'a, 'p> {
     interrupt: Option<&'a AtomicUsize>,
@@ -436,7 +456,7 @@ impl Runner {
                 }
             }
             if let Some(flag) = &opts.interrupt {
-                let sig = flag.load(Ordering::Relaxed);
+                let sig = rank_consistent_signal(&mut self.world, flag.load(Ordering::Relaxed));
                 if sig != 0 {
                     tracing::warn!(
                         signal = sig,
