@@ -40,7 +40,8 @@ pub(crate) struct HistoryCarry {
     j: Vec<u32>,
     /// Tangential spring of each entry, world frame, m, oriented `i → j`.
     tangential: Vec<DVec3>,
-    /// Rolling spring of each entry (empty when the list keeps none), N m.
+    /// Rolling spring of each entry, world frame, N m, oriented `i → j`
+    /// (empty when the list keeps none).
     rolling: Vec<DVec3>,
     /// Per old body, its first old sphere (old body count + 1).
     old_first: Vec<u32>,
@@ -66,21 +67,11 @@ impl HistoryCarry {
         self.row_start.push(0);
         for i in 0..rows {
             for p in pairs.row(i) {
-                let t = pairs.tangential[p];
-                let r = if with_rolling {
-                    pairs.rolling[p]
-                } else {
-                    DVec3::ZERO
-                };
-                let h = ContactHistory {
-                    tangential: t,
-                    rolling: r,
-                };
-                if h != ContactHistory::default() || (keep_live && pairs.topo[p].live) {
+                if let Some(h) = pairs.kept_history(p, keep_live) {
                     self.j.push(pairs.topo[p].j);
-                    self.tangential.push(t);
+                    self.tangential.push(h.tangential);
                     if with_rolling {
-                        self.rolling.push(r);
+                        self.rolling.push(h.rolling);
                     }
                 }
             }

@@ -281,6 +281,18 @@ impl PairList {
         self.row_start[i] as usize..self.row_start[i + 1] as usize
     }
 
+    /// The history of pair `p` (oriented from its `i` to its `j`) when a
+    /// rebuild carries it over: it has a spring, or with `keep_live` it is
+    /// live (a JKR contact lives on while apart, with or without a spring).
+    #[inline]
+    pub(crate) fn kept_history(&self, p: usize, keep_live: bool) -> Option<ContactHistory> {
+        let h = ContactHistory {
+            tangential: self.tangential[p],
+            rolling: self.rolling.get(p).copied().unwrap_or_default(),
+        };
+        (h != ContactHistory::default() || (keep_live && self.topo[p].live)).then_some(h)
+    }
+
     /// Collects the history of touching pairs keyed by (lower, higher) global
     /// sphere id and oriented from the lower to the higher id: the pairs
     /// with a spring, and with `keep_live` every live pair (a JKR contact
@@ -289,11 +301,7 @@ impl PairList {
         out.clear();
         for i in 0..self.row_start.len().saturating_sub(1) {
             for p in self.row(i) {
-                let h = ContactHistory {
-                    tangential: self.tangential[p],
-                    rolling: self.rolling.get(p).copied().unwrap_or_default(),
-                };
-                if h != ContactHistory::default() || (keep_live && self.topo[p].live) {
+                if let Some(h) = self.kept_history(p, keep_live) {
                     let (gi, gj) = (gid[i], gid[self.topo[p].j as usize]);
                     if gi < gj {
                         out.insert((gi, gj), h);

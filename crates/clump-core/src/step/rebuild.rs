@@ -27,17 +27,19 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         // rank's part is re-sorted once more below (restrict), so its
         // histories go by global id too; otherwise they are carried by
         // storage index (neighbor::carry)
-        if w.neighbors.history_pending {
-        } else if w.part.is_some() {
-            w.neighbors.pairs.save_history(
-                &w.spheres.gid,
-                w.contact_table.any_reach(),
-                &mut w.neighbors.history_map,
-            );
-        } else {
-            w.scratch
-                .carry
-                .save(&w.neighbors.pairs, &w.spheres, w.contact_table.any_reach());
+        if !w.neighbors.history_pending {
+            let keep_live = w.contact_table.any_reach();
+            if w.part.is_some() {
+                w.neighbors.pairs.save_history(
+                    &w.spheres.gid,
+                    keep_live,
+                    &mut w.neighbors.history_map,
+                );
+            } else {
+                w.scratch
+                    .carry
+                    .save(&w.neighbors.pairs, &w.spheres, keep_live);
+            }
         }
         let domain = w.config.domain;
         let n = w.bodies.len();

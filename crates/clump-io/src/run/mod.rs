@@ -301,11 +301,6 @@ impl StepHook for StepChecks<'_, '_> {
     }
 }
 
-/// SIGINT's number (POSIX).
-const SIGINT: usize = 2;
-/// SIGTERM's number (POSIX).
-const SIGTERM: usize = 15;
-
 /// The signal a step boundary stops for, the same on every rank of a world
 /// split over ranks: a signal reaches the ranks one by one, and a rank that
 /// stopped on its own flag while another stepped on would leave that one
@@ -313,6 +308,8 @@ const SIGTERM: usize = 15;
 /// flag (0: none); a rank without a signal of its own takes SIGTERM when
 /// some rank has one, else SIGINT. Without a partition, `mine`.
 fn rank_consistent_signal(w: &mut World, mine: usize) -> usize {
+    const SIGINT: usize = libc::SIGINT as usize;
+    const SIGTERM: usize = libc::SIGTERM as usize;
     let [int, other] = w.any_ranks([mine == SIGINT, mine != 0 && mine != SIGINT]);
     match (mine, other, int) {
         (0, true, _) => SIGTERM,
