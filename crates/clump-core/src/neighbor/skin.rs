@@ -5,13 +5,17 @@
 //! centres) counts rotation: a sphere at distance R from the centre of mass
 //! of a body that turns by an angle α moves by up to αR. The check runs in
 //! the integration pass that moves the spheres
-//! ([`crate::step::integrate::initial`]).
+//! ([`crate::step::integrate::initial`]): first per body, from its pose now
+//! and at the build ([`body_displacement_bound`]), which clears most bodies
+//! without reading their spheres' reference positions; the spheres of a
+//! body the bound does not clear take the exact test ([`moved_too_far`]).
+//! The rebuilds come at the same steps as with the exact test alone.
 //!
 //! Unless the scenario fixes it, the skin follows the motion
 //! ([`adapted_skin`]): a thick skin while the bed moves fast (fewer
 //! rebuilds), a thin one once it has settled (fewer candidate pairs).
 
-use glam::DVec3;
+use glam::{DQuat, DVec3};
 
 /// `(skin/2)²`, m², the squared displacement that triggers a rebuild.
 #[inline(always)]
@@ -24,6 +28,43 @@ pub fn trigger_distance2(skin: f64) -> f64 {
 #[inline(always)]
 pub fn moved_too_far(x: DVec3, x_ref: DVec3, limit2: f64) -> bool {
     x.distance_squared(x_ref) > limit2
+}
+
+/// An upper bound (m) on how far any sphere of a rigid body moved since the
+/// last build, from the body's pose alone: centre `x` and orientation `q`
+/// now, `x_ref` and `q_ref` at the build (world frame, body → world), the
+/// farthest sphere centre `reach` (m) from the centre of mass.
+///
+/// A sphere at body-frame offset `b` moved by
+/// `Δx + R(q_ref) (R(p) b − b)`, with `p = q_ref⁻¹ q` the rotation since the
+/// build, and a rotation by θ moves `b` along a chord of length
+/// `2 |sin(θ/2)| |b⊥| ≤ 2 |vec(p)| reach` (`|vec(p)| = |sin(θ/2)|` for a unit
+/// quaternion, whatever its sign). So every sphere moved at most
+/// `|Δx| + 2 reach |vec(p)|`: the skin check of a body reads its two poses,
+/// not each sphere's reference position.
+#[inline(always)]
+pub fn body_displacement_bound(x: DVec3, q: DQuat, x_ref: DVec3, q_ref: DQuat, reach: f64) -> f64 {
+    let (v, v_ref) = (
+        DVec3::new(q.x, q.y, q.z),
+        DVec3::new(q_ref.x, q_ref.y, q_ref.z),
+    );
+    // vector part of conj(q_ref) q
+    let turn = q_ref.w * v - q.w * v_ref - v_ref.cross(v);
+    (x - x_ref).length() + 2.0 * reach * turn.length()
+}
+
+/// True when a body whose spheres moved at most `bound` (m,
+/// [`body_displacement_bound`]) surely has none beyond half the skin
+/// `half_skin` (m) by the exact test [`moved_too_far`], rounding included:
+/// the bound must stay below the limit by a relative 1e-9 and by 1e-12 of
+/// `scale` (m, the largest coordinate of the body's centre plus its reach),
+/// about a thousand times the rounding of a sphere's computed position.
+/// Otherwise (also for a NaN bound) the caller runs the exact test, so the
+/// two tests together trigger a rebuild at exactly the steps the exact test
+/// alone would.
+#[inline(always)]
+pub fn surely_within(bound: f64, half_skin: f64, scale: f64) -> bool {
+    bound < half_skin * (1.0 - 1e-9) - 1e-12 * scale
 }
 
 /// Default skin as a fraction of the smallest sphere radius: the skin of
@@ -95,5 +136,56 @@ mod tests {
         assert!((s4 / s - 2.0).abs() < 1e-12);
         let stone = adapted_skin(r, top, 1e-5, 100, 50);
         assert!((stone / s - (287.8f64 / 38.94).sqrt()).abs() < 1e-12);
+    }
+
+    /// The body bound holds for every sphere of random rigid motions, and
+    /// is reached where the geometry says it should be: a pure turn by θ
+    /// moves a sphere at distance R perpendicular to the axis along the
+    /// chord 2 R sin(θ/2), and a pure shift moves every sphere by the shift.
+    #[test]
+    fn body_bound_covers_every_sphere_and_is_tight() {
+        use glam::{DMat3, DQuat};
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let unit = |rng: &mut rand_chacha::ChaCha8Rng| {
+            DVec3::new(
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            )
+        };
+        for _ in 0..2000 {
+            let offsets: Vec<DVec3> = (0..5).map(|_| unit(&mut rng) * 0.01).collect();
+            let reach = offsets.iter().map(|o| o.length()).fold(0.0, f64::max);
+            let x0 = unit(&mut rng);
+            let q0 = DQuat::from_scaled_axis(unit(&mut rng) * 3.0);
+            let x1 = x0 + unit(&mut rng) * rng.gen_range(0.0..0.02);
+            let turn = DQuat::from_scaled_axis(unit(&mut rng) * rng.gen_range(0.0..3.0));
+            // either sign of the stored quaternion is the same orientation
+            let q1 = if rng.gen_bool(0.5) {
+                turn * q0
+            } else {
+                -(turn * q0)
+            };
+            let bound = body_displacement_bound(x1, q1, x0, q0, reach);
+            let (r0, r1) = (DMat3::from_quat(q0), DMat3::from_quat(q1));
+            for &b in &offsets {
+                let moved = (x1 + r1 * b).distance(x0 + r0 * b);
+                assert!(moved <= bound * (1.0 + 1e-12), "{moved} > {bound}");
+            }
+        }
+        let (r, theta) = (0.003, 0.4);
+        let q0 = DQuat::from_rotation_y(0.7);
+        let q1 = DQuat::from_rotation_z(theta) * q0;
+        let chord = 2.0 * r * (0.5 * theta).sin();
+        let b = body_displacement_bound(DVec3::ZERO, q1, DVec3::ZERO, q0, r);
+        assert!((b - chord).abs() < 1e-15, "{b} against {chord}");
+        let shift = DVec3::new(1e-4, -2e-4, 3e-4);
+        let b = body_displacement_bound(shift, q0, DVec3::ZERO, q0, r);
+        assert!((b - shift.length()).abs() < 1e-18, "{b}");
+        // the exact test decides near the limit, and a NaN never passes
+        assert!(surely_within(0.999e-4, 1e-4, 1.0));
+        assert!(!surely_within(1e-4 * (1.0 - 1e-10), 1e-4, 1.0));
+        assert!(!surely_within(f64::NAN, 1e-4, 1.0));
     }
 }

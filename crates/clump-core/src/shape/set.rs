@@ -19,6 +19,10 @@ pub struct TemplateSet {
     pub(crate) offset: Vec<DVec3>,
     /// Radius of each template sphere, m.
     pub(crate) radius: Vec<f64>,
+    /// Per template: the distance of its farthest sphere centre from its
+    /// centre of mass, m (the lever of the skin check's body bound,
+    /// [`crate::neighbor::skin::body_displacement_bound`]).
+    pub(crate) centre_reach: Vec<f64>,
     /// Most spheres in any template (1 while there is none).
     max_spheres: usize,
 }
@@ -31,6 +35,7 @@ impl Default for TemplateSet {
             first: vec![0],
             offset: Vec::new(),
             radius: Vec::new(),
+            centre_reach: Vec::new(),
             max_spheres: 1,
         }
     }
@@ -55,6 +60,8 @@ impl TemplateSet {
             self.radius.push(s.radius);
         }
         self.first.push(self.offset.len() as u32);
+        let reach = template.spheres.iter().map(|s| s.center.length());
+        self.centre_reach.push(reach.fold(0.0, f64::max));
         self.list.push(template);
         self.material.push(material);
         self.list.len() as u32 - 1

@@ -80,6 +80,13 @@ pub(crate) struct FirstHalf {
     toff: SharedMut<DVec3>,
     xref: SharedMut<DVec3>,
     limit2: f64,
+    /// Half the skin, m.
+    half_skin: f64,
+    /// The bodies' poses at the last build (None: not these bodies', then
+    /// every sphere takes the exact test).
+    xref_pose: Option<SharedMut<(DVec3, glam::DQuat)>>,
+    /// Per template: its farthest sphere centre from the centre of mass, m.
+    treach: SharedMut<f64>,
     /// The pair stage's packed copy of the bodies' state, when built for
     /// these bodies (else the rebuild that follows fills it).
     pair_body: Option<SharedMut<crate::neighbor::PairBody>>,
@@ -98,6 +105,8 @@ impl FirstHalf {
         let spheres = spheres && w.neighbors.reference_position.len() == w.spheres.len();
         let limit2 = skin::trigger_distance2(w.skin());
         let n = w.bodies.len();
+        let poses = &mut w.neighbors.reference_pose;
+        let xref_pose = (poses.len() == n).then(|| SharedMut::new(poses));
         let b = &mut w.bodies;
         FirstHalf {
             kicks: Kicks::new(
@@ -121,6 +130,9 @@ impl FirstHalf {
             toff: SharedMut::new(&mut w.templates.offset),
             xref: SharedMut::new(&mut w.neighbors.reference_position),
             limit2,
+            half_skin: 0.5 * w.skin(),
+            xref_pose,
+            treach: SharedMut::new(&mut w.templates.centre_reach),
             pair_body: (w.neighbors.pairs.body.len() == n)
                 .then(|| SharedMut::new(&mut w.neighbors.pairs.body)),
         }
@@ -193,14 +205,19 @@ impl FirstHalf {
             (*pb).angular_velocity = *om;
         }
         match &self.sst {
-            Some(sst) => self.move_spheres(i, x, &rot, sst),
+            Some(sst) => self.move_spheres(i, x, q, &rot, sst),
             None => false,
         }
     }
 
-    /// Places body `i`'s spheres at its new pose (centre `x`, rotation
-    /// `rot`) and tells whether one moved more than half the skin since the
-    /// last build.
+    /// Places body `i`'s spheres at its new pose (centre `x`, orientation
+    /// `q`, its rotation matrix `rot`) and tells whether one moved more than
+    /// half the skin since the last build.
+    ///
+    /// The body's bound ([`skin::body_displacement_bound`]) settles that for
+    /// most bodies from their two poses; the spheres of a body near the
+    /// limit take the exact test against their reference positions, so a
+    /// rebuild comes at the same step as with the exact test alone.
     ///
     /// The spheres, offsets and reference positions are taken as local
     /// slices first: written through `sst`'s pointer, a store could alias
@@ -214,10 +231,12 @@ impl FirstHalf {
         &self,
         i: usize,
         x: DVec3,
+        q: glam::DQuat,
         rot: &DMat3,
         sst: &SharedMut<crate::sphere::SphereState>,
     ) -> bool {
-        let o0 = self.tfirst.read(self.kicks.tmpl.read(i) as usize) as usize;
+        let t = self.kicks.tmpl.read(i) as usize;
+        let o0 = self.tfirst.read(t) as usize;
         let (s0, s1) = (self.first.read(i) as usize, self.first.read(i + 1) as usize);
         let n = s1 - s0;
         debug_assert!(s1 <= sst.len() && s1 <= self.xref.len() && o0 + n <= self.toff.len());
@@ -225,6 +244,17 @@ impl FirstHalf {
         let xref = std::slice::from_raw_parts(self.xref.as_ptr().add(s0), n);
         let offset = std::slice::from_raw_parts(self.toff.as_ptr().add(o0), n);
         let limit2 = self.limit2;
+        if let Some(poses) = &self.xref_pose {
+            let (x0, q0) = poses.read(i);
+            let reach = self.treach.read(t);
+            let bound = skin::body_displacement_bound(x, q, x0, q0, reach);
+            if skin::surely_within(bound, self.half_skin, x.abs().max_element() + reach) {
+                for (st, &off) in state.iter_mut().zip(offset) {
+                    st.position = sphere_position(x, rot, off);
+                }
+                return false;
+            }
+        }
         let mut stale = false;
         for ((st, &off), &x0) in state.iter_mut().zip(offset).zip(xref) {
             let px = sphere_position(x, rot, off);
