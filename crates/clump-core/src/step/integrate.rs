@@ -59,8 +59,9 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
 
 /// The first half step of one body at a time (see [`initial`]): the pass of
 /// its own, or fused into the gather of the step before
-/// ([`super::force::gather`]), which applies it to each body right after that
-/// body's final kick while its state is still in the cache. Holds pointers
+/// ([`super::force::gather`]), which applies it to a few bodies at a time
+/// right after their final kicks, while their state is still in the cache.
+/// Holds pointers
 /// into the world's body, sphere and pair-body arrays.
 pub(crate) struct FirstHalf {
     kicks: Kicks,

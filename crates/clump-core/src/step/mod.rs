@@ -21,8 +21,10 @@
 //!    (same pass).
 //!
 //! Inside [`World::run`], the gather of every step but the last also applies
-//! stage 1 and 2 of the next step to each body right after its final kick
-//! (`integrate::FirstHalf`), while the body's state is in the cache: one
+//! stage 1 and 2 of the next step to each body shortly after its final kick
+//! (`integrate::FirstHalf`; to a block of 8 bodies after their kicks, so
+//! that the processor overlaps their independent chains), while the
+//! bodies' state is in the cache: one
 //! sweep over the bodies per step instead of two, which counts in beds
 //! larger than the caches. The order of operations on each body is
 //! unchanged, so are the results; between public calls the world is always
