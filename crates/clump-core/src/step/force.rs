@@ -42,13 +42,19 @@ const ENTRY_PREFETCH: usize = 8;
 /// stone bed, whose first halves are long already, is unchanged.
 const FIRST_HALF_BLOCK: usize = 8;
 
-/// A body's kicked state and its load, held from its gather to its first half.
+/// A body's kicked state and its load, held from its gather to its first
+/// half; all world frame.
 #[derive(Clone, Copy, Default)]
 struct Held {
+    /// Velocity of the centre of mass, m/s.
     v: glam::DVec3,
+    /// Angular momentum, kg m²/s.
     l: glam::DVec3,
+    /// Angular velocity, rad/s.
     om: glam::DVec3,
+    /// Force, N.
     f: glam::DVec3,
+    /// Torque about the centre of mass, N m.
     m: glam::DVec3,
 }
 

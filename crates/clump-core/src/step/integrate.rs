@@ -61,8 +61,7 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
 /// its own, or fused into the gather of the step before
 /// ([`super::force::gather`]), which applies it to a few bodies at a time
 /// right after their final kicks, while their state is still in the cache.
-/// Holds pointers
-/// into the world's body, sphere and pair-body arrays.
+/// Holds pointers into the world's body, sphere and pair-body arrays.
 pub(crate) struct FirstHalf {
     kicks: Kicks,
     /// The step this first half begins.
@@ -81,7 +80,7 @@ pub(crate) struct FirstHalf {
     toff: SharedMut<DVec3>,
     xref: SharedMut<DVec3>,
     limit2: f64,
-    /// Half the skin, m.
+    /// Half the skin, m (`limit2` is its square).
     half_skin: f64,
     /// The bodies' poses at the last build (None: not these bodies', then
     /// every sphere takes the exact test).

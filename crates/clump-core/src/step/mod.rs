@@ -24,9 +24,8 @@
 //! stage 1 and 2 of the next step to each body shortly after its final kick
 //! (`integrate::FirstHalf`; to a block of 8 bodies after their kicks, so
 //! that the processor overlaps their independent chains), while the
-//! bodies' state is in the cache: one
-//! sweep over the bodies per step instead of two, which counts in beds
-//! larger than the caches. The order of operations on each body is
+//! bodies' state is in the cache: one sweep over the bodies per step
+//! instead of two, which counts in beds larger than the caches. The order of operations on each body is
 //! unchanged, so are the results; between public calls the world is always
 //! at a step boundary.
 //!
