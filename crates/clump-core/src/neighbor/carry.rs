@@ -8,7 +8,7 @@
 //! ([`HistoryCarry::map_spheres`]). A pair of the new list then finds its
 //! history in the short old row of whichever of its spheres came first
 //! ([`HistoryCarry::get`]). Bodies move little between builds, so the new
-//! Morton order is nearly the old one and these reads run through the old
+//! storage order is nearly the old one and these reads run through the old
 //! rows nearly in order: on a bed beyond the caches the hash map keyed by
 //! global sphere ids cost a cache miss per insert and per lookup, and held
 //! about 74 bytes per contact. The map remains for the histories that

@@ -8,7 +8,7 @@
 //! shared equally: the first half step and the gather use the same chunks
 //! and the same cost, so a thread moves the bodies whose forces it gathers,
 //! and the pair loop's runs cover nearly the same spheres (bodies and their
-//! spheres are stored in the same Morton order). Only pairs across the seam
+//! spheres are stored in the same spatial order). Only pairs across the seam
 //! between two runs touch the other core's data.
 //!
 //! The results do not depend on the thread count or on the cuts: chunk

@@ -13,8 +13,8 @@
 //! and torque are summed there complete. Nothing is set by the user.
 //!
 //! **Same bits at any rank count.** A rank's bodies are kept in the order
-//! the whole world would have (the Morton order of the full set, ties by
-//! id), its pair list is built on the whole world's grid, so every row and
+//! the whole world would have (the cell order of `neighbor::sort` on the
+//! full set's grid, ties by id), its pair list is built on the whole world's grid, so every row and
 //! column of an owned sphere holds the same pairs in the same order as one
 //! process would: each owned body's force and torque are the same sums in
 //! the same order, hence the same bits. Ghost bodies take the state of
@@ -27,7 +27,7 @@
 //! whole world's grids come from bounding boxes reduced over the ranks, and
 //! the regions are re-balanced on a sample of every rank's bodies (at most
 //! 256 positions each). The ranks sort their bodies by the whole world's
-//! Morton key and id, as one process does.
+//! cell key and id, as one process does.
 //!
 //! **Events.** At every event of the run loop (output, insertion,
 //! checkpoint, stage change) the whole world is gathered on every rank, in
@@ -67,7 +67,7 @@ pub struct Part {
     pub(crate) owned: Vec<bool>,
     /// Per local body: its place in the whole world's storage order (a key
     /// that sorts as that order: the index in the whole world after a
-    /// split of it, the Morton key and id after a rebuild of the parts).
+    /// split of it, the cell key and id after a rebuild of the parts).
     pub(crate) order: Vec<(u64, u64)>,
     /// Per neighbouring rank, the owned bodies (local indices, ascending)
     /// it holds as ghosts.

@@ -8,8 +8,9 @@
 //!    Verlet-skin check (a sphere's velocity, v = v_cm + ω × (r − r_cm), is
 //!    evaluated where a contact needs it, from its body's).
 //! 3. Neighbour search ([`rebuild`]), only when a sphere moved more than half
-//!    the skin. Bodies are wrapped, lost bodies removed and the rest Morton-sorted
-//!    here. A future MPI layer exchanges ghost spheres at this stage.
+//!    the skin. Bodies are wrapped, lost bodies removed and the rest sorted
+//!    by cell (slabs across the longest axis, `neighbor::sort`) here; a world
+//!    split over ranks exchanges its bodies at this stage.
 //! 4. [`force`]: per-pair forces (sphere pairs of different bodies, the
 //!    batched `pair_kernel`), which also sums each body's pair force and
 //!    torque as soon as all its pairs are evaluated; then a per-body gather

@@ -1,5 +1,5 @@
 //! Neighbour-list rebuild: wrap periodic centres of mass, drop bodies that
-//! left the domain, Morton-sort the bodies, rebuild the sphere topology and
+//! left the domain, sort the bodies by cell (`neighbor::sort`), rebuild the sphere topology and
 //! the pair list (history carried by global sphere ids).
 
 use super::kinematics::update_spheres;
@@ -57,7 +57,7 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         }
         let grid =
             CellGrid::new(&domain, &w.bodies.position, min_cell).map_err(StepError::Neighbor)?;
-        sort::morton_order(
+        sort::spatial_order(
             &grid,
             &w.bodies.position,
             &w.bodies.id,

@@ -11,7 +11,7 @@ use crate::wall::WallLoad;
 /// Working arrays of the step pipeline; never part of the simulated state.
 #[derive(Default)]
 pub(crate) struct Scratch {
-    /// Rebuild: the permutation of the bodies (Morton order, lost removed).
+    /// Rebuild: the permutation of the bodies (storage order of `neighbor::sort`, lost removed).
     pub perm: Vec<u32>,
     /// Rebuild: which bodies stay.
     pub keep: Vec<bool>,

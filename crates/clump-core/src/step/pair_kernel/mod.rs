@@ -190,8 +190,8 @@ impl RowCtx<'_> {
             // the partner a few pairs ahead: its packed state line, the
             // top stall of this loop (it misses the per-core cache even at
             // 8 000 spheres, where the pair stage streams about 1.3 MB, and
-            // in a large bed it may lie far away in memory: Morton
-            // neighbours across a coarse cell boundary); its body index,
+            // in a large bed its line comes from memory, as the pair stage
+            // is the first to read it in a step); its body index,
             // read half-way (below); and the pair's tangential spring,
             // which the batch gathers once the pair is found touching
             // (read there, it was 7 % of this function at 40 000 spheres)

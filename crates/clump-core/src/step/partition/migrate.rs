@@ -6,7 +6,7 @@
 //! displacement for the skin, the bounding boxes of the grids, the lost
 //! counts), a sample of at most 256 body positions per rank on which every
 //! rank re-balances the regions alike, and each rank's list of
-//! destinations. The part then sorts its bodies by the whole world's Morton key
+//! destinations. The part then sorts its bodies by the whole world's cell key
 //! (on the whole world's grid) and id, which is the whole world's order
 //! restricted to them, and builds its lists on the whole world's grid: the
 //! result is what a gather, one process's rebuild and a split give, bit for
@@ -18,7 +18,7 @@ use crate::contact::ContactHistory;
 use crate::lost::LostBodies;
 use crate::neighbor::grid::Extent;
 use crate::neighbor::pairs::HistoryMap;
-use crate::neighbor::sort::morton;
+use crate::neighbor::sort::CellOrder;
 use crate::neighbor::walls::{WallList, WALL_SLOTS};
 use crate::neighbor::CellGrid;
 use crate::sphere::SPHERE_ID_BITS;
@@ -48,8 +48,8 @@ struct Totals {
     spheres: Extent,
     lost: LostBodies,
     /// A sample of the kept owned bodies for the balance: a position (the
-    /// first of each run of `stride` bodies in storage order, which is
-    /// Morton order: neighbours) and the run's sphere count.
+    /// first of each run of `stride` bodies in storage order, which is a
+    /// spatial order: neighbours) and the run's sphere count.
     sample: Vec<(DVec3, u32)>,
 }
 
@@ -222,7 +222,7 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         arrived.push(decode(bytes, r)?);
     }
 
-    // 4. the part in the whole world's order: Morton key on the whole
+    // 4. the part in the whole world's order: cell key on the whole
     // world's grid, then id
     let min_cell = 2.0 * w.max_radius() + w.skin();
     let body_grid =
@@ -245,9 +245,10 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         let ns = (w.templates.first[t + 1] - w.templates.first[t]) as usize;
         first.push(first.last().copied().unwrap_or(0) + ns);
     }
+    let order = CellOrder::of(&body_grid);
     let mut sorted: Vec<((u64, u64), u32)> = (0..all_bodies.len())
         .map(|b| {
-            let k = morton(body_grid.coords(all_bodies.position[b]));
+            let k = order.key(body_grid.coords(all_bodies.position[b]));
             ((k, all_bodies.id[b]), b as u32)
         })
         .collect();
