@@ -3,18 +3,27 @@
 //! top, for which every scheme takes the same exact step), the rotation
 //! schemes differ here. Kinetic plus elastic energy is conserved by the
 //! equations; each scheme's largest energy error over the same simulated
-//! time is measured at dt = t_c/40 and t_c/80 and must fall with the
-//! scheme's order: faster than dt (second order) for the velocity-Verlet
+//! time is measured at dt = t_c/40, t_c/80 and t_c/160 and must fall with
+//! the scheme's order over the two halvings: faster than dt (second order)
+//! for the velocity-Verlet
 //! schemes (no_squish, richardson, richardson_liggghts,
 //! zhao_van_wachem_split) and as dt for zhao_van_wachem inside the DEM step
 //! (torque held over the step, see docs/rotation_schemes.md), whose error
 //! is also more than 100 times theirs.
 //!
+//! The collisions are chaotic: each time step follows a different
+//! trajectory, so the largest error of a run is a noisy sample, and one
+//! halving of dt can show less than its order (zhao_van_wachem_split went
+//! from 7.10e-5 to 2.74e-5, an order of 1.37, after a change of the bodies'
+//! storage order changed the rounding). The order is therefore taken over
+//! two halvings, `log2(e(t_c/40) / e(t_c/160)) / 2`.
+//!
 //! Measured (t_c/40, t_c/80, t_c/160; `cargo test -p clump-core --test
-//! gas_asymmetric -- --nocapture` prints the first two): richardson 1.21e-4,
-//! 1.54e-5, 4.99e-6; no_squish 9.07e-5, 2.93e-5, 6.26e-6;
-//! zhao_van_wachem_split 8.77e-5, 2.49e-5, 3.35e-6; richardson_liggghts
-//! 6.75e-5, 1.76e-5, 4.08e-6; zhao_van_wachem 4.53e-1, 1.66e-1, 7.86e-2.
+//! gas_asymmetric -- --nocapture` prints them), before that change:
+//! richardson 1.21e-4, 1.54e-5, 4.99e-6; no_squish 9.07e-5, 2.93e-5,
+//! 6.26e-6; zhao_van_wachem_split 8.77e-5, 2.49e-5, 3.35e-6;
+//! richardson_liggghts 6.75e-5, 1.76e-5, 4.08e-6; zhao_van_wachem 4.53e-1,
+//! 1.66e-1, 7.86e-2.
 
 mod common;
 use clump_core::body::BodyInit;
@@ -100,8 +109,9 @@ fn asymmetric_gas_energy_error_follows_each_schemes_order() {
     for scheme in RotationScheme::ALL {
         let (e1, n1) = drift(scheme, tc / 40.0, t_end);
         let (e2, _) = drift(scheme, tc / 80.0, t_end);
-        let order = (e1 / e2).log2();
-        eprintln!("asymmetric gas, {scheme:?}: max |dE|/E {e1:.3e} (t_c/40), {e2:.3e} (t_c/80), order {order:.2}; contact-steps {n1}");
+        let (e3, _) = drift(scheme, tc / 160.0, t_end);
+        let order = (e1 / e3).log2() / 2.0;
+        eprintln!("asymmetric gas, {scheme:?}: max |dE|/E {e1:.3e} (t_c/40), {e2:.3e} (t_c/80), {e3:.3e} (t_c/160), order {order:.2}; contact-steps {n1}");
         assert!(n1 > 2000, "the gas must collide");
         if scheme == RotationScheme::ZhaoVanWachem {
             // first order: the error halves with dt
@@ -110,8 +120,8 @@ fn asymmetric_gas_energy_error_follows_each_schemes_order() {
                 "{scheme:?}: energy error order {order}"
             );
         } else {
-            // second order (chaotic collisions make the ratio noisy:
-            // measured 1.6..3.0, t_c/160 runs included); clearly above first
+            // second order (the chaotic collisions make one halving's
+            // ratio noisy, see above); clearly above first
             assert!(
                 order > 1.4 && e1 < 2e-4,
                 "{scheme:?}: order {order}, error {e1}"
