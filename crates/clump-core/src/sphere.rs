@@ -62,6 +62,17 @@ pub struct SphereState {
     pub radius: f64,
 }
 
+impl SphereState {
+    /// The states of spheres at `position` (world, m) with `radius` (m).
+    pub fn of(position: &[DVec3], radius: &[f64]) -> Vec<SphereState> {
+        position
+            .iter()
+            .zip(radius)
+            .map(|(&position, &radius)| SphereState { position, radius })
+            .collect()
+    }
+}
+
 impl Spheres {
     /// Centre of sphere `s`, world frame, m (see [`SphereState::position`]).
     #[inline(always)]

@@ -42,21 +42,26 @@ impl BodyBounds {
         nb > 0 && n >= MIN_SPHERES_PER_BODY * nb
     }
 
-    /// Builds the bounding spheres from the spheres' centres `position` and
-    /// radii `radius` (body `b` owns `body_first[b]..body_first[b + 1]`).
-    pub(crate) fn build(&mut self, position: &[DVec3], radius: &[f64], body_first: &[u32]) {
+    /// Builds the bounding spheres from the spheres' centres (`position`'s,
+    /// world frame, m) and radii `radius` (body `b` owns `body_first[b]..body_first[b + 1]`).
+    pub(crate) fn build(
+        &mut self,
+        position: &[crate::sphere::SphereState],
+        radius: &[f64],
+        body_first: &[u32],
+    ) {
         let nb = body_first.len().saturating_sub(1);
         self.bound.clear();
         self.bound.extend((0..nb).map(|b| {
             let s = body_first[b] as usize..body_first[b + 1] as usize;
             let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
             for x in &position[s.clone()] {
-                lo = lo.min(*x);
-                hi = hi.max(*x);
+                lo = lo.min(x.position);
+                hi = hi.max(x.position);
             }
             let c = 0.5 * (lo + hi);
             let r = s
-                .map(|k| position[k].distance(c) + radius[k])
+                .map(|k| position[k].position.distance(c) + radius[k])
                 .fold(0.0, f64::max);
             // the reach test subtracts coordinates of magnitude |c|: its
             // rounding scales with them, not with the body
@@ -139,8 +144,9 @@ mod tests {
         }
         let gid: Vec<u64> = (0..position.len() as u64).collect();
         assert!(BodyBounds::pays(&body_first));
+        let state = crate::sphere::SphereState::of(&position, &radius);
         let inp = BuildInput {
-            position: &position,
+            position: &state,
             radius: &radius,
             body: &body,
             body_first: &body_first,

@@ -206,8 +206,9 @@ mod tests {
                      map: &HistoryMap| {
             let (position, body, sp) = topology(ids, &centre);
             let radius = vec![3e-4; position.len()];
+            let state = crate::sphere::SphereState::of(&position, &radius);
             let inp = BuildInput {
-                position: &position,
+                position: &state,
                 radius: &radius,
                 body: &body,
                 body_first: &sp.body_first,

@@ -50,8 +50,13 @@ impl Extent {
 
     /// The extent of `positions`.
     pub fn of(domain: &Domain, positions: &[DVec3]) -> Self {
+        Self::of_points(domain, positions.iter().copied())
+    }
+
+    /// [`Extent::of`] for points given one by one.
+    pub fn of_points(domain: &Domain, points: impl Iterator<Item = DVec3>) -> Self {
         let mut e = Extent::empty();
-        for &p in positions {
+        for p in points {
             e.add(domain, p);
         }
         e

@@ -188,8 +188,9 @@ pub(crate) unsafe fn column_sum(
 
 /// Inputs describing the spheres for a build.
 pub struct BuildInput<'a> {
-    /// Sphere centres at the build, world frame, m.
-    pub position: &'a [DVec3],
+    /// Sphere states: their centres at the build (world frame, m) are the
+    /// ones read.
+    pub position: &'a [crate::sphere::SphereState],
     /// Radii, m.
     pub radius: &'a [f64],
     /// Owner body (storage index).
@@ -346,14 +347,14 @@ impl PairList {
         counting_sort(
             n,
             grid.len(),
-            |s| cell(inp.position[s]),
+            |s| cell(inp.position[s].position),
             &mut self.cell_start,
             &mut self.cursor,
             &mut self.cell_items,
         );
         self.cell_xr.clear();
         self.cell_xr.extend(self.cell_items.iter().map(|&s| {
-            let (x, r) = (inp.position[s as usize], inp.radius[s as usize]);
+            let (x, r) = (inp.position[s as usize].position, inp.radius[s as usize]);
             [x.x, x.y, x.z, r]
         }));
         let bounded = BodyBounds::pays(inp.body_first);
@@ -581,7 +582,7 @@ impl Search<'_> {
     #[inline]
     fn visit(&self, i: usize, mut f: impl FnMut(u32, [i8; 3])) -> u32 {
         let grid = self.grid;
-        let c = grid.coords(self.domain.wrap(self.inp.position[i]));
+        let c = grid.coords(self.domain.wrap(self.inp.position[i].position));
         let mut count = 0;
         for dz in -1..=1i64 {
             let Some(z) = grid.wrap(c[2] + dz, 2) else {
@@ -630,7 +631,7 @@ impl Search<'_> {
         count: &mut u32,
     ) {
         let inp = self.inp;
-        let xi = inp.position[i];
+        let xi = inp.position[i].position;
         let ri = inp.radius[i] + inp.skin;
         let first = inp.body_first[inp.body[i] as usize + 1].max(i as u32 + 1);
         let any_periodic = self.domain.periodic.iter().any(|&p| p);

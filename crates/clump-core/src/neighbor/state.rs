@@ -25,9 +25,10 @@ pub(crate) struct NeighborState {
     pub adapted_skin: f64,
     /// Step of the last neighbour build.
     pub built_step: u64,
-    /// Sphere centres at the last build, world frame, m (the skin check).
-    pub reference_position: Vec<DVec3>,
-    /// Body poses at the last build (centre of mass, orientation).
+    /// Body poses at the last build (centre of mass, orientation; world
+    /// frame, m). The spheres' centres at the build, from which the skin
+    /// check measures, follow from these (`step::kinematics`); they are not
+    /// stored.
     pub reference_pose: Vec<(DVec3, DQuat)>,
     /// Contact histories carried across a rebuild, keyed by sphere ids.
     pub history_map: HistoryMap,

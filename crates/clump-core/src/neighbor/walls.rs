@@ -1,7 +1,7 @@
 //! The wall Verlet list: the spheres that have a wall to test, each with
 //! the walls to test and its sphere–wall contact slots.
 //!
-//! Built with the pair list, from the spheres' reference positions: a sphere
+//! Built with the pair list, at the spheres' positions at the build: a sphere
 //! gets an entry when a wall (< 64) lies within its radius plus the skin, when
 //! a wall moves (it may come near any sphere before the next build), when the
 //! world has more than 64 walls (those beyond 64 are tested for every
@@ -16,7 +16,6 @@
 
 use crate::contact::ContactHistory;
 use crate::wall::{Wall, WallTouch, MAX_TOUCHES_PER_WALL};
-use glam::DVec3;
 use rayon::prelude::*;
 
 /// Per-sphere wall-contact slots (history carried while a contact persists).
@@ -125,7 +124,7 @@ impl WallList {
         l
     }
 
-    /// Builds the list for spheres at `position` (m, world) with `radius`
+    /// Builds the list for spheres at `position`'s centres (m, world) with `radius`
     /// (m) and skin `skin` (m); `moving` has the bits of the walls (< 64)
     /// that move. Sphere `s` continues the slots of entry `carry[s]` of
     /// `old` (or starts empty: [`NO_ENTRY`]). `body_first` gives each body's
@@ -136,7 +135,7 @@ impl WallList {
         &mut self,
         walls: &[Wall],
         meshes: &[crate::wall::TriMesh],
-        position: &[DVec3],
+        position: &[crate::sphere::SphereState],
         radius: &[f64],
         skin: f64,
         moving: u64,
@@ -164,10 +163,13 @@ impl WallList {
                     let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
                     let mut m = 0u64;
                     for (wi, wall) in walls.iter().enumerate().take(64) {
-                        if wall
-                            .shape
-                            .contacts(meshes, position[s], radius[s], skin, &mut buf)
-                            > 0
+                        if wall.shape.contacts(
+                            meshes,
+                            position[s].position,
+                            radius[s],
+                            skin,
+                            &mut buf,
+                        ) > 0
                         {
                             m |= 1 << wi;
                         }

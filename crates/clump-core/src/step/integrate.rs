@@ -78,13 +78,13 @@ pub(crate) struct FirstHalf {
     first: SharedMut<u32>,
     tfirst: SharedMut<u32>,
     toff: SharedMut<DVec3>,
-    xref: SharedMut<DVec3>,
     limit2: f64,
     /// Half the skin, m (`limit2` is its square).
     half_skin: f64,
-    /// The bodies' poses at the last build (None: not these bodies', then
-    /// every sphere takes the exact test).
-    xref_pose: Option<SharedMut<(DVec3, glam::DQuat)>>,
+    /// The bodies' poses at the last build (centre of mass, orientation;
+    /// world frame, m), from which the skin check measures; these bodies'
+    /// whenever the spheres move (`sst`).
+    xref_pose: SharedMut<(DVec3, glam::DQuat)>,
     /// Per template: its farthest sphere centre from the centre of mass, m.
     treach: SharedMut<f64>,
     /// The pair stage's packed copy of the bodies' state, when built for
@@ -102,11 +102,12 @@ impl FirstHalf {
     /// arrays are neither resized nor moved, and each body (with its spheres)
     /// is accessed by one thread at a time, through the result only.
     pub(crate) unsafe fn new(w: &mut World, step: u64, spheres: bool) -> Self {
-        let spheres = spheres && w.neighbors.reference_position.len() == w.spheres.len();
-        let limit2 = skin::trigger_distance2(w.skin());
         let n = w.bodies.len();
+        let limit2 = skin::trigger_distance2(w.skin());
+        let half_skin = 0.5 * w.skin();
         let poses = &mut w.neighbors.reference_pose;
-        let xref_pose = (poses.len() == n).then(|| SharedMut::new(poses));
+        let spheres = spheres && poses.len() == n;
+        let xref_pose = SharedMut::new(poses);
         let b = &mut w.bodies;
         FirstHalf {
             kicks: Kicks::new(
@@ -128,9 +129,8 @@ impl FirstHalf {
             first: SharedMut::new(&mut w.spheres.body_first),
             tfirst: SharedMut::new(&mut w.templates.first),
             toff: SharedMut::new(&mut w.templates.offset),
-            xref: SharedMut::new(&mut w.neighbors.reference_position),
             limit2,
-            half_skin: 0.5 * w.skin(),
+            half_skin,
             xref_pose,
             treach: SharedMut::new(&mut w.templates.centre_reach),
             pair_body: (w.neighbors.pairs.body.len() == n)
@@ -216,11 +216,11 @@ impl FirstHalf {
     ///
     /// The body's bound ([`skin::body_displacement_bound`]) settles that for
     /// most bodies from their two poses; the spheres of a body near the
-    /// limit take the exact test against their reference positions, so a
-    /// rebuild comes at the same step as with the exact test alone.
+    /// limit take the exact test against their positions at the build
+    /// (from the body's reference pose, not stored), so a rebuild comes at
+    /// the same step as with the exact test alone.
     ///
-    /// The spheres, offsets and reference positions are taken as local
-    /// slices first: written through `sst`'s pointer, a store could alias
+    /// The spheres and offsets are taken as local slices first: written through `sst`'s pointer, a store could alias
     /// the pointers and the skin limit held in `self`, which the loop would
     /// then reload for every sphere.
     ///
@@ -239,27 +239,27 @@ impl FirstHalf {
         let o0 = self.tfirst.read(t) as usize;
         let (s0, s1) = (self.first.read(i) as usize, self.first.read(i + 1) as usize);
         let n = s1 - s0;
-        debug_assert!(s1 <= sst.len() && s1 <= self.xref.len() && o0 + n <= self.toff.len());
+        debug_assert!(s1 <= sst.len() && i < self.xref_pose.len() && o0 + n <= self.toff.len());
         let state = std::slice::from_raw_parts_mut(sst.ptr(s0), n);
-        let xref = std::slice::from_raw_parts(self.xref.as_ptr().add(s0), n);
         let offset = std::slice::from_raw_parts(self.toff.as_ptr().add(o0), n);
         let limit2 = self.limit2;
-        if let Some(poses) = &self.xref_pose {
-            let (x0, q0) = poses.read(i);
-            let reach = self.treach.read(t);
-            let bound = skin::body_displacement_bound(x, q, x0, q0, reach);
-            if skin::surely_within(bound, self.half_skin, x.abs().max_element() + reach) {
-                for (st, &off) in state.iter_mut().zip(offset) {
-                    st.position = sphere_position(x, rot, off);
-                }
-                return false;
+        let (x0, q0) = self.xref_pose.read(i);
+        let reach = self.treach.read(t);
+        let bound = skin::body_displacement_bound(x, q, x0, q0, reach);
+        if skin::surely_within(bound, self.half_skin, x.abs().max_element() + reach) {
+            for (st, &off) in state.iter_mut().zip(offset) {
+                st.position = sphere_position(x, rot, off);
             }
+            return false;
         }
+        // near the limit: each sphere against its position at the build,
+        // computed from the build's pose as the build computed it
+        let rot0 = DMat3::from_quat(q0);
         let mut stale = false;
-        for ((st, &off), &x0) in state.iter_mut().zip(offset).zip(xref) {
+        for (st, &off) in state.iter_mut().zip(offset) {
             let px = sphere_position(x, rot, off);
             st.position = px;
-            stale |= skin::moved_too_far(px, x0, limit2);
+            stale |= skin::moved_too_far(px, sphere_position(x0, &rot0, off), limit2);
         }
         stale
     }

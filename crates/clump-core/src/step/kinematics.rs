@@ -4,7 +4,7 @@
 //! velocity and angular velocity.
 
 use crate::world::World;
-use glam::{DMat3, DVec3};
+use glam::{DMat3, DQuat, DVec3};
 use rayon::prelude::*;
 
 /// World position of a sphere with body-frame offset `offset` (m) from the
@@ -18,11 +18,34 @@ pub fn sphere_position(com: DVec3, rot: &DMat3, offset: DVec3) -> DVec3 {
     com + *rot * offset
 }
 
-/// Recomputes every sphere's world position.
+/// Recomputes every sphere's world position from its body's current pose.
 pub fn update_spheres(w: &mut World) {
     let b = &w.bodies;
-    let sp = &mut w.spheres;
-    let (tf, toff) = (&w.templates.first, &w.templates.offset);
+    place_spheres(&mut w.spheres, b, &w.templates, |bi| {
+        (b.position[bi], b.orientation[bi])
+    });
+}
+
+/// Puts every sphere where its body's pose at the last neighbour build
+/// (`NeighborState::reference_pose`) puts it: the positions the neighbour
+/// lists are built at and the skin check measures from. These are not
+/// stored; a rebuild that needs them places the spheres there, builds, and
+/// then calls [`update_spheres`]. The same formula as every other stage, so
+/// the same bits as the spheres had at the build.
+pub fn spheres_at_reference_poses(w: &mut World) {
+    let poses = &w.neighbors.reference_pose;
+    place_spheres(&mut w.spheres, &w.bodies, &w.templates, |bi| poses[bi]);
+}
+
+/// Sets every sphere's position from the pose `pose(body)` (centre of mass,
+/// orientation) of its body.
+fn place_spheres(
+    sp: &mut crate::sphere::Spheres,
+    b: &crate::body::Bodies,
+    templates: &crate::shape::TemplateSet,
+    pose: impl Fn(usize) -> (DVec3, DQuat) + Sync,
+) {
+    let (tf, toff) = (&templates.first, &templates.offset);
     sp.state
         .par_iter_mut()
         .zip(sp.index_in_template.par_iter())
@@ -31,7 +54,7 @@ pub fn update_spheres(w: &mut World) {
         .for_each(|((st, &k), &bi)| {
             let bi = bi as usize;
             let off = toff[(tf[b.template[bi] as usize] + k) as usize];
-            st.position =
-                sphere_position(b.position[bi], &DMat3::from_quat(b.orientation[bi]), off);
+            let (x, q) = pose(bi);
+            st.position = sphere_position(x, &DMat3::from_quat(q), off);
         });
 }

@@ -127,7 +127,7 @@ impl World {
             rebuild::rebuild(self, true)?;
             lap(&mut times.neighbor, &mut t);
         } else if wall_started {
-            rebuild::refresh_wall_list(self);
+            rebuild::wall_started(self);
             lap(&mut times.neighbor, &mut t);
         }
         force::pair_forces(self);
@@ -202,7 +202,7 @@ impl World {
             }
             lap(&mut times.neighbor, &mut t);
         } else if wall_started {
-            rebuild::refresh_wall_list(self);
+            rebuild::wall_started(self);
             lap(&mut times.neighbor, &mut t);
         }
         force::pair_forces(self);

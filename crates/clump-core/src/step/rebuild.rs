@@ -2,7 +2,7 @@
 //! left the domain, sort the bodies by cell (`neighbor::sort`), rebuild the sphere topology and
 //! the pair list (history carried by global sphere ids).
 
-use super::kinematics::update_spheres;
+use super::kinematics::{spheres_at_reference_poses, update_spheres};
 use super::StepError;
 use crate::neighbor::carry::{old_body_index, NONE};
 use crate::neighbor::pairs::BuildInput;
@@ -99,9 +99,10 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         }
         references_at_current_poses(w);
     } else {
-        // positions at the last build, recomputed from the stored poses
+        // the lists at the positions of the last build, from the stored
+        // poses (the spheres go back to the current poses below)
         rebuild_sphere_topology(w);
-        reference_positions_from_poses(w);
+        spheres_at_reference_poses(w);
         w.phase.topology_dirty = false;
         if w.part.is_some() {
             // each sphere continues its own wall slots (filtered below)
@@ -125,12 +126,17 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         // the spheres kept their order: each continues its own slots
         refresh_wall_list(w);
     }
+    if !reorganize || partitioned {
+        // the lists were built at the reference poses, which are not the
+        // current ones (a restart, a rank's part)
+        update_spheres(w);
+    }
     w.rebuilds += 1;
     Ok(())
 }
 
 /// Makes the current poses the build's: sphere positions from the poses,
-/// and these as the reference poses and positions of the skin check.
+/// and these as the reference poses of the skin check.
 pub(crate) fn references_at_current_poses(w: &mut World) {
     update_spheres(w);
     w.neighbors.reference_pose.clear();
@@ -141,17 +147,16 @@ pub(crate) fn references_at_current_poses(w: &mut World) {
             .zip(&w.bodies.orientation)
             .map(|(&x, &q)| (x, q)),
     );
-    w.neighbors.reference_position.clear();
-    w.neighbors.reference_position.extend(w.spheres.positions());
     w.phase.topology_dirty = false;
 }
 
-/// Builds the pair list at the reference positions on `w.neighbors.grid`,
-/// each pair continuing its history from the history map (then emptied).
+/// Builds the pair list on `w.neighbors.grid` at the spheres' positions,
+/// which are those of the reference poses (the build's), each pair
+/// continuing its history from the history map (then emptied).
 pub(crate) fn build_pair_list(w: &mut World) {
     let sp = &w.spheres;
     let inp = BuildInput {
-        position: &w.neighbors.reference_position,
+        position: &sp.state,
         radius: &sp.radius,
         body: &sp.body,
         body_first: &sp.body_first,
@@ -180,32 +185,6 @@ pub(crate) fn build_pair_list(w: &mut World) {
     w.neighbors.pairs.refresh_bodies(&w.bodies);
 }
 
-/// Sets the reference positions of the spheres (the skin check's) from
-/// the bodies' poses at the last build, and then the spheres' current
-/// positions from the current poses (a restart, a rank's part, and a world
-/// joined from its ranks compute them so).
-pub(crate) fn reference_positions_from_poses(w: &mut World) {
-    let current: Vec<_> = w
-        .bodies
-        .position
-        .iter()
-        .zip(&w.bodies.orientation)
-        .map(|(&x, &q)| (x, q))
-        .collect();
-    for (b, &(x, q)) in w.neighbors.reference_pose.iter().enumerate() {
-        w.bodies.position[b] = x;
-        w.bodies.orientation[b] = q;
-    }
-    update_spheres(w);
-    w.neighbors.reference_position.clear();
-    w.neighbors.reference_position.extend(w.spheres.positions());
-    for (b, (x, q)) in current.into_iter().enumerate() {
-        w.bodies.position[b] = x;
-        w.bodies.orientation[b] = q;
-    }
-    update_spheres(w);
-}
-
 /// Chooses the skin of the new lists from the motion since the last build
 /// (unless the configuration fixes it): the largest displacement of a
 /// sphere from its reference position, over the steps since that build
@@ -216,24 +195,37 @@ fn adapt_skin(w: &mut World) {
     if w.config.skin.is_some() {
         return;
     }
-    let sp = &w.spheres;
     if w.phase.topology_dirty
-        || w.neighbors.reference_position.len() != sp.len()
+        || w.neighbors.reference_pose.len() != w.bodies.len()
         || w.step <= w.neighbors.built_step
     {
         return;
     }
-    let d2 = (0..sp.len())
-        .map(|s| {
-            sp.position(s)
-                .distance_squared(w.neighbors.reference_position[s])
-        })
-        .fold(0.0f64, f64::max);
+    let d2 = largest_displacement2(w, 0..w.bodies.len());
     w.neighbors.adapted_skin = w.adapted_skin(d2.sqrt());
 }
 
+/// The largest squared distance (m²) of a sphere of `bodies` from where
+/// its body's reference pose puts it (the build's position, computed as
+/// the build computed it, so the same bits).
+pub(crate) fn largest_displacement2(w: &World, bodies: impl Iterator<Item = usize>) -> f64 {
+    let (sp, poses) = (&w.spheres, &w.neighbors.reference_pose);
+    let (tf, toff) = (&w.templates.first, &w.templates.offset);
+    let mut d2 = 0.0f64;
+    for b in bodies {
+        let (x0, q0) = poses[b];
+        let rot0 = glam::DMat3::from_quat(q0);
+        let o0 = tf[w.bodies.template[b] as usize] as usize;
+        for (k, s) in sp.of_body(b).enumerate() {
+            let x_ref = super::kinematics::sphere_position(x0, &rot0, toff[o0 + k]);
+            d2 = d2.max(sp.position(s).distance_squared(x_ref));
+        }
+    }
+    d2
+}
+
 /// Builds the wall Verlet list ([`crate::neighbor::walls`]) at the
-/// spheres' reference positions, each sphere continuing the contact slots of
+/// spheres' positions, which are those of the reference poses, each sphere continuing the contact slots of
 /// the entry `scratch_wall_carry` names in the previous list, and the
 /// per-body cost estimate of the gather. Also called between neighbour
 /// builds when a wall starts to move (the list must then hold every
@@ -252,7 +244,7 @@ pub(crate) fn build_wall_lists(w: &mut World) {
     w.neighbors.wall_list.build(
         &w.walls,
         &w.walls.meshes,
-        &w.neighbors.reference_position,
+        &sp.state,
         &sp.radius,
         skin,
         !w.neighbors.wall_cull & low,
@@ -277,9 +269,18 @@ pub(crate) fn build_wall_lists(w: &mut World) {
     }
 }
 
+/// Builds the wall list again, between neighbour builds, when a wall starts
+/// to move: at the reference poses, from which the skin check measures
+/// (the spheres go there for the build and back to the current poses).
+pub(crate) fn wall_started(w: &mut World) {
+    spheres_at_reference_poses(w);
+    refresh_wall_list(w);
+    update_spheres(w);
+}
+
 /// Builds the wall list again for spheres that kept their order, each
-/// continuing its own slots (see [`build_wall_lists`]): between neighbour
-/// builds when a wall starts to move, and on a restart.
+/// continuing its own slots (see [`build_wall_lists`]); the spheres are at
+/// their reference poses.
 pub(crate) fn refresh_wall_list(w: &mut World) {
     let n = w.spheres.len();
     w.neighbors

@@ -7,7 +7,8 @@ use crate::contact::ContactHistory;
 use crate::neighbor::pairs::HistoryMap;
 use crate::neighbor::walls::{WallList, WALL_SLOTS};
 use crate::sphere::SPHERE_ID_BITS;
-use crate::step::rebuild::{rebuild_sphere_topology, reference_positions_from_poses};
+use crate::step::kinematics::update_spheres;
+use crate::step::rebuild::rebuild_sphere_topology;
 use crate::step::StepError;
 use crate::world::World;
 use glam::{DQuat, DVec3};
@@ -120,7 +121,7 @@ pub(crate) fn join(w: &mut World) -> Result<(), StepError> {
     w.neighbors.wall_list = WallList::from_per_sphere(&key, &hist);
     w.neighbors.records.step = None;
     rebuild_sphere_topology(w);
-    reference_positions_from_poses(w);
+    update_spheres(w);
     w.neighbors.pairs.refresh_bodies(&w.bodies);
     let part = w.part.as_mut().expect("a partitioned world");
     part.local = false;

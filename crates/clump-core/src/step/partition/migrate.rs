@@ -73,16 +73,7 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
     let n = w.bodies.len();
 
     // 1. this rank's share of the whole world's numbers
-    let sp = &w.spheres;
-    let mut d2 = 0.0f64;
-    for b in (0..n).filter(|&b| part.owned[b]) {
-        for s in sp.of_body(b) {
-            d2 = d2.max(
-                sp.position(s)
-                    .distance_squared(w.neighbors.reference_position[s]),
-            );
-        }
-    }
+    let d2 = crate::step::rebuild::largest_displacement2(w, (0..n).filter(|&b| part.owned[b]));
     let mut totals = Totals {
         displacement2: d2,
         bodies: Extent::empty(),

@@ -2,9 +2,11 @@
 //! owned bodies and their ghosts, in the whole world's order, and the lists
 //! of who sends whose state after each step.
 
+use crate::neighbor::grid::Extent;
 use crate::neighbor::CellGrid;
 use crate::partition::Regions;
-use crate::step::rebuild::{rebuild_sphere_topology, reference_positions_from_poses};
+use crate::step::kinematics::spheres_at_reference_poses;
+use crate::step::rebuild::rebuild_sphere_topology;
 use crate::step::StepError;
 use crate::world::World;
 use glam::DVec3;
@@ -28,25 +30,26 @@ pub(crate) fn halo(w: &World) -> f64 {
     (2.0 * largest_extent(w) + w.skin()) * (1.0 + 1e-9)
 }
 
-/// Keeps this rank's part of a whole world whose sphere topology, sphere
-/// positions and reference positions are current: balances the regions on
+/// Keeps this rank's part of a whole world whose sphere topology is
+/// current and whose spheres are at their reference poses: balances the regions on
 /// the bodies' build positions, keeps the owned bodies and the ghosts (in
 /// the whole world's order), filters `carry` (per sphere of the whole
-/// world, the wall-list entry it continues) alike, recomputes the spheres
-/// and their reference positions, and records the ghost lists. Returns the
+/// world, the wall-list entry it continues) alike, places the spheres at
+/// their reference poses, and records the ghost lists. Returns the
 /// whole world's pair grid, on which the part's pair list is built.
 pub(crate) fn restrict(
     w: &mut World,
     min_cell: f64,
     carry: &mut Vec<u32>,
 ) -> Result<CellGrid, StepError> {
-    let Some(mut part) = w.part.take() else {
-        return CellGrid::new(&w.config.domain, &w.neighbors.reference_position, min_cell)
-            .map_err(StepError::Neighbor);
-    };
+    // the spheres are at their reference poses (the build's)
     let domain = w.config.domain;
-    let grid = CellGrid::new(&domain, &w.neighbors.reference_position, min_cell)
-        .map_err(StepError::Neighbor)?;
+    let extent = Extent::of_points(&domain, w.spheres.state.iter().map(|s| s.position));
+    let grid = CellGrid::from_extent(&domain, &extent, min_cell).map_err(StepError::Neighbor);
+    let Some(mut part) = w.part.take() else {
+        return grid;
+    };
+    let grid = grid?;
     let (me, size) = (part.comm.rank(), part.comm.size());
     let at: Vec<DVec3> = w
         .neighbors
@@ -76,8 +79,9 @@ pub(crate) fn restrict(
         .collect();
     w.neighbors.reference_pose = pose;
     rebuild_sphere_topology(w);
-    // reference positions from the build poses, as a restart computes them
-    reference_positions_from_poses(w);
+    // the part's spheres at the build poses, as a restart places them (the
+    // rebuild puts them back at the current poses after the lists)
+    spheres_at_reference_poses(w);
     roles.install(&mut part);
     part.local = true;
     w.part = Some(part);
