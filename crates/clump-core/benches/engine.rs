@@ -23,7 +23,7 @@ fn neighbor_build(c: &mut Criterion) {
     let position: Vec<DVec3> = sp.positions().collect();
     let grid = CellGrid::new(&w.config.domain, &position, 2e-3 + 0.5e-3).unwrap();
     let inp = BuildInput {
-        position: &sp.state,
+        state: &sp.state,
         radius: &sp.radius,
         body: &sp.body,
         body_first: &sp.body_first,

@@ -62,9 +62,10 @@ pub struct SphereState {
     pub radius: f64,
 }
 
+#[cfg(test)]
 impl SphereState {
     /// The states of spheres at `position` (world, m) with `radius` (m).
-    pub fn of(position: &[DVec3], radius: &[f64]) -> Vec<SphereState> {
+    pub(crate) fn of(position: &[DVec3], radius: &[f64]) -> Vec<SphereState> {
         position
             .iter()
             .zip(radius)

@@ -42,11 +42,11 @@ impl BodyBounds {
         nb > 0 && n >= MIN_SPHERES_PER_BODY * nb
     }
 
-    /// Builds the bounding spheres from the spheres' centres (`position`'s,
+    /// Builds the bounding spheres from the spheres' centres (`state`'s,
     /// world frame, m) and radii `radius` (body `b` owns `body_first[b]..body_first[b + 1]`).
     pub(crate) fn build(
         &mut self,
-        position: &[crate::sphere::SphereState],
+        state: &[crate::sphere::SphereState],
         radius: &[f64],
         body_first: &[u32],
     ) {
@@ -55,13 +55,13 @@ impl BodyBounds {
         self.bound.extend((0..nb).map(|b| {
             let s = body_first[b] as usize..body_first[b + 1] as usize;
             let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-            for x in &position[s.clone()] {
+            for x in &state[s.clone()] {
                 lo = lo.min(x.position);
                 hi = hi.max(x.position);
             }
             let c = 0.5 * (lo + hi);
             let r = s
-                .map(|k| position[k].position.distance(c) + radius[k])
+                .map(|k| state[k].position.distance(c) + radius[k])
                 .fold(0.0, f64::max);
             // the reach test subtracts coordinates of magnitude |c|: its
             // rounding scales with them, not with the body
@@ -146,7 +146,7 @@ mod tests {
         assert!(BodyBounds::pays(&body_first));
         let state = crate::sphere::SphereState::of(&position, &radius);
         let inp = BuildInput {
-            position: &state,
+            state: &state,
             radius: &radius,
             body: &body,
             body_first: &body_first,

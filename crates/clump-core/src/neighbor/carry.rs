@@ -208,7 +208,7 @@ mod tests {
             let radius = vec![3e-4; position.len()];
             let state = crate::sphere::SphereState::of(&position, &radius);
             let inp = BuildInput {
-                position: &state,
+                state: &state,
                 radius: &radius,
                 body: &body,
                 body_first: &sp.body_first,

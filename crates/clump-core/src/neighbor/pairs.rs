@@ -190,7 +190,7 @@ pub(crate) unsafe fn column_sum(
 pub struct BuildInput<'a> {
     /// Sphere states: their centres at the build (world frame, m) are the
     /// ones read.
-    pub position: &'a [crate::sphere::SphereState],
+    pub state: &'a [crate::sphere::SphereState],
     /// Radii, m.
     pub radius: &'a [f64],
     /// Owner body (storage index).
@@ -339,7 +339,7 @@ impl PairList {
     }
 
     fn build_from(&mut self, grid: &CellGrid, domain: &Domain, inp: &BuildInput, history: Carried) {
-        let n = inp.position.len();
+        let n = inp.state.len();
         // 1. bin spheres into cells (counting sort)
         //    (each sphere's cell is computed where it is needed, here twice
         //    and once in the search, rather than kept per sphere)
@@ -347,21 +347,21 @@ impl PairList {
         counting_sort(
             n,
             grid.len(),
-            |s| cell(inp.position[s].position),
+            |s| cell(inp.state[s].position),
             &mut self.cell_start,
             &mut self.cursor,
             &mut self.cell_items,
         );
         self.cell_xr.clear();
         self.cell_xr.extend(self.cell_items.iter().map(|&s| {
-            let (x, r) = (inp.position[s as usize].position, inp.radius[s as usize]);
+            let (x, r) = (inp.state[s as usize].position, inp.radius[s as usize]);
             [x.x, x.y, x.z, r]
         }));
         let bounded = BodyBounds::pays(inp.body_first);
         #[cfg(test)]
         let bounded = bounded && !self.unbounded;
         if bounded {
-            self.bounds.build(inp.position, inp.radius, inp.body_first);
+            self.bounds.build(inp.state, inp.radius, inp.body_first);
         }
 
         // 2. count candidates per sphere (j > i, other body)
@@ -582,7 +582,7 @@ impl Search<'_> {
     #[inline]
     fn visit(&self, i: usize, mut f: impl FnMut(u32, [i8; 3])) -> u32 {
         let grid = self.grid;
-        let c = grid.coords(self.domain.wrap(self.inp.position[i].position));
+        let c = grid.coords(self.domain.wrap(self.inp.state[i].position));
         let mut count = 0;
         for dz in -1..=1i64 {
             let Some(z) = grid.wrap(c[2] + dz, 2) else {
@@ -631,7 +631,7 @@ impl Search<'_> {
         count: &mut u32,
     ) {
         let inp = self.inp;
-        let xi = inp.position[i].position;
+        let xi = inp.state[i].position;
         let ri = inp.radius[i] + inp.skin;
         let first = inp.body_first[inp.body[i] as usize + 1].max(i as u32 + 1);
         let any_periodic = self.domain.periodic.iter().any(|&p| p);

@@ -124,8 +124,8 @@ impl WallList {
         l
     }
 
-    /// Builds the list for spheres at `position`'s centres (m, world) with `radius`
-    /// (m) and skin `skin` (m); `moving` has the bits of the walls (< 64)
+    /// Builds the list for spheres at `state`'s centres (m, world) with
+    /// `radius` (m) and skin `skin` (m); `moving` has the bits of the walls (< 64)
     /// that move. Sphere `s` continues the slots of entry `carry[s]` of
     /// `old` (or starts empty: [`NO_ENTRY`]). `body_first` gives each body's
     /// first sphere (`len = bodies + 1`); the chunk starts are for chunks of
@@ -135,7 +135,7 @@ impl WallList {
         &mut self,
         walls: &[Wall],
         meshes: &[crate::wall::TriMesh],
-        position: &[crate::sphere::SphereState],
+        state: &[crate::sphere::SphereState],
         radius: &[f64],
         skin: f64,
         moving: u64,
@@ -144,7 +144,7 @@ impl WallList {
         body_first: &[u32],
         chunk: usize,
     ) {
-        let n = position.len();
+        let n = state.len();
         self.clear();
         let all = walls.len() > 64;
         // the near walls of a block of spheres at a time (in parallel), then
@@ -163,13 +163,10 @@ impl WallList {
                     let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
                     let mut m = 0u64;
                     for (wi, wall) in walls.iter().enumerate().take(64) {
-                        if wall.shape.contacts(
-                            meshes,
-                            position[s].position,
-                            radius[s],
-                            skin,
-                            &mut buf,
-                        ) > 0
+                        if wall
+                            .shape
+                            .contacts(meshes, state[s].position, radius[s], skin, &mut buf)
+                            > 0
                         {
                             m |= 1 << wi;
                         }

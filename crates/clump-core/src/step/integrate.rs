@@ -220,9 +220,10 @@ impl FirstHalf {
     /// (from the body's reference pose, not stored), so a rebuild comes at
     /// the same step as with the exact test alone.
     ///
-    /// The spheres and offsets are taken as local slices first: written through `sst`'s pointer, a store could alias
-    /// the pointers and the skin limit held in `self`, which the loop would
-    /// then reload for every sphere.
+    /// The spheres and offsets are taken as local slices first: written
+    /// through `sst`'s pointer, a store could alias the pointers and the
+    /// skin limit held in `self`, which the loop would then reload for every
+    /// sphere.
     ///
     /// # Safety
     /// As [`FirstHalf::apply`]; the sphere topology is current.

@@ -1,6 +1,7 @@
 //! Neighbour-list rebuild: wrap periodic centres of mass, drop bodies that
-//! left the domain, sort the bodies by cell (`neighbor::sort`), rebuild the sphere topology and
-//! the pair list (history carried by global sphere ids).
+//! left the domain, sort the bodies by cell (`neighbor::sort`), rebuild
+//! the sphere topology and the pair list (history carried by global sphere
+//! ids).
 
 use super::kinematics::{spheres_at_reference_poses, update_spheres};
 use super::StepError;
@@ -156,7 +157,7 @@ pub(crate) fn references_at_current_poses(w: &mut World) {
 pub(crate) fn build_pair_list(w: &mut World) {
     let sp = &w.spheres;
     let inp = BuildInput {
-        position: &sp.state,
+        state: &sp.state,
         radius: &sp.radius,
         body: &sp.body,
         body_first: &sp.body_first,
@@ -225,8 +226,9 @@ pub(crate) fn largest_displacement2(w: &World, bodies: impl Iterator<Item = usiz
 }
 
 /// Builds the wall Verlet list ([`crate::neighbor::walls`]) at the
-/// spheres' positions, which are those of the reference poses, each sphere continuing the contact slots of
-/// the entry `scratch_wall_carry` names in the previous list, and the
+/// spheres' positions, which are those of the reference poses, each sphere
+/// continuing the contact slots of the entry `scratch_wall_carry` names in
+/// the previous list, and the
 /// per-body cost estimate of the gather. Also called between neighbour
 /// builds when a wall starts to move (the list must then hold every
 /// sphere); that leaves the forces unchanged, as only walls that cannot
