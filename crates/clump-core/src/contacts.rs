@@ -16,6 +16,7 @@
 //! count.
 
 use crate::contact::geometry::contact_point;
+use crate::neighbor::topo::RowWalk;
 use crate::sphere::SPHERE_ID_BITS;
 use crate::world::World;
 use glam::DVec3;
@@ -104,6 +105,8 @@ pub struct Contacts<'a> {
     world: &'a World,
     /// Next pair index to look at.
     pair: usize,
+    /// The rows of the pairs looked at.
+    rows: RowWalk<'a>,
     /// Next wall chunk and entry within it.
     chunk: usize,
     entry: usize,
@@ -121,11 +124,11 @@ impl Iterator for Contacts<'_> {
             let p = self.pair;
             self.pair += 1;
             let t = pairs.topo[p];
-            if !t.live {
+            let i = self.rows.next(p, t);
+            if !t.live() {
                 continue;
             }
             let r = rec.pair[p];
-            let i = pairs.row[p] as usize;
             let j = t.j as usize;
             let fnv = r.normal * r.normal_force;
             let mu = w
@@ -195,6 +198,7 @@ impl World {
         Ok(Contacts {
             world: self,
             pair: 0,
+            rows: RowWalk::new(&self.neighbors.pairs.row_start),
             chunk: 0,
             entry: 0,
         })

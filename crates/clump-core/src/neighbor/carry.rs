@@ -230,7 +230,7 @@ mod tests {
         for p in 0..old.len() {
             match rng.gen_range(0..3) {
                 0 => {}
-                1 => old.topo[p].live = true,
+                1 => old.topo[p].set_live(true),
                 _ => {
                     old.tangential[p] = DVec3::new(rng.gen(), rng.gen(), rng.gen()) - 0.5;
                     old.rolling[p] = DVec3::new(rng.gen(), rng.gen(), rng.gen()) - 0.5;
@@ -286,7 +286,7 @@ mod tests {
                 same(&by_index.rolling, &by_id.rolling),
                 "rolling springs differ"
             );
-            let carried = by_id.topo.iter().filter(|t| t.live).count();
+            let carried = by_id.topo.iter().filter(|t| t.live()).count();
             assert!(carried > 100, "too few histories carried: {carried}");
         }
     }

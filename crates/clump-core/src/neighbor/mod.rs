@@ -7,6 +7,7 @@
 //! - [`pairs`]: the half pair list, built allocation-free after warm-up,
 //!   with same-body pairs excluded by construction; contact history is keyed
 //!   by the global sphere ids and survives rebuilds and re-sorting.
+//! - [`topo`]: one candidate pair's partner, image, live flag and row step.
 //! - [`skin`]: the rebuild trigger: any sphere displaced by more than half the
 //!   skin since the last build, which counts rotation because it measures the
 //!   sphere centres themselves.
@@ -24,8 +25,10 @@ pub mod pairs;
 pub mod skin;
 pub mod sort;
 mod state;
+pub mod topo;
 pub mod walls;
 
 pub use grid::CellGrid;
-pub use pairs::{BodyLoad, PairBody, PairList, PairTopo};
+pub use pairs::{BodyLoad, PairBody, PairList};
 pub(crate) use state::NeighborState;
+pub use topo::PairTopo;

@@ -3,6 +3,7 @@
 use super::body_bounds::BodyBounds;
 use super::carry::HistoryCarry;
 use super::grid::CellGrid;
+use super::topo::{set_row_steps, PairTopo};
 use crate::boundary::Domain;
 use crate::contact::ContactHistory;
 use glam::DVec3;
@@ -14,23 +15,6 @@ pub type HistoryMap = HashMap<(u64, u64), ContactHistory, rustc_hash::FxBuildHas
 
 /// Spheres per parallel work block while building the list.
 const BLOCK: usize = 512;
-
-/// The partner of one pair in sphere `i`'s row of the half list: sphere `j`
-/// (storage index, always greater than `i`), the periodic image shift, and
-/// whether the pair holds contact state (8 bytes in all: the pair kernel's
-/// detect pass reads only this for the common non-touching pair).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct PairTopo {
-    /// Sphere index of the partner, `j > i` in storage order.
-    pub j: u32,
-    /// Periodic image shift: the separation is `x_i − x_j + shift·L`.
-    pub shift: [i8; 3],
-    /// The pair touched at its last evaluation, or its history was restored
-    /// (checkpoint or rebuild) and it has not been evaluated since: its
-    /// history and `j`-side load may be non-zero and must be cleared when it
-    /// is found not touching.
-    pub live: bool,
-}
 
 /// A force and its torque about a body's centre of mass (world frame; N and
 /// N m): what one pair contributes to one of its two bodies, or the sum of
@@ -93,13 +77,9 @@ pub struct PairBody {
 pub struct PairList {
     /// Row offsets, one per sphere plus one.
     pub row_start: Vec<u32>,
-    /// Partner of each pair.
+    /// Partner, image, live flag and row step of each pair
+    /// ([`super::topo`]).
     pub topo: Vec<PairTopo>,
-    /// Row of each pair (its sphere `i`; parallel to `topo`): the pair
-    /// kernel walks the pairs in one flat loop, without a loop per row
-    /// whose exit, after a varying 0–4 candidates, was a mispredicted
-    /// branch per sphere.
-    pub row: Vec<u32>,
     /// Tangential spring of each pair (parallel to `topo`), world frame, m,
     /// oriented from `i` to `j` ([`ContactHistory::tangential`]).
     pub tangential: Vec<DVec3>,
@@ -260,9 +240,11 @@ impl PairList {
         for (s, &b) in body.iter().enumerate().rev() {
             self.first_feed[b as usize] = s as u32;
         }
-        for (p, t) in self.topo.iter().enumerate() {
-            let b = body[t.j as usize] as usize;
-            self.first_feed[b] = self.first_feed[b].min(self.row[p]);
+        for i in 0..self.row_start.len().saturating_sub(1) {
+            for t in &self.topo[self.row(i)] {
+                let b = body[t.j as usize] as usize;
+                self.first_feed[b] = self.first_feed[b].min(i as u32);
+            }
         }
     }
 
@@ -291,7 +273,7 @@ impl PairList {
             tangential: self.tangential[p],
             rolling: self.rolling.get(p).copied().unwrap_or_default(),
         };
-        (h != ContactHistory::default() || (keep_live && self.topo[p].live)).then_some(h)
+        (h != ContactHistory::default() || (keep_live && self.topo[p].live())).then_some(h)
     }
 
     /// Collects the history of touching pairs keyed by (lower, higher) global
@@ -392,13 +374,8 @@ impl PairList {
             // the same searches in the same order, straight into the list
             self.topo.clear();
             for i in 0..n {
-                self.row_start[i + 1] = ctx.visit(i, |j, shift| {
-                    self.topo.push(PairTopo {
-                        j,
-                        shift,
-                        live: false,
-                    })
-                });
+                self.row_start[i + 1] =
+                    ctx.visit(i, |j, shift| self.topo.push(PairTopo::new(j, shift)));
             }
         } else {
             if self.block_topo.len() < nblocks {
@@ -411,13 +388,7 @@ impl PairList {
                 .for_each(|(blk, out)| {
                     out.clear();
                     for i in blk * BLOCK..((blk + 1) * BLOCK).min(n) {
-                        let c = ctx.visit(i, |j, shift| {
-                            out.push(PairTopo {
-                                j,
-                                shift,
-                                live: false,
-                            })
-                        });
+                        let c = ctx.visit(i, |j, shift| out.push(PairTopo::new(j, shift)));
                         // SAFETY: sphere i belongs to this block only.
                         unsafe { *counts.get(i) = c };
                     }
@@ -436,13 +407,7 @@ impl PairList {
             }
         }
         debug_assert_eq!(self.topo.len(), acc);
-        self.row.clear();
-        self.row.reserve(acc);
-        for i in 0..n {
-            let len = self.row_start[i + 1] - self.row_start[i];
-            self.row
-                .extend(std::iter::repeat(i as u32).take(len as usize));
-        }
+        set_row_steps(&self.row_start, &mut self.topo);
 
         // 5. restore the history of pairs that persist (stored from the lower
         //    to the higher global id; pairs here run from i to j > i)
@@ -482,7 +447,7 @@ impl PairList {
                         Carried::ByIndex(carry) => carry.get(i, t.j as usize),
                     };
                     if let Some(h) = old {
-                        t.live = true;
+                        t.set_live(true);
                         // SAFETY: pair p belongs to row i only.
                         unsafe {
                             *tan.get(p) = h.tangential;

@@ -110,7 +110,6 @@ pub(crate) fn pair_forces(w: &mut World) {
         sp: &w.spheres,
         table: &w.contact_table,
         row_start: &pairs.row_start,
-        row: &pairs.row,
         topo: SharedMut::new(&mut pairs.topo),
         scale: &pairs.scale,
         tangential: SharedMut::new(&mut pairs.tangential),

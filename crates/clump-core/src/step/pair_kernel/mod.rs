@@ -46,6 +46,7 @@
 
 use crate::contact::{ContactHistory, ContactInput};
 use crate::neighbor::pairs::{BodyLoad, PairBody};
+use crate::neighbor::topo::RowWalk;
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
 use crate::par::simd::Simd;
@@ -69,11 +70,9 @@ pub(super) struct RowCtx<'a> {
     pub table: &'a crate::contact::ContactTable,
     /// Row offsets of the half list, one per sphere plus one.
     pub row_start: &'a [u32],
-    /// Row (sphere `i`) of each pair.
-    pub row: &'a [u32],
-    /// Partner, periodic image and live flag of each pair (the flag is
-    /// written).
-    pub topo: SharedMut<crate::neighbor::pairs::PairTopo>,
+    /// Partner, periodic image, live flag and row step of each pair (the
+    /// flag is written).
+    pub topo: SharedMut<crate::neighbor::PairTopo>,
     /// Multi-contact scale per pair (empty: all 1).
     pub scale: &'a [f64],
     /// Tangential spring per pair, m (written).
@@ -184,9 +183,13 @@ impl RowCtx<'_> {
         } else {
             SMALL_AHEAD
         };
+        let mut walk = match pairs.is_empty() {
+            false => RowWalk::at(self.row_start, pairs.start, topo.read(pairs.start)),
+            true => RowWalk::new(self.row_start),
+        };
         for p in pairs {
             let t = topo.read(p);
-            let (i, j) = (at(self.row, p) as usize, t.j as usize);
+            let (i, j) = (walk.next(p, t), t.j as usize);
             // the partner a few pairs ahead: its packed state line, the
             // top stall of this loop (it misses the per-core cache even at
             // 8 000 spheres, where the pair stage streams about 1.3 MB, and
@@ -218,7 +221,7 @@ impl RowCtx<'_> {
             let d = si.position - self.partner_position(j, t.shift);
             let rsum = si.radius + self.sphere(j).radius;
             let mut touching = d.length_squared() < rsum * rsum;
-            if REACH && !touching && t.live {
+            if REACH && !touching && t.live() {
                 // a live contact that may last while apart (JKR)
                 let rj = self.sphere(j).radius;
                 let reach = self
@@ -238,7 +241,7 @@ impl RowCtx<'_> {
             // went on `touching` (or on `live`), as good as random in a
             // dense bed, where half the candidates touch
             *batch.clear.get_unchecked_mut(n_clear) = p as u32;
-            n_clear += (!touching & t.live) as usize;
+            n_clear += (!touching & t.live()) as usize;
             if len == BATCH || n_clear == BATCH {
                 self.clear_pairs(&batch.clear[..n_clear]);
                 n_clear = 0;
@@ -286,7 +289,7 @@ impl RowCtx<'_> {
         let (rolling, seams) = (self.rolling.len() != 0, self.load_j.len() != 0);
         for &p in ps {
             let p = p as usize;
-            self.topo.get(p).live = false;
+            self.topo.get(p).set_live(false);
             *self.tangential.get(p) = DVec3::ZERO;
             if rolling {
                 *self.rolling.get(p) = DVec3::ZERO;
@@ -504,8 +507,8 @@ impl RowCtx<'_> {
                 };
             }
             let t = self.topo.get(p);
-            if !t.live {
-                t.live = true;
+            if !t.live() {
+                t.set_live(true);
             }
             if self.counted.is_some_and(|c| !c[bi]) {
                 continue;
@@ -545,13 +548,15 @@ const SMALL_AHEAD: usize = 16;
 
 /// The same beyond the caches, where the line comes from memory (at 10⁶
 /// spheres [`SMALL_AHEAD`] left the partner's state the top stall of the
-/// detect pass).
-const LARGE_AHEAD: usize = 32;
+/// detect pass). On the 10⁶ bed 64 with [`PREFETCH_BODY`] 24 took the pair
+/// stage about 1 ns a sphere-step below 32 with 8 (four alternated rounds;
+/// 96 and 128 gave the same as 64).
+const LARGE_AHEAD: usize = 64;
 
 /// How many candidate pairs ahead the detect pass of a large bed prefetches
 /// the partner body's packed record (its body index was prefetched
 /// [`LARGE_AHEAD`] pairs ahead).
-const PREFETCH_BODY: usize = 8;
+const PREFETCH_BODY: usize = 24;
 
 /// Spheres from which the detect pass prefetches the partner body's data
 /// (the partner's state line is prefetched at every size): about where the
