@@ -1,12 +1,12 @@
 //! One candidate pair's topology in the half list: its partner, periodic
 //! image, live flag and the step from the previous pair's row to its own.
 //!
-//! The pair kernel walks a thread's pairs in one flat loop (a loop per row,
-//! whose exit after a varying 0–4 candidates was a mispredicted branch per
-//! sphere, cost more). It needs each pair's row `i`. Stored as a `u32` per
-//! pair, that was 4 of the 12 bytes a candidate streamed in the detect pass;
-//! here the row follows from the previous pair's by a step of 0 to 126 kept
-//! in the spare bits of the flag byte ([`RowWalk`]), and a longer step (a
+//! The pair kernel walks a thread's pairs in one flat loop (a loop per row
+//! would end, after a varying 0–4 candidates, in a mispredicted branch per
+//! sphere), so it needs each pair's row `i`. A stored `u32` row per pair
+//! would add 4 bytes to the 8 a candidate streams in the detect pass.
+//! Instead the row follows from the previous pair's by a step of 0 to 126
+//! kept in the spare bits of the flag byte ([`RowWalk`]); a longer step (a
 //! run of more than a hundred spheres without candidates, as in a dilute
 //! gas) is looked up in the row offsets.
 
