@@ -608,8 +608,8 @@ fn ten_to_one_size_ratio() {
 /// Static friction held by the tangential history spring, on a sphere pair
 /// and on an inclined wall, survives a neighbour-list rebuild that also
 /// re-sorts the bodies (a new body is added far away, at the grid's low
-/// corner, first in storage order, so storage indices change). Sphere B rests on a fixed sphere A,
-/// 10° off the top, and sphere D on a 10° incline, both with frozen rotation
+/// corner, first in storage order, so storage indices change). Sphere B
+/// rests on a fixed sphere A, 10° off the top, and sphere D on a 10° incline, both with frozen rotation
 /// and μ = 0.9 (> tan 10°): if the history were lost at the rebuild they
 /// would start to slide. The run with the rebuild matches a run without it.
 #[test]

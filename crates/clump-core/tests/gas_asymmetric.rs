@@ -5,17 +5,16 @@
 //! equations; each scheme's largest energy error over the same simulated
 //! time is measured at dt = t_c/40, t_c/80 and t_c/160 and must fall with
 //! the scheme's order over the two halvings: faster than dt (second order)
-//! for the velocity-Verlet
-//! schemes (no_squish, richardson, richardson_liggghts,
-//! zhao_van_wachem_split) and as dt for zhao_van_wachem inside the DEM step
+//! for the velocity-Verlet schemes (no_squish, richardson,
+//! richardson_liggghts, zhao_van_wachem_split) and as dt for zhao_van_wachem inside the DEM step
 //! (torque held over the step, see docs/rotation_schemes.md), whose error
 //! is also more than 100 times theirs.
 //!
 //! The collisions are chaotic: each time step follows a different
 //! trajectory, so the largest error of a run is a noisy sample, and one
-//! halving of dt can show less than its order (zhao_van_wachem_split went
-//! from 7.10e-5 to 2.74e-5, an order of 1.37, after a change of the bodies'
-//! storage order changed the rounding). The order is therefore taken over
+//! halving of dt can show less than its order (zhao_van_wachem_split's
+//! error fell from 7.10e-5 to 2.74e-5, an order of 1.37, in one such
+//! sample). The order is therefore taken over
 //! two halvings, `log2(e(t_c/40) / e(t_c/160)) / 2`.
 //!
 //! Measured (t_c/40, t_c/80, t_c/160; `cargo test -p clump-core --test

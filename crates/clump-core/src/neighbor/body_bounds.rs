@@ -43,7 +43,8 @@ impl BodyBounds {
     }
 
     /// Builds the bounding spheres from the spheres' centres (`state`'s,
-    /// world frame, m) and radii `radius` (body `b` owns `body_first[b]..body_first[b + 1]`).
+    /// world frame, m) and radii `radius` (m; body `b` owns
+    /// `body_first[b]..body_first[b + 1]`).
     pub(crate) fn build(
         &mut self,
         state: &[crate::sphere::SphereState],

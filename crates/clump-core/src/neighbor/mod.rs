@@ -3,7 +3,8 @@
 //!
 //! - [`grid`]: the uniform cell grid (cell edge ≥ largest sphere diameter + skin).
 //! - [`sort`]: sort of bodies by cell, in slabs across the longest axis, so
-//!   spatial neighbours are memory neighbours; each body's spheres stay contiguous.
+//!   spatial neighbours are memory neighbours; each body's spheres stay
+//!   contiguous.
 //! - [`pairs`]: the half pair list, built allocation-free after warm-up,
 //!   with same-body pairs excluded by construction; contact history is keyed
 //!   by the global sphere ids and survives rebuilds and re-sorting.

@@ -125,8 +125,8 @@ impl WallList {
     }
 
     /// Builds the list for spheres at `state`'s centres (m, world) with
-    /// `radius` (m) and skin `skin` (m); `moving` has the bits of the walls (< 64)
-    /// that move. Sphere `s` continues the slots of entry `carry[s]` of
+    /// `radius` (m) and skin `skin` (m); `moving` has the bits of the walls
+    /// (< 64) that move. Sphere `s` continues the slots of entry `carry[s]` of
     /// `old` (or starts empty: [`NO_ENTRY`]). `body_first` gives each body's
     /// first sphere (`len = bodies + 1`); the chunk starts are for chunks of
     /// `chunk` bodies.

@@ -14,8 +14,8 @@
 //!
 //! **Same bits at any rank count.** A rank's bodies are kept in the order
 //! the whole world would have (the cell order of `neighbor::sort` on the
-//! full set's grid, ties by id), its pair list is built on the whole world's grid, so every row and
-//! column of an owned sphere holds the same pairs in the same order as one
+//! full set's grid, ties by id), its pair list is built on the whole
+//! world's grid, so every row and column of an owned sphere holds the same pairs in the same order as one
 //! process would: each owned body's force and torque are the same sums in
 //! the same order, hence the same bits. Ghost bodies take the state of
 //! their owner after every step (their own force sums are incomplete).

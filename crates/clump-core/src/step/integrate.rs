@@ -82,8 +82,8 @@ pub(crate) struct FirstHalf {
     /// Half the skin, m (`limit2` is its square).
     half_skin: f64,
     /// The bodies' poses at the last build (centre of mass, orientation;
-    /// world frame, m), from which the skin check measures; these bodies'
-    /// whenever the spheres move (`sst`).
+    /// world frame, m), from which the skin check measures; one per body
+    /// whenever the spheres are moved (`sst`).
     xref_pose: SharedMut<(DVec3, glam::DQuat)>,
     /// Per template: its farthest sphere centre from the centre of mass, m.
     treach: SharedMut<f64>,

@@ -228,8 +228,7 @@ pub(crate) fn largest_displacement2(w: &World, bodies: impl Iterator<Item = usiz
 /// Builds the wall Verlet list ([`crate::neighbor::walls`]) at the
 /// spheres' positions, which are those of the reference poses, each sphere
 /// continuing the contact slots of the entry `scratch_wall_carry` names in
-/// the previous list, and the
-/// per-body cost estimate of the gather. Also called between neighbour
+/// the previous list, and the per-body cost estimate of the gather. Also called between neighbour
 /// builds when a wall starts to move (the list must then hold every
 /// sphere); that leaves the forces unchanged, as only walls that cannot
 /// touch a sphere are ever left out of its entry.

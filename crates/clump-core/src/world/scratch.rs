@@ -11,7 +11,8 @@ use crate::wall::WallLoad;
 /// Working arrays of the step pipeline; never part of the simulated state.
 #[derive(Default)]
 pub(crate) struct Scratch {
-    /// Rebuild: the permutation of the bodies (storage order of `neighbor::sort`, lost removed).
+    /// Rebuild: the permutation of the bodies (the storage order of
+    /// `neighbor::sort`, lost bodies removed).
     pub perm: Vec<u32>,
     /// Rebuild: which bodies stay.
     pub keep: Vec<bool>,

@@ -32,8 +32,8 @@ pub(crate) fn halo(w: &World) -> f64 {
 
 /// Keeps this rank's part of a whole world whose sphere topology is
 /// current and whose spheres are at their reference poses: balances the
-/// regions on the bodies' build positions, keeps the owned bodies and the ghosts (in
-/// the whole world's order), filters `carry` (per sphere of the whole
+/// regions on the bodies' build positions, keeps the owned bodies and the
+/// ghosts (in the whole world's order), filters `carry` (per sphere of the whole
 /// world, the wall-list entry it continues) alike, places the spheres at
 /// their reference poses, and records the ghost lists. Returns the
 /// whole world's pair grid, on which the part's pair list is built.
