@@ -170,6 +170,29 @@ pub fn tile_xy(w: &World, kx: usize, ky: usize) -> World {
     out
 }
 
+/// Every body's id and state (centre, velocity, angular momentum, angular
+/// velocity, force, torque, orientation) as bits, in storage order: equal
+/// vectors mean the same state bit for bit.
+pub fn state_bits(w: &World) -> Vec<u64> {
+    let b = &w.bodies;
+    let mut out = Vec::with_capacity(b.len() * 23);
+    for i in 0..b.len() {
+        out.push(b.id[i]);
+        for v in [
+            b.position[i],
+            b.velocity[i],
+            b.angular_momentum[i],
+            b.angular_velocity[i],
+            b.force[i],
+            b.torque[i],
+        ] {
+            out.extend(v.to_array().map(f64::to_bits));
+        }
+        out.extend(b.orientation[i].to_array().map(f64::to_bits));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -212,24 +212,10 @@ fn bed_state(threads: usize, stepwise: bool) -> (Vec<u64>, u64, u64) {
     })
 }
 
-/// The bits of every body's id, position, velocity, angular momentum, force,
-/// torque and orientation, and of the summed statistics.
+/// The bits of every body's state (`testbed::state_bits`) and of the summed
+/// statistics.
 fn state_bits(w: &World) -> Vec<u64> {
-    let b = &w.bodies;
-    let mut bits = Vec::new();
-    for i in 0..b.len() {
-        bits.push(b.id[i]);
-        for v in [
-            b.position[i],
-            b.velocity[i],
-            b.angular_momentum[i],
-            b.force[i],
-            b.torque[i],
-        ] {
-            bits.extend(v.to_array().map(f64::to_bits));
-        }
-        bits.extend(b.orientation[i].to_array().map(f64::to_bits));
-    }
+    let mut bits = clump_core::testbed::state_bits(w);
     // the chunked sums of the statistics too
     let st = &w.stats;
     bits.extend([st.elastic_energy, st.kinetic_energy, st.max_overlap_ratio].map(f64::to_bits));

@@ -5,29 +5,8 @@
 //! again).
 
 use clump_core::partition::ThreadComm;
-use clump_core::testbed::tetra_lattice_bed;
+use clump_core::testbed::{state_bits, tetra_lattice_bed};
 use clump_core::world::World;
-
-/// Every body's id, template and state, as bits, in storage order.
-fn fingerprint(w: &World) -> Vec<u64> {
-    let b = &w.bodies;
-    let mut out = Vec::new();
-    for i in 0..b.len() {
-        out.push(b.id[i]);
-        for v in [
-            b.position[i],
-            b.velocity[i],
-            b.angular_momentum[i],
-            b.angular_velocity[i],
-            b.force[i],
-            b.torque[i],
-        ] {
-            out.extend(v.to_array().map(f64::to_bits));
-        }
-        out.extend(b.orientation[i].to_array().map(f64::to_bits));
-    }
-    out
-}
 
 /// Runs `make()` on `ranks` threads, each advancing `rounds` × `steps`
 /// steps (an event between rounds); returns each rank's final whole world's
@@ -48,7 +27,7 @@ fn run_ranks(
                     w.run(steps).unwrap();
                 }
                 let traffic = w.part_info().unwrap().traffic;
-                (fingerprint(&w), w.step, w.rebuilds, traffic)
+                (state_bits(&w), w.step, w.rebuilds, traffic)
             })
         })
         .collect();
@@ -64,7 +43,7 @@ fn a_settling_periodic_bed_has_the_same_bits_on_1_to_4_ranks() {
     let (steps, rounds) = (2500, 4);
     let mut serial = bed();
     serial.run(steps * rounds as u64).unwrap();
-    let want = fingerprint(&serial);
+    let want = state_bits(&serial);
     assert!(
         serial.rebuilds > 3,
         "too few rebuilds to test migration: {}",

@@ -16,19 +16,28 @@ const SMALL_ANGLE: f64 = 1e-4;
 /// **body**-frame axis. `v = 0` gives the identity (no division by zero: the
 /// factor `sin(|v|/2)/|v|` is evaluated by its series near zero).
 pub fn quat_from_rotation_vector(v: DVec3) -> DQuat {
-    let a2 = v.length_squared();
-    let h2 = 0.25 * a2;
-    let (s, c) = if h2 < 1e-4 {
-        // half angle h below 0.01 (the angles of a DEM step): sin(h)/h and
-        // cos(h) by their series in h²: truncation error below 1e-20, no
-        // square root, no libm call, and v = 0 is exact.
-        (0.5 * sinc_series(h2), cos_series(h2))
-    } else {
-        let angle = a2.sqrt();
-        let (sh, ch) = (0.5 * angle).sin_cos();
-        (sh / angle, ch)
-    };
-    DQuat::from_xyzw(s * v.x, s * v.y, s * v.z, c)
+    let (q, small) = quat_from_small_rotation_vector(v);
+    if small {
+        return q;
+    }
+    let angle = v.length_squared().sqrt();
+    let (sh, ch) = (0.5 * angle).sin_cos();
+    let s = sh / angle;
+    DQuat::from_xyzw(s * v.x, s * v.y, s * v.z, ch)
+}
+
+/// [`quat_from_rotation_vector`] by the series alone, with no branch (so
+/// that a loop over several bodies vectorises): the quaternion, and whether
+/// the series holds there (half angle below 0.01, the angles of a DEM step).
+/// Where it does, this is [`quat_from_rotation_vector`]'s result bit for bit;
+/// elsewhere the quaternion is to be discarded.
+#[inline(always)]
+pub fn quat_from_small_rotation_vector(v: DVec3) -> (DQuat, bool) {
+    let h2 = 0.25 * v.length_squared();
+    // sin(h)/h and cos(h) by their series in h²: truncation error below
+    // 1e-20 for h < 0.01, no square root, no libm call, and v = 0 is exact
+    let (s, c) = (0.5 * sinc_series(h2), cos_series(h2));
+    (DQuat::from_xyzw(s * v.x, s * v.y, s * v.z, c), h2 < 1e-4)
 }
 
 /// Logarithm map, inverse of [`quat_from_rotation_vector`]: the rotation
@@ -121,10 +130,17 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// length it falls back to the exact [`DQuat::normalize`].
 #[inline(always)]
 pub fn renormalize(q: DQuat) -> DQuat {
-    let n2 = q.length_squared();
-    if (n2 - 1.0).abs() < 1e-8 {
-        q * (0.5 * (3.0 - n2))
-    } else {
-        q.normalize()
+    match renormalize_near_unit(q) {
+        (r, true) => r,
+        _ => q.normalize(),
     }
+}
+
+/// [`renormalize`]'s Newton step alone, with no branch: the result, and
+/// whether `q` is near enough to unit length for it (`|q·q − 1| < 10⁻⁸`);
+/// where it is, this is [`renormalize`]'s result bit for bit.
+#[inline(always)]
+pub fn renormalize_near_unit(q: DQuat) -> (DQuat, bool) {
+    let n2 = q.length_squared();
+    (q * (0.5 * (3.0 - n2)), (n2 - 1.0).abs() < 1e-8)
 }

@@ -102,7 +102,10 @@ impl RotationScheme {
             && inertia.x > 0.0
             && self != RotationScheme::RichardsonLiggghts
         {
-            return renormalize(quat_from_rotation_vector(l_world * (dt / inertia.x)) * q);
+            return match spherical_top_drift_small(q, l_world, inertia.x, dt) {
+                (q1, true) => q1,
+                _ => renormalize(quat_from_rotation_vector(l_world * (dt / inertia.x)) * q),
+            };
         }
         self.drift_asymmetric(q, l_world, inertia, dt)
     }
@@ -169,4 +172,24 @@ impl RotationScheme {
     pub fn kicks_torque(self) -> bool {
         self != RotationScheme::ZhaoVanWachem
     }
+}
+
+/// The drift of a spherical top of principal moment `inertia` (kg m²) over
+/// `dt` (s), `q ← exp(L dt/I) q` renormalised ([`RotationScheme::drift`];
+/// `l_world` in kg m²/s, world frame), with no branch, so that a loop over
+/// several bodies vectorises (`step::first_half_lanes`): the result, and
+/// whether it holds, i.e. whether the rotation is small enough for the
+/// exponential's series and the product near enough to unit length for
+/// the Newton renormalisation. Where it holds, it is the drift's result
+/// bit for bit; elsewhere it is to be discarded.
+#[inline(always)]
+pub(crate) fn spherical_top_drift_small(
+    q: DQuat,
+    l_world: DVec3,
+    inertia: f64,
+    dt: f64,
+) -> (DQuat, bool) {
+    let (turn, small) = crate::math::quat_from_small_rotation_vector(l_world * (dt / inertia));
+    let (q1, unit) = crate::math::renormalize_near_unit(turn * q);
+    (q1, small & unit)
 }

@@ -14,7 +14,8 @@
 //! about the sphere centre, `Σ (x_c − x_s) × f + couples`. This equals
 //! `Σ (x_c − r_cm) × f` over the contacts.
 
-use super::integrate::{FinalKick, FirstHalf};
+use super::first_half_lanes::{BodyLanes, LANES};
+use super::integrate::{FinalKick, FirstHalf, Held};
 use super::wall_contacts::WallPass;
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::column_sum;
@@ -34,29 +35,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 const ENTRY_PREFETCH: usize = 8;
 
 /// Bodies whose gather runs before their first halves, in turn: the first
-/// halves of a block (kick, drift, rotation, sphere centres, skin check) are
-/// independent chains the processor can overlap, where one body's first
-/// half right after its own gather is one long chain. On the settled tetra
-/// bed, one thread, 8 gave a median 1.9 % more sphere-steps per second than
-/// no blocks (13 alternated pairs, −1.2 to +5.3 %; 4 and 16 no better); the
-/// stone bed, whose first halves are long already, is unchanged.
-const FIRST_HALF_BLOCK: usize = 8;
-
-/// A body's kicked state and its load, held from its gather to its first
-/// half; all world frame.
-#[derive(Clone, Copy, Default)]
-struct Held {
-    /// Velocity of the centre of mass, m/s.
-    v: glam::DVec3,
-    /// Angular momentum, kg m²/s.
-    l: glam::DVec3,
-    /// Angular velocity, rad/s.
-    om: glam::DVec3,
-    /// Force, N.
-    f: glam::DVec3,
-    /// Torque about the centre of mass, N m.
-    m: glam::DVec3,
-}
+/// halves of a block (kick, drift, rotation, sphere centres, skin check)
+/// run as the lanes of one vector loop where the bodies allow
+/// (`super::first_half_lanes`), else as independent chains the processor
+/// can overlap.
+const FIRST_HALF_BLOCK: usize = LANES;
 
 /// Bodies ahead whose column sum ([`crate::neighbor::PairBody::col`]) the
 /// gather prefetches.
@@ -314,9 +297,10 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
             (
                 PartnerCounts::default(),
                 [WallTouch::default(); MAX_TOUCHES_PER_WALL],
+                BodyLanes::idle(),
             )
         },
-        |(wcounts, touch_buf), c| {
+        |(wcounts, touch_buf, lanes), c| {
             // SAFETY: chunk c's statistics slot is written by chunk c only.
             let stat = unsafe { stats_out.get(c) };
             let b0 = c * chunk;
@@ -459,18 +443,9 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                     }
                 }
                 if let Some(h) = next {
-                    for bi in k0..k1 {
-                        let Held {
-                            mut v,
-                            mut l,
-                            mut om,
-                            f,
-                            m,
-                        } = held[bi - k0];
-                        // SAFETY: body bi (and its spheres) is handled by this
-                        // chunk only; it stores the body's state.
-                        stale |= unsafe { h.apply(bi, &mut v, &mut l, &mut om, f, m) };
-                    }
+                    // SAFETY: bodies k0..k1 (and their spheres) are handled
+                    // by this chunk only; it stores their state.
+                    stale |= unsafe { h.apply_block(k0, &mut held[..k1 - k0], lanes) };
                 }
             }
             if stale {

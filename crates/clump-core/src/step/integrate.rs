@@ -4,6 +4,7 @@
 //! factor; a full drift of the centre of mass; and a free-rotation drift of
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
+use super::first_half_lanes::{BodyLanes, LANES};
 use super::kinematics::sphere_position;
 use crate::neighbor::skin;
 use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};
@@ -37,16 +38,26 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
         n.div_ceil(block),
         cost,
         &mut w.scratch.balance[INITIAL_LOOP],
-        || (),
-        |_, blk| {
+        BodyLanes::idle,
+        |lanes, blk| {
             let mut stale = false;
-            for i in blk * block..((blk + 1) * block).min(n) {
+            let end = ((blk + 1) * block).min(n);
+            let mut held = [Held::default(); LANES];
+            for k0 in (blk * block..end).step_by(LANES) {
+                let k1 = (k0 + LANES).min(end);
                 // SAFETY: each body index is handled by exactly one block;
-                // i < n.
+                // every index is below n.
                 unsafe {
-                    let (mut v, mut l, mut om) =
-                        (half.vel.read(i), half.angm.read(i), half.omega.read(i));
-                    stale |= half.apply(i, &mut v, &mut l, &mut om, at(force, i), at(torque, i));
+                    for i in k0..k1 {
+                        held[i - k0] = Held {
+                            v: half.vel.read(i),
+                            l: half.angm.read(i),
+                            om: half.omega.read(i),
+                            f: at(force, i),
+                            m: at(torque, i),
+                        };
+                    }
+                    stale |= half.apply_block(k0, &mut held[..k1 - k0], lanes);
                 }
             }
             if stale {
@@ -55,6 +66,31 @@ pub fn initial(w: &mut World, spheres: bool) -> bool {
         },
     );
     any_stale.into_inner()
+}
+
+/// Tests only: whether every body takes the scalar path.
+#[inline(always)]
+fn lanes_off() -> bool {
+    #[cfg(test)]
+    return super::first_half_lanes::SCALAR_ONLY.load(std::sync::atomic::Ordering::SeqCst);
+    #[cfg(not(test))]
+    false
+}
+
+/// A body's kicked state and its load, held from its gather to its first
+/// half; all world frame.
+#[derive(Clone, Copy, Default)]
+pub(crate) struct Held {
+    /// Velocity of the centre of mass, m/s.
+    pub v: DVec3,
+    /// Angular momentum, kg m²/s.
+    pub l: DVec3,
+    /// Angular velocity, rad/s.
+    pub om: DVec3,
+    /// Force, N.
+    pub f: DVec3,
+    /// Torque about the centre of mass, N m.
+    pub m: DVec3,
 }
 
 /// The first half step of one body at a time (see [`initial`]): the pass of
@@ -67,6 +103,11 @@ pub(crate) struct FirstHalf {
     /// The step this first half begins.
     step: u64,
     scheme: crate::rotation::RotationScheme,
+    /// Whether the scheme lets [`BodyLanes`] take spherical tops (a
+    /// velocity-Verlet drift by the exact exponential).
+    lanes: bool,
+    /// The vector instructions [`BodyLanes`] run with.
+    simd: crate::par::simd::Simd,
     pos: SharedMut<DVec3>,
     pub(crate) vel: SharedMut<DVec3>,
     quat: SharedMut<glam::DQuat>,
@@ -119,6 +160,10 @@ impl FirstHalf {
             ),
             step,
             scheme: w.config.rotation,
+            lanes: w.config.rotation.kicks_torque()
+                && w.config.rotation != crate::rotation::RotationScheme::RichardsonLiggghts
+                && !lanes_off(),
+            simd: crate::par::simd::simd(),
             pos: SharedMut::new(&mut b.position),
             vel: SharedMut::new(&mut b.velocity),
             quat: SharedMut::new(&mut b.orientation),
@@ -192,21 +237,90 @@ impl FirstHalf {
                 DMat3::from_quat(q)
             }
         };
-        *self.pos.get(i) = x;
-        *self.quat.get(i) = q;
-        *self.vel.get(i) = *v;
-        *self.angm.get(i) = *l;
-        *self.omega.get(i) = *om;
-        if let Some(pb) = &self.pair_body {
-            // its column sum is not touched
-            let pb = pb.ptr(i);
-            (*pb).position = x;
-            (*pb).velocity = *v;
-            (*pb).angular_velocity = *om;
-        }
+        self.store(i, x, q, *v, *l, *om);
         match &self.sst {
             Some(sst) => self.move_spheres(i, x, q, &rot, sst),
             None => false,
+        }
+    }
+
+    /// [`FirstHalf::apply`] to the bodies `b0..b0 + held.len()` (at most
+    /// [`LANES`]), whose kicked state and load are `held`: the bodies of
+    /// the common case (`super::first_half_lanes`) as lanes, the others one
+    /// by one. `lanes` is scratch: the lanes of no body here are left as
+    /// the last block left them, whose harmless values they compute. Returns
+    /// true when one of their spheres moved more than half the skin since
+    /// the last build.
+    ///
+    /// # Safety
+    /// As [`FirstHalf::apply`], for each of these bodies.
+    #[inline(always)]
+    pub(crate) unsafe fn apply_block(
+        &self,
+        b0: usize,
+        held: &mut [Held],
+        lanes: &mut BodyLanes,
+    ) -> bool {
+        debug_assert!(held.len() <= LANES);
+        let mut stale = false;
+        let mut take = [false; LANES];
+        if let (true, Some(_)) = (self.lanes, &self.sst) {
+            for (k, h) in held.iter().enumerate() {
+                let i = b0 + k;
+                let inertia = self.inertia.read(i);
+                take[k] = self.kicks.lanes_take(self.step, i)
+                    && inertia.x == inertia.y
+                    && inertia.y == inertia.z
+                    && inertia.x > 0.0;
+                if take[k] {
+                    let (mass, fa) = self.kicks.mass_and_factor(i);
+                    let reach = self.treach.read(self.kicks.tmpl.read(i) as usize);
+                    lanes.set(
+                        k,
+                        (self.pos.read(i), h.v, h.l, self.quat.read(i)),
+                        (h.f, h.m),
+                        (mass, fa, inertia.x),
+                        self.xref_pose.read(i),
+                        reach,
+                    );
+                }
+            }
+            if take.contains(&true) {
+                lanes.run(self.kicks.dt, self.half_skin, self.simd);
+            }
+        }
+        for (k, h) in held.iter_mut().enumerate() {
+            let i = b0 + k;
+            match &self.sst {
+                Some(sst) if take[k] && lanes.holds[k] => {
+                    let (x, v, l, q, om, rot) = lanes.get(k);
+                    self.store(i, x, q, v, l, om);
+                    stale |= self.place_spheres(i, x, &rot, sst, lanes.within[k]);
+                }
+                _ => stale |= self.apply(i, &mut h.v, &mut h.l, &mut h.om, h.f, h.m),
+            }
+        }
+        stale
+    }
+
+    /// Stores body `i`'s new centre `x`, orientation `q`, velocity `v`,
+    /// angular momentum `l` and angular velocity `om` (world frame), also in
+    /// the pair stage's copy (whose column sum is not touched).
+    ///
+    /// # Safety
+    /// As [`FirstHalf::apply`].
+    #[inline(always)]
+    unsafe fn store(&self, i: usize, x: DVec3, q: glam::DQuat, v: DVec3, l: DVec3, om: DVec3) {
+        *self.pos.get(i) = x;
+        *self.quat.get(i) = q;
+        *self.vel.get(i) = v;
+        *self.angm.get(i) = l;
+        *self.omega.get(i) = om;
+        if let Some(pb) = &self.pair_body {
+            let pb = pb.ptr(i);
+            (*pb).position = x;
+            (*pb).velocity = v;
+            (*pb).angular_velocity = om;
         }
     }
 
@@ -236,6 +350,28 @@ impl FirstHalf {
         rot: &DMat3,
         sst: &SharedMut<crate::sphere::SphereState>,
     ) -> bool {
+        let (x0, q0) = self.xref_pose.read(i);
+        let reach = self.treach.read(self.kicks.tmpl.read(i) as usize);
+        let bound = skin::body_displacement_bound(x, q, x0, q0, reach);
+        let within = skin::surely_within(bound, self.half_skin, x.abs().max_element() + reach);
+        self.place_spheres(i, x, rot, sst, within)
+    }
+
+    /// [`FirstHalf::move_spheres`] once the bound is settled: `within`,
+    /// the body surely moved no sphere beyond half the skin
+    /// ([`skin::surely_within`]); else its spheres take the exact test.
+    ///
+    /// # Safety
+    /// As [`FirstHalf::move_spheres`].
+    #[inline(always)]
+    unsafe fn place_spheres(
+        &self,
+        i: usize,
+        x: DVec3,
+        rot: &DMat3,
+        sst: &SharedMut<crate::sphere::SphereState>,
+        within: bool,
+    ) -> bool {
         let t = self.kicks.tmpl.read(i) as usize;
         let o0 = self.tfirst.read(t) as usize;
         let (s0, s1) = (self.first.read(i) as usize, self.first.read(i + 1) as usize);
@@ -244,10 +380,7 @@ impl FirstHalf {
         let state = std::slice::from_raw_parts_mut(sst.ptr(s0), n);
         let offset = std::slice::from_raw_parts(self.toff.as_ptr().add(o0), n);
         let limit2 = self.limit2;
-        let (x0, q0) = self.xref_pose.read(i);
-        let reach = self.treach.read(t);
-        let bound = skin::body_displacement_bound(x, q, x0, q0, reach);
-        if skin::surely_within(bound, self.half_skin, x.abs().max_element() + reach) {
+        if within {
             for (st, &off) in state.iter_mut().zip(offset) {
                 st.position = sphere_position(x, rot, off);
             }
@@ -255,6 +388,7 @@ impl FirstHalf {
         }
         // near the limit: each sphere against its position at the build,
         // computed from the build's pose as the build computed it
+        let (x0, q0) = self.xref_pose.read(i);
         let rot0 = DMat3::from_quat(q0);
         let mut stale = false;
         for (st, &off) in state.iter_mut().zip(offset) {
@@ -396,14 +530,34 @@ impl Kicks {
         if step < self.start.read(i) {
             return false;
         }
-        let t = self.tmpl.read(i) as usize;
-        let fa = mass_factor(self.added, (*self.templates.ptr(t)).density);
-        let mut kick = HalfKick::new(self.dt, self.mass.read(i), fa);
+        let (mass, fa) = self.mass_and_factor(i);
+        let mut kick = HalfKick::new(self.dt, mass, fa);
         if !self.torque_kicks {
             kick.dtt = 0.0;
         }
         kick.apply(v, l, f, m, self.ff.read(i), self.tf.read(i));
         true
+    }
+
+    /// Body `i`'s mass (kg) and added-mass factor.
+    ///
+    /// # Safety
+    /// `i` is a body index.
+    #[inline(always)]
+    unsafe fn mass_and_factor(&self, i: usize) -> (f64, f64) {
+        let t = self.tmpl.read(i) as usize;
+        let fa = mass_factor(self.added, (*self.templates.ptr(t)).density);
+        (self.mass.read(i), fa)
+    }
+
+    /// Whether body `i` takes its first half of step `step` in
+    /// [`BodyLanes`]: started, and free on every axis.
+    ///
+    /// # Safety
+    /// `i` is a body index.
+    #[inline(always)]
+    unsafe fn lanes_take(&self, step: u64, i: usize) -> bool {
+        step >= self.start.read(i) && self.ff.read(i) == [true; 3] && self.tf.read(i) == [true; 3]
     }
 
     /// The rotation of body `i` over the whole step by Zhao & van Wachem
@@ -439,7 +593,7 @@ impl Kicks {
 
 /// A half kick of one body over `dt/2`: `v += F dt/(2 m f_a)`,
 /// `L += M dt/(2 f_a)` (world frame), per axis only where the flag allows.
-struct HalfKick {
+pub(crate) struct HalfKick {
     /// `dt/(2 m f_a)`, s/kg.
     dtfm: f64,
     /// `dt/(2 f_a)`, s.
@@ -448,7 +602,7 @@ struct HalfKick {
 
 impl HalfKick {
     #[inline(always)]
-    fn new(dt: f64, mass: f64, fa: f64) -> Self {
+    pub(crate) fn new(dt: f64, mass: f64, fa: f64) -> Self {
         let half = 0.5 * dt;
         HalfKick {
             dtfm: half / (mass * fa),
@@ -470,8 +624,7 @@ impl HalfKick {
         // a free body (every axis kicked, the common case): plain vector
         // additions, without building the masks (4 % of the gather)
         if ff == [true; 3] && tf == [true; 3] {
-            *v += self.dtfm * force;
-            *l += self.dtt * torque;
+            self.apply_free(v, l, force, torque);
             return;
         }
         // whole-vector selects, not per-component stores: the integration
@@ -481,6 +634,21 @@ impl HalfKick {
         let (fm, tm) = (glam::BVec3::from(ff), glam::BVec3::from(tf));
         *v = glam::DVec3::select(fm, *v + self.dtfm * force, *v);
         *l = glam::DVec3::select(tm, *l + self.dtt * torque, *l);
+    }
+}
+
+impl HalfKick {
+    /// [`HalfKick::apply`] to a body free on every axis.
+    #[inline(always)]
+    pub(crate) fn apply_free(
+        &self,
+        v: &mut glam::DVec3,
+        l: &mut glam::DVec3,
+        force: glam::DVec3,
+        torque: glam::DVec3,
+    ) {
+        *v += self.dtfm * force;
+        *l += self.dtt * torque;
     }
 }
 

@@ -36,6 +36,7 @@
 //! chunks (`affinity`), balanced by measured time; the cuts never change
 //! the results.
 
+mod first_half_lanes;
 pub mod force;
 pub mod integrate;
 pub mod kinematics;

@@ -1,0 +1,418 @@
+//! The first half step of up to eight bodies at once, one lane per body
+//! (structure of arrays), for the bodies of the common case: started, free
+//! on every axis, spherical tops (three equal principal moments: single
+//! spheres, regular tetrahedra, cubes of spheres) under a velocity-Verlet
+//! scheme whose free rotation of such a body is the exact exponential
+//! ([`crate::rotation::RotationScheme::drift`]).
+//!
+//! A body's first half (`integrate::FirstHalf::apply`: half kick, drift,
+//! rotation, ω, skin bound) is one long chain of dependent operations, about
+//! 170 cycles on the settled tetra bed; the processor overlaps little of one
+//! body's chain with the next's. Run as eight lanes of a loop with no
+//! branch, the compiler turns the chain into vector instructions, so eight
+//! bodies take about one body's latency. The loop is compiled for AVX-512
+//! and AVX2 besides the baseline, and the widest the processor has runs
+//! (`crate::par::simd`).
+//!
+//! Same bits: a lane runs the scalar path's own functions (the half kick,
+//! [`crate::rotation::spherical_top_drift_small`], `DMat3::from_quat`, the
+//! skin bound), the same IEEE operations in the same order, never contracted
+//! into FMA. The branches of the scalar path become flags: a lane whose
+//! rotation is too large for the series, or whose product is too far from
+//! unit length for the Newton step, is discarded and its body takes the
+//! scalar path; a body whose bound comes near half the skin takes the exact
+//! per-sphere test.
+
+use super::integrate::HalfKick;
+use crate::neighbor::skin;
+use crate::par::simd::Simd;
+use glam::{DMat3, DQuat, DVec3};
+
+/// Bodies per block.
+pub(crate) const LANES: usize = 8;
+
+/// Tests only: while set, every body takes the scalar path. The two paths
+/// give the same bits, so this changes no result of a test that runs
+/// meanwhile.
+#[cfg(test)]
+pub(crate) static SCALAR_ONLY: std::sync::atomic::AtomicBool =
+    std::sync::atomic::AtomicBool::new(false);
+
+type Row = [f64; LANES];
+/// A 3-vector per lane (x, y and z rows), world frame.
+type Rows3 = [Row; 3];
+/// A quaternion per lane (x, y, z and w rows).
+type Rows4 = [Row; 4];
+
+/// The state of a block's bodies, lane `k` = body `k` of the block; world
+/// frame, SI units. The kinematic fields are inputs, and the outputs after
+/// [`BodyLanes::run`].
+#[derive(Clone, Copy)]
+pub(crate) struct BodyLanes {
+    /// Centre of mass, m.
+    pub x: Rows3,
+    /// Velocity of the centre of mass, m/s.
+    pub v: Rows3,
+    /// Angular momentum, kg m²/s.
+    pub l: Rows3,
+    /// Orientation, body → world.
+    pub q: Rows4,
+    /// Force of the step before, N (input only).
+    pub f: Rows3,
+    /// Torque of the step before about the centre of mass, N m (input only).
+    pub m: Rows3,
+    /// Mass, kg.
+    pub mass: Row,
+    /// Added-mass factor.
+    pub added: Row,
+    /// The principal moment (all three equal), kg m².
+    pub inertia: Row,
+    /// Pose at the last neighbour build, the skin check's reference.
+    pub x_ref: Rows3,
+    /// Orientation at the last neighbour build.
+    pub q_ref: Rows4,
+    /// Farthest sphere centre from the centre of mass, m.
+    pub reach: Row,
+    /// Output: angular velocity, rad/s.
+    pub om: Rows3,
+    /// Output: rotation matrix (body → world), columns x, y, z.
+    pub rot: [Rows3; 3],
+    /// Output: whether the lane holds (else its body takes the scalar path).
+    pub holds: [bool; LANES],
+    /// Output: whether the body surely moved no sphere beyond half the skin
+    /// ([`skin::surely_within`]; else its spheres take the exact test).
+    pub within: [bool; LANES],
+}
+
+/// Lane `k` of a 3-vector row set.
+#[inline(always)]
+fn get3(r: &Rows3, k: usize) -> DVec3 {
+    DVec3::new(r[0][k], r[1][k], r[2][k])
+}
+
+/// Sets lane `k` of a 3-vector row set.
+#[inline(always)]
+fn set3(r: &mut Rows3, k: usize, x: DVec3) {
+    r[0][k] = x.x;
+    r[1][k] = x.y;
+    r[2][k] = x.z;
+}
+
+/// Lane `k` of a quaternion row set.
+#[inline(always)]
+fn get4(r: &Rows4, k: usize) -> DQuat {
+    DQuat::from_xyzw(r[0][k], r[1][k], r[2][k], r[3][k])
+}
+
+/// Sets lane `k` of a quaternion row set.
+#[inline(always)]
+fn set4(r: &mut Rows4, k: usize, q: DQuat) {
+    r[0][k] = q.x;
+    r[1][k] = q.y;
+    r[2][k] = q.z;
+    r[3][k] = q.w;
+}
+
+impl BodyLanes {
+    /// Every lane a body at rest at the origin with unit mass and moment:
+    /// lanes left so compute harmless values.
+    pub(crate) fn idle() -> Self {
+        let (zero, one) = ([0.0; LANES], [1.0; LANES]);
+        let quat = [zero, zero, zero, one];
+        BodyLanes {
+            x: [zero; 3],
+            v: [zero; 3],
+            l: [zero; 3],
+            q: quat,
+            f: [zero; 3],
+            m: [zero; 3],
+            mass: one,
+            added: one,
+            inertia: one,
+            x_ref: [zero; 3],
+            q_ref: quat,
+            reach: zero,
+            om: [zero; 3],
+            rot: [[zero; 3]; 3],
+            holds: [false; LANES],
+            within: [false; LANES],
+        }
+    }
+
+    /// Sets lane `k`'s inputs (world frame): centre `x`, velocity `v`,
+    /// angular momentum `l`, orientation `q`, force `f` and torque `m` of
+    /// the step before, mass and added-mass factor, principal moment, the
+    /// pose at the last build and the body's reach.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(crate) fn set(
+        &mut self,
+        k: usize,
+        (x, v, l, q): (DVec3, DVec3, DVec3, DQuat),
+        (f, m): (DVec3, DVec3),
+        (mass, added, inertia): (f64, f64, f64),
+        (x_ref, q_ref): (DVec3, DQuat),
+        reach: f64,
+    ) {
+        set3(&mut self.x, k, x);
+        set3(&mut self.v, k, v);
+        set3(&mut self.l, k, l);
+        set4(&mut self.q, k, q);
+        set3(&mut self.f, k, f);
+        set3(&mut self.m, k, m);
+        self.mass[k] = mass;
+        self.added[k] = added;
+        self.inertia[k] = inertia;
+        set3(&mut self.x_ref, k, x_ref);
+        set4(&mut self.q_ref, k, q_ref);
+        self.reach[k] = reach;
+    }
+
+    /// Lane `k`'s results: centre, velocity, angular momentum, orientation,
+    /// angular velocity and rotation matrix (world frame).
+    #[inline(always)]
+    pub(crate) fn get(&self, k: usize) -> (DVec3, DVec3, DVec3, DQuat, DVec3, DMat3) {
+        let rot = DMat3::from_cols(
+            get3(&self.rot[0], k),
+            get3(&self.rot[1], k),
+            get3(&self.rot[2], k),
+        );
+        (
+            get3(&self.x, k),
+            get3(&self.v, k),
+            get3(&self.l, k),
+            get4(&self.q, k),
+            get3(&self.om, k),
+            rot,
+        )
+    }
+
+    /// The first half step over `dt` (s) of every lane, `half_skin` (m)
+    /// the skin check's limit, compiled for `simd` (detected on this
+    /// processor by [`crate::par::simd::simd`]).
+    #[inline(always)]
+    pub(crate) fn run(&mut self, dt: f64, half_skin: f64, simd: Simd) {
+        #[cfg(target_arch = "x86_64")]
+        match simd {
+            // SAFETY: `simd` was detected on this processor.
+            Simd::Avx512 => return unsafe { run_avx512(self, dt, half_skin) },
+            Simd::Avx2 => return unsafe { run_avx2(self, dt, half_skin) },
+            Simd::Baseline => {}
+        }
+        let _ = simd;
+        run_lanes(self, dt, half_skin);
+    }
+
+    /// Lane `k`: the half kick, the drift of the centre and of the
+    /// orientation, ω from L, the rotation matrix, and the skin bound, as
+    /// `integrate::FirstHalf::apply` computes them for a free, started
+    /// spherical top.
+    #[inline(always)]
+    fn lane(&mut self, k: usize, dt: f64, half_skin: f64) {
+        let (mut v, mut l) = (get3(&self.v, k), get3(&self.l, k));
+        let kick = HalfKick::new(dt, self.mass[k], self.added[k]);
+        kick.apply_free(&mut v, &mut l, get3(&self.f, k), get3(&self.m, k));
+        let x = get3(&self.x, k) + v * dt;
+        let inertia = self.inertia[k];
+        let (q, holds) =
+            crate::rotation::spherical_top_drift_small(get4(&self.q, k), l, inertia, dt);
+        let rot = DMat3::from_quat(q);
+        // ω = R I⁻¹ Rᵀ L = L / I for a spherical top (rotation::omega_world_rot)
+        let om = l * (1.0 / inertia);
+        let reach = self.reach[k];
+        let bound =
+            skin::body_displacement_bound(x, q, get3(&self.x_ref, k), get4(&self.q_ref, k), reach);
+        self.within[k] = skin::surely_within(bound, half_skin, x.abs().max_element() + reach);
+        self.holds[k] = holds;
+        set3(&mut self.x, k, x);
+        set3(&mut self.v, k, v);
+        set3(&mut self.l, k, l);
+        set4(&mut self.q, k, q);
+        set3(&mut self.om, k, om);
+        set3(&mut self.rot[0], k, rot.x_axis);
+        set3(&mut self.rot[1], k, rot.y_axis);
+        set3(&mut self.rot[2], k, rot.z_axis);
+    }
+}
+
+/// Every lane of `b`, in a loop the compiler vectorises.
+#[inline(always)]
+fn run_lanes(b: &mut BodyLanes, dt: f64, half_skin: f64) {
+    for k in 0..LANES {
+        b.lane(k, dt, half_skin);
+    }
+}
+
+/// [`run_lanes`] compiled for AVX-512 (8 doubles per vector).
+///
+/// # Safety
+/// The processor supports AVX-512 F, VL and DQ.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512dq")]
+unsafe fn run_avx512(b: &mut BodyLanes, dt: f64, half_skin: f64) {
+    run_lanes(b, dt, half_skin)
+}
+
+/// [`run_lanes`] compiled for AVX2 (4 doubles per vector).
+///
+/// # Safety
+/// The processor supports AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn run_avx2(b: &mut BodyLanes, dt: f64, half_skin: f64) {
+    run_lanes(b, dt, half_skin)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rotation::{omega_world, RotationScheme};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn bits3(v: DVec3) -> [u64; 3] {
+        v.to_array().map(f64::to_bits)
+    }
+
+    /// Every lane of every vector level the processor has is the scalar
+    /// first half of a free spherical top bit for bit: the velocity-Verlet
+    /// half kick, the drift of the centre, the rotation scheme's drift (its
+    /// public entry, with its branches), ω from L, the rotation matrix and
+    /// the skin bound. A lane whose rotation is beyond the series (half
+    /// angle ≥ 0.01) does not hold; every other lane does.
+    #[test]
+    fn lanes_are_the_scalar_first_half_bit_for_bit() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let dt = 1e-5;
+        let half_skin = 2e-5;
+        let mut levels = vec![Simd::Baseline];
+        let detected = crate::par::simd::simd();
+        if detected != Simd::Baseline {
+            levels.push(Simd::Avx2);
+        }
+        if detected == Simd::Avx512 {
+            levels.push(Simd::Avx512);
+        }
+        let rnd3 = |rng: &mut ChaCha8Rng, s: f64| {
+            DVec3::new(
+                rng.gen_range(-s..s),
+                rng.gen_range(-s..s),
+                rng.gen_range(-s..s),
+            )
+        };
+        let (mut held, mut fast, mut near) = (0, 0, 0);
+        for round in 0..400 {
+            let mut b = BodyLanes::idle();
+            let mut inputs = Vec::new();
+            for k in 0..LANES {
+                let x = rnd3(&mut rng, 0.1);
+                let q = DQuat::from_scaled_axis(rnd3(&mut rng, 3.0)).normalize();
+                let inertia = rng.gen_range(1e-12..1e-6);
+                // ω up to 100 rad/s, a few lanes far beyond the series
+                let spin = if (round + k) % 13 == 0 { 3e4 } else { 100.0 };
+                let l = rnd3(&mut rng, spin) * inertia;
+                let v = rnd3(&mut rng, 1.0);
+                let mass = rng.gen_range(1e-6..1e-2);
+                let f = rnd3(&mut rng, 1.0) * mass * 10.0;
+                let m = rnd3(&mut rng, 1e-3) * inertia * 1e3;
+                let added = if k % 3 == 0 {
+                    1.0
+                } else {
+                    rng.gen_range(1.0..1.5)
+                };
+                // the reference pose a little away, some near half the skin
+                let x_ref = x - rnd3(&mut rng, if k % 2 == 0 { 1e-5 } else { 1e-6 });
+                let q_ref = (DQuat::from_scaled_axis(rnd3(&mut rng, 1e-3)) * q).normalize();
+                let reach = rng.gen_range(0.0..2e-3);
+                b.set(
+                    k,
+                    (x, v, l, q),
+                    (f, m),
+                    (mass, added, inertia),
+                    (x_ref, q_ref),
+                    reach,
+                );
+                inputs.push((x, v, l, q, f, m, mass, added, inertia, x_ref, q_ref, reach));
+            }
+            let mut outs = Vec::new();
+            for &simd in &levels {
+                let mut lanes = b;
+                lanes.run(dt, half_skin, simd);
+                outs.push(lanes);
+            }
+            for (k, &(x, v, l, q, f, m, mass, added, inertia, x_ref, q_ref, reach)) in
+                inputs.iter().enumerate()
+            {
+                // the scalar path, as integrate::FirstHalf::apply takes it
+                let (mut v1, mut l1) = (v, l);
+                HalfKick::new(dt, mass, added).apply_free(&mut v1, &mut l1, f, m);
+                let x1 = x + v1 * dt;
+                let i3 = DVec3::splat(inertia);
+                let q1 = RotationScheme::Richardson.drift(q, l1, i3, dt);
+                let om1 = omega_world(q1, l1, i3);
+                let rot1 = DMat3::from_quat(q1);
+                let bound = skin::body_displacement_bound(x1, q1, x_ref, q_ref, reach);
+                let within = skin::surely_within(bound, half_skin, x1.abs().max_element() + reach);
+                // the series holds below a half angle of 0.01 (h² < 1e-4)
+                let h2 = 0.25 * (l1 * (dt / inertia)).length_squared();
+                for lanes in &outs {
+                    assert_eq!(lanes.holds[k], h2 < 1e-4, "series, lane {k}, h² = {h2}");
+                    if !lanes.holds[k] {
+                        fast += 1;
+                        continue;
+                    }
+                    held += 1;
+                    let (x2, v2, l2, q2, om2, rot2) = lanes.get(k);
+                    assert_eq!(bits3(x2), bits3(x1), "centre, lane {k}");
+                    assert_eq!(bits3(v2), bits3(v1), "velocity, lane {k}");
+                    assert_eq!(bits3(l2), bits3(l1), "angular momentum, lane {k}");
+                    assert_eq!(
+                        q2.to_array().map(f64::to_bits),
+                        q1.to_array().map(f64::to_bits),
+                        "orientation, lane {k}"
+                    );
+                    assert_eq!(bits3(om2), bits3(om1), "angular velocity, lane {k}");
+                    assert_eq!(
+                        rot2.to_cols_array().map(f64::to_bits),
+                        rot1.to_cols_array().map(f64::to_bits),
+                        "rotation, lane {k}"
+                    );
+                    assert_eq!(lanes.within[k], within, "skin bound, lane {k}");
+                    near += usize::from(!within);
+                }
+            }
+        }
+        assert!(
+            fast > 50 && held > 8000 && near > 100 && held - near > 100,
+            "lanes held {held} ({near} near the skin), beyond the series {fast}"
+        );
+    }
+
+    /// A settling tetra bed (spherical tops) with the bodies the lanes do
+    /// not take mixed in: one with a locked force axis, one with a locked
+    /// torque axis, one inserted to start later (it moves ballistically
+    /// until then), and one spun beyond the exponential's series. Every
+    /// body's state is the same bits with the lanes as on the scalar path
+    /// alone, after 1 500 steps with rebuilds on the way.
+    #[test]
+    fn a_bed_steps_the_same_bits_with_and_without_lanes() {
+        use std::sync::atomic::Ordering;
+        let run = |scalar: bool| {
+            let mut w = crate::testbed::tetra_lattice_bed(6, 6, 3, None);
+            w.bodies.force_flag[3] = [true, true, false];
+            w.bodies.torque_flag[10] = [false, true, true];
+            w.bodies.start_step[20] = 700;
+            w.bodies.velocity[20] = DVec3::new(0.0, 0.0, -0.05);
+            let spin = w.bodies.inertia[30].x * 4e3;
+            w.bodies.angular_momentum[30] = DVec3::new(0.0, spin, spin);
+            SCALAR_ONLY.store(scalar, Ordering::SeqCst);
+            w.run(1500).unwrap();
+            SCALAR_ONLY.store(false, Ordering::SeqCst);
+            (crate::testbed::state_bits(&w), w.rebuilds)
+        };
+        let (lanes, rebuilds) = run(false);
+        let (scalar, _) = run(true);
+        assert!(rebuilds > 3, "only {rebuilds} rebuilds");
+        assert!(lanes == scalar, "the lanes changed the bits");
+    }
+}
