@@ -6,12 +6,15 @@
 //! ([`crate::rotation::RotationScheme::drift`]).
 //!
 //! A body's first half (`integrate::FirstHalf::apply`: half kick, drift,
-//! rotation, ω, skin bound) is one long chain of dependent operations, about
-//! 170 cycles on the settled tetra bed; the processor overlaps little of one
-//! body's chain with the next's. Run as eight lanes of a loop with no
+//! rotation, ω, skin bound, sphere centres) is one long chain of dependent
+//! operations, 43 ns a body on the settled tetra bed (10.8 ns a
+//! sphere-step, measured as a pass of its own); the processor overlaps
+//! little of one body's chain with the next's. Run as eight lanes of a loop with no
 //! branch, the compiler turns the chain into vector instructions, so eight
-//! bodies take about one body's latency. The loop is compiled for AVX-512
-//! and AVX2 besides the baseline, and the widest the processor has runs
+//! bodies take about one body's latency. A block of one template whose
+//! bodies all hold also has its sphere centres placed by the lanes, slot by
+//! slot ([`BodyLanes::place`]). The loops are compiled for AVX-512 and AVX2
+//! besides the baseline, and the widest the processor has runs
 //! (`crate::par::simd`).
 //!
 //! Same bits: a lane runs the scalar path's own functions (the half kick,
@@ -24,12 +27,17 @@
 //! per-sphere test.
 
 use super::integrate::HalfKick;
+use super::kinematics::sphere_position;
 use crate::neighbor::skin;
 use crate::par::simd::Simd;
 use glam::{DMat3, DQuat, DVec3};
 
 /// Bodies per block.
 pub(crate) const LANES: usize = 8;
+
+/// Most spheres per body whose centres the lanes place
+/// ([`BodyLanes::place`]); bodies with more place their own.
+pub(crate) const SLOTS: usize = 8;
 
 /// Tests only: while set, every body takes the scalar path. The two paths
 /// give the same bits, so this changes no result of a test that runs
@@ -82,6 +90,8 @@ pub(crate) struct BodyLanes {
     /// Output: whether the body surely moved no sphere beyond half the skin
     /// ([`skin::surely_within`]; else its spheres take the exact test).
     pub within: [bool; LANES],
+    /// Output of [`BodyLanes::place`]: sphere `s` of each body, m.
+    pub spheres: [Rows3; SLOTS],
 }
 
 /// Lane `k` of a 3-vector row set.
@@ -136,6 +146,7 @@ impl BodyLanes {
             rot: [[zero; 3]; 3],
             holds: [false; LANES],
             within: [false; LANES],
+            spheres: [[zero; 3]; SLOTS],
         }
     }
 
@@ -203,6 +214,25 @@ impl BodyLanes {
         run_lanes(self, dt, half_skin);
     }
 
+    /// Places the spheres of every lane's body, all of the same template
+    /// with the body-frame offsets `offsets` (m, at most [`SLOTS`]), at the
+    /// lanes' new poses ([`BodyLanes::run`]): sphere `s` of lane `k` at
+    /// `spheres[s]`, lane `k`. The formula of every stage
+    /// ([`sphere_position`]), vectorised over the lanes.
+    #[inline(always)]
+    pub(crate) fn place(&mut self, offsets: &[DVec3], simd: Simd) {
+        debug_assert!(offsets.len() <= SLOTS);
+        #[cfg(target_arch = "x86_64")]
+        match simd {
+            // SAFETY: `simd` was detected on this processor.
+            Simd::Avx512 => return unsafe { place_avx512(self, offsets) },
+            Simd::Avx2 => return unsafe { place_avx2(self, offsets) },
+            Simd::Baseline => {}
+        }
+        let _ = simd;
+        place_lanes(self, offsets);
+    }
+
     /// Lane `k`: the half kick, the drift of the centre and of the
     /// orientation, ω from L, the rotation matrix, and the skin bound, as
     /// `integrate::FirstHalf::apply` computes them for a free, started
@@ -233,6 +263,39 @@ impl BodyLanes {
         set3(&mut self.rot[1], k, rot.y_axis);
         set3(&mut self.rot[2], k, rot.z_axis);
     }
+}
+
+/// The spheres of every lane of `b` ([`BodyLanes::place`]), each slot in
+/// a loop the compiler vectorises.
+#[inline(always)]
+fn place_lanes(b: &mut BodyLanes, offsets: &[DVec3]) {
+    for (s, &off) in offsets.iter().enumerate().take(SLOTS) {
+        for k in 0..LANES {
+            let rot = DMat3::from_cols(get3(&b.rot[0], k), get3(&b.rot[1], k), get3(&b.rot[2], k));
+            let p = sphere_position(get3(&b.x, k), &rot, off);
+            set3(&mut b.spheres[s], k, p);
+        }
+    }
+}
+
+/// [`place_lanes`] compiled for AVX-512.
+///
+/// # Safety
+/// The processor supports AVX-512 F, VL and DQ.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512dq")]
+unsafe fn place_avx512(b: &mut BodyLanes, offsets: &[DVec3]) {
+    place_lanes(b, offsets)
+}
+
+/// [`place_lanes`] compiled for AVX2.
+///
+/// # Safety
+/// The processor supports AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn place_avx2(b: &mut BodyLanes, offsets: &[DVec3]) {
+    place_lanes(b, offsets)
 }
 
 /// Every lane of `b`, in a loop the compiler vectorises.
@@ -277,9 +340,10 @@ mod tests {
     /// Every lane of every vector level the processor has is the scalar
     /// first half of a free spherical top bit for bit: the velocity-Verlet
     /// half kick, the drift of the centre, the rotation scheme's drift (its
-    /// public entry, with its branches), ω from L, the rotation matrix and
-    /// the skin bound. A lane whose rotation is beyond the series (half
-    /// angle ≥ 0.01) does not hold; every other lane does.
+    /// public entry, with its branches), ω from L, the rotation matrix, the
+    /// skin bound and the sphere centres of 1 to 8 slots. A lane whose
+    /// rotation is beyond the series (half angle ≥ 0.01) does not hold;
+    /// every other lane does.
     #[test]
     fn lanes_are_the_scalar_first_half_bit_for_bit() {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
@@ -334,10 +398,14 @@ mod tests {
                 );
                 inputs.push((x, v, l, q, f, m, mass, added, inertia, x_ref, q_ref, reach));
             }
+            let offsets: Vec<DVec3> = (0..1 + round % SLOTS)
+                .map(|_| rnd3(&mut rng, 2e-3))
+                .collect();
             let mut outs = Vec::new();
             for &simd in &levels {
                 let mut lanes = b;
                 lanes.run(dt, half_skin, simd);
+                lanes.place(&offsets, simd);
                 outs.push(lanes);
             }
             for (k, &(x, v, l, q, f, m, mass, added, inertia, x_ref, q_ref, reach)) in
@@ -378,6 +446,12 @@ mod tests {
                         "rotation, lane {k}"
                     );
                     assert_eq!(lanes.within[k], within, "skin bound, lane {k}");
+                    for (s, &off) in offsets.iter().enumerate() {
+                        let slot = &lanes.spheres[s];
+                        let p = DVec3::new(slot[0][k], slot[1][k], slot[2][k]);
+                        let want = crate::step::kinematics::sphere_position(x1, &rot1, off);
+                        assert_eq!(bits3(p), bits3(want), "sphere {s}, lane {k}");
+                    }
                     near += usize::from(!within);
                 }
             }

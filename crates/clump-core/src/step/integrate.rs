@@ -289,6 +289,11 @@ impl FirstHalf {
                 lanes.run(self.kicks.dt, self.half_skin, self.simd);
             }
         }
+        if let Some(sst) = &self.sst {
+            if held.len() == LANES && self.place_block(b0, &take, lanes, sst) {
+                return false;
+            }
+        }
         for (k, h) in held.iter_mut().enumerate() {
             let i = b0 + k;
             match &self.sst {
@@ -301,6 +306,53 @@ impl FirstHalf {
             }
         }
         stale
+    }
+
+    /// The end of [`FirstHalf::apply_block`] for a whole block of bodies
+    /// `b0..b0 + LANES` that the lanes took, that hold and that surely moved
+    /// no sphere beyond half the skin, all of one template of at most
+    /// [`super::first_half_lanes::SLOTS`] spheres: their state is stored and
+    /// their spheres placed by the lanes. False, having done nothing, for
+    /// any other block.
+    ///
+    /// # Safety
+    /// As [`FirstHalf::apply_block`].
+    #[inline(always)]
+    unsafe fn place_block(
+        &self,
+        b0: usize,
+        take: &[bool; LANES],
+        lanes: &mut BodyLanes,
+        sst: &SharedMut<crate::sphere::SphereState>,
+    ) -> bool {
+        let t = self.kicks.tmpl.read(b0);
+        let whole = (0..LANES).all(|k| {
+            take[k] && lanes.holds[k] && lanes.within[k] && self.kicks.tmpl.read(b0 + k) == t
+        });
+        let (s0, s1) = (
+            self.first.read(b0) as usize,
+            self.first.read(b0 + 1) as usize,
+        );
+        let n = s1 - s0;
+        if !whole || n > super::first_half_lanes::SLOTS {
+            return false;
+        }
+        let o0 = self.tfirst.read(t as usize) as usize;
+        debug_assert!(o0 + n <= self.toff.len() && s0 + LANES * n <= sst.len());
+        let offsets = std::slice::from_raw_parts(self.toff.as_ptr().add(o0), n);
+        lanes.place(offsets, self.simd);
+        for k in 0..LANES {
+            let i = b0 + k;
+            let (x, v, l, q, om, _) = lanes.get(k);
+            self.store(i, x, q, v, l, om);
+            // the bodies' spheres follow each other in storage, n each
+            debug_assert_eq!(self.first.read(i) as usize, s0 + k * n);
+            let first = sst.ptr(s0 + k * n);
+            for (s, slot) in lanes.spheres.iter().enumerate().take(n) {
+                (*first.add(s)).position = DVec3::new(slot[0][k], slot[1][k], slot[2][k]);
+            }
+        }
+        true
     }
 
     /// Stores body `i`'s new centre `x`, orientation `q`, velocity `v`,
