@@ -53,7 +53,8 @@ type Rows3 = [Row; 3];
 type Rows4 = [Row; 4];
 
 /// The state of a block's bodies, lane `k` = body `k` of the block; world
-/// frame, SI units. The kinematic fields are inputs, and the outputs after
+/// frame, SI units. The kinematic fields (centre, velocity, angular
+/// momentum, orientation) are inputs, and the outputs after
 /// [`BodyLanes::run`].
 #[derive(Clone, Copy)]
 pub(crate) struct BodyLanes {
@@ -124,37 +125,55 @@ fn set4(r: &mut Rows4, k: usize, q: DQuat) {
 }
 
 impl BodyLanes {
-    /// Every lane a body at rest at the origin with unit mass and moment:
-    /// lanes left so compute harmless values.
+    /// Every lane a body at rest at the origin with unit mass and moment
+    /// ([`BodyLanes::set_idle`]).
     pub(crate) fn idle() -> Self {
-        let (zero, one) = ([0.0; LANES], [1.0; LANES]);
-        let quat = [zero, zero, zero, one];
-        BodyLanes {
+        let zero = [0.0; LANES];
+        let mut b = BodyLanes {
             x: [zero; 3],
             v: [zero; 3],
             l: [zero; 3],
-            q: quat,
+            q: [zero; 4],
             f: [zero; 3],
             m: [zero; 3],
-            mass: one,
-            added: one,
-            inertia: one,
+            mass: zero,
+            added: zero,
+            inertia: zero,
             x_ref: [zero; 3],
-            q_ref: quat,
+            q_ref: [zero; 4],
             reach: zero,
             om: [zero; 3],
             rot: [[zero; 3]; 3],
             holds: [false; LANES],
             within: [false; LANES],
             spheres: [[zero; 3]; SLOTS],
+        };
+        for k in 0..LANES {
+            b.set_idle(k);
         }
+        b
+    }
+
+    /// Makes lane `k` a body at rest at the origin with unit mass and
+    /// moment, for a lane without a body: its results are not used, and
+    /// such inputs keep them ordinary numbers.
+    #[inline(always)]
+    pub(crate) fn set_idle(&mut self, k: usize) {
+        let (zero, rest) = (DVec3::ZERO, DQuat::IDENTITY);
+        self.set(
+            k,
+            (zero, zero, zero, rest),
+            (zero, zero),
+            (1.0, 1.0, 1.0),
+            (zero, rest),
+            0.0,
+        );
     }
 
     /// Sets lane `k`'s inputs (world frame): centre `x`, velocity `v`,
     /// angular momentum `l`, orientation `q`, force `f` and torque `m` of
     /// the step before, mass and added-mass factor, principal moment, the
     /// pose at the last build and the body's reach.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(crate) fn set(
         &mut self,

@@ -247,10 +247,9 @@ impl FirstHalf {
     /// [`FirstHalf::apply`] to the bodies `b0..b0 + held.len()` (at most
     /// [`LANES`]), whose kicked state and load are `held`: the bodies of
     /// the common case (`super::first_half_lanes`) as lanes, the others one
-    /// by one. `lanes` is scratch: the lanes of no body here are left as
-    /// the last block left them, whose harmless values they compute. Returns
-    /// true when one of their spheres moved more than half the skin since
-    /// the last build.
+    /// by one; `lanes` is scratch, kept between blocks. Returns true when
+    /// one of their spheres moved more than half the skin since the last
+    /// build.
     ///
     /// # Safety
     /// As [`FirstHalf::apply`], for each of these bodies.
@@ -286,6 +285,10 @@ impl FirstHalf {
                 }
             }
             if take.contains(&true) {
+                // a lane without a body here computes a body at rest
+                for k in (0..LANES).filter(|&k| !take[k]) {
+                    lanes.set_idle(k);
+                }
                 lanes.run(self.kicks.dt, self.half_skin, self.simd);
             }
         }
