@@ -1,5 +1,7 @@
-//! Run-time detection of the widest SIMD instruction set the contact-law
-//! loop (`step::pair_kernel`) is compiled for.
+//! Run-time detection of the widest SIMD instruction set the vectorised
+//! loops (the contact law, `step::pair_kernel`; the first halves,
+//! `step::first_half_lanes`) are compiled for, and the lane access those
+//! loops share.
 
 /// The widest vector instruction set the law loop is compiled for that this
 /// processor has. Every level gives the same bits: the law's arithmetic is
@@ -36,4 +38,20 @@ pub(crate) fn simd() -> Simd {
     }
     #[cfg(not(target_arch = "x86_64"))]
     Simd::Baseline
+}
+
+/// Lane `k` of a 3-vector stored as lanes (x, y and z rows of `N` lanes,
+/// structure of arrays), as the vectorised loops keep their inputs and
+/// outputs.
+#[inline(always)]
+pub(crate) fn get3<const N: usize>(r: &[[f64; N]; 3], k: usize) -> glam::DVec3 {
+    glam::DVec3::new(r[0][k], r[1][k], r[2][k])
+}
+
+/// Sets lane `k` of a 3-vector stored as lanes (see [`get3`]).
+#[inline(always)]
+pub(crate) fn set3<const N: usize>(r: &mut [[f64; N]; 3], k: usize, x: glam::DVec3) {
+    r[0][k] = x.x;
+    r[1][k] = x.y;
+    r[2][k] = x.z;
 }

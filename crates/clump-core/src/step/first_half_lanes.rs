@@ -29,7 +29,7 @@
 use super::integrate::HalfKick;
 use super::kinematics::sphere_position;
 use crate::neighbor::skin;
-use crate::par::simd::Simd;
+use crate::par::simd::{get3, set3, Simd};
 use glam::{DMat3, DQuat, DVec3};
 
 /// Bodies per block.
@@ -93,20 +93,6 @@ pub(crate) struct BodyLanes {
     pub within: [bool; LANES],
     /// Output of [`BodyLanes::place`]: sphere `s` of each body, m.
     pub spheres: [Rows3; SLOTS],
-}
-
-/// Lane `k` of a 3-vector row set.
-#[inline(always)]
-fn get3(r: &Rows3, k: usize) -> DVec3 {
-    DVec3::new(r[0][k], r[1][k], r[2][k])
-}
-
-/// Sets lane `k` of a 3-vector row set.
-#[inline(always)]
-fn set3(r: &mut Rows3, k: usize, x: DVec3) {
-    r[0][k] = x.x;
-    r[1][k] = x.y;
-    r[2][k] = x.z;
 }
 
 /// Lane `k` of a quaternion row set.

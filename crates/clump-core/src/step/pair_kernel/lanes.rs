@@ -8,7 +8,7 @@
 use super::BATCH;
 use crate::contact::geometry::sphere_pair;
 use crate::contact::{ContactHistory, ContactInput, ContactModel, SlidingLaw};
-use crate::par::simd::Simd;
+use crate::par::simd::{get3, set3, Simd};
 use glam::DVec3;
 
 /// A 3-vector per lane (x, y and z rows), world frame.
@@ -87,20 +87,6 @@ struct LaneContact {
     radius: f64,
     /// `m*`, kg.
     mass: f64,
-}
-
-/// Lane `k` of a 3-vector row set.
-#[inline(always)]
-pub(super) fn get3(r: &Rows3, k: usize) -> DVec3 {
-    DVec3::new(r[0][k], r[1][k], r[2][k])
-}
-
-/// Sets lane `k` of a 3-vector row set.
-#[inline(always)]
-pub(super) fn set3(r: &mut Rows3, k: usize, x: DVec3) {
-    r[0][k] = x.x;
-    r[1][k] = x.y;
-    r[2][k] = x.z;
 }
 
 impl Lanes {
@@ -381,7 +367,7 @@ mod tests {
     use super::*;
     use crate::contact::{ContactModel, Material, NormalLaw, PairProperties};
     use crate::par::simd::simd;
-    use crate::par::simd::Simd;
+    use crate::par::simd::{get3, set3, Simd};
 
     /// Lanes of contacts with overlaps of 0 to 20 % of the radius, sliding
     /// and sticking springs, random velocities; `mixed`: every lane its own

@@ -50,9 +50,10 @@ use crate::neighbor::topo::RowWalk;
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
 use crate::par::simd::Simd;
+use crate::par::simd::{get3, set3};
 use crate::stats::ContactStats;
 use glam::DVec3;
-use lanes::{get3, run_law, set3, Lanes};
+use lanes::{run_law, Lanes};
 
 mod lanes;
 
