@@ -367,7 +367,7 @@ mod tests {
     use super::*;
     use crate::contact::{ContactModel, Material, NormalLaw, PairProperties};
     use crate::par::simd::simd;
-    use crate::par::simd::{get3, set3, Simd};
+    use crate::par::simd::{set3, Simd};
 
     /// Lanes of contacts with overlaps of 0 to 20 % of the radius, sliding
     /// and sticking springs, random velocities; `mixed`: every lane its own
