@@ -9,9 +9,9 @@
 //! rotation, ω, skin bound, sphere centres) is one long chain of dependent
 //! operations, 43 ns a body on the settled tetra bed (10.8 ns a
 //! sphere-step, measured as a pass of its own); the processor overlaps
-//! little of one body's chain with the next's. Run as eight lanes of a loop with no
-//! branch, the compiler turns the chain into vector instructions, so eight
-//! bodies take about one body's latency. A block of one template whose
+//! little of one body's chain with the next's. Run as eight lanes of a loop
+//! with no branch, the compiler turns the chain into vector instructions, so
+//! eight bodies take about one body's latency. A block of one template whose
 //! bodies all hold also has its sphere centres placed by the lanes, slot by
 //! slot ([`BodyLanes::place`]). The loops are compiled for AVX-512 and AVX2
 //! besides the baseline, and the widest the processor has runs
@@ -76,9 +76,10 @@ pub(crate) struct BodyLanes {
     pub added: Row,
     /// The principal moment (all three equal), kg m².
     pub inertia: Row,
-    /// Pose at the last neighbour build, the skin check's reference.
+    /// Centre of mass at the last neighbour build, m: with `q_ref`, the
+    /// skin check's reference pose.
     pub x_ref: Rows3,
-    /// Orientation at the last neighbour build.
+    /// Orientation (body → world) at the last neighbour build.
     pub q_ref: Rows4,
     /// Farthest sphere centre from the centre of mass, m.
     pub reach: Row,
@@ -453,7 +454,7 @@ mod tests {
                     assert_eq!(lanes.within[k], within, "skin bound, lane {k}");
                     for (s, &off) in offsets.iter().enumerate() {
                         let slot = &lanes.spheres[s];
-                        let p = DVec3::new(slot[0][k], slot[1][k], slot[2][k]);
+                        let p = get3(slot, k);
                         let want = crate::step::kinematics::sphere_position(x1, &rot1, off);
                         assert_eq!(bits3(p), bits3(want), "sphere {s}, lane {k}");
                     }

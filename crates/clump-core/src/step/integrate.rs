@@ -9,6 +9,7 @@ use super::kinematics::sphere_position;
 use crate::neighbor::skin;
 use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};
 use crate::par::shared::{at, SharedMut};
+use crate::par::simd::get3;
 use crate::rotation::{inverse_inertia, omega_world, omega_world_rot};
 use crate::world::World;
 use glam::{DMat3, DVec3};
@@ -352,7 +353,7 @@ impl FirstHalf {
             debug_assert_eq!(self.first.read(i) as usize, s0 + k * n);
             let first = sst.ptr(s0 + k * n);
             for (s, slot) in lanes.spheres.iter().enumerate().take(n) {
-                (*first.add(s)).position = DVec3::new(slot[0][k], slot[1][k], slot[2][k]);
+                (*first.add(s)).position = get3(slot, k);
             }
         }
         true
@@ -690,9 +691,7 @@ impl HalfKick {
         *v = glam::DVec3::select(fm, *v + self.dtfm * force, *v);
         *l = glam::DVec3::select(tm, *l + self.dtt * torque, *l);
     }
-}
 
-impl HalfKick {
     /// [`HalfKick::apply`] to a body free on every axis.
     #[inline(always)]
     pub(crate) fn apply_free(
