@@ -71,12 +71,6 @@ impl TemplateSet {
     pub fn max_spheres(&self) -> usize {
         self.max_spheres
     }
-
-    /// The templates as a mutable slice, for the step's shared-pointer
-    /// views (which only read them).
-    pub(crate) fn as_mut_slice(&mut self) -> &mut [ClumpTemplate] {
-        &mut self.list
-    }
 }
 
 impl std::ops::Deref for TemplateSet {

@@ -14,6 +14,7 @@
 //! about the sphere centre, `Σ (x_c − x_s) × f + couples`. This equals
 //! `Σ (x_c − r_cm) × f` over the contacts.
 
+use super::body_props::BodyProps;
 use super::first_half_lanes::{BodyLanes, LANES};
 use super::integrate::{FinalKick, FirstHalf, Held};
 use super::wall_contacts::WallPass;
@@ -201,7 +202,6 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     let chunk = w.body_chunk();
     let World {
         bodies,
-        templates,
         step,
         spheres: sp,
         neighbors,
@@ -234,6 +234,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         chunk_stats,
         chunk_pair_stats,
         chunk_wall_loads,
+        props,
         ..
     } = scratch;
     let nb = bodies.len();
@@ -256,16 +257,9 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     let pos = SharedMut::new(&mut bodies.position);
     // SAFETY: the gather resizes nothing, and writes no orientation (the
     // first half of the next step writes its body's, after its kick).
-    let kick = kick.then(|| unsafe {
-        FinalKick::new(
-            dt,
-            *step,
-            config.added_mass,
-            config.rotation,
-            templates.as_mut_slice(),
-            bodies,
-        )
-    });
+    let kick = kick.then(|| unsafe { FinalKick::new(dt, *step, config.rotation, props, bodies) });
+    // SAFETY: as above; the table was refreshed for these bodies.
+    let mass = unsafe { BodyProps::new(props, bodies) };
     let b = &*bodies;
     let pair_body = SharedMut::new(&mut pairs.body);
     let pairs = &*pairs;
@@ -369,7 +363,9 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                             column_sum(pairs.load_j.as_ptr(), &pairs.col_start, &pairs.col_pair, bi)
                         })
                     };
-                    let mut f = b.mass[bi] * gravity + pl.force;
+                    // SAFETY: bi < nb.
+                    let mass_i = unsafe { mass.mass(bi) };
+                    let mut f = mass_i * gravity + pl.force;
                     let mut m = pl.torque;
                     // --- sphere–wall contacts
                     if e > e0 {
@@ -412,12 +408,12 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                     // sweep): the kinetic energy at the end of the step, after
                     // the kick (a force that would fling a body out of the
                     // domain shows here, before the body is removed)
-                    let ke = 0.5 * b.mass[bi] * v.length_squared() + 0.5 * om.dot(l);
+                    let ke = 0.5 * mass_i * v.length_squared() + 0.5 * om.dot(l);
                     if owned.is_some_and(|o| !o[bi]) {
                         // a ghost: its owner counts it
                     } else {
                         stat.kinetic_energy += ke;
-                        stat.total_mass += b.mass[bi];
+                        stat.total_mass += mass_i;
                         if ke > stat.max_body_kinetic_energy {
                             stat.max_body_kinetic_energy = ke;
                             stat.max_kinetic_body = b.id[bi];

@@ -4,6 +4,7 @@
 //! factor; a full drift of the centre of mass; and a free-rotation drift of
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
+use super::body_props::BodyProps;
 use super::first_half_lanes::{BodyLanes, LANES};
 use super::kinematics::sphere_position;
 use crate::neighbor::skin;
@@ -11,6 +12,7 @@ use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};
 use crate::par::shared::{at, SharedMut};
 use crate::par::simd::get3;
 use crate::rotation::{inverse_inertia, omega_world, omega_world_rot};
+use crate::world::props::PropsTable;
 use crate::world::World;
 use glam::{DMat3, DVec3};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -114,7 +116,6 @@ pub(crate) struct FirstHalf {
     quat: SharedMut<glam::DQuat>,
     pub(crate) angm: SharedMut<DVec3>,
     pub(crate) omega: SharedMut<DVec3>,
-    inertia: SharedMut<DVec3>,
     /// The spheres' state, to move with their bodies (None: left alone).
     sst: Option<SharedMut<crate::sphere::SphereState>>,
     first: SharedMut<u32>,
@@ -154,10 +155,8 @@ impl FirstHalf {
         FirstHalf {
             kicks: Kicks::new(
                 w.config.dt,
-                w.config.added_mass,
                 w.config.rotation,
-                w.templates.as_mut_slice(),
-                b,
+                BodyProps::new(&mut w.scratch.props, b),
             ),
             step,
             scheme: w.config.rotation,
@@ -170,7 +169,6 @@ impl FirstHalf {
             quat: SharedMut::new(&mut b.orientation),
             angm: SharedMut::new(&mut b.angular_momentum),
             omega: SharedMut::new(&mut b.angular_velocity),
-            inertia: SharedMut::new(&mut b.inertia),
             sst: spheres.then(|| SharedMut::new(&mut w.spheres.state)),
             first: SharedMut::new(&mut w.spheres.body_first),
             tfirst: SharedMut::new(&mut w.templates.first),
@@ -209,7 +207,7 @@ impl FirstHalf {
         // spheres and reference positions, is current)
         let rot = if self.kicks.kick(self.step, i, v, l, f, m) {
             x += *v * dt;
-            let inertia_i = self.inertia.read(i);
+            let inertia_i = self.kicks.props.inertia(i);
             if self.scheme == crate::rotation::RotationScheme::RichardsonLiggghts {
                 // LIGGGHTS moves the spheres during the step with the ω of
                 // the first half sub-step (see richardson_liggghts)
@@ -232,8 +230,8 @@ impl FirstHalf {
             // before its start step: ballistic, forces ignored; a driven
             // body also turns at its prescribed world angular velocity
             x += *v * dt;
-            if self.kicks.start.read(i) == crate::dof::DRIVEN {
-                driven_turn(&mut q, l, *om, self.inertia.read(i), dt)
+            if self.kicks.props.start(i) == crate::dof::DRIVEN {
+                driven_turn(&mut q, l, *om, self.kicks.props.inertia(i), dt)
             } else {
                 DMat3::from_quat(q)
             }
@@ -267,14 +265,14 @@ impl FirstHalf {
         if let (true, Some(_)) = (self.lanes, &self.sst) {
             for (k, h) in held.iter().enumerate() {
                 let i = b0 + k;
-                let inertia = self.inertia.read(i);
+                let inertia = self.kicks.props.inertia(i);
                 take[k] = self.kicks.lanes_take(self.step, i)
                     && inertia.x == inertia.y
                     && inertia.y == inertia.z
                     && inertia.x > 0.0;
                 if take[k] {
-                    let (mass, fa) = self.kicks.mass_and_factor(i);
-                    let reach = self.treach.read(self.kicks.tmpl.read(i) as usize);
+                    let (mass, fa) = self.kicks.props.mass_and_factor(i);
+                    let reach = self.treach.read(self.kicks.props.template(i));
                     lanes.set(
                         k,
                         (self.pos.read(i), h.v, h.l, self.quat.read(i)),
@@ -329,9 +327,12 @@ impl FirstHalf {
         lanes: &mut BodyLanes,
         sst: &SharedMut<crate::sphere::SphereState>,
     ) -> bool {
-        let t = self.kicks.tmpl.read(b0);
+        let t = self.kicks.props.template(b0) as u32;
         let whole = (0..LANES).all(|k| {
-            take[k] && lanes.holds[k] && lanes.within[k] && self.kicks.tmpl.read(b0 + k) == t
+            take[k]
+                && lanes.holds[k]
+                && lanes.within[k]
+                && self.kicks.props.template(b0 + k) as u32 == t
         });
         let (s0, s1) = (
             self.first.read(b0) as usize,
@@ -407,7 +408,7 @@ impl FirstHalf {
         sst: &SharedMut<crate::sphere::SphereState>,
     ) -> bool {
         let (x0, q0) = self.xref_pose.read(i);
-        let reach = self.treach.read(self.kicks.tmpl.read(i) as usize);
+        let reach = self.treach.read(self.kicks.props.template(i));
         let bound = skin::body_displacement_bound(x, q, x0, q0, reach);
         let within = skin::surely_within(bound, self.half_skin, x.abs().max_element() + reach);
         self.place_spheres(i, x, rot, sst, within)
@@ -428,7 +429,7 @@ impl FirstHalf {
         sst: &SharedMut<crate::sphere::SphereState>,
         within: bool,
     ) -> bool {
-        let t = self.kicks.tmpl.read(i) as usize;
+        let t = self.kicks.props.template(i);
         let o0 = self.tfirst.read(t) as usize;
         let (s0, s1) = (self.first.read(i) as usize, self.first.read(i + 1) as usize);
         let n = s1 - s0;
@@ -481,28 +482,25 @@ pub(crate) struct FinalKick {
     kicks: Kicks,
     step: u64,
     quat: SharedMut<glam::DQuat>,
-    inertia: SharedMut<DVec3>,
 }
 
 impl FinalKick {
     /// The kick of step `step` of the bodies `b`.
     ///
     /// # Safety
-    /// As [`Kicks::new`]; the orientations are written by no other path
+    /// As [`BodyProps::new`]; the orientations are written by no other path
     /// while the result is in use.
     pub(crate) unsafe fn new(
         dt: f64,
         step: u64,
-        added: crate::world::AddedMass,
         rotation: crate::rotation::RotationScheme,
-        templates: &mut [crate::shape::ClumpTemplate],
+        props: &mut PropsTable,
         b: &mut crate::body::Bodies,
     ) -> Self {
         FinalKick {
-            kicks: Kicks::new(dt, added, rotation, templates, b),
+            kicks: Kicks::new(dt, rotation, BodyProps::new(props, b)),
             step,
             quat: SharedMut::new(&mut b.orientation),
-            inertia: SharedMut::new(&mut b.inertia),
         }
     }
 
@@ -523,7 +521,7 @@ impl FinalKick {
         m: DVec3,
     ) {
         if self.kicks.kick(self.step, i, v, l, f, m) {
-            *om = omega_world(self.quat.read(i), *l, self.inertia.read(i));
+            *om = omega_world(self.quat.read(i), *l, self.kicks.props.inertia(i));
         }
     }
 }
@@ -532,38 +530,19 @@ impl FinalKick {
 /// template arrays, which it never writes).
 struct Kicks {
     dt: f64,
-    added: crate::world::AddedMass,
     /// Velocity-Verlet half kicks of `L` (false: the rotation scheme
     /// advances `L` over the whole step, see [`Kicks::zvw_full_step`]).
     torque_kicks: bool,
-    templates: SharedMut<crate::shape::ClumpTemplate>,
-    mass: SharedMut<f64>,
-    ff: SharedMut<crate::body::AxisFlags>,
-    tf: SharedMut<crate::body::AxisFlags>,
-    start: SharedMut<u64>,
-    tmpl: SharedMut<u32>,
+    /// The bodies' mass properties and degrees of freedom.
+    props: BodyProps,
 }
 
 impl Kicks {
-    /// # Safety
-    /// The arrays are neither resized nor moved while the result is in use.
-    unsafe fn new(
-        dt: f64,
-        added: crate::world::AddedMass,
-        rotation: crate::rotation::RotationScheme,
-        templates: &mut [crate::shape::ClumpTemplate],
-        b: &mut crate::body::Bodies,
-    ) -> Self {
+    fn new(dt: f64, rotation: crate::rotation::RotationScheme, props: BodyProps) -> Self {
         Kicks {
             dt,
-            added,
             torque_kicks: rotation.kicks_torque(),
-            templates: SharedMut::new(templates),
-            mass: SharedMut::new(&mut b.mass),
-            ff: SharedMut::new(&mut b.force_flag),
-            tf: SharedMut::new(&mut b.torque_flag),
-            start: SharedMut::new(&mut b.start_step),
-            tmpl: SharedMut::new(&mut b.template),
+            props,
         }
     }
 
@@ -583,27 +562,18 @@ impl Kicks {
         f: DVec3,
         m: DVec3,
     ) -> bool {
-        if step < self.start.read(i) {
+        let p = &self.props;
+        if !p.started(step, i) {
             return false;
         }
-        let (mass, fa) = self.mass_and_factor(i);
+        let (mass, fa) = p.mass_and_factor(i);
         let mut kick = HalfKick::new(self.dt, mass, fa);
         if !self.torque_kicks {
             kick.dtt = 0.0;
         }
-        kick.apply(v, l, f, m, self.ff.read(i), self.tf.read(i));
+        let (ff, tf) = p.flags(i);
+        kick.apply(v, l, f, m, ff, tf);
         true
-    }
-
-    /// Body `i`'s mass (kg) and added-mass factor.
-    ///
-    /// # Safety
-    /// `i` is a body index.
-    #[inline(always)]
-    unsafe fn mass_and_factor(&self, i: usize) -> (f64, f64) {
-        let t = self.tmpl.read(i) as usize;
-        let fa = mass_factor(self.added, (*self.templates.ptr(t)).density);
-        (self.mass.read(i), fa)
     }
 
     /// Whether body `i` takes its first half of step `step` in
@@ -613,7 +583,8 @@ impl Kicks {
     /// `i` is a body index.
     #[inline(always)]
     unsafe fn lanes_take(&self, step: u64, i: usize) -> bool {
-        step >= self.start.read(i) && self.ff.read(i) == [true; 3] && self.tf.read(i) == [true; 3]
+        let p = &self.props;
+        p.started(step, i) && p.flags(i) == ([true; 3], [true; 3])
     }
 
     /// The rotation of body `i` over the whole step by Zhao & van Wachem
@@ -636,9 +607,8 @@ impl Kicks {
         m: DVec3,
         inertia: DVec3,
     ) -> glam::DQuat {
-        let t = self.tmpl.read(i) as usize;
-        let fa = mass_factor(self.added, (*self.templates.ptr(t)).density);
-        let tm = glam::BVec3::from(self.tf.read(i));
+        let fa = self.props.factor(i);
+        let tm = glam::BVec3::from(self.props.flags(i).1);
         let torque = DVec3::select(tm, m / fa, DVec3::ZERO);
         let mut st = crate::rotation::RotState { q, l_world: *l };
         crate::rotation::zhao_van_wachem::step(&mut st, inertia, &mut |_| torque, self.dt);
@@ -703,15 +673,5 @@ impl HalfKick {
     ) {
         *v += self.dtfm * force;
         *l += self.dtt * torque;
-    }
-}
-
-/// Added-mass factor `1 + CAdd ρ_f / ρ_body`.
-#[inline(always)]
-fn mass_factor(a: crate::world::AddedMass, rho: f64) -> f64 {
-    if a.coefficient == 0.0 || a.fluid_density == 0.0 {
-        1.0
-    } else {
-        1.0 + a.coefficient * a.fluid_density / rho
     }
 }

@@ -36,6 +36,7 @@
 //! chunks (`affinity`), balanced by measured time; the cuts never change
 //! the results.
 
+pub(crate) mod body_props;
 mod first_half_lanes;
 pub mod force;
 pub mod integrate;
@@ -79,6 +80,7 @@ impl World {
     /// current state, so that the first step starts with valid forces. Called
     /// automatically by [`World::step`].
     pub fn prepare(&mut self) -> Result<(), StepError> {
+        self.refresh_props();
         // a partitioned world is whole between steps (at an event): every
         // rank prepares it whole, as one process does; the next step splits it
         let part = self.part.take();
@@ -96,7 +98,20 @@ impl World {
 
     /// Advances the simulation by one time step.
     pub fn step(&mut self) -> Result<(), StepError> {
+        self.refresh_props();
         self.step_fused(false)
+    }
+
+    /// Checks where the step reads the bodies' mass properties and degrees
+    /// of freedom from ([`body_props`]): at every step boundary where steps
+    /// begin, since a driver may have edited the bodies.
+    pub(crate) fn refresh_props(&mut self) {
+        self.scratch.props.refresh(
+            &self.bodies,
+            &self.templates,
+            self.config.added_mass,
+            self.step,
+        );
     }
 
     /// One step; with `fuse_next`, the gather at its end also takes the
@@ -106,6 +121,8 @@ impl World {
     pub(crate) fn step_fused(&mut self, fuse_next: bool) -> Result<(), StepError> {
         if !self.phase.forces_ready {
             self.prepare()?;
+        } else if self.phase.first_half_done.is_none() {
+            self.refresh_props();
         }
         let dt = self.config.dt;
         let mut times = self.stage_times;
@@ -169,6 +186,7 @@ impl World {
         let dt = self.config.dt;
         let mut times = self.stage_times;
         let mut t = Instant::now();
+        self.refresh_props();
         let local = self.part.as_ref().is_some_and(|p| p.local);
         let dirty = self.phase.topology_dirty;
         if !local && !dirty {

@@ -178,6 +178,9 @@ impl World {
         if self.part.is_some() {
             return self.advance_partitioned(event, hook);
         }
+        // the bodies may have been edited since the last call, even when
+        // the world stopped inside a fused step (Advance::Tripped)
+        self.refresh_props();
         while self.step < event.step {
             let interrupt = hook.stop_requested();
             if interrupt && self.phase.first_half_done.is_none() {

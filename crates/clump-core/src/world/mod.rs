@@ -15,6 +15,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+pub(crate) mod props;
 mod scratch;
 pub(crate) use scratch::{Scratch, StepPhase};
 

@@ -46,6 +46,9 @@ pub(crate) struct Scratch {
     /// How the first half step, the pair loop and the gather share their
     /// chunks between threads (learned; never affects results).
     pub balance: [Balance; 3],
+    /// The bodies' mass properties and degrees of freedom as the step
+    /// reads them (refreshed at every step boundary where steps begin).
+    pub props: super::props::PropsTable,
 }
 
 /// Where a world is within its step.
