@@ -364,3 +364,59 @@ fn recorded_step(w: &mut World) {
     };
     w.advance(event, &mut Quiet).unwrap();
 }
+
+/// Stops the run after step `0` (as a health trip does).
+struct TripAfter(u64);
+
+impl StepHook for TripAfter {
+    fn end_of_step(&mut self, r: &StepReport) -> Flow {
+        if r.step == self.0 {
+            Flow::Stop
+        } else {
+            Flow::Continue
+        }
+    }
+}
+
+/// A hook that stops the run inside a stretch of fused steps gets the
+/// world back with its body arrays current: each body's centre and
+/// orientation are the pose its spheres were just placed from (the next
+/// step's first half), its angular velocity is `L / I` of that half (a
+/// spherical top), and stepping on from there finishes the stretch with the
+/// bits of a run that never stopped.
+#[test]
+fn a_trip_inside_fused_steps_hands_back_current_bodies() {
+    use clump_core::step::run::Advance;
+    let (mut a, mut b) = (bed(), bed());
+    let end = Event::at(a.step + 300);
+    let got = a.advance(end, &mut TripAfter(a.step + 170)).unwrap();
+    assert_eq!(got, Advance::Tripped);
+    let mut spheres = 0;
+    for i in 0..a.bodies.len() {
+        let t = &a.templates[a.bodies.template[i] as usize];
+        let (x, q) = (a.bodies.position[i], a.bodies.orientation[i]);
+        let rot = clump_core::DMat3::from_quat(q);
+        for (k, s) in a.spheres().of_body(i).enumerate() {
+            let want = clump_core::step::kinematics::sphere_position(x, &rot, t.spheres[k].center);
+            assert!(
+                (a.spheres().position(s) - want).length() < 1e-15,
+                "body {i} sphere {k}: {} against {want}",
+                a.spheres().position(s)
+            );
+            spheres += 1;
+        }
+        let om = a.bodies.angular_momentum[i] / a.bodies.inertia[i].x;
+        let got = a.bodies.angular_velocity[i];
+        assert!(
+            (got - om).length() <= 1e-12 * om.length(),
+            "body {i}: ω {got} against L/I {om}"
+        );
+    }
+    assert_eq!(spheres, a.spheres().len());
+    assert_eq!(a.advance(end, &mut ()).unwrap(), Advance::Reached);
+    b.advance(end, &mut ()).unwrap();
+    assert!(
+        bits(&a) == bits(&b),
+        "stepping on from the trip changed the bits"
+    );
+}

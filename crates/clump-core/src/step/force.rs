@@ -17,7 +17,7 @@
 use super::body_props::BodyProps;
 use super::first_half_lanes::{BodyLanes, LANES};
 use super::integrate::{FinalKick, FirstHalf, Held};
-use super::wall_contacts::WallPass;
+use super::wall_contacts::{BodyMotion, WallPass};
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::column_sum;
 use crate::par::affinity::{
@@ -211,6 +211,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         config,
         stats,
         part,
+        phase,
         ..
     } = w;
     // a partitioned world counts its owned bodies only in the statistics
@@ -248,6 +249,10 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     let gravity = config.gravity;
     let any_stale = AtomicBool::new(false);
     let next = next.as_ref();
+    // inside a fused stretch the bodies' centres, velocities and angular
+    // velocities are current in the packed copy only (StepPhase::bodies_lag)
+    let lag = phase.bodies_lag;
+    debug_assert!(!lag || (kick && next.map_or(true, |h| h.lags())));
     let force = SharedMut::new(&mut bodies.force);
     let torque = SharedMut::new(&mut bodies.torque);
     let vel = SharedMut::new(&mut bodies.velocity);
@@ -311,8 +316,20 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
             for k0 in (b0..b1).step_by(FIRST_HALF_BLOCK) {
                 let k1 = (k0 + FIRST_HALF_BLOCK).min(b1);
                 for bi in k0..k1 {
+                    // the body's velocities as local values, kicked, then
+                    // stored once: read back from memory right after the
+                    // kick's per-component stores, they could not be
+                    // forwarded (a stall measured at 6-8 % of this pass)
                     // SAFETY: body bi is handled by this chunk only.
-                    let com = unsafe { pos.read(bi) };
+                    let (com, mut v, mut l, mut om) = unsafe {
+                        let l = angm.read(bi);
+                        if lag {
+                            let pb = pair_body.ptr(bi);
+                            ((*pb).position, (*pb).velocity, l, (*pb).angular_velocity)
+                        } else {
+                            (pos.read(bi), vel.read(bi), l, omega.read(bi))
+                        }
+                    };
                     // the body's entries: e0..e
                     let e0 = e;
                     // the spheres of the entries up to a few ahead of this
@@ -373,7 +390,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                         unsafe {
                             wall_pass.body(
                                 bi,
-                                com,
+                                BodyMotion { com, v, om },
                                 e0..e,
                                 c,
                                 wcounts,
@@ -384,13 +401,6 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                             )
                         };
                     }
-                    // the body's velocities as local values, kicked, then stored
-                    // once: read back from memory right after the kick's
-                    // per-component stores, they could not be forwarded (a
-                    // stall measured at 6-8 % of this pass)
-                    // SAFETY: body bi is handled by this chunk only.
-                    let (mut v, mut l, mut om) =
-                        unsafe { (vel.read(bi), angm.read(bi), omega.read(bi)) };
                     // the force and torque are kept for the next step's first
                     // half, unless it takes them now
                     if next.is_none() {
@@ -435,6 +445,9 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                             *vel.get(bi) = v;
                             *angm.get(bi) = l;
                             *omega.get(bi) = om;
+                            if lag {
+                                *pos.get(bi) = com;
+                            }
                         }
                     }
                 }
@@ -471,6 +484,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         }
         *load = l;
     }
+    phase.bodies_lag = next.is_some_and(|h| h.lags());
     any_stale.into_inner()
 }
 

@@ -133,6 +133,10 @@ pub(crate) struct FirstHalf {
     /// The pair stage's packed copy of the bodies' state, when built for
     /// these bodies (else the rebuild that follows fills it).
     pair_body: Option<SharedMut<crate::neighbor::PairBody>>,
+    /// The bodies' centres, velocities and angular velocities are read from
+    /// and stored in the packed copy only, not the body arrays (inside a
+    /// fused stretch of steps; see [`World::catch_up_bodies`]).
+    lag: bool,
 }
 
 impl FirstHalf {
@@ -179,6 +183,33 @@ impl FirstHalf {
             treach: SharedMut::new(&mut w.templates.centre_reach),
             pair_body: (w.neighbors.pairs.body.len() == n)
                 .then(|| SharedMut::new(&mut w.neighbors.pairs.body)),
+            lag: false,
+        }
+    }
+
+    /// The same first half, keeping the bodies' centres, velocities and
+    /// angular velocities in the packed copy only (see [`Self::lags`]),
+    /// where that copy is built for these bodies.
+    pub(crate) fn lagging(mut self) -> Self {
+        self.lag = self.pair_body.is_some();
+        self
+    }
+
+    /// Whether the body arrays' centres, velocities and angular velocities
+    /// lag behind the packed copy once this first half is applied.
+    pub(crate) fn lags(&self) -> bool {
+        self.lag
+    }
+
+    /// Body `i`'s centre of mass (world frame, m) before its first half.
+    ///
+    /// # Safety
+    /// As [`FirstHalf::apply`].
+    #[inline(always)]
+    unsafe fn centre(&self, i: usize) -> DVec3 {
+        match &self.pair_body {
+            Some(pb) if self.lag => (*pb.ptr(i)).position,
+            _ => self.pos.read(i),
         }
     }
 
@@ -201,7 +232,7 @@ impl FirstHalf {
         m: DVec3,
     ) -> bool {
         let dt = self.kicks.dt;
-        let (mut x, mut q) = (self.pos.read(i), self.quat.read(i));
+        let (mut x, mut q) = (self.centre(i), self.quat.read(i));
         // (all reads: i < n, every body array has n entries, template
         // indices are valid, and with spheres the sphere topology, first
         // spheres and reference positions, is current)
@@ -275,7 +306,7 @@ impl FirstHalf {
                     let reach = self.treach.read(self.kicks.props.template(i));
                     lanes.set(
                         k,
-                        (self.pos.read(i), h.v, h.l, self.quat.read(i)),
+                        (self.centre(i), h.v, h.l, self.quat.read(i)),
                         (h.f, h.m),
                         (mass, fa, inertia.x),
                         self.xref_pose.read(i),
@@ -362,17 +393,20 @@ impl FirstHalf {
 
     /// Stores body `i`'s new centre `x`, orientation `q`, velocity `v`,
     /// angular momentum `l` and angular velocity `om` (world frame), also in
-    /// the pair stage's copy (whose column sum is not touched).
+    /// the pair stage's copy (whose column sum is not touched); lagging,
+    /// `x`, `v` and `om` in that copy only.
     ///
     /// # Safety
     /// As [`FirstHalf::apply`].
     #[inline(always)]
     unsafe fn store(&self, i: usize, x: DVec3, q: glam::DQuat, v: DVec3, l: DVec3, om: DVec3) {
-        *self.pos.get(i) = x;
         *self.quat.get(i) = q;
-        *self.vel.get(i) = v;
         *self.angm.get(i) = l;
-        *self.omega.get(i) = om;
+        if !self.lag {
+            *self.pos.get(i) = x;
+            *self.vel.get(i) = v;
+            *self.omega.get(i) = om;
+        }
         if let Some(pb) = &self.pair_body {
             let pb = pb.ptr(i);
             (*pb).position = x;

@@ -102,6 +102,22 @@ impl World {
         self.step_fused(false)
     }
 
+    /// Copies the bodies' centres, velocities and angular velocities from
+    /// the pair stage's packed copy back into the body arrays, where a
+    /// fused stretch of steps left them there alone
+    /// (`StepPhase::bodies_lag`).
+    pub(crate) fn catch_up_bodies(&mut self) {
+        if !std::mem::take(&mut self.phase.bodies_lag) {
+            return;
+        }
+        let b = &mut self.bodies;
+        for (i, pb) in self.neighbors.pairs.body.iter().enumerate() {
+            b.position[i] = pb.position;
+            b.velocity[i] = pb.velocity;
+            b.angular_velocity[i] = pb.angular_velocity;
+        }
+    }
+
     /// Checks where the step reads the bodies' mass properties and degrees
     /// of freedom from ([`body_props`]): at every step boundary where steps
     /// begin, since a driver may have edited the bodies.
@@ -130,6 +146,7 @@ impl World {
         // the spheres move with their bodies in the same pass unless the
         // topology changed (then the rebuild below recomputes them); the
         // gather of the step before may have done it already
+        debug_assert!(!self.phase.bodies_lag || self.phase.first_half_done.is_some());
         let moved_out = match self.phase.first_half_done.take() {
             Some(stale) => stale,
             None => integrate::initial(self, !self.phase.topology_dirty),
@@ -142,6 +159,8 @@ impl World {
         lap(&mut times.initial, &mut t);
         let stale = self.phase.topology_dirty || moved_out;
         if stale {
+            // the rebuild reads and reorders the body arrays
+            self.catch_up_bodies();
             rebuild::rebuild(self, true)?;
             lap(&mut times.neighbor, &mut t);
         } else if wall_started {
@@ -153,7 +172,8 @@ impl World {
         let fuse = fuse_next && !self.phase.topology_dirty;
         // SAFETY: the gather touches each body in one chunk only, and
         // resizes no array.
-        let next = fuse.then(|| unsafe { integrate::FirstHalf::new(self, self.step + 1, true) });
+        let next =
+            fuse.then(|| unsafe { integrate::FirstHalf::new(self, self.step + 1, true).lagging() });
         let next_stale = force::gather(self, true, next);
         if fuse {
             self.phase.first_half_done = Some(next_stale);

@@ -181,6 +181,19 @@ impl World {
         // the bodies may have been edited since the last call, even when
         // the world stopped inside a fused step (Advance::Tripped)
         self.refresh_props();
+        let end = self.advance_fused(event, hook);
+        // the world handed back has its body arrays current, also when the
+        // stretch ended inside a fused step (a trip, an error)
+        self.catch_up_bodies();
+        end
+    }
+
+    /// The fused steps of [`Self::advance`] on a whole world.
+    fn advance_fused<H: StepHook + ?Sized>(
+        &mut self,
+        event: Event,
+        hook: &mut H,
+    ) -> Result<Advance, StepError> {
         while self.step < event.step {
             let interrupt = hook.stop_requested();
             if interrupt && self.phase.first_half_done.is_none() {

@@ -106,9 +106,10 @@ impl<'a> WallPass<'a> {
         lo.chain((64..self.nw).filter(|&wi| self.walls[wi].active))
     }
 
-    /// The wall contacts of body `bi` (centre of mass `com`), whose
-    /// wall-list entries are `entries`, in chunk `c`: adds their force and
-    /// torque about `com` to `f` and `m`, their loads to the chunk's wall
+    /// The wall contacts of body `bi` (centre of mass, velocity and angular
+    /// velocity `motion`, world frame), whose wall-list entries are
+    /// `entries`, in chunk `c`: adds their force and torque about its centre
+    /// of mass to `f` and `m`, their loads to the chunk's wall
     /// loads and their statistics to `stat`, and carries their history
     /// slots.
     ///
@@ -119,7 +120,7 @@ impl<'a> WallPass<'a> {
     pub(super) unsafe fn body(
         &self,
         bi: usize,
-        com: DVec3,
+        motion: BodyMotion,
         entries: Range<usize>,
         c: usize,
         wcounts: &mut PartnerCounts,
@@ -155,7 +156,7 @@ impl<'a> WallPass<'a> {
             walls: self.walls,
             dt: self.dt,
             bi,
-            com,
+            motion,
         };
         for q in e0..e {
             // SAFETY: entry q is of body bi, handled by this
@@ -373,7 +374,16 @@ struct WallCtx<'a> {
     walls: &'a [Wall],
     dt: f64,
     bi: usize,
-    com: DVec3,
+    motion: BodyMotion,
+}
+
+/// A body's centre of mass (m), velocity (m/s) and angular velocity
+/// (rad/s), world frame, as the gather holds them.
+#[derive(Clone, Copy)]
+pub(super) struct BodyMotion {
+    pub com: DVec3,
+    pub v: DVec3,
+    pub om: DVec3,
 }
 
 impl WallCtx<'_> {
@@ -394,8 +404,8 @@ impl WallCtx<'_> {
         let n = touch.normal;
         let xc = contact_point(self.sp.position(s), n, r, touch.overlap);
         let bi = self.bi;
-        let wb = self.b.angular_velocity[bi];
-        let v_body = point_velocity(self.com, self.b.velocity[bi], wb, xc);
+        let BodyMotion { com, v, om: wb } = self.motion;
+        let v_body = point_velocity(com, v, wb, xc);
         let mut v_wall = wall.surface_velocity_at(xc);
         let sv = wall.motion.surface_velocity;
         v_wall -= n * n.dot(sv);
@@ -411,7 +421,7 @@ impl WallCtx<'_> {
         };
         let model = self.table.get(self.sp.material[s], wall.material);
         let out = model.evaluate(&input, h);
-        let m_body = (xc - self.com).cross(out.force) + out.torque;
+        let m_body = (xc - com).cross(out.force) + out.torque;
         let m_wall_from_body = (xc - wall.motion.center).cross(out.force) + out.torque;
         (
             out.force,

@@ -61,6 +61,12 @@ pub(crate) struct StepPhase {
     pub first_half_done: Option<bool>,
     /// The forces of the current state have been evaluated.
     pub forces_ready: bool,
+    /// The bodies' centres, velocities and angular velocities are current
+    /// only in the pair stage's packed copy (`neighbor::PairBody`), not in
+    /// the body arrays: set by a fused gather, whose first halves store them
+    /// there alone (one copy fewer to bring from memory and write back every
+    /// step); `World::catch_up_bodies` copies them back.
+    pub bodies_lag: bool,
 }
 
 impl Default for StepPhase {
@@ -69,6 +75,7 @@ impl Default for StepPhase {
             topology_dirty: true,
             first_half_done: None,
             forces_ready: false,
+            bodies_lag: false,
         }
     }
 }
