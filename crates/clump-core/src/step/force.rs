@@ -17,7 +17,7 @@
 use super::body_props::BodyProps;
 use super::first_half_lanes::{BodyLanes, LANES};
 use super::integrate::{FinalKick, FirstHalf, Held};
-use super::wall_contacts::{BodyMotion, WallPass};
+use super::wall_contacts::WallPass;
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::column_sum;
 use crate::par::affinity::{
@@ -279,6 +279,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     let wall_pass = WallPass::new(
         sp,
         b,
+        lag.then_some(pair_body),
         table,
         walls,
         meshes,
@@ -316,18 +317,12 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
             for k0 in (b0..b1).step_by(FIRST_HALF_BLOCK) {
                 let k1 = (k0 + FIRST_HALF_BLOCK).min(b1);
                 for bi in k0..k1 {
-                    // the body's velocities as local values, kicked, then
-                    // stored once: read back from memory right after the
-                    // kick's per-component stores, they could not be
-                    // forwarded (a stall measured at 6-8 % of this pass)
                     // SAFETY: body bi is handled by this chunk only.
-                    let (com, mut v, mut l, mut om) = unsafe {
-                        let l = angm.read(bi);
+                    let com = unsafe {
                         if lag {
-                            let pb = pair_body.ptr(bi);
-                            ((*pb).position, (*pb).velocity, l, (*pb).angular_velocity)
+                            (*pair_body.ptr(bi)).position
                         } else {
-                            (pos.read(bi), vel.read(bi), l, omega.read(bi))
+                            pos.read(bi)
                         }
                     };
                     // the body's entries: e0..e
@@ -390,7 +385,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                         unsafe {
                             wall_pass.body(
                                 bi,
-                                BodyMotion { com, v, om },
+                                com,
                                 e0..e,
                                 c,
                                 wcounts,
@@ -401,6 +396,20 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
                             )
                         };
                     }
+                    // the body's velocities as local values, kicked, then stored
+                    // once: read back from memory right after the kick's
+                    // per-component stores, they could not be forwarded (a
+                    // stall measured at 6-8 % of this pass)
+                    // SAFETY: body bi is handled by this chunk only.
+                    let (mut v, mut l, mut om) = unsafe {
+                        let l = angm.read(bi);
+                        if lag {
+                            let pb = pair_body.ptr(bi);
+                            ((*pb).velocity, l, (*pb).angular_velocity)
+                        } else {
+                            (vel.read(bi), l, omega.read(bi))
+                        }
+                    };
                     // the force and torque are kept for the next step's first
                     // half, unless it takes them now
                     if next.is_none() {

@@ -13,6 +13,7 @@ use crate::contact::record::WallRecord;
 use crate::contact::{ContactHistory, ContactInput, ContactTable};
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::walls::{WallList, WALL_SLOTS};
+use crate::neighbor::PairBody;
 use crate::par::shared::{at, SharedMut};
 use crate::sphere::{point_velocity, Spheres};
 use crate::stats::ContactStats;
@@ -24,6 +25,9 @@ use std::ops::Range;
 pub(super) struct WallPass<'a> {
     sp: &'a Spheres,
     b: &'a Bodies,
+    /// The pair stage's packed copy of the bodies, when the body arrays'
+    /// velocities lag behind it (`StepPhase::bodies_lag`).
+    lagged: Option<SharedMut<PairBody>>,
     table: &'a ContactTable,
     walls: &'a [Wall],
     meshes: &'a [TriMesh],
@@ -52,6 +56,7 @@ impl<'a> WallPass<'a> {
     pub(super) fn new(
         sp: &'a Spheres,
         b: &'a Bodies,
+        lagged: Option<SharedMut<PairBody>>,
         table: &'a ContactTable,
         walls: &'a [Wall],
         meshes: &'a [TriMesh],
@@ -76,6 +81,7 @@ impl<'a> WallPass<'a> {
         WallPass {
             sp,
             b,
+            lagged,
             table,
             walls,
             meshes,
@@ -106,10 +112,9 @@ impl<'a> WallPass<'a> {
         lo.chain((64..self.nw).filter(|&wi| self.walls[wi].active))
     }
 
-    /// The wall contacts of body `bi` (centre of mass, velocity and angular
-    /// velocity `motion`, world frame), whose wall-list entries are
-    /// `entries`, in chunk `c`: adds their force and torque about its centre
-    /// of mass to `f` and `m`, their loads to the chunk's wall
+    /// The wall contacts of body `bi` (centre of mass `com`), whose
+    /// wall-list entries are `entries`, in chunk `c`: adds their force and
+    /// torque about `com` to `f` and `m`, their loads to the chunk's wall
     /// loads and their statistics to `stat`, and carries their history
     /// slots.
     ///
@@ -120,7 +125,7 @@ impl<'a> WallPass<'a> {
     pub(super) unsafe fn body(
         &self,
         bi: usize,
-        motion: BodyMotion,
+        com: DVec3,
         entries: Range<usize>,
         c: usize,
         wcounts: &mut PartnerCounts,
@@ -152,11 +157,12 @@ impl<'a> WallPass<'a> {
         let ctx = WallCtx {
             sp: self.sp,
             b: self.b,
+            lagged: self.lagged,
             table: self.table,
             walls: self.walls,
             dt: self.dt,
             bi,
-            motion,
+            com,
         };
         for q in e0..e {
             // SAFETY: entry q is of body bi, handled by this
@@ -370,20 +376,12 @@ pub fn oct_decode(k: u16) -> glam::DVec3 {
 struct WallCtx<'a> {
     sp: &'a Spheres,
     b: &'a Bodies,
+    lagged: Option<SharedMut<PairBody>>,
     table: &'a ContactTable,
     walls: &'a [Wall],
     dt: f64,
     bi: usize,
-    motion: BodyMotion,
-}
-
-/// A body's centre of mass (m), velocity (m/s) and angular velocity
-/// (rad/s), world frame, as the gather holds them.
-#[derive(Clone, Copy)]
-pub(super) struct BodyMotion {
-    pub com: DVec3,
-    pub v: DVec3,
-    pub om: DVec3,
+    com: DVec3,
 }
 
 impl WallCtx<'_> {
@@ -404,8 +402,16 @@ impl WallCtx<'_> {
         let n = touch.normal;
         let xc = contact_point(self.sp.position(s), n, r, touch.overlap);
         let bi = self.bi;
-        let BodyMotion { com, v, om: wb } = self.motion;
-        let v_body = point_velocity(com, v, wb, xc);
+        let (v, wb) = match &self.lagged {
+            // SAFETY: a body of the pair list, which is built for these
+            // bodies whenever they lag
+            Some(pb) => unsafe {
+                let pb = pb.ptr(bi);
+                ((*pb).velocity, (*pb).angular_velocity)
+            },
+            None => (self.b.velocity[bi], self.b.angular_velocity[bi]),
+        };
+        let v_body = point_velocity(self.com, v, wb, xc);
         let mut v_wall = wall.surface_velocity_at(xc);
         let sv = wall.motion.surface_velocity;
         v_wall -= n * n.dot(sv);
@@ -421,7 +427,7 @@ impl WallCtx<'_> {
         };
         let model = self.table.get(self.sp.material[s], wall.material);
         let out = model.evaluate(&input, h);
-        let m_body = (xc - com).cross(out.force) + out.torque;
+        let m_body = (xc - self.com).cross(out.force) + out.torque;
         let m_wall_from_body = (xc - wall.motion.center).cross(out.force) + out.torque;
         (
             out.force,
