@@ -252,7 +252,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     // inside a fused stretch the bodies' centres, velocities and angular
     // velocities are current in the packed copy only (StepPhase::bodies_lag)
     let lag = phase.bodies_lag;
-    debug_assert!(!lag || (kick && next.map_or(true, |h| h.lags())));
+    debug_assert!(!lag || (kick && next.is_none_or(|h| h.lags())));
     let force = SharedMut::new(&mut bodies.force);
     let torque = SharedMut::new(&mut bodies.torque);
     let vel = SharedMut::new(&mut bodies.velocity);

@@ -358,12 +358,9 @@ impl FirstHalf {
         lanes: &mut BodyLanes,
         sst: &SharedMut<crate::sphere::SphereState>,
     ) -> bool {
-        let t = self.kicks.props.template(b0) as u32;
+        let t = self.kicks.props.template(b0);
         let whole = (0..LANES).all(|k| {
-            take[k]
-                && lanes.holds[k]
-                && lanes.within[k]
-                && self.kicks.props.template(b0 + k) as u32 == t
+            take[k] && lanes.holds[k] && lanes.within[k] && self.kicks.props.template(b0 + k) == t
         });
         let (s0, s1) = (
             self.first.read(b0) as usize,
@@ -373,7 +370,7 @@ impl FirstHalf {
         if !whole || n > super::first_half_lanes::SLOTS {
             return false;
         }
-        let o0 = self.tfirst.read(t as usize) as usize;
+        let o0 = self.tfirst.read(t) as usize;
         debug_assert!(o0 + n <= self.toff.len() && s0 + LANES * n <= sst.len());
         let offsets = std::slice::from_raw_parts(self.toff.as_ptr().add(o0), n);
         lanes.place(offsets, self.simd);
