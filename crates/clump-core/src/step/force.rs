@@ -253,8 +253,11 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     // velocities are current in the packed copy only (StepPhase::bodies_lag)
     let lag = phase.bodies_lag;
     // lagging bodies are kicked here, and a first half fused into this
-    // gather keeps them lagging (`is_none_or` needs Rust 1.82, the MSRV is 1.80)
-    debug_assert!(!lag || (kick && !next.is_some_and(|h| !h.lags())));
+    // gather keeps them lagging
+    #[allow(clippy::unnecessary_map_or)] // `is_none_or` needs Rust 1.82; the MSRV is 1.80
+    {
+        debug_assert!(!lag || (kick && next.map_or(true, |h| h.lags())));
+    }
     let force = SharedMut::new(&mut bodies.force);
     let torque = SharedMut::new(&mut bodies.torque);
     let vel = SharedMut::new(&mut bodies.velocity);
