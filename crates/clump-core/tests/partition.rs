@@ -86,3 +86,37 @@ fn a_settling_periodic_bed_has_the_same_bits_on_1_to_4_ranks() {
         }
     }
 }
+
+/// The bed with one body whose motion is restricted (a locked torque
+/// axis), thrown over the bed (about 35 mm horizontally before it lands,
+/// the periodic bed is 21.6 mm wide) so that it passes from rank to rank: a rank reads its bodies' mass properties and flags from their
+/// template's row only while it holds no such body (as owner or ghost),
+/// which changes as the body migrates.
+fn restricted_bed() -> World {
+    let mut w = bed();
+    let b = w.bodies.len() - 3;
+    w.bodies.torque_flag[b] = [false, true, true];
+    w.bodies.position[b].z = 5.4 * clump_core::testbed::LATTICE_PITCH;
+    w.bodies.velocity[b] = clump_core::DVec3::new(1.0, 0.6, 0.0);
+    w
+}
+
+/// A body with restricted motion among free ones gives the same bits on 2
+/// and 3 ranks as in one process while it moves from rank to rank.
+#[test]
+fn restricted_bodies_have_the_same_bits_on_2_and_3_ranks() {
+    let (steps, rounds) = (1500, 2);
+    let mut serial = restricted_bed();
+    serial.run(steps * rounds as u64).unwrap();
+    assert!(serial.rebuilds > 3, "{} rebuilds", serial.rebuilds);
+    let want = state_bits(&serial);
+    for ranks in [2, 3] {
+        for (rank, (got, step, _, _)) in run_ranks(ranks, restricted_bed, steps, rounds)
+            .into_iter()
+            .enumerate()
+        {
+            assert_eq!(step, serial.step);
+            assert!(got == want, "{ranks} ranks, rank {rank}: the bits differ");
+        }
+    }
+}

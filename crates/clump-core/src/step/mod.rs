@@ -80,6 +80,7 @@ impl World {
     /// current state, so that the first step starts with valid forces. Called
     /// automatically by [`World::step`].
     pub fn prepare(&mut self) -> Result<(), StepError> {
+        self.props_changed();
         self.refresh_props();
         // a partitioned world is whole between steps (at an event): every
         // rank prepares it whole, as one process does; the next step splits it
@@ -98,7 +99,7 @@ impl World {
 
     /// Advances the simulation by one time step.
     pub fn step(&mut self) -> Result<(), StepError> {
-        self.refresh_props();
+        self.props_changed();
         self.step_fused(false)
     }
 
@@ -118,10 +119,21 @@ impl World {
         }
     }
 
+    /// The bodies may have changed since the step last checked where it
+    /// reads their mass properties and degrees of freedom from
+    /// ([`body_props`]): a driver may have edited them before a public call,
+    /// or a rank's bodies were exchanged.
+    pub(crate) fn props_changed(&mut self) {
+        self.scratch.props.fresh = false;
+    }
+
     /// Checks where the step reads the bodies' mass properties and degrees
-    /// of freedom from ([`body_props`]): at every step boundary where steps
-    /// begin, since a driver may have edited the bodies.
+    /// of freedom from ([`body_props`]), unless that still holds for the
+    /// bodies as they are.
     pub(crate) fn refresh_props(&mut self) {
+        if self.scratch.props.fresh {
+            return;
+        }
         self.scratch.props.refresh(
             &self.bodies,
             &self.templates,
@@ -137,9 +149,8 @@ impl World {
     pub(crate) fn step_fused(&mut self, fuse_next: bool) -> Result<(), StepError> {
         if !self.phase.forces_ready {
             self.prepare()?;
-        } else if self.phase.first_half_done.is_none() {
-            self.refresh_props();
         }
+        self.refresh_props();
         let dt = self.config.dt;
         let mut times = self.stage_times;
         let mut t = Instant::now();
@@ -206,6 +217,8 @@ impl World {
         let dt = self.config.dt;
         let mut times = self.stage_times;
         let mut t = Instant::now();
+        // a rank's bodies change at every exchange (and whole at an event)
+        self.props_changed();
         self.refresh_props();
         let local = self.part.as_ref().is_some_and(|p| p.local);
         let dirty = self.phase.topology_dirty;
@@ -239,6 +252,9 @@ impl World {
                 // the whole world (new bodies): rebuilt whole, then split
                 rebuild::rebuild(self, true)?;
             }
+            // the gather kicks this rank's bodies as they are now
+            self.props_changed();
+            self.refresh_props();
             lap(&mut times.neighbor, &mut t);
         } else if wall_started {
             rebuild::wall_started(self);

@@ -180,7 +180,7 @@ impl World {
         }
         // the bodies may have been edited since the last call, even when
         // the world stopped inside a fused step (Advance::Tripped)
-        self.refresh_props();
+        self.props_changed();
         let end = self.advance_fused(event, hook);
         // the world handed back has its body arrays current, also when the
         // stretch ended inside a fused step (a trip, an error)

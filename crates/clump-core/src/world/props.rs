@@ -38,14 +38,17 @@ pub(crate) struct PropsTable {
     /// Every body has its template's mass and moments (bit for bit), is
     /// free on every axis and has started by the step of the last refresh.
     pub uniform: bool,
+    /// The check holds for the bodies as they are: set by a refresh, cleared
+    /// wherever the bodies may have changed (a public call, a rank's bodies
+    /// exchanged; `World::props_changed`).
+    pub fresh: bool,
     /// Per template.
     pub rows: Vec<TemplateProps>,
 }
 
 impl PropsTable {
     /// Rebuilds the table and the check for `bodies` at the start of step
-    /// `step`. Valid until the bodies or templates change (the world calls
-    /// it at every step boundary where a stretch of steps begins).
+    /// `step`. Valid until the bodies or templates change.
     pub(crate) fn refresh(
         &mut self,
         bodies: &Bodies,
@@ -72,6 +75,7 @@ impl PropsTable {
                     && bodies.torque_flag[i] == FREE
                     && bodies.start_step[i] <= step
             });
+        self.fresh = true;
     }
 }
 

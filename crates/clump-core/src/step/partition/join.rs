@@ -140,6 +140,8 @@ pub(crate) fn whole_step(w: &mut World) -> Result<(), StepError> {
     if w.part.as_ref().is_some_and(|p| p.local) {
         join(w)?;
     }
+    // the whole world's bodies, not this rank's
+    w.props_changed();
     let part = w.part.take();
     let result = (|| {
         if w.neighbors.history_pending {
