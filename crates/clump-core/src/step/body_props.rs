@@ -119,7 +119,6 @@ impl BodyProps {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use crate::world::props::PER_BODY;
     use glam::DVec3;
     use std::sync::atomic::Ordering;
