@@ -14,8 +14,8 @@ REPO = pathlib.Path(__file__).resolve().parents[3]
 
 def clump_bin() -> pathlib.Path:
     """The `clump` binary: $CLUMP_BIN, else target/release/clump of this
-    checkout (built by `cargo test --workspace --release`, which
-    scripts/test-all.sh runs first)."""
+    checkout (scripts/test-all.sh sets $CLUMP_BIN to target/ci/clump, built
+    by its Rust suite with the profile the package is built with)."""
     p = pathlib.Path(os.environ.get("CLUMP_BIN", REPO / "target" / "release" / "clump"))
     if not p.exists():
         pytest.fail(f"the clump binary {p} is missing: run `cargo build --release -p clump-cli` "
