@@ -28,7 +28,9 @@ fi
 # shellcheck disable=SC1091
 source "$venv/bin/activate"
 python -m pip install -q --upgrade pip
-python -m pip install -q maturin numpy pytest matplotlib
+# maturin in the range crates/clump-py/pyproject.toml asks for: the package
+# is built without build isolation, so pip would not enforce it
+python -m pip install -q "maturin>=1.5,<2" numpy pytest matplotlib
 # maturin from the venv builds the extension with the `ci` profile, as
 # `clump` above (a failed build fails the suite, and the MPI suite still runs)
 if MATURIN_PEP517_ARGS="--profile ci" python -m pip install -q --no-build-isolation --force-reinstall --no-deps ./crates/clump-py; then
