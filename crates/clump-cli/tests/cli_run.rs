@@ -11,11 +11,12 @@ fn clump() -> Command {
     Command::new(env!("CARGO_BIN_EXE_clump"))
 }
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("clump-cli-run-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh directory for one test, removed when the test ends.
+fn tmp(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("clump-cli-run-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 /// A few dozen clumps (tetrahedra and rods, scaled ±10 %) fall onto a
@@ -166,7 +167,8 @@ fn last_thermo(dir: &Path) -> Vec<String> {
 
 #[test]
 fn split_run_is_bit_identical_to_uninterrupted_run() {
-    let d = tmp("split");
+    let dir = tmp("split");
+    let d = dir.path();
     let sc = write_scenario(&d, 600);
     let (a, b, c) = (d.join("a"), d.join("b"), d.join("c"));
     // uninterrupted, 2 threads
@@ -239,7 +241,8 @@ fn split_run_is_bit_identical_to_uninterrupted_run() {
 
 #[test]
 fn vtk_series_lists_every_frame() {
-    let d = tmp("vtk");
+    let dir = tmp("vtk");
+    let d = dir.path();
     let sc = write_scenario(&d, 200);
     let out = d.join("out");
     run_ok(
@@ -315,7 +318,8 @@ fn wait_for_rows(child: &mut std::process::Child, path: &Path, rows: usize, time
 }
 
 fn interrupt_and_resume(signal: &str, code: i32) {
-    let d = tmp(&format!("sig{signal}"));
+    let dir = tmp(&format!("sig{signal}"));
+    let d = dir.path();
     let sc = write_scenario(&d, 1_000_000);
     let out = d.join("out");
     let mut child = clump()
@@ -468,7 +472,8 @@ fn sigint_checkpoints_and_exits_130() {
 
 #[test]
 fn bad_input_exits_with_status_2() {
-    let d = tmp("bad");
+    let dir = tmp("bad");
+    let d = dir.path();
     let p = d.join("bad.toml");
     std::fs::write(
         &p,
@@ -523,7 +528,8 @@ fn bad_input_exits_with_status_2() {
 /// time, steps/s, bodies, contacts, ETA) instead of a bar, and a summary.
 #[test]
 fn plain_progress_lines_without_a_tty() {
-    let d = tmp("progress");
+    let dir = tmp("progress");
+    let d = dir.path();
     let sc = write_scenario(&d, 100);
     let err = run_ok(clump().arg("run").arg(&sc).arg("-o").arg(d.join("o")));
     let line = err
@@ -541,7 +547,8 @@ fn plain_progress_lines_without_a_tty() {
 /// sphere (the rod's, R = 1.5 mm, rock: E = 5e6, ν = 0.3, ρ = 2500).
 #[test]
 fn check_prints_derived_quantities() {
-    let d = tmp("check");
+    let dir = tmp("check");
+    let d = dir.path();
     let sc = write_scenario(&d, 100);
     let o = clump().arg("check").arg(&sc).output().unwrap();
     assert!(o.status.success());

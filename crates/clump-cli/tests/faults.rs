@@ -12,11 +12,12 @@ fn clump() -> Command {
     Command::new(env!("CARGO_BIN_EXE_clump"))
 }
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("clump-faults-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh directory for one test, removed when the test ends.
+fn tmp(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("clump-faults-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 /// The shared small scenario (see `common`) with VTK, thermo and
@@ -66,7 +67,8 @@ fn dev_full() -> Stdio {
 /// `clump check X | head -1` after head exited: quiet, status 141.
 #[test]
 fn check_into_a_closed_pipe_exits_141_quietly() {
-    let d = tmp("check-epipe");
+    let dir = tmp("check-epipe");
+    let d = dir.path();
     let sc = scenario(&d, 100, 10);
     let o = clump()
         .arg("check")
@@ -86,7 +88,8 @@ fn check_into_a_closed_pipe_exits_141_quietly() {
 /// `clump check X > /dev/full`: status 1 and a message naming stdout.
 #[test]
 fn check_into_a_full_device_exits_1_naming_stdout() {
-    let d = tmp("check-full");
+    let dir = tmp("check-full");
+    let d = dir.path();
     let sc = scenario(&d, 100, 10);
     let o = clump()
         .arg("check")
@@ -117,7 +120,8 @@ fn complete(dir: &Path, rows: usize) {
 /// could not be shown).
 #[test]
 fn run_survives_a_full_or_closed_stderr() {
-    let d = tmp("run-stderr");
+    let dir = tmp("run-stderr");
+    let d = dir.path();
     let sc = scenario(&d, 200, 20);
     let o = clump()
         .arg("run")
@@ -159,7 +163,8 @@ fn run(args: &[&std::ffi::OsStr]) -> Output {
 /// earlier run's later frames do not survive) and nothing else.
 #[test]
 fn rerun_into_a_used_folder_needs_overwrite() {
-    let d = tmp("rerun");
+    let dir = tmp("rerun");
+    let d = dir.path();
     let out = d.join("out");
     let long = scenario(&d, 200, 20);
     let o = run(&[
@@ -208,7 +213,8 @@ fn rerun_into_a_used_folder_needs_overwrite() {
 /// (status 2, the folder lock), and so is a resume.
 #[test]
 fn two_runs_cannot_share_a_folder() {
-    let d = tmp("lock");
+    let dir = tmp("lock");
+    let d = dir.path();
     let out = d.join("out");
     let sc = scenario(&d, 2_000_000, 1000);
     let mut first = clump()
@@ -258,7 +264,8 @@ fn two_runs_cannot_share_a_folder() {
 /// step is refused; the checkpoint's own folder resumes.
 #[test]
 fn resume_continues_only_in_its_own_folder() {
-    let d = tmp("resume");
+    let dir = tmp("resume");
+    let d = dir.path();
     let sc = scenario(&d, 200, 20);
     let (a, b) = (d.join("a"), d.join("b"));
     for (dir, steps) in [(&a, "100"), (&b, "200")] {
@@ -314,7 +321,8 @@ fn resume_continues_only_in_its_own_folder() {
 /// `--threads` above the number of cores is capped, with a warning.
 #[test]
 fn threads_above_the_cores_are_capped() {
-    let d = tmp("threads");
+    let dir = tmp("threads");
+    let d = dir.path();
     let sc = scenario(&d, 20, 10);
     let o = run(&[
         "run".as_ref(),
@@ -345,7 +353,8 @@ fn threads_above_the_cores_are_capped() {
 /// and says so, or says that there was none.
 #[test]
 fn full_disk_stops_the_run_naming_the_file() {
-    let d = tmp("enospc");
+    let dir = tmp("enospc");
+    let d = dir.path();
     let mnt = d.join("mnt");
     std::fs::create_dir_all(&mnt).unwrap();
     let mounted = Command::new("mount")
@@ -440,7 +449,8 @@ fn full_disk_stops_the_run_naming_the_file() {
 /// with the counts.
 #[test]
 fn run_summary_counts_asked_and_placed_bodies() {
-    let d = tmp("counts");
+    let dir = tmp("counts");
+    let d = dir.path();
     let sc = scenario(&d, 100, 50);
     let o = run(&[
         "run".as_ref(),
@@ -505,7 +515,8 @@ fn run_summary_counts_asked_and_placed_bodies() {
 /// needs; a stream that could bring that many is warned about.
 #[test]
 fn bodies_beyond_memory_are_refused_before_allocating() {
-    let d = tmp("memory");
+    let dir = tmp("memory");
+    let d = dir.path();
     let sc = scenario(&d, 100, 50);
     let text = std::fs::read_to_string(&sc).unwrap();
     let text = text

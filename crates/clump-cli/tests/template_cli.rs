@@ -7,12 +7,16 @@ fn clump() -> Command {
     Command::new(env!("CARGO_BIN_EXE_clump"))
 }
 
-fn temp_file(name: &str, contents: &[u8]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("clump-template-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
+/// `contents` written as `name` in a fresh directory, which is removed when
+/// the returned guard is dropped.
+fn temp_file(name: &str, contents: &[u8]) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::Builder::new()
+        .prefix("clump-template-cli-")
+        .tempdir()
+        .unwrap();
+    let path = dir.path().join(name);
     std::fs::write(&path, contents).unwrap();
-    path
+    (dir, path)
 }
 
 const KEYS: [&str; 9] = [
@@ -35,7 +39,7 @@ fn rel(a: f64, b: f64) -> f64 {
 fn json_output_has_exactly_the_keys() {
     // REFERENCE.md §2: two unit spheres, d = 1, ρ = 1 → V = 7.068583,
     // I_axis = 3.004148, I_trans = 5.213080 (in mm here, scaled to m).
-    let path = temp_file(
+    let (_dir, path) = temp_file(
         "pair.multisphere",
         b"# two spheres (mm)\n-0.5 0 0 1\n0.5 0 0 1 # second\n\n",
     );
@@ -116,7 +120,7 @@ fn json_output_has_exactly_the_keys() {
 
 #[test]
 fn human_readable_table() {
-    let path = temp_file(
+    let (_dir, path) = temp_file(
         "tetra.multisphere",
         b"0.5 0.5 0.5 1\n0.5 -0.5 -0.5 1\n-0.5 0.5 -0.5 1\n-0.5 -0.5 0.5 1\n",
     );
@@ -144,7 +148,7 @@ fn human_readable_table() {
 
 #[test]
 fn bad_file_exits_2_with_line_number() {
-    let path = temp_file("bad.multisphere", b"# ok\n0 0 0 1\n1 2 3\n");
+    let (_dir, path) = temp_file("bad.multisphere", b"# ok\n0 0 0 1\n1 2 3\n");
     let out = clump()
         .args(["template", path.to_str().unwrap(), "--json"])
         .output()
@@ -155,7 +159,7 @@ fn bad_file_exits_2_with_line_number() {
     assert!(err.contains("expected 4 numbers x y z r, found 3"), "{err}");
     assert!(out.stdout.is_empty());
 
-    let path = temp_file("negr.multisphere", b"0 0 0 1\n\n1 2 3 -1\n");
+    let (_dir, path) = temp_file("negr.multisphere", b"0 0 0 1\n\n1 2 3 -1\n");
     let out = clump()
         .args(["template", path.to_str().unwrap()])
         .output()
@@ -167,7 +171,7 @@ fn bad_file_exits_2_with_line_number() {
         "{err}"
     );
 
-    let path = temp_file("bin.multisphere", b"0 0 0 1\n\xff\xfe\x00\n");
+    let (_dir, path) = temp_file("bin.multisphere", b"0 0 0 1\n\xff\xfe\x00\n");
     let out = clump()
         .args(["template", path.to_str().unwrap()])
         .output()
@@ -184,7 +188,7 @@ fn bad_file_exits_2_with_line_number() {
 
 #[test]
 fn bad_density_or_scale_exits_2() {
-    let path = temp_file("one.multisphere", b"0 0 0 1\n");
+    let (_dir, path) = temp_file("one.multisphere", b"0 0 0 1\n");
     for args in [
         ["--density", "0"],
         ["--density", "-3"],

@@ -28,9 +28,11 @@ fn meshio() -> bool {
 
 #[test]
 fn vtu_frames_are_read_by_meshio() {
-    let d = std::env::temp_dir().join(format!("clump-vtu-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
+    let dir = tempfile::Builder::new()
+        .prefix("clump-vtu-")
+        .tempdir()
+        .unwrap();
+    let d = dir.path();
     let sc = d.join("vtu.toml");
     std::fs::write(
         &sc,
@@ -75,5 +77,4 @@ fn vtu_frames_are_read_by_meshio() {
         "{text}"
     );
     assert!(text.contains("radius_min 0.002"), "{text}");
-    let _ = std::fs::remove_dir_all(&d);
 }

@@ -4,10 +4,15 @@ use clump_io::mesh_file::{read_mesh_file, stl_ascii, stl_binary, MeshFileError, 
 use glam::{DQuat, DVec3};
 use std::path::PathBuf;
 
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("clump-mesh-file-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+/// The path `name` in a fresh directory, which is removed when the returned
+/// guard is dropped.
+fn tmp(name: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::Builder::new()
+        .prefix("clump-mesh-file-")
+        .tempdir()
+        .unwrap();
+    let path = dir.path().join(name);
+    (dir, path)
 }
 
 /// A closed unit cube `[0, 1]³`, 12 triangles, outward winding.
@@ -30,7 +35,7 @@ fn check_cube(m: &clump_core::wall::TriMesh, scale: f64, offset: DVec3) {
 #[test]
 fn binary_stl() {
     let (v, t) = cube();
-    let p = tmp("cube_bin.stl");
+    let (_dir_p, p) = tmp("cube_bin.stl");
     let mut bytes = stl_binary(&v, &t);
     // binary files may begin with "solid" too
     bytes[..5].copy_from_slice(b"solid");
@@ -53,7 +58,7 @@ fn binary_stl() {
 #[test]
 fn ascii_stl() {
     let (v, t) = cube();
-    let p = tmp("cube_ascii.STL");
+    let (_dir_p, p) = tmp("cube_ascii.STL");
     std::fs::write(&p, stl_ascii("cube", &v, &t)).unwrap();
     // rotated 90° about z, then shifted
     let tr = MeshTransform {
@@ -87,7 +92,7 @@ fn obj() {
     // the cube as six quads, with texture/normal index forms and a negative index
     let text = "# cube\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\nvt 0 0\nvn 0 0 1\n\
                 f 1 3 4 2\nf 5/1 6/1 8/1 7/1\nf 1//1 2//1 6//1 5//1\nf 3/1/1 7/1/1 8/1/1 4/1/1\nf 1 5 7 3\nf -7 -5 -1 -3\n";
-    let p = tmp("cube.obj");
+    let (_dir_p, p) = tmp("cube.obj");
     std::fs::write(&p, text).unwrap();
     let m = read_mesh_file(
         &p,
@@ -108,16 +113,17 @@ fn obj() {
 
 #[test]
 fn errors() {
-    let p = tmp("mesh.ply");
+    let (_dir_p, p) = tmp("mesh.ply");
     std::fs::write(&p, "ply").unwrap();
     assert!(matches!(
         read_mesh_file(&p, &MeshTransform::default()),
         Err(MeshFileError::UnknownFormat { .. })
     ));
-    let e = read_mesh_file(tmp("missing.stl"), &MeshTransform::default()).unwrap_err();
+    let (_dir_missing, missing) = tmp("missing.stl");
+    let e = read_mesh_file(missing, &MeshTransform::default()).unwrap_err();
     assert!(matches!(e, MeshFileError::Io { .. }));
     let (v, t) = cube();
-    let q = tmp("c.stl");
+    let (_dir_q, q) = tmp("c.stl");
     std::fs::write(&q, stl_binary(&v, &t)).unwrap();
     let e = read_mesh_file(
         &q,

@@ -121,9 +121,11 @@ fn large_time_step_is_a_warning_below_the_limit() {
     let sc = scenario::load(&corpus().join("base_valid.toml")).unwrap();
     let tr = rayleigh_time(&sc.materials[0], 0.002);
     let text = base.replace("dt = \"auto\"", &format!("dt = {:e}", 0.4 * tr));
-    let dir = std::env::temp_dir().join(format!("clump-scn-warn-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join("warn.toml");
+    let dir = tempfile::Builder::new()
+        .prefix("clump-scn-warn-")
+        .tempdir()
+        .unwrap();
+    let p = dir.path().join("warn.toml");
     std::fs::write(&p, text).unwrap();
     let sc = scenario::load(&p).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(sc.warnings.len(), 1, "{:?}", sc.warnings);
