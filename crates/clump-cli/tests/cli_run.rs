@@ -169,7 +169,7 @@ fn last_thermo(dir: &Path) -> Vec<String> {
 fn split_run_is_bit_identical_to_uninterrupted_run() {
     let dir = tmp("split");
     let d = dir.path();
-    let sc = write_scenario(&d, 600);
+    let sc = write_scenario(d, 600);
     let (a, b, c) = (d.join("a"), d.join("b"), d.join("c"));
     // uninterrupted, 2 threads
     run_ok(
@@ -236,14 +236,14 @@ fn split_run_is_bit_identical_to_uninterrupted_run() {
         pair > 20 && wall > 20,
         "too few contacts for a meaningful test: {last:?}"
     );
-    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_dir_all(d);
 }
 
 #[test]
 fn vtk_series_lists_every_frame() {
     let dir = tmp("vtk");
     let d = dir.path();
-    let sc = write_scenario(&d, 200);
+    let sc = write_scenario(d, 200);
     let out = d.join("out");
     run_ok(
         clump()
@@ -286,7 +286,7 @@ fn vtk_series_lists_every_frame() {
         header.contains("floor_fz") && header.contains("box_fz"),
         "{header}"
     );
-    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_dir_all(d);
 }
 
 fn wait_for_rows(child: &mut std::process::Child, path: &Path, rows: usize, timeout: Duration) {
@@ -320,7 +320,7 @@ fn wait_for_rows(child: &mut std::process::Child, path: &Path, rows: usize, time
 fn interrupt_and_resume(signal: &str, code: i32) {
     let dir = tmp(&format!("sig{signal}"));
     let d = dir.path();
-    let sc = write_scenario(&d, 1_000_000);
+    let sc = write_scenario(d, 1_000_000);
     let out = d.join("out");
     let mut child = clump()
         .arg("run")
@@ -400,7 +400,7 @@ fn interrupt_and_resume(signal: &str, code: i32) {
             == std::fs::read(straight.join(&last_frame)).unwrap(),
         "{last_frame} differs"
     );
-    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_dir_all(d);
 }
 
 /// After an interruption at `step` (the checkpoint step), every output is
@@ -521,7 +521,7 @@ fn bad_input_exits_with_status_2() {
     // unknown command-line option
     let o = clump().args(["run", "--bogus"]).output().unwrap();
     assert_eq!(o.status.code(), Some(2));
-    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_dir_all(d);
 }
 
 /// Without a terminal, `clump run` prints plain progress lines (simulated
@@ -530,7 +530,7 @@ fn bad_input_exits_with_status_2() {
 fn plain_progress_lines_without_a_tty() {
     let dir = tmp("progress");
     let d = dir.path();
-    let sc = write_scenario(&d, 100);
+    let sc = write_scenario(d, 100);
     let err = run_ok(clump().arg("run").arg(&sc).arg("-o").arg(d.join("o")));
     let line = err
         .lines()
@@ -549,7 +549,7 @@ fn plain_progress_lines_without_a_tty() {
 fn check_prints_derived_quantities() {
     let dir = tmp("check");
     let d = dir.path();
-    let sc = write_scenario(&d, 100);
+    let sc = write_scenario(d, 100);
     let o = clump().arg("check").arg(&sc).output().unwrap();
     assert!(o.status.success());
     let out = String::from_utf8_lossy(&o.stdout);

@@ -69,7 +69,7 @@ fn dev_full() -> Stdio {
 fn check_into_a_closed_pipe_exits_141_quietly() {
     let dir = tmp("check-epipe");
     let d = dir.path();
-    let sc = scenario(&d, 100, 10);
+    let sc = scenario(d, 100, 10);
     let o = clump()
         .arg("check")
         .arg(&sc)
@@ -90,7 +90,7 @@ fn check_into_a_closed_pipe_exits_141_quietly() {
 fn check_into_a_full_device_exits_1_naming_stdout() {
     let dir = tmp("check-full");
     let d = dir.path();
-    let sc = scenario(&d, 100, 10);
+    let sc = scenario(d, 100, 10);
     let o = clump()
         .arg("check")
         .arg(&sc)
@@ -122,7 +122,7 @@ fn complete(dir: &Path, rows: usize) {
 fn run_survives_a_full_or_closed_stderr() {
     let dir = tmp("run-stderr");
     let d = dir.path();
-    let sc = scenario(&d, 200, 20);
+    let sc = scenario(d, 200, 20);
     let o = clump()
         .arg("run")
         .arg(&sc)
@@ -166,7 +166,7 @@ fn rerun_into_a_used_folder_needs_overwrite() {
     let dir = tmp("rerun");
     let d = dir.path();
     let out = d.join("out");
-    let long = scenario(&d, 200, 20);
+    let long = scenario(d, 200, 20);
     let o = run(&[
         "run".as_ref(),
         long.as_os_str(),
@@ -176,7 +176,7 @@ fn rerun_into_a_used_folder_needs_overwrite() {
     assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
     assert!(out.join("spheres_000200.vtp").exists());
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
-    let short = scenario(&d, 100, 20);
+    let short = scenario(d, 100, 20);
     let o = run(&[
         "run".as_ref(),
         short.as_os_str(),
@@ -216,7 +216,7 @@ fn two_runs_cannot_share_a_folder() {
     let dir = tmp("lock");
     let d = dir.path();
     let out = d.join("out");
-    let sc = scenario(&d, 2_000_000, 1000);
+    let sc = scenario(d, 2_000_000, 1000);
     let mut first = clump()
         .arg("run")
         .arg(&sc)
@@ -266,7 +266,7 @@ fn two_runs_cannot_share_a_folder() {
 fn resume_continues_only_in_its_own_folder() {
     let dir = tmp("resume");
     let d = dir.path();
-    let sc = scenario(&d, 200, 20);
+    let sc = scenario(d, 200, 20);
     let (a, b) = (d.join("a"), d.join("b"));
     for (dir, steps) in [(&a, "100"), (&b, "200")] {
         let o = run(&[
@@ -323,7 +323,7 @@ fn resume_continues_only_in_its_own_folder() {
 fn threads_above_the_cores_are_capped() {
     let dir = tmp("threads");
     let d = dir.path();
-    let sc = scenario(&d, 20, 10);
+    let sc = scenario(d, 20, 10);
     let o = run(&[
         "run".as_ref(),
         sc.as_os_str(),
@@ -367,7 +367,7 @@ fn full_disk_stops_the_run_naming_the_file() {
         eprintln!("note: cannot mount a tmpfs (not root?); full-disk test skipped");
         return;
     }
-    let sc = scenario(&d, 100_000, 10);
+    let sc = scenario(d, 100_000, 10);
     let o = run(&[
         "run".as_ref(),
         sc.as_os_str(),
@@ -451,7 +451,7 @@ fn full_disk_stops_the_run_naming_the_file() {
 fn run_summary_counts_asked_and_placed_bodies() {
     let dir = tmp("counts");
     let d = dir.path();
-    let sc = scenario(&d, 100, 50);
+    let sc = scenario(d, 100, 50);
     let o = run(&[
         "run".as_ref(),
         sc.as_os_str(),
@@ -517,7 +517,7 @@ fn run_summary_counts_asked_and_placed_bodies() {
 fn bodies_beyond_memory_are_refused_before_allocating() {
     let dir = tmp("memory");
     let d = dir.path();
-    let sc = scenario(&d, 100, 50);
+    let sc = scenario(d, 100, 50);
     let text = std::fs::read_to_string(&sc).unwrap();
     let text = text
         .replace("lo = [-0.03, -0.03, -0.01]", "lo = [-50.0, -50.0, -0.01]")
