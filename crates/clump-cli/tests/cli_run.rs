@@ -236,7 +236,6 @@ fn split_run_is_bit_identical_to_uninterrupted_run() {
         pair > 20 && wall > 20,
         "too few contacts for a meaningful test: {last:?}"
     );
-    let _ = std::fs::remove_dir_all(d);
 }
 
 #[test]
@@ -286,7 +285,6 @@ fn vtk_series_lists_every_frame() {
         header.contains("floor_fz") && header.contains("box_fz"),
         "{header}"
     );
-    let _ = std::fs::remove_dir_all(d);
 }
 
 fn wait_for_rows(child: &mut std::process::Child, path: &Path, rows: usize, timeout: Duration) {
@@ -400,7 +398,6 @@ fn interrupt_and_resume(signal: &str, code: i32) {
             == std::fs::read(straight.join(&last_frame)).unwrap(),
         "{last_frame} differs"
     );
-    let _ = std::fs::remove_dir_all(d);
 }
 
 /// After an interruption at `step` (the checkpoint step), every output is
@@ -521,7 +518,6 @@ fn bad_input_exits_with_status_2() {
     // unknown command-line option
     let o = clump().args(["run", "--bogus"]).output().unwrap();
     assert_eq!(o.status.code(), Some(2));
-    let _ = std::fs::remove_dir_all(d);
 }
 
 /// Without a terminal, `clump run` prints plain progress lines (simulated
