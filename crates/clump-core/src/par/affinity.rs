@@ -8,8 +8,10 @@
 //! shared equally: the first half step and the gather use the same chunks
 //! and the same cost, so a thread moves the bodies whose forces it gathers,
 //! and the pair loop's runs cover nearly the same spheres (bodies and their
-//! spheres are stored in the same spatial order). Only pairs across the seam
-//! between two runs touch the other core's data.
+//! spheres are stored in the same spatial order). Inside `World::run` the
+//! pair stage and the gather share one cut ([`for_each_run_then`]), so a
+//! thread gathers exactly the bodies whose rows it evaluated. Only pairs
+//! across the seam between two runs touch the other core's data.
 //!
 //! The results do not depend on the thread count or on the cuts: chunk
 //! boundaries are fixed sizes, every chunk writes its own outputs, and every
@@ -21,6 +23,11 @@ pub(crate) const INITIAL_LOOP: usize = 0;
 pub(crate) const PAIR_LOOP: usize = 1;
 /// Index of the gather's [`Balance`].
 pub(crate) const GATHER_LOOP: usize = 2;
+/// Index of the [`Balance`] of the pair stage and the gather taken
+/// together ([`for_each_run_then`]).
+pub(crate) const FORCE_LOOP: usize = 3;
+/// Number of [`Balance`]s, one per loop.
+pub(crate) const LOOPS: usize = 4;
 
 /// Spheres a body chunk aims at (see [`body_chunk`]).
 const CHUNK_SPHERES: usize = 128;
@@ -69,7 +76,19 @@ pub(crate) struct Balance {
     share: Vec<f64>,
     /// Wall time of each run in the last call, ns.
     time: Vec<std::sync::atomic::AtomicU64>,
+    /// Per run: the number of the last call of [`for_each_run_then`] in
+    /// which it has finished the first stage; a cache line each, as the
+    /// other threads spin on it.
+    done: Vec<Flag>,
+    /// Calls of [`for_each_run_then`] so far.
+    call: u64,
 }
+
+/// An atomic on a cache line of its own (two, for the adjacent-line
+/// prefetcher).
+#[derive(Debug, Default)]
+#[repr(align(128))]
+struct Flag(std::sync::atomic::AtomicU64);
 
 /// Most runs per loop (threads beyond this share the runs).
 const MAX_RUNS: usize = 64;
@@ -85,6 +104,7 @@ impl Balance {
             self.time = (0..threads)
                 .map(|_| std::sync::atomic::AtomicU64::new(0))
                 .collect();
+            self.done = (0..threads).map(|_| Flag::default()).collect();
         }
     }
 
@@ -151,6 +171,145 @@ pub(crate) fn for_each_run(
         f(0..n);
         return;
     }
+    let (cuts, runs) = cut(n, &cost, balance);
+    let cuts = &cuts[..=runs];
+    let time = &balance.time;
+    // one run per thread of the persistent team, or through rayon when the
+    // team is busy with another world's loop
+    let timed = |t: usize| {
+        let clock = std::time::Instant::now();
+        f(cuts[t]..cuts[t + 1]);
+        time[t].store(
+            clock.elapsed().as_nanos() as u64,
+            std::sync::atomic::Ordering::Relaxed,
+        );
+    };
+    if !super::team::run(runs, &timed) {
+        run_parts(0, runs, &timed);
+    }
+    balance.learn(|r| cost(cuts[r + 1]) - cost(cuts[r]));
+}
+
+/// Two stages over the same runs of `n` chunks, one run per thread:
+/// `first(run)`, then `then(scratch, c)` for each chunk `c` of the run
+/// (the pair stage and the gather: `step::force`). A chunk's `then` may
+/// read what the `first` of earlier runs wrote and write what it read
+/// only where `after_earlier(c, run)` says so; it never touches what the
+/// `first` of later runs touches. Each thread takes its run through
+/// `first`, then through `then` from its last chunk down, and waits for the
+/// `first` of the earlier runs only before the first chunk that needs it:
+/// the chunks far from the seam with the earlier run come first, and by
+/// the time the thread reaches the seam the earlier runs are through their
+/// `first`. So the threads wait for each other once per call, at its end,
+/// and the two stages share one cut, balanced on their sum (`cost`, the
+/// two stages' cost together). The order of the chunks changes no result:
+/// every chunk writes its own outputs. When the team is busy, the runs go
+/// to rayon as two loops. Returns the time the calling thread spent in
+/// `first` (for the stage times; on one thread, exactly the first
+/// stage's).
+pub(crate) fn for_each_run_then<S>(
+    n: usize,
+    cost: impl Fn(usize) -> u64 + Sync,
+    balance: &mut Balance,
+    first: impl Fn(std::ops::Range<usize>) + Sync,
+    after_earlier: impl Fn(usize, std::ops::Range<usize>) -> bool + Sync,
+    init: impl Fn() -> S + Sync,
+    then: impl Fn(&mut S, usize) + Sync,
+) -> std::time::Duration {
+    use std::sync::atomic::{AtomicU64, Ordering};
+    let start = std::time::Instant::now();
+    if !several_runs(n) {
+        first(0..n);
+        let first_time = start.elapsed();
+        let mut s = init();
+        (0..n).for_each(|c| then(&mut s, c));
+        return first_time;
+    }
+    let (cuts, runs) = cut(n, &cost, balance);
+    let cuts = &cuts[..=runs];
+    balance.call += 1;
+    let (done, call, time) = (&balance.done, balance.call, &balance.time);
+    let first_time = AtomicU64::new(0);
+    /// Marks a run's `first` finished when dropped, also when it panics
+    /// (the team then reports the panic; no run may wait for ever).
+    struct Done<'a>(&'a AtomicU64, u64);
+    impl Drop for Done<'_> {
+        fn drop(&mut self) {
+            self.0.store(self.1, Ordering::Release);
+        }
+    }
+    let run = |t: usize| {
+        let chunks = cuts[t]..cuts[t + 1];
+        let clock = std::time::Instant::now();
+        let mark = Done(&done[t].0, call);
+        first(chunks.clone());
+        drop(mark);
+        let f = clock.elapsed();
+        if t == 0 {
+            first_time.store(f.as_nanos() as u64, Ordering::Relaxed);
+        }
+        let mut busy = f;
+        let mut waited = t == 0;
+        let mut s = init();
+        let mut clock = std::time::Instant::now();
+        for c in chunks.clone().rev() {
+            if !waited && after_earlier(c, chunks.clone()) {
+                busy += clock.elapsed();
+                done[..t].iter().for_each(|d| wait_for(&d.0, call));
+                waited = true;
+                clock = std::time::Instant::now();
+            }
+            then(&mut s, c);
+        }
+        busy += clock.elapsed();
+        time[t].store(busy.as_nanos() as u64, Ordering::Relaxed);
+    };
+    if !super::team::run(runs, &run) {
+        // rayon may run several runs one after another on one thread, and
+        // a run's wait could then be for a run queued behind it
+        time.iter().for_each(|t| t.store(0, Ordering::Relaxed));
+        let timed = |t: usize, stage: &dyn Fn(std::ops::Range<usize>)| {
+            let clock = std::time::Instant::now();
+            stage(cuts[t]..cuts[t + 1]);
+            time[t].fetch_add(clock.elapsed().as_nanos() as u64, Ordering::Relaxed);
+        };
+        run_parts(0, runs, &|t| timed(t, &first));
+        first_time.store(start.elapsed().as_nanos() as u64, Ordering::Relaxed);
+        run_parts(0, runs, &|t| {
+            timed(t, &|chunks: std::ops::Range<usize>| {
+                let mut s = init();
+                chunks.for_each(|c| then(&mut s, c));
+            })
+        });
+    }
+    balance.learn(|r| cost(cuts[r + 1]) - cost(cuts[r]));
+    std::time::Duration::from_nanos(first_time.into_inner())
+}
+
+/// Spins until `flag` holds `value` (set by another thread of the team,
+/// which runs on its own core; it may have been descheduled, hence the
+/// yield after a while).
+fn wait_for(flag: &std::sync::atomic::AtomicU64, value: u64) {
+    let mut spins = 0u32;
+    while flag.load(std::sync::atomic::Ordering::Acquire) != value {
+        spins = spins.saturating_add(1);
+        if spins < 1 << 16 {
+            std::hint::spin_loop();
+        } else {
+            std::thread::yield_now();
+        }
+    }
+}
+
+/// The chunk boundaries of the runs of a loop over `n` chunks: run `t`
+/// holds the chunks `cuts[t]..cuts[t + 1]`, whose cost falls in its share
+/// of the total (see [`Balance`]); also the number of runs, one per thread
+/// of the current rayon pool (at most [`MAX_RUNS`]).
+fn cut(
+    n: usize,
+    cost: &impl Fn(usize) -> u64,
+    balance: &mut Balance,
+) -> ([usize; MAX_RUNS + 1], usize) {
     let threads = rayon::current_num_threads();
     let runs = threads.min(MAX_RUNS);
     balance.reset(runs);
@@ -188,22 +347,7 @@ pub(crate) fn for_each_run(
     for (t, c) in cuts.iter_mut().enumerate().take(runs + 1) {
         *c = start(t);
     }
-    let cuts = &cuts[..=runs];
-    let time = &balance.time;
-    // one run per thread of the persistent team, or through rayon when the
-    // team is busy with another world's loop
-    let timed = |t: usize| {
-        let clock = std::time::Instant::now();
-        f(cuts[t]..cuts[t + 1]);
-        time[t].store(
-            clock.elapsed().as_nanos() as u64,
-            std::sync::atomic::Ordering::Relaxed,
-        );
-    };
-    if !super::team::run(runs, &timed) {
-        run_parts(0, runs, &timed);
-    }
-    balance.learn(|r| cost(cuts[r + 1]) - cost(cuts[r]));
+    (cuts, runs)
 }
 
 /// Runs the runs `t0..t1` through `timed` (see [`for_each_run`]), splitting
@@ -217,4 +361,66 @@ fn run_parts(t0: usize, t1: usize, timed: &(impl Fn(usize) + Sync)) {
     }
     let mid = (t0 + t1) / 2;
     rayon::join(|| run_parts(t0, mid, timed), || run_parts(mid, t1, timed));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+    /// `for_each_run_then` runs each chunk's two stages once, the second
+    /// after the first, and the chunk that depends on the earlier runs
+    /// (here the first chunk of each run) only after their first stage: on
+    /// the team (two runs on two cores) and on rayon (more runs than
+    /// cores), also after the helpers have parked.
+    #[test]
+    fn second_stage_waits_where_it_depends_on_earlier_runs() {
+        for threads in [2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut balance = Balance::default();
+                for pause in [0, 1, 0] {
+                    let n = 40;
+                    let flags = |v: bool| (0..n).map(|_| AtomicBool::new(v)).collect::<Vec<_>>();
+                    let counts = || (0..n).map(|_| AtomicUsize::new(0)).collect::<Vec<_>>();
+                    let (first_done, run_start) = (flags(false), flags(false));
+                    let (firsts, thens) = (counts(), counts());
+                    for_each_run_then(
+                        n,
+                        |c| c as u64,
+                        &mut balance,
+                        |run| {
+                            run_start[run.start].store(true, Ordering::Relaxed);
+                            for c in run {
+                                // the lower chunks slower: a second stage
+                                // that did not wait would overtake them
+                                let us = if c < n / 2 { 200 } else { 20 };
+                                std::thread::sleep(std::time::Duration::from_micros(us));
+                                firsts[c].fetch_add(1, Ordering::Relaxed);
+                                first_done[c].store(true, Ordering::Release);
+                            }
+                        },
+                        |c, run| c == run.start,
+                        || (),
+                        |_, c| {
+                            thens[c].fetch_add(1, Ordering::Relaxed);
+                            assert!(first_done[c].load(Ordering::Acquire));
+                            if run_start[c].load(Ordering::Relaxed) {
+                                assert!(
+                                    (0..c).all(|k| first_done[k].load(Ordering::Acquire)),
+                                    "chunk {c} ran before the earlier runs' first stage"
+                                );
+                            }
+                        },
+                    );
+                    assert!(firsts.iter().all(|x| x.load(Ordering::Relaxed) == 1));
+                    assert!(thens.iter().all(|x| x.load(Ordering::Relaxed) == 1));
+                    std::thread::sleep(std::time::Duration::from_millis(pause));
+                }
+            });
+        }
+    }
 }

@@ -1,8 +1,10 @@
 //! A persistent team of helper threads for the per-step loops.
 //!
-//! Each step runs three parallel loops (first half step, pair forces,
-//! gather), each a few hundred microseconds long on a bed of a few thousand
-//! bodies. Handing a run to a rayon worker costs a wake-up when that worker
+//! Each step runs one to three parallel loops (inside `World::run` one
+//! call for the pair stage and the gather, which also takes the next
+//! step's first half; else the first half step, the pair forces and the
+//! gather), each a few hundred microseconds long on a bed of a few
+//! thousand bodies. Handing a run to a rayon worker costs a wake-up when that worker
 //! has gone to sleep between the loops: measured at 17–40 µs per loop on
 //! two threads on the settled 2 000-clump bed, 12–25 % of the step. The
 //! helpers here spin for a short while after each run (then park), so the

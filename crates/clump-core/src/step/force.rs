@@ -17,11 +17,13 @@
 use super::body_props::BodyProps;
 use super::first_half_lanes::{BodyLanes, LANES};
 use super::integrate::{FinalKick, FirstHalf, Held};
+use super::pair_kernel::RowCtx;
 use super::wall_contacts::WallPass;
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::column_sum;
 use crate::par::affinity::{
-    body_chunk_cost, for_each_chunk_with, for_each_run, several_runs, GATHER_LOOP, PAIR_LOOP,
+    body_chunk_cost, for_each_chunk_with, for_each_run, for_each_run_then, several_runs,
+    FORCE_LOOP, GATHER_LOOP, PAIR_LOOP,
 };
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
@@ -31,6 +33,7 @@ use crate::wall::{WallLoad, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::World;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
 
 /// Entries of the wall list ahead whose sphere's state the gather prefetches.
 const ENTRY_PREFETCH: usize = 8;
@@ -61,15 +64,47 @@ pub fn compute(w: &mut World) {
 /// a seam, with each pair's contribution to it in `load_j`), and the pair
 /// statistics per chunk of rows.
 pub(crate) fn pair_forces(w: &mut World) {
-    use super::pair_kernel::{Batch, RowCtx};
+    let nchunks = prepare_pairs(w);
+    let chunk = w.body_chunk();
+    let stats = SharedMut::new(&mut w.scratch.chunk_pair_stats);
+    let ready = SharedMut::new(&mut w.scratch.body_ready);
+    let record = w
+        .neighbors
+        .records
+        .recording
+        .then(|| SharedMut::new(&mut w.neighbors.records.pair));
+    let (rows, _) = row_ctx(
+        &w.spheres,
+        &w.contact_table,
+        &w.config,
+        &mut w.neighbors.pairs,
+        ready,
+        record,
+        w.part.as_deref(),
+        chunk,
+    );
+    let balance = &mut w.scratch.balance[PAIR_LOOP];
+    // SAFETY: every run is run once, on one thread.
+    for_each_run(
+        nchunks,
+        |c| pair_cost(&rows, c),
+        balance,
+        |run| unsafe { pair_run(&rows, run, &stats) },
+    );
+}
+
+/// What the pair stage needs before its rows are evaluated, on one thread:
+/// the `average` scales, the statistics slots and ready flags sized, the
+/// seams' column lists (several runs), rolling springs where a law keeps
+/// them, and the contact records sized. Returns the number of chunks.
+fn prepare_pairs(w: &mut World) -> usize {
     if w.config.multi_contact == MultiContact::Average {
         average_scales(w);
     } else {
         w.neighbors.pairs.scale.clear();
     }
     let nb = w.bodies.len();
-    let chunk = w.body_chunk();
-    let nchunks = nb.div_ceil(chunk);
+    let nchunks = nb.div_ceil(w.body_chunk());
     let stats = &mut w.scratch.chunk_pair_stats;
     stats.clear();
     stats.resize(nchunks, ContactStats::default());
@@ -86,55 +121,83 @@ pub(crate) fn pair_forces(w: &mut World) {
     if records.recording {
         records.pair.resize(pairs.topo.len(), Default::default());
     }
-    let record = records.recording.then(|| SharedMut::new(&mut records.pair));
+    nchunks
+}
+
+/// The pair stage's view of the world ([`RowCtx`]), and the pair list
+/// seen from the other stages while the rows are evaluated (the fields the
+/// rows write are reached through the context only).
+#[allow(clippy::too_many_arguments)]
+fn row_ctx<'a>(
+    sp: &'a crate::sphere::Spheres,
+    table: &'a crate::contact::ContactTable,
+    config: &crate::world::WorldConfig,
+    pairs: &'a mut crate::neighbor::PairList,
+    body_ready: SharedMut<bool>,
+    record: Option<SharedMut<crate::contact::record::PairRecord>>,
+    part: Option<&'a crate::partition::Part>,
+    body_chunk: usize,
+) -> (RowCtx<'a>, &'a crate::neighbor::PairList) {
+    let topo = SharedMut::new(&mut pairs.topo);
+    let tangential = SharedMut::new(&mut pairs.tangential);
+    let rolling = SharedMut::new(&mut pairs.rolling);
+    let load_j = SharedMut::new(&mut pairs.load_j);
+    let body = SharedMut::new(&mut pairs.body);
+    let pairs = &*pairs;
     let rows = RowCtx {
-        dt: w.config.dt,
-        domain: w.config.domain,
-        any_periodic: w.config.domain.periodic.iter().any(|&p| p),
-        sp: &w.spheres,
-        table: &w.contact_table,
+        dt: config.dt,
+        domain: config.domain,
+        any_periodic: config.domain.periodic.iter().any(|&p| p),
+        sp,
+        table,
         row_start: &pairs.row_start,
-        topo: SharedMut::new(&mut pairs.topo),
+        topo,
         scale: &pairs.scale,
-        tangential: SharedMut::new(&mut pairs.tangential),
-        rolling: SharedMut::new(&mut pairs.rolling),
-        load_j: SharedMut::new(&mut pairs.load_j),
-        body: SharedMut::new(&mut pairs.body),
+        tangential,
+        rolling,
+        load_j,
+        body,
         first_feed: &pairs.first_feed,
-        body_ready: SharedMut::new(&mut w.scratch.body_ready),
+        body_ready,
         record,
         simd: crate::par::simd::simd(),
-        prefetch: w.spheres.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
-        counted: w.part.as_ref().map(|p| &p.owned[..]),
-        body_chunk: chunk,
+        prefetch: sp.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
+        counted: part.map(|p| &p.owned[..]),
+        body_chunk,
     };
-    let stats = SharedMut::new(stats);
-    // the chunks are the gather's body chunks, so that a body's rows never
-    // straddle two threads; cost estimate: one unit per sphere and per
-    // candidate pair
-    let (row_start, first) = (rows.row_start, &w.spheres.body_first);
-    let cost = |c: usize| {
-        let s = first.get((c * chunk).min(nb)).map_or(0, |&s| s as usize);
-        row_start.get(s).map_or(0, |&p| p as u64) + s as u64
-    };
-    let balance = &mut w.scratch.balance[PAIR_LOOP];
-    // one run of chunks per thread, one batch per run: a batch may span
-    // chunks (the statistics go to each pair's own chunk, in pair order)
-    for_each_run(nchunks, cost, balance, |run| {
-        let b0 = run.start * chunk;
-        let b1 = (run.end * chunk).min(nb);
-        if b0 >= b1 {
-            return;
-        }
-        let mut batch = Batch::default();
-        // SAFETY: this run owns the rows of bodies b0..b1 of the half list,
-        // their bodies' pair loads and its chunks' statistics slots, no
-        // other run's; the column sums it adds to are of bodies complete in
-        // it.
-        unsafe {
-            rows.evaluate(b0..b1, first[b0] as usize, &mut batch, &stats);
-        }
-    });
+    (rows, pairs)
+}
+
+/// The pair stage's cost estimate of the body chunks `0..c` (the gather's
+/// chunks, so that a body's rows never straddle two threads): one unit per
+/// sphere and per candidate pair.
+fn pair_cost(rows: &RowCtx, c: usize) -> u64 {
+    let first = &rows.sp.body_first;
+    let nb = first.len().saturating_sub(1);
+    let s = first
+        .get((c * rows.body_chunk).min(nb))
+        .map_or(0, |&s| s as usize);
+    rows.row_start.get(s).map_or(0, |&p| p as u64) + s as u64
+}
+
+/// Evaluates the rows of the body chunks `run`, one thread's run, as one
+/// batch (a batch may span chunks: the statistics go to each pair's own
+/// chunk, in pair order).
+///
+/// # Safety
+/// This run owns the rows of its bodies in the half list, their bodies'
+/// pair loads and its chunks' statistics slots, no other run's; the column
+/// sums it adds to are of bodies complete in it.
+unsafe fn pair_run(rows: &RowCtx, run: std::ops::Range<usize>, stats: &SharedMut<ContactStats>) {
+    let first = &rows.sp.body_first;
+    let nb = first.len().saturating_sub(1);
+    let b0 = run.start * rows.body_chunk;
+    let b1 = (run.end * rows.body_chunk).min(nb);
+    if b0 >= b1 {
+        return;
+    }
+    let mut batch = super::pair_kernel::Batch::default();
+    rows.evaluate(b0..b1, first[b0] as usize, &mut batch, stats);
 }
 
 /// `average` multi-contact: the scale `1/n` of every pair, `n` being the
@@ -199,6 +262,33 @@ fn average_scales(w: &mut World) {
 /// false). A body's first half reads and writes only its own state and
 /// spheres, so the blocks change no result.
 pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool {
+    gather_after(w, kick, next, false).0
+}
+
+/// [`pair_forces`] and then [`gather`] with the kick, in one parallel call
+/// ([`for_each_run_then`]): each thread takes its run of chunks through
+/// the pair stage and then through the gather, from its last chunk down;
+/// before the first chunk whose bodies the rows of an earlier run feed
+/// (`PairList::first_feed`: those rows read the bodies' spheres and
+/// packed records, which the gather's first half rewrites, and leave
+/// their column loads in `load_j`), it waits for the pair stage of the
+/// earlier runs. One cut and one balance for both stages, and one wait
+/// for all threads a step instead of two. The same results as the two
+/// stages one after the other, for any thread count. Returns the gather's
+/// result and the time the calling thread spent in the pair stage (the
+/// rest of the call is the gather's).
+pub(crate) fn pairs_and_gather(w: &mut World, next: Option<FirstHalf>) -> (bool, Duration) {
+    prepare_pairs(w);
+    gather_after(w, true, next, true)
+}
+
+/// [`gather`]; with `pairs_first`, [`pairs_and_gather`].
+fn gather_after(
+    w: &mut World,
+    kick: bool,
+    next: Option<FirstHalf>,
+    pairs_first: bool,
+) -> (bool, Duration) {
     let chunk = w.body_chunk();
     let World {
         bodies,
@@ -272,7 +362,26 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
     let mass = unsafe { BodyProps::new(props, bodies) };
     let b = &*bodies;
     let pair_body = SharedMut::new(&mut pairs.body);
-    let pairs = &*pairs;
+    let ready = SharedMut::new(body_ready);
+    let (rows, pairs) = if pairs_first {
+        let record = contact_records
+            .recording
+            .then(|| SharedMut::new(&mut contact_records.pair));
+        let (rows, pairs) = row_ctx(
+            sp,
+            table,
+            config,
+            pairs,
+            ready,
+            record,
+            part.as_deref(),
+            chunk,
+        );
+        (Some(rows), pairs)
+    } else {
+        (None, &*pairs)
+    };
+    let pair_stats = SharedMut::new(chunk_pair_stats);
     let stats_out = SharedMut::new(chunk_stats);
     // this step keeps its contacts (crate::contacts): each chunk its own list
     let recording = contact_records.recording;
@@ -294,188 +403,217 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         &mut contact_records.wall,
         recording,
     );
-    for_each_chunk_with(
-        nchunks,
-        body_chunk_cost(body_cost, nb, chunk),
-        &mut balance[GATHER_LOOP],
-        || {
-            (
-                PartnerCounts::default(),
-                [WallTouch::default(); MAX_TOUCHES_PER_WALL],
-                BodyLanes::idle(),
-            )
-        },
-        |(wcounts, touch_buf, lanes), c| {
-            // SAFETY: chunk c's statistics slot is written by chunk c only.
-            let stat = unsafe { stats_out.get(c) };
-            let b0 = c * chunk;
-            let b1 = (b0 + chunk).min(nb);
-            // the chunk's entries of the wall list, ascending with its bodies
-            let (mut e, e_end) = (
-                wall_pass.chunk_start[c] as usize,
-                wall_pass.chunk_start[c + 1] as usize,
-            );
-            // the next entry whose sphere is to be prefetched
-            let mut e_pf = e;
-            let mut stale = false;
-            let mut held = [Held::default(); FIRST_HALF_BLOCK];
-            for k0 in (b0..b1).step_by(FIRST_HALF_BLOCK) {
-                let k1 = (k0 + FIRST_HALF_BLOCK).min(b1);
-                for bi in k0..k1 {
-                    // SAFETY: body bi is handled by this chunk only.
-                    let com = unsafe {
-                        if lag {
-                            (*pair_body.ptr(bi)).position
-                        } else {
-                            pos.read(bi)
-                        }
-                    };
-                    // the body's entries: e0..e
-                    let e0 = e;
-                    // the spheres of the entries up to a few ahead of this
-                    // body's first: their state lines, which the pair stage has
-                    // pushed out of the cache by now in a large bed (read here,
-                    // they were 10 % of this pass at 40 000 spheres, 16 % at
-                    // 10⁶ when only one entry was prefetched per body, as a body
-                    // at a wall has up to four); within the chunk, as later
-                    // entries are another thread's
-                    let pf_end = (e + ENTRY_PREFETCH).min(e_end);
-                    while e_pf < pf_end {
-                        // SAFETY: the entry and its sphere exist (a prefetch
-                        // never faults anyway).
-                        unsafe {
-                            prefetch(
-                                sp.state
-                                    .as_ptr()
-                                    .add(at(wall_pass.entry_sphere, e_pf) as usize),
-                            )
-                        };
-                        e_pf += 1;
-                    }
-                    // the column sum of a body a few ahead (the pair stage wrote
-                    // it; 7 % of this pass at 10⁶ spheres, read here)
-                    if bi + BODY_PREFETCH < b1 {
-                        // SAFETY: a body of this chunk; a prefetch never faults.
-                        unsafe {
-                            prefetch(std::ptr::addr_of!((*pair_body.ptr(bi + BODY_PREFETCH)).col));
-                        }
-                    }
-                    let s_end = sp.of_body(bi).end;
-                    // SAFETY: e < e_end ≤ the number of entries.
-                    while e < e_end && (unsafe { at(wall_pass.entry_sphere, e) } as usize) < s_end {
-                        e += 1;
-                    }
-                    // --- sphere–sphere contacts: summed by the pair stage, or
-                    // here for a body on the seam between two threads' runs
-                    // SAFETY: body bi is handled by this chunk only; its sum
-                    // is read and reset for the next step.
-                    let own = std::mem::take(unsafe { &mut (*pair_body.ptr(bi)).col });
-                    let pl = if body_ready[bi] {
-                        own
+    let init = || {
+        (
+            PartnerCounts::default(),
+            [WallTouch::default(); MAX_TOUCHES_PER_WALL],
+            BodyLanes::idle(),
+        )
+    };
+    let gather_chunk = |(wcounts, touch_buf, lanes): &mut (
+        PartnerCounts,
+        [WallTouch; MAX_TOUCHES_PER_WALL],
+        BodyLanes,
+    ),
+                        c: usize| {
+        // SAFETY: chunk c's statistics slot is written by chunk c only.
+        let stat = unsafe { stats_out.get(c) };
+        let b0 = c * chunk;
+        let b1 = (b0 + chunk).min(nb);
+        // the chunk's entries of the wall list, ascending with its bodies
+        let (mut e, e_end) = (
+            wall_pass.chunk_start[c] as usize,
+            wall_pass.chunk_start[c + 1] as usize,
+        );
+        // the next entry whose sphere is to be prefetched
+        let mut e_pf = e;
+        let mut stale = false;
+        let mut held = [Held::default(); FIRST_HALF_BLOCK];
+        for k0 in (b0..b1).step_by(FIRST_HALF_BLOCK) {
+            let k1 = (k0 + FIRST_HALF_BLOCK).min(b1);
+            for bi in k0..k1 {
+                // SAFETY: body bi is handled by this chunk only.
+                let com = unsafe {
+                    if lag {
+                        (*pair_body.ptr(bi)).position
                     } else {
-                        // SAFETY: the pair list was built for these bodies (a
-                        // rebuild precedes every gather after a change), and the
-                        // pair stage is over.
-                        own.add(unsafe {
-                            column_sum(pairs.load_j.as_ptr(), &pairs.col_start, &pairs.col_pair, bi)
-                        })
+                        pos.read(bi)
+                    }
+                };
+                // the body's entries: e0..e
+                let e0 = e;
+                // the spheres of the entries up to a few ahead of this
+                // body's first: their state lines, which the pair stage has
+                // pushed out of the cache by now in a large bed (read here,
+                // they were 10 % of this pass at 40 000 spheres, 16 % at
+                // 10⁶ when only one entry was prefetched per body, as a body
+                // at a wall has up to four); within the chunk, as later
+                // entries are another thread's
+                let pf_end = (e + ENTRY_PREFETCH).min(e_end);
+                while e_pf < pf_end {
+                    // SAFETY: the entry and its sphere exist (a prefetch
+                    // never faults anyway).
+                    unsafe {
+                        prefetch(
+                            sp.state
+                                .as_ptr()
+                                .add(at(wall_pass.entry_sphere, e_pf) as usize),
+                        )
                     };
+                    e_pf += 1;
+                }
+                // the column sum of a body a few ahead (the pair stage wrote
+                // it; 7 % of this pass at 10⁶ spheres, read here)
+                if bi + BODY_PREFETCH < b1 {
+                    // SAFETY: a body of this chunk; a prefetch never faults.
+                    unsafe {
+                        prefetch(std::ptr::addr_of!((*pair_body.ptr(bi + BODY_PREFETCH)).col));
+                    }
+                }
+                let s_end = sp.of_body(bi).end;
+                // SAFETY: e < e_end ≤ the number of entries.
+                while e < e_end && (unsafe { at(wall_pass.entry_sphere, e) } as usize) < s_end {
+                    e += 1;
+                }
+                // --- sphere–sphere contacts: summed by the pair stage, or
+                // here for a body on the seam between two threads' runs
+                // SAFETY: body bi is handled by this chunk only; its sum
+                // is read and reset for the next step.
+                let own = std::mem::take(unsafe { &mut (*pair_body.ptr(bi)).col });
+                // SAFETY: the pair stage of this body's run is over.
+                let pl = if unsafe { ready.read(bi) } {
+                    own
+                } else {
+                    // SAFETY: the pair list was built for these bodies (a
+                    // rebuild precedes every gather after a change), and the
+                    // pair stage is over.
+                    own.add(unsafe {
+                        column_sum(pairs.load_j.as_ptr(), &pairs.col_start, &pairs.col_pair, bi)
+                    })
+                };
+                // SAFETY: bi < nb.
+                let mass_i = unsafe { mass.mass(bi) };
+                let mut f = mass_i * gravity + pl.force;
+                let mut m = pl.torque;
+                // --- sphere–wall contacts
+                if e > e0 {
+                    // SAFETY: the entries e0..e are body bi's, chunk c's.
+                    unsafe {
+                        wall_pass.body(
+                            bi,
+                            com,
+                            e0..e,
+                            c,
+                            wcounts,
+                            touch_buf,
+                            owned.map_or(true, |o| o[bi]).then_some(&mut *stat),
+                            &mut f,
+                            &mut m,
+                        )
+                    };
+                }
+                // the body's velocities as local values, kicked, then stored
+                // once: read back from memory right after the kick's
+                // per-component stores, they could not be forwarded (a
+                // stall measured at 6-8 % of this pass)
+                // SAFETY: body bi is handled by this chunk only.
+                let (mut v, mut l, mut om) = unsafe {
+                    let l = angm.read(bi);
+                    if lag {
+                        let pb = pair_body.ptr(bi);
+                        ((*pb).velocity, l, (*pb).angular_velocity)
+                    } else {
+                        (vel.read(bi), l, omega.read(bi))
+                    }
+                };
+                // the force and torque are kept for the next step's first
+                // half, unless it takes them now
+                if next.is_none() {
+                    // SAFETY: body bi is handled by this chunk only.
+                    unsafe {
+                        *force.get(bi) = f;
+                        *torque.get(bi) = m;
+                    }
+                }
+                if let Some(k) = &kick {
                     // SAFETY: bi < nb.
-                    let mass_i = unsafe { mass.mass(bi) };
-                    let mut f = mass_i * gravity + pl.force;
-                    let mut m = pl.torque;
-                    // --- sphere–wall contacts
-                    if e > e0 {
-                        // SAFETY: the entries e0..e are body bi's, chunk c's.
-                        unsafe {
-                            wall_pass.body(
-                                bi,
-                                com,
-                                e0..e,
-                                c,
-                                wcounts,
-                                touch_buf,
-                                owned.map_or(true, |o| o[bi]).then_some(&mut *stat),
-                                &mut f,
-                                &mut m,
-                            )
-                        };
+                    unsafe { k.apply(bi, &mut v, &mut l, &mut om, f, m) };
+                }
+                // --- health statistics (folded into this pass: no extra
+                // sweep): the kinetic energy at the end of the step, after
+                // the kick (a force that would fling a body out of the
+                // domain shows here, before the body is removed)
+                let ke = 0.5 * mass_i * v.length_squared() + 0.5 * om.dot(l);
+                if owned.is_some_and(|o| !o[bi]) {
+                    // a ghost: its owner counts it
+                } else {
+                    stat.kinetic_energy += ke;
+                    stat.total_mass += mass_i;
+                    if ke > stat.max_body_kinetic_energy {
+                        stat.max_body_kinetic_energy = ke;
+                        stat.max_kinetic_body = b.id[bi];
                     }
-                    // the body's velocities as local values, kicked, then stored
-                    // once: read back from memory right after the kick's
-                    // per-component stores, they could not be forwarded (a
-                    // stall measured at 6-8 % of this pass)
+                    if stat.non_finite_body == 0
+                        && !(ke.is_finite() && com.is_finite() && f.is_finite() && m.is_finite())
+                    {
+                        stat.non_finite_body = b.id[bi];
+                    }
+                }
+                if next.is_some() {
+                    held[bi - k0] = Held { v, l, om, f, m };
+                } else if kick.is_some() {
                     // SAFETY: body bi is handled by this chunk only.
-                    let (mut v, mut l, mut om) = unsafe {
-                        let l = angm.read(bi);
+                    unsafe {
+                        *vel.get(bi) = v;
+                        *angm.get(bi) = l;
+                        *omega.get(bi) = om;
                         if lag {
-                            let pb = pair_body.ptr(bi);
-                            ((*pb).velocity, l, (*pb).angular_velocity)
-                        } else {
-                            (vel.read(bi), l, omega.read(bi))
-                        }
-                    };
-                    // the force and torque are kept for the next step's first
-                    // half, unless it takes them now
-                    if next.is_none() {
-                        // SAFETY: body bi is handled by this chunk only.
-                        unsafe {
-                            *force.get(bi) = f;
-                            *torque.get(bi) = m;
-                        }
-                    }
-                    if let Some(k) = &kick {
-                        // SAFETY: bi < nb.
-                        unsafe { k.apply(bi, &mut v, &mut l, &mut om, f, m) };
-                    }
-                    // --- health statistics (folded into this pass: no extra
-                    // sweep): the kinetic energy at the end of the step, after
-                    // the kick (a force that would fling a body out of the
-                    // domain shows here, before the body is removed)
-                    let ke = 0.5 * mass_i * v.length_squared() + 0.5 * om.dot(l);
-                    if owned.is_some_and(|o| !o[bi]) {
-                        // a ghost: its owner counts it
-                    } else {
-                        stat.kinetic_energy += ke;
-                        stat.total_mass += mass_i;
-                        if ke > stat.max_body_kinetic_energy {
-                            stat.max_body_kinetic_energy = ke;
-                            stat.max_kinetic_body = b.id[bi];
-                        }
-                        if stat.non_finite_body == 0
-                            && !(ke.is_finite()
-                                && com.is_finite()
-                                && f.is_finite()
-                                && m.is_finite())
-                        {
-                            stat.non_finite_body = b.id[bi];
-                        }
-                    }
-                    if next.is_some() {
-                        held[bi - k0] = Held { v, l, om, f, m };
-                    } else if kick.is_some() {
-                        // SAFETY: body bi is handled by this chunk only.
-                        unsafe {
-                            *vel.get(bi) = v;
-                            *angm.get(bi) = l;
-                            *omega.get(bi) = om;
-                            if lag {
-                                *pos.get(bi) = com;
-                            }
+                            *pos.get(bi) = com;
                         }
                     }
                 }
-                if let Some(h) = next {
-                    // SAFETY: bodies k0..k1 (and their spheres) are handled
-                    // by this chunk only; it stores their state.
-                    stale |= unsafe { h.apply_block(k0, &mut held[..k1 - k0], lanes) };
-                }
             }
-            if stale {
-                any_stale.store(true, Ordering::Relaxed);
+            if let Some(h) = next {
+                // SAFETY: bodies k0..k1 (and their spheres) are handled
+                // by this chunk only; it stores their state.
+                stale |= unsafe { h.apply_block(k0, &mut held[..k1 - k0], lanes) };
             }
-        },
-    );
+        }
+        if stale {
+            any_stale.store(true, Ordering::Relaxed);
+        }
+    };
+    let gather_cost = body_chunk_cost(body_cost, nb, chunk);
+    let pair_time = match &rows {
+        None => {
+            for_each_chunk_with(
+                nchunks,
+                gather_cost,
+                &mut balance[GATHER_LOOP],
+                init,
+                gather_chunk,
+            );
+            Duration::ZERO
+        }
+        Some(rows) => {
+            let first_sphere = &sp.body_first;
+            // a chunk with a body that an earlier run's rows feed (and read)
+            let fed_earlier = |c: usize, run: std::ops::Range<usize>| {
+                let run_start = first_sphere[(run.start * chunk).min(nb)];
+                (c * chunk..((c + 1) * chunk).min(nb)).any(|b| pairs.first_feed[b] < run_start)
+            };
+            for_each_run_then(
+                nchunks,
+                |c| pair_cost(rows, c) + gather_cost(c),
+                &mut balance[FORCE_LOOP],
+                // SAFETY: every run is run once, on one thread.
+                |run| unsafe { pair_run(rows, run, &pair_stats) },
+                fed_earlier,
+                init,
+                gather_chunk,
+            )
+        }
+    };
     // the pair stage recorded the spheres (storage indices) of each chunk's
     // deepest pair: their bodies' ids
     for s in chunk_pair_stats.iter_mut() {
@@ -499,7 +637,7 @@ pub(crate) fn gather(w: &mut World, kick: bool, next: Option<FirstHalf>) -> bool
         *load = l;
     }
     phase.bodies_lag = next.is_some_and(|h| h.lags());
-    any_stale.into_inner()
+    (any_stale.into_inner(), pair_time)
 }
 
 #[cfg(test)]

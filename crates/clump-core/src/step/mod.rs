@@ -30,6 +30,12 @@
 //! unchanged, so are the results; between public calls the world is always
 //! at a step boundary.
 //!
+//! Inside [`World::run`], stages 4 and 5 are also one parallel call
+//! (`force::pairs_and_gather`): each thread evaluates the rows of its run
+//! of bodies and then gathers the same bodies, from its last chunk down,
+//! waiting for the earlier threads' rows only before the bodies on the
+//! seam with them; the threads wait for each other once a step.
+//!
 //! Every parallel loop writes disjoint outputs and every reduction runs over
 //! fixed-size chunks in a fixed order, so the results are bit-identical for
 //! any thread count. Each loop gives every thread one contiguous run of
@@ -178,14 +184,16 @@ impl World {
             rebuild::wall_started(self);
             lap(&mut times.neighbor, &mut t);
         }
-        force::pair_forces(self);
-        lap(&mut times.pair, &mut t);
         let fuse = fuse_next && !self.phase.topology_dirty;
         // SAFETY: the gather touches each body in one chunk only, and
         // resizes no array.
         let next =
             fuse.then(|| unsafe { integrate::FirstHalf::new(self, self.step + 1, true).lagging() });
-        let next_stale = force::gather(self, true, next);
+        // the pair stage and the gather in one parallel call; the calling
+        // thread's time in the pair stage is the pair stage's time
+        let (next_stale, pair_time) = force::pairs_and_gather(self, next);
+        times.pair += pair_time.as_secs_f64();
+        times.gather -= pair_time.as_secs_f64();
         if fuse {
             self.phase.first_half_done = Some(next_stale);
         }

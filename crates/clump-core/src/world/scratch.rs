@@ -43,9 +43,10 @@ pub(crate) struct Scratch {
     /// built with the wall lists. Splits the per-body loops between threads
     /// (see `par::affinity`).
     pub body_cost: Vec<u64>,
-    /// How the first half step, the pair loop and the gather share their
-    /// chunks between threads (learned; never affects results).
-    pub balance: [Balance; 3],
+    /// How the first half step, the pair loop, the gather and the two
+    /// together share their chunks between threads (learned; never affects
+    /// results).
+    pub balance: [Balance; crate::par::affinity::LOOPS],
     /// The bodies' mass properties and degrees of freedom as the step
     /// reads them (refreshed at every step boundary where steps begin).
     pub props: super::props::PropsTable,
