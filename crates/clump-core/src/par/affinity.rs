@@ -194,7 +194,8 @@ pub(crate) fn for_each_run(
 /// `first(run)`, then `then(scratch, c)` for each chunk `c` of the run
 /// (the pair stage and the gather: `step::force`). A chunk's `then` may
 /// read what the `first` of earlier runs wrote and write what it read
-/// only where `after_earlier(c, run)` says so; it never touches what the
+/// only where `after_earlier(c)` says so (asked on the thread whose
+/// `first` has just taken the chunk's run); it never touches what the
 /// `first` of later runs touches. Each thread takes its run through
 /// `first`, then through `then` from its last chunk down, and waits for the
 /// `first` of the earlier runs only before the first chunk that needs it:
@@ -212,7 +213,7 @@ pub(crate) fn for_each_run_then<S>(
     cost: impl Fn(usize) -> u64 + Sync,
     balance: &mut Balance,
     first: impl Fn(std::ops::Range<usize>) + Sync,
-    after_earlier: impl Fn(usize, std::ops::Range<usize>) -> bool + Sync,
+    after_earlier: impl Fn(usize) -> bool + Sync,
     init: impl Fn() -> S + Sync,
     then: impl Fn(&mut S, usize) + Sync,
 ) -> std::time::Duration {
@@ -253,9 +254,11 @@ pub(crate) fn for_each_run_then<S>(
         let mut s = init();
         let mut clock = std::time::Instant::now();
         for c in chunks.clone().rev() {
-            if !waited && after_earlier(c, chunks.clone()) {
+            if !waited && after_earlier(c) {
                 busy += clock.elapsed();
-                done[..t].iter().for_each(|d| wait_for(&d.0, call));
+                done[..t]
+                    .iter()
+                    .for_each(|d| super::team::wait_for(&d.0, call));
                 waited = true;
                 clock = std::time::Instant::now();
             }
@@ -284,21 +287,6 @@ pub(crate) fn for_each_run_then<S>(
     }
     balance.learn(|r| cost(cuts[r + 1]) - cost(cuts[r]));
     std::time::Duration::from_nanos(first_time.into_inner())
-}
-
-/// Spins until `flag` holds `value` (set by another thread of the team,
-/// which runs on its own core; it may have been descheduled, hence the
-/// yield after a while).
-fn wait_for(flag: &std::sync::atomic::AtomicU64, value: u64) {
-    let mut spins = 0u32;
-    while flag.load(std::sync::atomic::Ordering::Acquire) != value {
-        spins = spins.saturating_add(1);
-        if spins < 1 << 16 {
-            std::hint::spin_loop();
-        } else {
-            std::thread::yield_now();
-        }
-    }
 }
 
 /// The chunk boundaries of the runs of a loop over `n` chunks: run `t`
@@ -403,7 +391,7 @@ mod tests {
                                 first_done[c].store(true, Ordering::Release);
                             }
                         },
-                        |c, run| c == run.start,
+                        |c| run_start[c].load(Ordering::Relaxed),
                         || (),
                         |_, c| {
                             thens[c].fetch_add(1, Ordering::Relaxed);

@@ -130,16 +130,7 @@ pub(crate) fn run(n: usize, f: &(dyn Fn(usize) + Sync)) -> bool {
     let master = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(0)));
     let mut helper_panicked = false;
     for (t, h) in team.helpers.iter().take(n - 1).enumerate() {
-        let mut spins = 0u32;
-        while h.slot.done.load(Ordering::Acquire) != numbers[t] {
-            spins = spins.saturating_add(1);
-            if spins < 1 << 16 {
-                std::hint::spin_loop();
-            } else {
-                // the helper was descheduled (more threads than cores)
-                std::thread::yield_now();
-            }
-        }
+        wait_for(&h.slot.done, numbers[t]);
         helper_panicked |= h.slot.panicked.swap(false, Ordering::Relaxed);
     }
     drop(team);
@@ -148,6 +139,22 @@ pub(crate) fn run(n: usize, f: &(dyn Fn(usize) + Sync)) -> bool {
     }
     assert!(!helper_panicked, "a helper thread's run panicked");
     true
+}
+
+/// Spins until `flag` holds `value`, which another thread of the team
+/// stores (acquire: what it wrote before is visible after the wait). That
+/// thread runs on a core of its own, but may have been descheduled: after
+/// a while the wait yields the core.
+pub(super) fn wait_for(flag: &AtomicU64, value: u64) {
+    let mut spins = 0u32;
+    while flag.load(Ordering::Acquire) != value {
+        spins = spins.saturating_add(1);
+        if spins < 1 << 16 {
+            std::hint::spin_loop();
+        } else {
+            std::thread::yield_now();
+        }
+    }
 }
 
 /// Starts helper number `index`.

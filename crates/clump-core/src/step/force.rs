@@ -596,11 +596,11 @@ fn gather_after(
             Duration::ZERO
         }
         Some(rows) => {
-            let first_sphere = &sp.body_first;
-            // a chunk with a body that an earlier run's rows feed (and read)
-            let fed_earlier = |c: usize, run: std::ops::Range<usize>| {
-                let run_start = first_sphere[(run.start * chunk).min(nb)];
-                (c * chunk..((c + 1) * chunk).min(nb)).any(|b| pairs.first_feed[b] < run_start)
+            // a chunk with a body that an earlier run's rows feed (and
+            // read): one its own run's rows left not ready
+            // SAFETY: the run's pair stage, on this thread, wrote the flags.
+            let fed_earlier = |c: usize| {
+                (c * chunk..((c + 1) * chunk).min(nb)).any(|b| !unsafe { ready.read(b) })
             };
             for_each_run_then(
                 nchunks,
