@@ -6,6 +6,7 @@
 
 use crate::body::{AxisFlags, Bodies};
 use crate::par::shared::SharedMut;
+use crate::step::integrate::HalfKick;
 use crate::world::props::{PropsTable, TemplateProps, FREE};
 use glam::DVec3;
 
@@ -65,14 +66,16 @@ impl BodyProps {
         }
     }
 
-    /// Body `i`'s mass (kg) and added-mass factor.
+    /// Body `i`'s half kick over `dt/2`, `dt` (s) the table's time step:
+    /// its template row's (the same bits as computing it), else computed
+    /// from its own mass.
     #[inline(always)]
-    pub(crate) unsafe fn mass_and_factor(&self, i: usize) -> (f64, f64) {
+    pub(crate) unsafe fn half_kick(&self, i: usize, dt: f64) -> HalfKick {
         let row = self.row(i);
         if self.uniform {
-            (row.mass, row.factor)
+            HalfKick::from_quotients(row.kick.0, row.kick.1)
         } else {
-            (self.mass.read(i), row.factor)
+            HalfKick::new(dt, self.mass.read(i), row.factor)
         }
     }
 
@@ -123,12 +126,17 @@ mod tests {
     use glam::DVec3;
     use std::sync::atomic::Ordering;
 
+    /// Held by the tests that set [`PER_BODY`], a global, so that they do
+    /// not run at once.
+    static PER_BODY_USERS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
     /// A settling tetra bed, whose bodies all carry their template's mass
     /// properties and are free: read from the template table, the state
     /// after 800 steps (with rebuilds) is the same bits as read from the
     /// body arrays.
     #[test]
     fn template_reads_give_the_same_bits_as_per_body_reads() {
+        let _only = PER_BODY_USERS.lock().unwrap_or_else(|e| e.into_inner());
         let run = |per_body: bool| {
             let mut w = crate::testbed::tetra_lattice_bed(6, 6, 3, None);
             PER_BODY.store(per_body, Ordering::SeqCst);
@@ -145,6 +153,33 @@ mod tests {
         assert!(uniform, "the bed's bodies were not read from the table");
         assert!(rebuilds > 2, "only {rebuilds} rebuilds");
         assert!(table == arrays, "the template table changed the bits");
+    }
+
+    /// A time step changed between two runs takes effect in the kicks
+    /// read from the template table: after 300 steps at dt and 300 at
+    /// dt/2, the state is the same bits as with every body read from the
+    /// body arrays (whose kicks are computed every step), and not that of
+    /// 600 steps at dt.
+    #[test]
+    fn a_new_time_step_reaches_the_table_kicks() {
+        let _only = PER_BODY_USERS.lock().unwrap_or_else(|e| e.into_inner());
+        let run = |per_body: bool, halve: bool| {
+            let mut w = crate::testbed::tetra_lattice_bed(6, 6, 3, None);
+            PER_BODY.store(per_body, Ordering::SeqCst);
+            w.run(300).unwrap();
+            if halve {
+                w.config.dt *= 0.5;
+            }
+            w.run(300).unwrap();
+            PER_BODY.store(false, Ordering::SeqCst);
+            (crate::testbed::state_bits(&w), w.scratch.props.uniform)
+        };
+        let (table, uniform) = run(false, true);
+        let (arrays, _) = run(true, true);
+        let (same_dt, _) = run(false, false);
+        assert!(uniform, "the bed's bodies were not read from the table");
+        assert!(table == arrays, "the table's kicks kept the old time step");
+        assert!(table != same_dt, "halving the time step changed nothing");
     }
 
     /// Edits of the body arrays between two runs take effect: a body whose

@@ -70,10 +70,10 @@ pub(crate) struct BodyLanes {
     pub f: Rows3,
     /// Torque of the step before about the centre of mass, N m (input only).
     pub m: Rows3,
-    /// Mass, kg.
-    pub mass: Row,
-    /// Added-mass factor.
-    pub added: Row,
+    /// The half kick's `dt/(2 m f_a)`, s/kg ([`HalfKick`]).
+    pub dtfm: Row,
+    /// The half kick's `dt/(2 f_a)`, s.
+    pub dtt: Row,
     /// The principal moment (all three equal), kg m².
     pub inertia: Row,
     /// Centre of mass at the last neighbour build, m: with `q_ref`, the
@@ -123,8 +123,8 @@ impl BodyLanes {
             q: [zero; 4],
             f: [zero; 3],
             m: [zero; 3],
-            mass: zero,
-            added: zero,
+            dtfm: zero,
+            dtt: zero,
             inertia: zero,
             x_ref: [zero; 3],
             q_ref: [zero; 4],
@@ -151,7 +151,7 @@ impl BodyLanes {
             k,
             (zero, zero, zero, rest),
             (zero, zero),
-            (1.0, 1.0, 1.0),
+            (HalfKick::new(1.0, 1.0, 1.0), 1.0),
             (zero, rest),
             0.0,
         );
@@ -159,15 +159,15 @@ impl BodyLanes {
 
     /// Sets lane `k`'s inputs (world frame): centre `x`, velocity `v`,
     /// angular momentum `l`, orientation `q`, force `f` and torque `m` of
-    /// the step before, mass and added-mass factor, principal moment, the
-    /// pose at the last build and the body's reach.
+    /// the step before, half kick and principal moment, the pose at the
+    /// last build and the body's reach.
     #[inline(always)]
     pub(crate) fn set(
         &mut self,
         k: usize,
         (x, v, l, q): (DVec3, DVec3, DVec3, DQuat),
         (f, m): (DVec3, DVec3),
-        (mass, added, inertia): (f64, f64, f64),
+        (kick, inertia): (HalfKick, f64),
         (x_ref, q_ref): (DVec3, DQuat),
         reach: f64,
     ) {
@@ -177,8 +177,7 @@ impl BodyLanes {
         set4(&mut self.q, k, q);
         set3(&mut self.f, k, f);
         set3(&mut self.m, k, m);
-        self.mass[k] = mass;
-        self.added[k] = added;
+        (self.dtfm[k], self.dtt[k]) = kick.quotients();
         self.inertia[k] = inertia;
         set3(&mut self.x_ref, k, x_ref);
         set4(&mut self.q_ref, k, q_ref);
@@ -246,7 +245,7 @@ impl BodyLanes {
     #[inline(always)]
     fn lane(&mut self, k: usize, dt: f64, half_skin: f64) {
         let (mut v, mut l) = (get3(&self.v, k), get3(&self.l, k));
-        let kick = HalfKick::new(dt, self.mass[k], self.added[k]);
+        let kick = HalfKick::from_quotients(self.dtfm[k], self.dtt[k]);
         kick.apply_free(&mut v, &mut l, get3(&self.f, k), get3(&self.m, k));
         let x = get3(&self.x, k) + v * dt;
         let inertia = self.inertia[k];
@@ -398,7 +397,7 @@ mod tests {
                     k,
                     (x, v, l, q),
                     (f, m),
-                    (mass, added, inertia),
+                    (HalfKick::new(dt, mass, added), inertia),
                     (x_ref, q_ref),
                     reach,
                 );

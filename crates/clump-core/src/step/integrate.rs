@@ -302,13 +302,13 @@ impl FirstHalf {
                     && inertia.y == inertia.z
                     && inertia.x > 0.0;
                 if take[k] {
-                    let (mass, fa) = self.kicks.props.mass_and_factor(i);
+                    let kick = self.kicks.props.half_kick(i, self.kicks.dt);
                     let reach = self.treach.read(self.kicks.props.template(i));
                     lanes.set(
                         k,
                         (self.centre(i), h.v, h.l, self.quat.read(i)),
                         (h.f, h.m),
-                        (mass, fa, inertia.x),
+                        (kick, inertia.x),
                         self.xref_pose.read(i),
                         reach,
                     );
@@ -597,8 +597,7 @@ impl Kicks {
         if !p.started(step, i) {
             return false;
         }
-        let (mass, fa) = p.mass_and_factor(i);
-        let mut kick = HalfKick::new(self.dt, mass, fa);
+        let mut kick = p.half_kick(i, self.dt);
         if !self.torque_kicks {
             kick.dtt = 0.0;
         }
@@ -650,6 +649,7 @@ impl Kicks {
 
 /// A half kick of one body over `dt/2`: `v += F dt/(2 m f_a)`,
 /// `L += M dt/(2 f_a)` (world frame), per axis only where the flag allows.
+#[derive(Debug, Clone, Copy)]
 pub(crate) struct HalfKick {
     /// `dt/(2 m f_a)`, s/kg.
     dtfm: f64,
@@ -666,6 +666,19 @@ impl HalfKick {
             // without added mass (fa = 1) the quotient is `half` exactly
             dtt: if fa == 1.0 { half } else { half / fa },
         }
+    }
+
+    /// The kick of the quotients `dt/(2 m f_a)` and `dt/(2 f_a)`
+    /// ([`Self::quotients`]).
+    #[inline(always)]
+    pub(crate) fn from_quotients(dtfm: f64, dtt: f64) -> Self {
+        HalfKick { dtfm, dtt }
+    }
+
+    /// `dt/(2 m f_a)` (s/kg) and `dt/(2 f_a)` (s).
+    #[inline(always)]
+    pub(crate) fn quotients(&self) -> (f64, f64) {
+        (self.dtfm, self.dtt)
     }
 
     #[inline(always)]

@@ -137,7 +137,7 @@ impl World {
     /// of freedom from ([`body_props`]), unless that still holds for the
     /// bodies as they are.
     pub(crate) fn refresh_props(&mut self) {
-        if self.scratch.props.fresh {
+        if self.scratch.props.holds(self.config.dt) {
             return;
         }
         self.scratch.props.refresh(
@@ -145,6 +145,9 @@ impl World {
             &self.templates,
             self.config.added_mass,
             self.step,
+            (self.config.dt, |dt, mass, fa| {
+                integrate::HalfKick::new(dt, mass, fa).quotients()
+            }),
         );
     }
 

@@ -29,7 +29,15 @@ pub(crate) struct TemplateProps {
     pub inertia: DVec3,
     /// Added-mass factor `1 + CAdd ρ_f / ρ_body`.
     pub factor: f64,
+    /// The half kick's quotients `dt/(2 m f_a)` (s/kg) and `dt/(2 f_a)`
+    /// (s) at the table's time step, as the step computes them (the same
+    /// bits): a division a body and kick fewer.
+    pub kick: (f64, f64),
 }
+
+/// A half kick's quotients `(dt/(2 m f_a), dt/(2 f_a))` from
+/// `(dt, m, f_a)`, as the step computes them.
+pub(crate) type KickQuotients = fn(f64, f64, f64) -> (f64, f64);
 
 /// Per template its [`TemplateProps`], and whether every body takes its
 /// own from there (scratch: derived from the bodies and templates).
@@ -44,24 +52,40 @@ pub(crate) struct PropsTable {
     pub fresh: bool,
     /// Per template.
     pub rows: Vec<TemplateProps>,
+    /// The time step of the rows' half kicks, s.
+    pub dt: f64,
 }
 
 impl PropsTable {
+    /// Whether the table holds for the bodies as they are and time step
+    /// `dt` (s).
+    pub(crate) fn holds(&self, dt: f64) -> bool {
+        self.fresh && self.dt.to_bits() == dt.to_bits()
+    }
+
     /// Rebuilds the table and the check for `bodies` at the start of step
-    /// `step`. Valid until the bodies or templates change.
+    /// `step`, time step `dt` (s), whose half kicks `kick(dt, mass,
+    /// factor)` gives. Valid until the bodies, the templates or the time
+    /// step change.
     pub(crate) fn refresh(
         &mut self,
         bodies: &Bodies,
         templates: &[ClumpTemplate],
         added: AddedMass,
         step: u64,
+        (dt, kick): (f64, KickQuotients),
     ) {
         self.rows.clear();
-        self.rows.extend(templates.iter().map(|t| TemplateProps {
-            mass: t.mass,
-            inertia: t.principal_inertia,
-            factor: mass_factor(added, t.density),
+        self.rows.extend(templates.iter().map(|t| {
+            let factor = mass_factor(added, t.density);
+            TemplateProps {
+                mass: t.mass,
+                inertia: t.principal_inertia,
+                factor,
+                kick: kick(dt, t.mass, factor),
+            }
         }));
+        self.dt = dt;
         let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
         self.uniform = !force_per_body()
             && (0..bodies.len()).all(|i| {
