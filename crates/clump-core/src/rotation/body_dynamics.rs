@@ -33,7 +33,14 @@ pub fn omega_body(q: DQuat, l_world: DVec3, inertia: DVec3) -> DVec3 {
 /// For a spherical top (three equal moments) `ω = L/I`, with no rotation.
 #[inline]
 pub fn omega_world(q: DQuat, l_world: DVec3, inertia: DVec3) -> DVec3 {
-    let inv = inverse_inertia(inertia);
+    omega_world_inv(q, l_world, inverse_inertia(inertia))
+}
+
+/// [`omega_world`] from the inverse principal moments `inv_inertia` (body
+/// frame, 1/(kg m²), see [`inverse_inertia`]).
+#[inline(always)]
+pub fn omega_world_inv(q: DQuat, l_world: DVec3, inv_inertia: DVec3) -> DVec3 {
+    let inv = inv_inertia;
     if inv.x == inv.y && inv.y == inv.z {
         return l_world * inv.x;
     }

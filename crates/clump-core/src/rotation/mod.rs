@@ -37,8 +37,8 @@ use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
 pub use body_dynamics::{
-    angular_acceleration_body, inverse_inertia, omega_body, omega_world, omega_world_rot,
-    rotational_energy,
+    angular_acceleration_body, inverse_inertia, omega_body, omega_world, omega_world_inv,
+    omega_world_rot, rotational_energy,
 };
 
 /// Choice of rotational integrator. Deserialises from the snake_case names

@@ -95,6 +95,18 @@ impl BodyProps {
         }
     }
 
+    /// The inverses of body `i`'s principal moments, 1/(kg m²)
+    /// ([`crate::rotation::inverse_inertia`]): its template row's (the same
+    /// bits), else computed.
+    #[inline(always)]
+    pub(crate) unsafe fn inverse_inertia(&self, i: usize) -> DVec3 {
+        if self.uniform {
+            self.row(i).inv_inertia
+        } else {
+            crate::rotation::inverse_inertia(self.inertia(i))
+        }
+    }
+
     /// Whether body `i` has started by step `step` (else it moves
     /// ballistically, see [`crate::dof`]).
     #[inline(always)]

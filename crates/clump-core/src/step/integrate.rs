@@ -11,7 +11,7 @@ use crate::neighbor::skin;
 use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};
 use crate::par::shared::{at, SharedMut};
 use crate::par::simd::get3;
-use crate::rotation::{inverse_inertia, omega_world, omega_world_rot};
+use crate::rotation::{omega_world_inv, omega_world_rot};
 use crate::world::props::PropsTable;
 use crate::world::World;
 use glam::{DMat3, DVec3};
@@ -254,7 +254,7 @@ impl FirstHalf {
                     q = self.kicks.zvw_full_step(i, q, l, m, inertia_i);
                 }
                 let rot = DMat3::from_quat(q);
-                *om = omega_world_rot(&rot, *l, inverse_inertia(inertia_i));
+                *om = omega_world_rot(&rot, *l, self.kicks.props.inverse_inertia(i));
                 rot
             }
         } else {
@@ -552,7 +552,7 @@ impl FinalKick {
         m: DVec3,
     ) {
         if self.kicks.kick(self.step, i, v, l, f, m) {
-            *om = omega_world(self.quat.read(i), *l, self.kicks.props.inertia(i));
+            *om = omega_world_inv(self.quat.read(i), *l, self.kicks.props.inverse_inertia(i));
         }
     }
 }

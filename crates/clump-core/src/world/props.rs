@@ -27,6 +27,8 @@ pub(crate) struct TemplateProps {
     pub mass: f64,
     /// Principal moments of inertia, kg m².
     pub inertia: DVec3,
+    /// Their inverses ([`crate::rotation::inverse_inertia`]), 1/(kg m²).
+    pub inv_inertia: DVec3,
     /// Added-mass factor `1 + CAdd ρ_f / ρ_body`.
     pub factor: f64,
     /// The half kick's quotients `dt/(2 m f_a)` (s/kg) and `dt/(2 f_a)`
@@ -81,6 +83,7 @@ impl PropsTable {
             TemplateProps {
                 mass: t.mass,
                 inertia: t.principal_inertia,
+                inv_inertia: crate::rotation::inverse_inertia(t.principal_inertia),
                 factor,
                 kick: kick(dt, t.mass, factor),
             }
