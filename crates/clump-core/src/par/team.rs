@@ -4,12 +4,13 @@
 //! call for the pair stage and the gather, which also takes the next
 //! step's first half; else the first half step, the pair forces and the
 //! gather), each a few hundred microseconds long on a bed of a few
-//! thousand bodies. Handing a run to a rayon worker costs a wake-up when that worker
-//! has gone to sleep between the loops: measured at 17–40 µs per loop on
-//! two threads on the settled 2 000-clump bed, 12–25 % of the step. The
-//! helpers here spin for a short while after each run (then park), so the
-//! next run starts within a fraction of a microsecond, and helper `t` always
-//! takes run `t + 1`, which keeps its bodies in its core's cache.
+//! thousand bodies. Handing a run to a rayon worker costs a wake-up when
+//! that worker has gone to sleep between the loops: measured at 17–40 µs
+//! per loop on two threads on the settled 2 000-clump bed, 12–25 % of the
+//! step. The helpers here spin for a short while after each run (then
+//! park), so the next run starts within a fraction of a microsecond, and
+//! helper `t` always takes run `t + 1`, which keeps its bodies in its
+//! core's cache.
 //!
 //! The team is one per process and serves one loop at a time: a loop that
 //! finds it busy (another world stepping on another thread, as in parallel

@@ -60,7 +60,9 @@ pub(crate) struct PropsTable {
 
 impl PropsTable {
     /// Whether the table holds for the bodies as they are and time step
-    /// `dt` (s).
+    /// `dt` (s). Every public call clears `fresh` already; the time step is
+    /// compared as well, so that no path that changes it between
+    /// refreshes can leave the rows' kicks stale.
     pub(crate) fn holds(&self, dt: f64) -> bool {
         self.fresh && self.dt.to_bits() == dt.to_bits()
     }
