@@ -138,8 +138,8 @@ mod tests {
     use glam::DVec3;
     use std::sync::atomic::Ordering;
 
-    /// Held by the tests that set [`PER_BODY`], a global, so that they do
-    /// not run at once.
+    /// Held by the tests that set [`PER_BODY`], a global, or read what it
+    /// decides, so that they do not run at once.
     static PER_BODY_USERS: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
     /// A settling tetra bed, whose bodies all carry their template's mass
@@ -202,6 +202,8 @@ mod tests {
     /// the template table.
     #[test]
     fn edits_between_runs_take_effect() {
+        // it reads the table's check, which a run with PER_BODY set clears
+        let _only = PER_BODY_USERS.lock().unwrap_or_else(|e| e.into_inner());
         let mut w = crate::testbed::tetra_lattice_bed(6, 6, 3, None);
         w.run(300).unwrap();
         assert!(w.scratch.props.uniform);
