@@ -24,7 +24,7 @@ use super::damping::{self, clamped_pulse_time, damping_ratio, DampingLaw};
 use super::material::{effective_modulus, effective_shear_modulus, Material};
 use super::normal::{self, NormalLaw};
 use super::rolling::{cdt, epsd, rolling_omega, RollingLaw};
-use super::tangential::{self, history_spring, TangentialLaw};
+use super::tangential::{self, TangentialLaw};
 use super::time_scale::hertz_contact_time;
 use super::twisting::TwistingLaw;
 use super::{ContactError, ContactHistory, ContactInput, ContactOutput};
@@ -144,6 +144,26 @@ impl SlidingLaw {
         dt: f64,
         xi: &mut DVec3,
     ) -> SlidingOutput {
+        self.evaluate_as::<true>(n, overlap, v_rel, radius, mass, dt, xi)
+            .0
+    }
+
+    /// [`Self::evaluate`], and whether the contact slides; with `LIMIT`
+    /// false, the result of a contact that sticks, whether or not it does
+    /// ([`tangential::history_spring_as`]): for a contact that sticks the
+    /// same bits as [`Self::evaluate`].
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn evaluate_as<const LIMIT: bool>(
+        &self,
+        n: DVec3,
+        overlap: f64,
+        v_rel: DVec3,
+        radius: f64,
+        mass: f64,
+        dt: f64,
+        xi: &mut DVec3,
+    ) -> (SlidingOutput, bool) {
         let d = overlap;
         let s = normal::stiffness_scale(self.hertz, radius, overlap);
         let kn = self.kn_coef * s;
@@ -156,14 +176,23 @@ impl SlidingLaw {
         // The Coulomb and rolling limits use |F_n|, which is F_n itself
         // when clamped.
         let f_n = damping::normal_force(f_el, gamma_n, vn, self.fn_floor);
-        let f_t = history_spring(xi, n, vt, dt, kt, gamma_t, self.friction * f_n.abs());
-        SlidingOutput {
+        let (f_t, slide) = tangential::history_spring_as::<LIMIT>(
+            xi,
+            n,
+            vt,
+            dt,
+            kt,
+            gamma_t,
+            self.friction * f_n.abs(),
+        );
+        let out = SlidingOutput {
             force: f_n * n + f_t,
             normal_force: f_n,
             energy: normal::spring_energy(self.energy_factor, f_el, d)
                 + tangential::spring_energy(kt, *xi),
             kn,
-        }
+        };
+        (out, slide)
     }
 }
 

@@ -70,6 +70,9 @@ pub(super) struct Lanes {
     pub velocity_j: Rows3,
     /// Per-lane law, when the batch mixes models ([`Lanes::set_law`]).
     pub law: [[f64; BATCH]; 8],
+    /// Output of the law loop: the contact slides, and its outputs are
+    /// those of a sticking contact until [`Lanes::finish_sliding`].
+    pub slide: [f64; BATCH],
 }
 
 /// One lane's contact geometry and kinematics (world frame, SI units).
@@ -119,6 +122,7 @@ impl Lanes {
             arm_j: v3,
             velocity_j: v3,
             law: [v; 8],
+            slide: v,
         }
     }
 
@@ -162,11 +166,44 @@ impl Lanes {
     /// (docs/theory.md T-11), with the lever arms `c = x_s − r_cm`.
     #[inline(always)]
     fn contact(&mut self, k: usize, law: &SlidingLaw, dt: f64) {
+        self.contact_as::<true>(k, law, dt);
+    }
+
+    /// [`Self::contact`], and whether the contact slides; with `LIMIT`
+    /// false, the outputs of a contact that sticks, whether or not it does
+    /// ([`SlidingLaw::evaluate_as`]).
+    #[inline(always)]
+    fn contact_as<const LIMIT: bool>(&mut self, k: usize, law: &SlidingLaw, dt: f64) -> bool {
         let c = self.kinematics(k);
         let mut xi = get3(&self.spring, k);
-        let out = law.evaluate(c.normal, c.overlap, c.vrel, c.radius, c.mass, dt, &mut xi);
+        let (out, slide) =
+            law.evaluate_as::<LIMIT>(c.normal, c.overlap, c.vrel, c.radius, c.mass, dt, &mut xi);
         set3(&mut self.spring, k, xi);
         self.store(k, &c, out.force, out.energy, out.normal_force, out.kn);
+        slide
+    }
+
+    /// The contacts among lanes `0..len` that the law loop found sliding,
+    /// evaluated again with the Coulomb limit from their spring before the
+    /// step, `spring(k)` (the loop overwrote the lane's): afterwards every
+    /// lane holds what [`Self::contact`] gives, and no lane is flagged.
+    /// `law` as for [`run_law`].
+    #[inline(always)]
+    pub(super) fn finish_sliding(
+        &mut self,
+        len: usize,
+        law: Option<&SlidingLaw>,
+        dt: f64,
+        spring: impl Fn(usize) -> DVec3,
+    ) {
+        for k in 0..len.min(BATCH) {
+            if self.slide[k] != 0.0 {
+                set3(&mut self.spring, k, spring(k));
+                let law = law.copied().unwrap_or_else(|| self.law(k));
+                self.contact(k, &law, dt);
+                self.slide[k] = 0.0;
+            }
+        }
     }
 
     /// Contact `k` of a pair whose model runs the scalar composition
@@ -286,7 +323,7 @@ impl Lanes {
                 out.push((name, q, x));
             }
         }
-        let v1: [(&'static str, &[f64; BATCH]); 11] = [
+        let v1: [(&'static str, &[f64; BATCH]); 12] = [
             ("radius_i", &self.radius_i),
             ("radius_j", &self.radius_j),
             ("mass_i", &self.mass_i),
@@ -298,6 +335,7 @@ impl Lanes {
             ("kn", &self.kn),
             ("r_star", &self.r_star),
             ("m_star", &self.m_star),
+            ("slide", &self.slide),
         ];
         out.extend(v1.into_iter().map(|(n, x)| (n, 0, x)));
         for (q, x) in self.law.iter().enumerate() {
@@ -344,19 +382,29 @@ unsafe fn law_lanes_avx2(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt
 
 /// The contact geometry and the law over lanes `0..len`: `law` is the model
 /// of every lane, or `None` when the lanes carry their own
-/// ([`Lanes::set_law`]).
+/// ([`Lanes::set_law`]). Every lane takes the outputs of a contact that
+/// sticks, and a lane that slides is flagged ([`Lanes::slide`]) for
+/// [`Lanes::finish_sliding`].
 #[inline(always)]
 fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
     match law {
         Some(law) => {
             for k in 0..len.min(BATCH) {
-                l.contact(k, law, dt);
+                l.slide[k] = if l.contact_as::<false>(k, law, dt) {
+                    1.0
+                } else {
+                    0.0
+                };
             }
         }
         None => {
             for k in 0..len.min(BATCH) {
                 let law = l.law(k);
-                l.contact(k, &law, dt);
+                l.slide[k] = if l.contact_as::<false>(k, &law, dt) {
+                    1.0
+                } else {
+                    0.0
+                };
             }
         }
     }
@@ -367,7 +415,7 @@ mod tests {
     use super::*;
     use crate::contact::{ContactModel, Material, NormalLaw, PairProperties};
     use crate::par::simd::simd;
-    use crate::par::simd::{set3, Simd};
+    use crate::par::simd::{get3, set3, Simd};
 
     /// Lanes of contacts with overlaps of 0 to 20 % of the radius, sliding
     /// and sticking springs, random velocities; `mixed`: every lane its own
@@ -412,11 +460,8 @@ mod tests {
         l
     }
 
-    /// The law loop gives the same bits compiled for every vector
-    /// instruction set this processor has (the engine picks the widest at
-    /// run time; results must not depend on the machine's choice).
-    #[test]
-    fn law_lanes_same_bits_at_every_simd_level() {
+    /// Hertz and linear laws, clamped and tensile.
+    fn test_laws() -> Vec<SlidingLaw> {
         let mat = Material {
             youngs_modulus: 5e6,
             poisson_ratio: 0.3,
@@ -433,6 +478,11 @@ mod tests {
                 laws.push(*ContactModel::new(&mat, &mat, &p).unwrap().sliding_law());
             }
         }
+        laws
+    }
+
+    /// The vector instruction sets this processor has.
+    fn levels() -> Vec<Simd> {
         let mut levels = vec![Simd::Baseline];
         #[cfg(target_arch = "x86_64")]
         {
@@ -444,6 +494,61 @@ mod tests {
             }
         }
         eprintln!("levels on this processor: {levels:?}");
+        levels
+    }
+
+    /// Every row of `got` has the bits of `want`'s (`what` names the case).
+    fn assert_same_bits(got: &Lanes, want: &Lanes, what: &str) {
+        for ((name, q, g), (_, _, w)) in got.rows().into_iter().zip(want.rows()) {
+            for k in 0..BATCH {
+                assert_eq!(
+                    g[k].to_bits(),
+                    w[k].to_bits(),
+                    "{what}: {name}[{q}] lane {k}"
+                );
+            }
+        }
+    }
+
+    /// The law loop takes every contact as sticking and flags those that
+    /// slide; evaluated again from their spring before the step, the lanes
+    /// then hold, bit for bit, what the full law of each contact gives
+    /// ([`Lanes::contact`], with the Coulomb limit), at every vector
+    /// instruction set of this processor.
+    #[test]
+    fn sliding_contacts_evaluated_again_give_the_full_law() {
+        let (laws, levels) = (test_laws(), levels());
+        for (case, law) in [None, Some(&laws[0]), Some(&laws[2])]
+            .into_iter()
+            .enumerate()
+        {
+            let base = lanes(case as u64 + 11, &laws, law.is_none());
+            let mut want = base;
+            for k in 0..BATCH {
+                let lw = law.copied().unwrap_or_else(|| want.law(k));
+                want.contact(k, &lw, 1e-5);
+            }
+            for &level in &levels {
+                let mut l = base;
+                run_law(&mut l, BATCH, law, 1e-5, level);
+                let sliding = (0..BATCH).filter(|&k| l.slide[k] != 0.0).count();
+                // the springs span the cone: some lanes slide, most stick
+                assert!(
+                    sliding > 0 && 2 * sliding < BATCH,
+                    "{level:?}, case {case}: {sliding} of {BATCH} lanes slide"
+                );
+                l.finish_sliding(BATCH, law, 1e-5, |k| get3(&base.spring, k));
+                assert_same_bits(&l, &want, &format!("{level:?}, case {case}"));
+            }
+        }
+    }
+
+    /// The law loop gives the same bits compiled for every vector
+    /// instruction set this processor has (the engine picks the widest at
+    /// run time; results must not depend on the machine's choice).
+    #[test]
+    fn law_lanes_same_bits_at_every_simd_level() {
+        let (laws, levels) = (test_laws(), levels());
         for (case, law) in [None, Some(&laws[0]), Some(&laws[3])]
             .into_iter()
             .enumerate()
@@ -460,15 +565,7 @@ mod tests {
                 for &level in &levels {
                     let mut l = base;
                     run_law(&mut l, len, law, 1e-5, level);
-                    for ((name, q, got), (_, _, exp)) in l.rows().into_iter().zip(want.rows()) {
-                        for k in 0..BATCH {
-                            assert_eq!(
-                                got[k].to_bits(),
-                                exp[k].to_bits(),
-                                "{level:?}, case {case}, len {len}: {name}[{q}] lane {k}"
-                            );
-                        }
-                    }
+                    assert_same_bits(&l, &want, &format!("{level:?}, case {case}, len {len}"));
                 }
             }
         }

@@ -22,7 +22,9 @@
 //!    contacts per instruction with AVX-512 (F, VL, DQ), 4 with AVX2, 2
 //!    with the baseline SSE2, the widest the processor has chosen at run
 //!    time (`crate::par::simd`); vector and scalar IEEE arithmetic give the
-//!    same bits;
+//!    same bits. The loop takes every contact as sticking, which spares
+//!    it the Coulomb limit's square root and divisions; the few that slide
+//!    are evaluated again with the limit ([`lanes::Lanes::finish_sliding`]);
 //!    Pairs whose model runs the scalar composition
 //!    ([`crate::contact::ContactModel::is_extended`], e.g. LIGGGHTS'
 //!    tangential rule) are evaluated again by
@@ -389,6 +391,12 @@ impl RowCtx<'_> {
             None
         };
         run_law(l, len, law.as_ref(), self.dt, self.simd);
+        // the contacts that slide, with the Coulomb limit, from their
+        // stored spring
+        let pairs = &batch.pair;
+        l.finish_sliding(len, law.as_ref(), self.dt, |k| {
+            self.tangential.read(pairs[k] as usize)
+        });
         if table.any_extended() {
             // pairs whose law only the scalar composition has: evaluated
             // again from their stored history (the lanes ran the vectorised
