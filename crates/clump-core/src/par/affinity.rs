@@ -11,7 +11,10 @@
 //! spheres are stored in the same spatial order). Inside `World::run` the
 //! pair stage and the gather share one cut ([`for_each_run_then`]), so a
 //! thread gathers exactly the bodies whose rows it evaluated. Only pairs
-//! across the seam between two runs touch the other core's data.
+//! across the seam between two runs touch the other core's data, and the
+//! few gather chunks a thread done early takes from a run that has not
+//! reached them (the end of a step's noise, which no learned share
+//! foresees).
 //!
 //! The results do not depend on the thread count or on the cuts: chunk
 //! boundaries are fixed sizes, every chunk writes its own outputs, and every
@@ -80,6 +83,13 @@ pub(crate) struct Balance {
     /// which it has finished the first stage; a cache line each, as the
     /// other threads spin on it.
     done: Vec<Flag>,
+    /// Per run: its chunks of the second stage of [`for_each_run_then`]
+    /// not taken yet ([`take`]); a cache line each.
+    left: Vec<Flag>,
+    /// Per run: the cost units its thread got through in the last call of
+    /// [`for_each_run_then`] (its own first stage, and the second stage of
+    /// the chunks it took, its own or another run's).
+    work: Vec<std::sync::atomic::AtomicU64>,
     /// Calls of [`for_each_run_then`] so far.
     call: u64,
 }
@@ -105,6 +115,10 @@ impl Balance {
                 .map(|_| std::sync::atomic::AtomicU64::new(0))
                 .collect();
             self.done = (0..threads).map(|_| Flag::default()).collect();
+            self.left = (0..threads).map(|_| Flag::default()).collect();
+            self.work = (0..threads)
+                .map(|_| std::sync::atomic::AtomicU64::new(0))
+                .collect();
         }
     }
 
@@ -193,24 +207,34 @@ pub(crate) fn for_each_run(
 /// Two stages over the same runs of `n` chunks, one run per thread:
 /// `first(run)`, then `then(scratch, c)` for each chunk `c` of the run
 /// (the pair stage and the gather: `step::force`). A chunk's `then` may
-/// read what the `first` of earlier runs wrote and write what it read
-/// only where `after_earlier(c)` says so (asked on the thread whose
-/// `first` has just taken the chunk's run); it never touches what the
-/// `first` of later runs touches. Each thread takes its run through
-/// `first`, then through `then` from its last chunk down, and waits for the
-/// `first` of the earlier runs only before the first chunk that needs it:
-/// the chunks far from the seam with the earlier run come first, and by
-/// the time the thread reaches the seam the earlier runs are through their
-/// `first`. So the threads wait for each other once per call, at its end,
-/// and the two stages share one cut, balanced on their sum (`cost`, the
-/// two stages' cost together). The order of the chunks changes no result:
-/// every chunk writes its own outputs. When the team is busy, the runs go
-/// to rayon as two loops. Returns the time the calling thread spent in
-/// `first` (for the stage times; on one thread, exactly the first
-/// stage's).
+/// read what the `first` of its own and earlier runs wrote, and write what
+/// the `first` of earlier runs read only where `after_earlier(c)` says so
+/// (asked on the thread whose `first` has just taken the chunk's run); it
+/// never touches what the `first` of later runs touches. Each thread takes
+/// its run through `first`, then through `then` from its last chunk down,
+/// and waits for the `first` of the earlier runs only before the first
+/// chunk that needs it: the chunks far from the seam with the earlier run
+/// come first, and by the time the thread reaches the seam the earlier runs
+/// are through their `first`. So the threads wait for each other once per
+/// call, at its end, and the two stages share one cut, balanced on their
+/// sum (`first_cost + then_cost`, each cumulative over chunks as for
+/// [`for_each_run`]).
+///
+/// A thread done with its own chunks takes the chunks another run has
+/// not reached yet, from the bottom of that run (its seam with the run
+/// before), once the `first` of that run and of every earlier run is over
+/// ([`take`]): the balance learned from the steps before cannot foresee
+/// the noise of this one, and every chunk so taken shortens the wait at
+/// the end. The order of the chunks and the thread that takes one change
+/// no result: every chunk writes its own outputs. When the team is busy,
+/// the runs go to rayon as two loops. Returns the time the calling thread
+/// spent in `first` (for the stage times; on one thread, exactly the
+/// first stage's).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn for_each_run_then<S>(
     n: usize,
-    cost: impl Fn(usize) -> u64 + Sync,
+    first_cost: impl Fn(usize) -> u64 + Sync,
+    then_cost: impl Fn(usize) -> u64 + Sync,
     balance: &mut Balance,
     first: impl Fn(std::ops::Range<usize>) + Sync,
     after_earlier: impl Fn(usize) -> bool + Sync,
@@ -226,10 +250,15 @@ pub(crate) fn for_each_run_then<S>(
         (0..n).for_each(|c| then(&mut s, c));
         return first_time;
     }
+    let cost = |c: usize| first_cost(c) + then_cost(c);
     let (cuts, runs) = cut(n, &cost, balance);
     let cuts = &cuts[..=runs];
     balance.call += 1;
-    let (done, call, time) = (&balance.done, balance.call, &balance.time);
+    let (done, call, time, work) = (&balance.done, balance.call, &balance.time, &balance.work);
+    let left = &balance.left;
+    for (t, l) in left.iter().enumerate().take(runs) {
+        l.0.store(take::pack(cuts[t]..cuts[t + 1]), Ordering::Relaxed);
+    }
     let first_time = AtomicU64::new(0);
     /// Marks a run's `first` finished when dropped, also when it panics
     /// (the team then reports the panic; no run may wait for ever).
@@ -239,6 +268,12 @@ pub(crate) fn for_each_run_then<S>(
             self.0.store(self.1, Ordering::Release);
         }
     }
+    // the `first` of runs 0..=u is over
+    let firsts_over = |u: usize| {
+        done[..=u]
+            .iter()
+            .all(|d| d.0.load(Ordering::Acquire) == call)
+    };
     let run = |t: usize| {
         let chunks = cuts[t]..cuts[t + 1];
         let clock = std::time::Instant::now();
@@ -250,10 +285,11 @@ pub(crate) fn for_each_run_then<S>(
             first_time.store(f.as_nanos() as u64, Ordering::Relaxed);
         }
         let mut busy = f;
+        let mut units = first_cost(chunks.end) - first_cost(chunks.start);
         let mut waited = t == 0;
         let mut s = init();
         let mut clock = std::time::Instant::now();
-        for c in chunks.clone().rev() {
+        while let Some(c) = take::top(&left[t].0) {
             if !waited && after_earlier(c) {
                 busy += clock.elapsed();
                 done[..t]
@@ -263,9 +299,21 @@ pub(crate) fn for_each_run_then<S>(
                 clock = std::time::Instant::now();
             }
             then(&mut s, c);
+            units += then_cost(c + 1) - then_cost(c);
+        }
+        // the other runs' chunks not reached yet, the nearest runs first
+        for u in (t + 1..runs).chain((0..t).rev()) {
+            if !firsts_over(u) {
+                continue;
+            }
+            while let Some(c) = take::bottom(&left[u].0) {
+                then(&mut s, c);
+                units += then_cost(c + 1) - then_cost(c);
+            }
         }
         busy += clock.elapsed();
         time[t].store(busy.as_nanos() as u64, Ordering::Relaxed);
+        work[t].store(units, Ordering::Relaxed);
     };
     if !super::team::run(runs, &run) {
         // rayon may run several runs one after another on one thread, and
@@ -284,9 +332,63 @@ pub(crate) fn for_each_run_then<S>(
                 chunks.for_each(|c| then(&mut s, c));
             })
         });
+        for (t, w) in work.iter().enumerate().take(runs) {
+            w.store(cost(cuts[t + 1]) - cost(cuts[t]), Ordering::Relaxed);
+        }
     }
-    balance.learn(|r| cost(cuts[r + 1]) - cost(cuts[r]));
+    let mut got = [0u64; MAX_RUNS];
+    for (g, w) in got.iter_mut().zip(work) {
+        *g = w.load(Ordering::Relaxed);
+    }
+    balance.learn(|r| got[r]);
     std::time::Duration::from_nanos(first_time.into_inner())
+}
+
+/// The chunks of a run's second stage not taken yet, `lo..hi`, as one
+/// atomic word (`lo` in the low half, `hi` in the high half): the run's own
+/// thread takes them from the top ([`top`]), a thread done with its own
+/// from the bottom ([`bottom`]), each chunk exactly once. The word only
+/// shares out the chunks; what the chunks read and write is ordered by the
+/// runs' `done` flags and the team's wait at the end.
+mod take {
+    use std::sync::atomic::{AtomicU64, Ordering};
+
+    /// The word of the chunks `r` (each bound below 2³²).
+    pub(super) fn pack(r: std::ops::Range<usize>) -> u64 {
+        debug_assert!(r.end <= u32::MAX as usize);
+        r.start as u64 | (r.end as u64) << 32
+    }
+
+    /// Takes the highest chunk left, if any.
+    #[inline]
+    pub(super) fn top(w: &AtomicU64) -> Option<usize> {
+        take(w, |lo, hi| (hi - 1, (lo, hi - 1)))
+    }
+
+    /// Takes the lowest chunk left, if any.
+    #[inline]
+    pub(super) fn bottom(w: &AtomicU64) -> Option<usize> {
+        take(w, |lo, hi| (lo, (lo + 1, hi)))
+    }
+
+    /// Takes chunk `pick(lo, hi).0`, leaving `pick(lo, hi).1`, when
+    /// `lo < hi`.
+    #[inline(always)]
+    fn take(w: &AtomicU64, pick: impl Fn(u64, u64) -> (u64, (u64, u64))) -> Option<usize> {
+        let mut cur = w.load(Ordering::Relaxed);
+        loop {
+            let (lo, hi) = (cur & 0xffff_ffff, cur >> 32);
+            if lo >= hi {
+                return None;
+            }
+            let (c, (lo, hi)) = pick(lo, hi);
+            match w.compare_exchange_weak(cur, lo | hi << 32, Ordering::Relaxed, Ordering::Relaxed)
+            {
+                Ok(_) => return Some(c as usize),
+                Err(now) => cur = now,
+            }
+        }
+    }
 }
 
 /// The chunk boundaries of the runs of a loop over `n` chunks: run `t`
@@ -355,6 +457,7 @@ fn run_parts(t0: usize, t1: usize, timed: &(impl Fn(usize) + Sync)) {
 mod tests {
     use super::*;
     use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+    use std::sync::Mutex;
 
     /// `for_each_run_then` runs each chunk's two stages once, the second
     /// after the first, and the chunk that depends on the earlier runs
@@ -378,6 +481,7 @@ mod tests {
                     let (firsts, thens) = (counts(), counts());
                     for_each_run_then(
                         n,
+                        |c| c as u64,
                         |c| c as u64,
                         &mut balance,
                         |run| {
@@ -410,5 +514,75 @@ mod tests {
                 }
             });
         }
+    }
+
+    /// A thread done with its own chunks takes the second stage of the
+    /// chunks another run has not reached, and only once the first stage of
+    /// that run and of the runs before it is over; every chunk still runs
+    /// each stage exactly once.
+    #[test]
+    fn a_thread_done_early_takes_the_chunks_left_in_another_run() {
+        if std::thread::available_parallelism().map_or(1, |c| c.get()) < 2 {
+            return; // the team is not used on one core
+        }
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut balance = Balance::default();
+            let n = 40;
+            let mut taken = 0;
+            // a test running beside this one may hold the team, and a call
+            // then goes to rayon, which takes no chunks: a few calls
+            for _ in 0..50 {
+                let ids = || (0..n).map(|_| Mutex::new(None)).collect::<Vec<_>>();
+                let (first_by, then_by) = (ids(), ids());
+                let first_done = (0..n).map(|_| AtomicBool::new(false)).collect::<Vec<_>>();
+                let thens = (0..n).map(|_| AtomicUsize::new(0)).collect::<Vec<_>>();
+                for_each_run_then(
+                    n,
+                    |c| c as u64,
+                    |c| c as u64,
+                    &mut balance,
+                    |run| {
+                        for c in run {
+                            *first_by[c].lock().unwrap() = Some(std::thread::current().id());
+                            first_done[c].store(true, Ordering::Release);
+                        }
+                    },
+                    |_| false,
+                    || (),
+                    |_, c| {
+                        thens[c].fetch_add(1, Ordering::Relaxed);
+                        let me = std::thread::current().id();
+                        *then_by[c].lock().unwrap() = Some(me);
+                        if *first_by[c].lock().unwrap() != Some(me) {
+                            // taken from another run: the first stage of
+                            // every chunk up to it is over
+                            assert!(
+                                (0..=c).all(|k| first_done[k].load(Ordering::Acquire)),
+                                "chunk {c} taken before the first stage of its run"
+                            );
+                        }
+                        // the upper half slow: their run's thread falls behind
+                        if c >= n / 2 {
+                            std::thread::sleep(std::time::Duration::from_micros(300));
+                        }
+                    },
+                );
+                assert!(thens.iter().all(|x| x.load(Ordering::Relaxed) == 1));
+                taken += (0..n)
+                    .filter(|&c| *first_by[c].lock().unwrap() != *then_by[c].lock().unwrap())
+                    .count();
+                if taken > 0 {
+                    break;
+                }
+            }
+            assert!(
+                taken > 0,
+                "no chunk was taken by the other thread in 50 calls"
+            );
+        });
     }
 }

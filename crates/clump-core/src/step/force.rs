@@ -604,7 +604,8 @@ fn gather_after(
             };
             for_each_run_then(
                 nchunks,
-                |c| pair_cost(rows, c) + gather_cost(c),
+                |c| pair_cost(rows, c),
+                gather_cost,
                 &mut balance[FORCE_LOOP],
                 // SAFETY: every run is run once, on one thread.
                 |run| unsafe { pair_run(rows, run, &pair_stats) },
