@@ -70,8 +70,10 @@ pub(super) struct Lanes {
     pub velocity_j: Rows3,
     /// Per-lane law, when the batch mixes models ([`Lanes::set_law`]).
     pub law: [[f64; BATCH]; 8],
-    /// Output of the law loop: the contact slides, and its outputs are
-    /// those of a sticking contact until [`Lanes::finish_sliding`].
+    /// Output of the law loop: 1 where the contact slides, its outputs
+    /// being those of a sticking contact until [`Lanes::finish_sliding`];
+    /// else 0. A number, not a `bool`: a `bool` output kept the compiler
+    /// from vectorising the loop.
     pub slide: [f64; BATCH],
 }
 
