@@ -105,9 +105,10 @@ fn prepare_pairs(w: &mut World) -> usize {
     }
     let nb = w.bodies.len();
     let nchunks = nb.div_ceil(w.body_chunk());
-    let stats = &mut w.scratch.chunk_pair_stats;
-    stats.clear();
-    stats.resize(nchunks, ContactStats::default());
+    // each run clears its chunks' slots (pair_run), on its own thread
+    w.scratch
+        .chunk_pair_stats
+        .resize(nchunks, ContactStats::default());
     w.scratch.body_ready.resize(nb, false);
     let pairs = &mut w.neighbors.pairs;
     if several_runs(nchunks) {
@@ -191,6 +192,10 @@ fn pair_cost(rows: &RowCtx, c: usize) -> u64 {
 unsafe fn pair_run(rows: &RowCtx, run: std::ops::Range<usize>, stats: &SharedMut<ContactStats>) {
     let first = &rows.sp.body_first;
     let nb = first.len().saturating_sub(1);
+    for c in run.clone() {
+        // SAFETY: the run's chunks' slots are this run's.
+        unsafe { *stats.get(c) = ContactStats::default() };
+    }
     let b0 = run.start * rows.body_chunk;
     let b1 = (run.end * rows.body_chunk).min(nb);
     if b0 >= b1 {
@@ -331,9 +336,10 @@ fn gather_after(
     let nb = bodies.len();
     let nw = walls.len();
     let nchunks = nb.div_ceil(chunk);
-    chunk_stats.clear();
+    // each chunk clears its own slots, on the thread that gathers it: the
+    // threads' slots would otherwise be written here, on the calling
+    // thread, and move between the cores' caches twice a step
     chunk_stats.resize(nchunks, ContactStats::default());
-    chunk_wall_loads.clear();
     chunk_wall_loads.resize(nchunks * nw, WallLoad::default());
     let dt = config.dt;
     let gravity = config.gravity;
@@ -416,8 +422,15 @@ fn gather_after(
         BodyLanes,
     ),
                         c: usize| {
-        // SAFETY: chunk c's statistics slot is written by chunk c only.
-        let stat = unsafe { stats_out.get(c) };
+        // SAFETY: chunk c's statistics slot and wall loads are written by
+        // chunk c only.
+        let stat = unsafe {
+            for wi in 0..nw {
+                *loads.get(c * nw + wi) = WallLoad::default();
+            }
+            stats_out.get(c)
+        };
+        *stat = ContactStats::default();
         let b0 = c * chunk;
         let b1 = (b0 + chunk).min(nb);
         // the chunk's entries of the wall list, ascending with its bodies
@@ -615,27 +628,29 @@ fn gather_after(
             )
         }
     };
-    // the pair stage recorded the spheres (storage indices) of each chunk's
-    // deepest pair: their bodies' ids
-    for s in chunk_pair_stats.iter_mut() {
-        if s.max_overlap_ratio > 0.0 {
-            s.max_overlap_bodies = s
-                .max_overlap_bodies
-                .map(|x| sp.gid[x as usize] >> SPHERE_ID_BITS);
-        }
-    }
     let mut total = ContactStats::default();
-    for s in chunk_pair_stats.iter().chain(chunk_stats.iter()) {
+    for s in chunk_pair_stats.iter() {
+        total.merge(s);
+    }
+    // the pair stage recorded the spheres (storage indices) of each chunk's
+    // deepest pair: their bodies' ids (the merge only copies them)
+    if total.max_overlap_ratio > 0.0 {
+        total.max_overlap_bodies = total
+            .max_overlap_bodies
+            .map(|x| sp.gid[x as usize] >> SPHERE_ID_BITS);
+    }
+    for s in chunk_stats.iter() {
         total.merge(s);
     }
     *stats = total;
-    for (wi, load) in wall_loads.iter_mut().enumerate() {
-        let mut l = WallLoad::default();
-        for c in 0..nchunks {
-            l.force += chunk_wall_loads[c * nw + wi].force;
-            l.torque += chunk_wall_loads[c * nw + wi].torque;
+    // each wall's load summed over the chunks in order, read in the order
+    // the chunks' loads are stored
+    wall_loads.fill(WallLoad::default());
+    for chunk in chunk_wall_loads.chunks_exact(nw.max(1)).take(nchunks) {
+        for (l, c) in wall_loads.iter_mut().zip(chunk) {
+            l.force += c.force;
+            l.torque += c.torque;
         }
-        *load = l;
     }
     phase.bodies_lag = next.is_some_and(|h| h.lags());
     (any_stale.into_inner(), pair_time)
