@@ -24,12 +24,12 @@
 //!    time (`crate::par::simd`); vector and scalar IEEE arithmetic give the
 //!    same bits. The loop takes every contact as sticking, which spares
 //!    it the Coulomb limit's square root and divisions; the few that slide
-//!    are evaluated again with the limit ([`lanes::Lanes::finish_sliding`]);
-//!    Pairs whose model runs the scalar composition
-//!    ([`crate::contact::ContactModel::is_extended`], e.g. LIGGGHTS'
-//!    tangential rule) are evaluated again by
-//!    [`crate::contact::ContactModel::evaluate`]
-//!    from their stored history, overwriting their lanes;
+//!    are evaluated again with the limit from their stored spring
+//!    ([`lanes::Lanes::finish_sliding`]). Pairs whose model runs the scalar
+//!    composition ([`crate::contact::ContactModel::is_extended`], e.g.
+//!    LIGGGHTS' tangential rule) are evaluated again by
+//!    [`crate::contact::ContactModel::evaluate`] from their stored history,
+//!    overwriting their lanes;
 //! 4. *scatter*: rolling couples (for laws that have one), then each pair's
 //!    history is stored (and the pair marked live), its `i` side is added
 //!    to the row sum of `i`'s body and its `j` side to the column sum of
