@@ -69,6 +69,69 @@ impl ContactStats {
     }
 }
 
+/// The bodies' part of a chunk's [`ContactStats`] (kinetic energy, mass,
+/// the most energetic body, the first body not finite), summed in local
+/// variables over the chunk and stored once at its end: summed in the
+/// chunk's slot, every body's update went through memory and waited on
+/// the last body's (3 % of a step on the settled tetra bed). The same
+/// additions and comparisons in the same order, so the same bits.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct BodyTally {
+    kinetic_energy: f64,
+    total_mass: f64,
+    max_body_kinetic_energy: f64,
+    max_kinetic_body: u64,
+    non_finite_body: u64,
+}
+
+impl BodyTally {
+    /// Counts a body of mass `mass` (kg) and kinetic energy `ke` (J) whose
+    /// state is all finite or not (`finite`); `id` gives its global id, read
+    /// only when needed.
+    #[inline(always)]
+    pub(crate) fn add(
+        &mut self,
+        ke: f64,
+        mass: f64,
+        finite: impl FnOnce() -> bool,
+        id: impl Fn() -> u64,
+    ) {
+        self.kinetic_energy += ke;
+        self.total_mass += mass;
+        if ke > self.max_body_kinetic_energy {
+            self.max_body_kinetic_energy = ke;
+            self.max_kinetic_body = id();
+        }
+        if self.non_finite_body == 0 && !finite() {
+            self.non_finite_body = id();
+        }
+    }
+
+    /// Stores the tally in `s`, the statistics of a chunk that counted no
+    /// body before.
+    pub(crate) fn store(&self, s: &mut ContactStats) {
+        s.kinetic_energy = self.kinetic_energy;
+        s.total_mass = self.total_mass;
+        s.max_body_kinetic_energy = self.max_body_kinetic_energy;
+        s.max_kinetic_body = self.max_kinetic_body;
+        s.non_finite_body = self.non_finite_body;
+    }
+}
+
+/// Whether `x` and every component of `v` are finite (neither infinite nor
+/// NaN), without a branch: `y · 0` is ±0 for a finite `y` and NaN for any
+/// other, so the sum of those products is zero exactly when all are finite.
+/// Ten tests chained by `&&` cost about 1 % of a step of the settled tetra
+/// bed in the gather.
+#[inline(always)]
+pub(crate) fn all_finite<const N: usize>(x: f64, v: [glam::DVec3; N]) -> bool {
+    let z = v.iter().fold(x * 0.0, |acc, y| {
+        let p = *y * 0.0;
+        acc + p.x + p.y + p.z
+    });
+    z == 0.0
+}
+
 /// Wall-clock seconds spent in each stage of `World::step`, accumulated
 /// over all steps (like LAMMPS' Pair/Neigh/Modify breakdown). Reading the
 /// clock costs about 0.1 µs per stage, negligible against a step.
@@ -116,5 +179,52 @@ impl std::ops::AddAssign for StageTimes {
         self.neighbor += o.neighbor;
         self.pair += o.pair;
         self.gather += o.gather;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    #[test]
+    fn all_finite_is_false_for_any_infinity_or_nan() {
+        let ok = DVec3::new(1.0, -0.0, f64::MAX);
+        assert!(all_finite(f64::MIN_POSITIVE, [ok, -ok, DVec3::ZERO]));
+        assert!(all_finite(-f64::MAX, [ok]));
+        for bad in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+            assert!(!all_finite(bad, [ok, ok, ok]));
+            for axis in 0..3 {
+                let mut v = ok;
+                v[axis] = bad;
+                assert!(!all_finite(1.0, [ok, v, ok]), "{bad} in component {axis}");
+                assert!(!all_finite(1.0, [ok, ok, v]), "{bad} in component {axis}");
+            }
+        }
+        // an infinity and a NaN elsewhere cannot cancel into a zero
+        let inf = DVec3::new(f64::INFINITY, 0.0, 0.0);
+        let ninf = DVec3::new(f64::NEG_INFINITY, 0.0, 0.0);
+        assert!(!all_finite(0.0, [inf, ninf]));
+    }
+
+    #[test]
+    fn body_tally_sums_in_order_and_keeps_the_first_maximum_and_the_first_bad_body() {
+        let bodies = [
+            (2.0, 1.0, true, 11),
+            (5.0, 2.0, true, 12),
+            (5.0, 3.0, false, 13),
+            (1.0, 4.0, false, 14),
+        ];
+        let mut t = BodyTally::default();
+        for &(ke, m, fin, id) in &bodies {
+            t.add(ke, m, || fin, || id);
+        }
+        let mut s = ContactStats::default();
+        t.store(&mut s);
+        assert_eq!(s.kinetic_energy, ((2.0 + 5.0) + 5.0) + 1.0);
+        assert_eq!(s.total_mass, 10.0);
+        assert_eq!(s.max_body_kinetic_energy, 5.0);
+        assert_eq!(s.max_kinetic_body, 12, "ties keep the earlier body");
+        assert_eq!(s.non_finite_body, 13, "the first body not finite");
     }
 }

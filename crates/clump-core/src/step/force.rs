@@ -28,7 +28,7 @@ use crate::par::affinity::{
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
 use crate::sphere::SPHERE_ID_BITS;
-use crate::stats::ContactStats;
+use crate::stats::{all_finite, BodyTally, ContactStats};
 use crate::wall::{WallLoad, WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::World;
 use rayon::prelude::*;
@@ -442,6 +442,8 @@ fn gather_after(
         let mut e_pf = e;
         let mut stale = false;
         let mut held = [Held::default(); FIRST_HALF_BLOCK];
+        // the bodies' statistics, stored in the chunk's slot at its end
+        let mut tally = BodyTally::default();
         for k0 in (b0..b1).step_by(FIRST_HALF_BLOCK) {
             let k1 = (k0 + FIRST_HALF_BLOCK).min(b1);
             for bi in k0..k1 {
@@ -560,17 +562,7 @@ fn gather_after(
                 if owned.is_some_and(|o| !o[bi]) {
                     // a ghost: its owner counts it
                 } else {
-                    stat.kinetic_energy += ke;
-                    stat.total_mass += mass_i;
-                    if ke > stat.max_body_kinetic_energy {
-                        stat.max_body_kinetic_energy = ke;
-                        stat.max_kinetic_body = b.id[bi];
-                    }
-                    if stat.non_finite_body == 0
-                        && !(ke.is_finite() && com.is_finite() && f.is_finite() && m.is_finite())
-                    {
-                        stat.non_finite_body = b.id[bi];
-                    }
+                    tally.add(ke, mass_i, || all_finite(ke, [com, f, m]), || b.id[bi]);
                 }
                 if next.is_some() {
                     held[bi - k0] = Held { v, l, om, f, m };
@@ -592,6 +584,7 @@ fn gather_after(
                 stale |= unsafe { h.apply_block(k0, &mut held[..k1 - k0], lanes) };
             }
         }
+        tally.store(stat);
         if stale {
             any_stale.store(true, Ordering::Relaxed);
         }
