@@ -71,10 +71,9 @@ impl ContactStats {
 
 /// The bodies' part of a chunk's [`ContactStats`] (kinetic energy, mass,
 /// the most energetic body, the first body not finite), summed in local
-/// variables over the chunk and stored once at its end: summed in the
-/// chunk's slot, every body's update went through memory and waited on
-/// the last body's (3 % of a step on the settled tetra bed). The same
-/// additions and comparisons in the same order, so the same bits.
+/// variables over the chunk and stored in the chunk's slot once at its
+/// end, not updated there body by body. The same additions and
+/// comparisons in the same order, so the same bits.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct BodyTally {
     kinetic_energy: f64,
@@ -201,7 +200,7 @@ mod tests {
                 assert!(!all_finite(1.0, [ok, ok, v]), "{bad} in component {axis}");
             }
         }
-        // an infinity and a NaN elsewhere cannot cancel into a zero
+        // infinities of opposite signs cannot cancel into a zero
         let inf = DVec3::new(f64::INFINITY, 0.0, 0.0);
         let ninf = DVec3::new(f64::NEG_INFINITY, 0.0, 0.0);
         assert!(!all_finite(0.0, [inf, ninf]));
