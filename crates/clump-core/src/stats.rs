@@ -76,10 +76,15 @@ impl ContactStats {
 /// comparisons in the same order, so the same bits.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct BodyTally {
+    /// Σ ½ m v·v + ½ ω·L of the bodies so far (world frame), J.
     kinetic_energy: f64,
+    /// Their mass, kg.
     total_mass: f64,
+    /// The largest kinetic energy of one of them, J.
     max_body_kinetic_energy: f64,
+    /// Global id of that body (0: none yet).
     max_kinetic_body: u64,
+    /// Global id of the first of them not finite (0: none).
     non_finite_body: u64,
 }
 
