@@ -1,22 +1,9 @@
-//! Body bounding spheres for the pair search on many-sphere clumps.
-//!
-//! A sphere's search stencil on a stone of 50 spheres covers the spheres of
-//! several neighbouring stones, most of them far out of reach (on LIGGGHTS'
-//! settled stone pile, 254 spheres in the stencil's cells per sphere, for
-//! 0.56 candidate pairs). A cell's spheres are in storage order and a
-//! body's spheres are contiguous, so a cell holds each body's spheres as
-//! one run; a run is passed over without distance tests when sphere `i`
-//! cannot reach the bounding sphere of its body. The spheres passed over
-//! are ones that would fail the distance test (see
-//! [`BodyBounds::out_of_reach`]), so the list, and its order, are the same
-//! with or without the filter.
+//! Bounding spheres of many-sphere bodies, for the pair search by body
+//! pairs ([`super::body_search`]): a body pair whose bounding spheres are
+//! more than the skin apart has no candidate pair, and a sphere that does
+//! not reach a body's bounding sphere has no candidate on that body.
 
 use glam::DVec3;
-
-/// Mean spheres per body from which the search uses the bounding spheres:
-/// on tetrahedra (4 spheres) a run is one or two spheres and the extra test
-/// would cost more than it saves.
-const MIN_SPHERES_PER_BODY: usize = 8;
 
 /// Relative slack on the reach, far above the rounding of the distances
 /// (a few ulps of the coordinates), so that a sphere the exact test would
@@ -33,15 +20,6 @@ pub(crate) struct BodyBounds {
 }
 
 impl BodyBounds {
-    /// Whether the search uses the filter, for bodies owning the spheres
-    /// `body_first[b]..body_first[b + 1]` (the last entry is the number of
-    /// spheres).
-    pub(crate) fn pays(body_first: &[u32]) -> bool {
-        let nb = body_first.len().saturating_sub(1);
-        let n = body_first.last().map_or(0, |&n| n as usize);
-        nb > 0 && n >= MIN_SPHERES_PER_BODY * nb
-    }
-
     /// Builds the bounding spheres from the spheres' centres (`state`'s,
     /// world frame, m) and radii `radius` (m; body `b` owns
     /// `body_first[b]..body_first[b + 1]`).
@@ -97,96 +75,35 @@ impl BodyBounds {
         let r = reach + rb;
         d.length_squared() > r * r
     }
-}
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::boundary::Domain;
-    use crate::neighbor::pairs::{BuildInput, HistoryMap, PairList};
-    use crate::neighbor::CellGrid;
-    use rand::{Rng, SeedableRng};
+    /// The centre (world frame, m) and radius (m) of body `b`'s bounding
+    /// sphere.
+    #[inline(always)]
+    pub(crate) fn get(&self, b: usize) -> (DVec3, f64) {
+        let [cx, cy, cz, rb] = self.bound[b];
+        (DVec3::new(cx, cy, cz), rb)
+    }
 
-    /// Random stones of 12 spheres (radii 0.4–1 mm, centres within 2 mm of
-    /// the body's) in a box periodic in x and y: the search with the
-    /// bounding spheres finds the same candidates in the same order as the
-    /// search without them, and these are exactly the sphere pairs of
-    /// different bodies within the cut-off (brute force over all pairs and
-    /// periodic images).
-    #[test]
-    fn the_filter_keeps_every_candidate_in_order() {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
-        let domain = Domain {
-            lo: DVec3::ZERO,
-            hi: DVec3::new(0.02, 0.02, 0.03),
-            periodic: [true, true, false],
-        };
-        let (nb, k, skin) = (120usize, 12usize, 3e-4);
-        let (mut position, mut radius, mut body, mut body_first) =
-            (Vec::new(), Vec::new(), Vec::new(), vec![0u32]);
-        for b in 0..nb {
-            // some centres outside the periodic box: the spheres are unwrapped
-            let c = DVec3::new(
-                rng.gen_range(-0.002..0.022),
-                rng.gen_range(-0.002..0.022),
-                rng.gen_range(0.002..0.028),
-            );
-            for _ in 0..k {
-                let o = DVec3::new(
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                );
-                position.push(c + 2e-3 * o.normalize_or_zero() * rng.gen_range(0.0..1.0));
-                radius.push(rng.gen_range(4e-4..1e-3));
-                body.push(b as u32);
-            }
-            body_first.push(position.len() as u32);
-        }
-        let gid: Vec<u64> = (0..position.len() as u64).collect();
-        assert!(BodyBounds::pays(&body_first));
-        let state = crate::sphere::SphereState::of(&position, &radius);
-        let inp = BuildInput {
-            state: &state,
-            radius: &radius,
-            body: &body,
-            body_first: &body_first,
-            gid: &gid,
-            skin,
-            rolling: false,
-        };
-        let grid = CellGrid::new(&domain, &position, 2e-3 + skin).unwrap();
-        let mut with = PairList::default();
-        with.build(&grid, &domain, &inp, &HistoryMap::default());
-        let mut without = PairList::default();
-        without.unbounded = true;
-        without.build(&grid, &domain, &inp, &HistoryMap::default());
-        assert!(with.row_start == without.row_start, "the rows differ");
-        assert!(with.topo == without.topo, "the candidates differ");
-        // brute force: every pair of different bodies within the cut-off,
-        // at the nearest periodic image
-        let l = domain.size();
-        let mut expected = 0;
-        for i in 0..position.len() {
-            for j in i + 1..position.len() {
-                if body[i] == body[j] {
-                    continue;
-                }
-                let mut d = position[i] - position[j];
-                for a in 0..2 {
-                    d[a] -= l[a] * (d[a] / l[a]).round();
-                }
-                let cut = radius[i] + radius[j] + skin;
-                if d.length_squared() < cut * cut {
-                    expected += 1;
-                    assert!(
-                        with.row(i).any(|p| with.topo[p].j as usize == j),
-                        "pair ({i}, {j}) missing"
-                    );
-                }
-            }
-        }
-        assert_eq!(with.len(), expected);
-        assert!(expected > 200, "too few candidates to test: {expected}");
+    /// Largest radius of a bounding sphere, m (0 without bodies).
+    pub(crate) fn largest(&self) -> f64 {
+        self.bound.iter().map(|b| b[3]).fold(0.0, f64::max)
+    }
+
+    /// True when no sphere of body `a` is within `skin` (m) of a sphere of
+    /// body `b` (minimum image as in [`BodyBounds::out_of_reach`]): a
+    /// sphere `i` of `a` lies within `r_a − r_i` of `c_a`, so a sphere `i`
+    /// that reaches `b`'s bounding sphere (`|x_i − c_b| < r_i + skin +
+    /// r_b`) gives `|c_a − c_b| < r_a + skin + r_b`.
+    #[inline(always)]
+    pub(crate) fn apart(
+        &self,
+        a: usize,
+        b: usize,
+        skin: f64,
+        periodic: [bool; 3],
+        length: DVec3,
+    ) -> bool {
+        let (ca, ra) = self.get(a);
+        self.out_of_reach(b, ca, ra + skin, periodic, length)
     }
 }

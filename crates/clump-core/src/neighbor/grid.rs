@@ -86,6 +86,18 @@ impl CellGrid {
     /// The grid [`CellGrid::new`] builds for points with extent `e` (the
     /// extent of a whole world assembled from its ranks' parts).
     pub fn from_extent(domain: &Domain, e: &Extent, min_cell: f64) -> Result<Self, String> {
+        Self::build(domain, e, min_cell, false)
+    }
+
+    /// A grid like [`CellGrid::from_extent`]'s, for a search that visits
+    /// a periodic axis of one cell once: a periodic axis shorter than three
+    /// cells of `min_cell` is one cell (the body-pair search, whose cells
+    /// are a body across).
+    pub(crate) fn coarse(domain: &Domain, e: &Extent, min_cell: f64) -> Self {
+        Self::build(domain, e, min_cell, true).expect("a coarse grid has no short axis")
+    }
+
+    fn build(domain: &Domain, e: &Extent, min_cell: f64, thin_ok: bool) -> Result<Self, String> {
         let (mut lo, mut hi) = (e.lo, e.hi);
         if e.count == 0 {
             lo = domain.lo;
@@ -103,8 +115,10 @@ impl CellGrid {
             for a in 0..3 {
                 if domain.periodic[a] {
                     let l = domain.hi[a] - domain.lo[a];
-                    let n = (l / min_cell).floor();
-                    if n < 3.0 {
+                    let mut n = (l / min_cell).floor();
+                    if n < 3.0 && thin_ok {
+                        n = 1.0;
+                    } else if n < 3.0 {
                         return Err(format!(
                             "periodic axis {} is {l} m long, shorter than 3 neighbour cells of {min_cell} m \
                              (largest sphere diameter + skin); enlarge the domain",

@@ -12,14 +12,15 @@
 //! - [`skin`]: the rebuild trigger: any sphere displaced by more than half the
 //!   skin since the last build, which counts rotation because it measures the
 //!   sphere centres themselves.
-//! - [`body_bounds`]: bounding spheres of many-sphere bodies, with which the
-//!   pair search skips a neighbour body's spheres out of reach at once.
+//! - [`body_search`]: the pair search by body pairs on many-sphere bodies,
+//!   binned by their bounding spheres ([`body_bounds`]); its rows ascend.
 //! - [`carry`]: contact histories carried across a rebuild that re-sorts
 //!   the bodies, by storage index (global ids for a checkpoint or ranks).
 //! - [`walls`]: the wall Verlet list, the spheres with a wall to test and
 //!   their sphere–wall contact slots.
 
 mod body_bounds;
+mod body_search;
 pub(crate) mod carry;
 pub mod grid;
 pub mod pairs;

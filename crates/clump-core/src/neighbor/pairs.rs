@@ -1,6 +1,6 @@
 //! The half list of candidate sphere pairs and their contact state.
 
-use super::body_bounds::BodyBounds;
+use super::body_search::{BodySearch, Image};
 use super::carry::HistoryCarry;
 use super::grid::CellGrid;
 use super::topo::{set_row_steps, PairTopo};
@@ -125,15 +125,18 @@ pub struct PairList {
     /// order: the scan reads a cell's spheres from one contiguous run.
     cell_xr: Vec<[f64; 4]>,
     cursor: Vec<u32>,
-    /// Bounding spheres of the bodies, for a search on many-sphere bodies
-    /// ([`BodyBounds::pays`]).
-    bounds: BodyBounds,
-    /// Tests only: search without the bounding spheres.
+    /// The bodies binned for the search by body pairs, on many-sphere
+    /// bodies ([`BodySearch::pays`]).
+    by_body: BodySearch,
+    /// Tests only: search sphere by sphere on any bodies.
     #[cfg(test)]
-    pub(crate) unbounded: bool,
+    pub(crate) by_sphere: bool,
     /// Scratch of the build: the candidates found by each block of rows
     /// (unused on one thread, where the search writes `topo` directly).
     block_topo: Vec<Vec<PairTopo>>,
+    /// Scratch of the search by body pairs: the near bodies of the body
+    /// searched, per block of rows.
+    block_near: Vec<Vec<u32>>,
     /// The column lists, `first_feed` and `load_j` are built for the
     /// current list ([`PairList::prepare_seams`]).
     seams_ready: bool,
@@ -322,7 +325,53 @@ impl PairList {
 
     fn build_from(&mut self, grid: &CellGrid, domain: &Domain, inp: &BuildInput, history: Carried) {
         let n = inp.state.len();
-        // 1. bin spheres into cells (counting sort)
+        let by_body = BodySearch::pays(inp.body_first);
+        #[cfg(test)]
+        let by_body = by_body && !self.by_sphere;
+        let image = Image::of(domain);
+
+        // 1. the candidates of each sphere (j > i, other body): one search
+        // per sphere (or per body, on many-sphere bodies). On
+        // several threads, block by block: each block's candidates go to
+        // its own scratch list (kept from build to build, so no allocation
+        // once they are large enough), then are concatenated in block order
+        // (searching twice, to count and then to fill, cost twice as
+        // much). On one thread the scratch copy would only add 8 bytes a
+        // pair to the peak memory.
+        // each row's count goes to row_start[i + 1], summed into the
+        // offsets below
+        self.row_start.clear();
+        self.row_start.resize(n + 1, 0);
+        if by_body {
+            self.by_body.prepare(domain, inp);
+            self.search_by_body(inp, domain, &image);
+        } else {
+            self.search_by_sphere(grid, domain, inp, image);
+        }
+
+        // 2. row offsets, and the rows in order
+        for i in 0..n {
+            self.row_start[i + 1] += self.row_start[i];
+        }
+        let acc = self.row_start[n] as usize;
+        debug_assert_eq!(self.topo.len(), acc);
+        set_row_steps(&self.row_start, &mut self.topo);
+
+        // 3. the histories of the pairs that persist
+        self.restore(inp, history);
+    }
+
+    /// The candidates of each sphere by its cell stencil ([`Search`]) on
+    /// `grid`, into `topo` with each row's count at `row_start[i + 1]`.
+    fn search_by_sphere(
+        &mut self,
+        grid: &CellGrid,
+        domain: &Domain,
+        inp: &BuildInput,
+        image: Image,
+    ) {
+        let n = inp.state.len();
+        // bin spheres into cells (counting sort)
         //    (each sphere's cell is computed where it is needed, here twice
         //    and once in the search, rather than kept per sphere)
         let cell = |x: DVec3| grid.index(grid.coords(domain.wrap(x)));
@@ -339,14 +388,6 @@ impl PairList {
             let (x, r) = (inp.state[s as usize].position, inp.radius[s as usize]);
             [x.x, x.y, x.z, r]
         }));
-        let bounded = BodyBounds::pays(inp.body_first);
-        #[cfg(test)]
-        let bounded = bounded && !self.unbounded;
-        if bounded {
-            self.bounds.build(inp.state, inp.radius, inp.body_first);
-        }
-
-        // 2. count candidates per sphere (j > i, other body)
         let ctx = Search {
             grid,
             domain,
@@ -354,21 +395,9 @@ impl PairList {
             cell_start: &self.cell_start,
             cell_items: &self.cell_items,
             cell_xr: &self.cell_xr,
-            bounds: bounded.then_some(&self.bounds),
-            length: domain.size(),
-            half: 0.5 * domain.size(),
+            image,
         };
-        // one search per sphere. On several threads, block by block: each
-        // block's candidates go to its own scratch list (kept from build to
-        // build, so no allocation once they are large enough), then are
-        // concatenated in block order (searching twice, to count and then
-        // to fill, cost twice as much). On one thread the scratch copy
-        // would only add 8 bytes a pair to the peak memory.
-        // each row's count goes to row_start[i + 1], summed into the
-        // offsets below
         let nblocks = n.div_ceil(BLOCK);
-        self.row_start.clear();
-        self.row_start.resize(n + 1, 0);
         let serial = rayon::current_num_threads() == 1 || nblocks <= 1;
         if serial {
             // the same searches in the same order, straight into the list
@@ -393,24 +422,63 @@ impl PairList {
                         unsafe { *counts.get(i) = c };
                     }
                 });
+            concat_blocks(&mut self.topo, &self.block_topo[..nblocks]);
         }
+    }
 
-        // 3. row offsets, and the rows in order
-        for i in 0..n {
-            self.row_start[i + 1] += self.row_start[i];
+    /// The candidates of each sphere by body pairs ([`BodySearch`]), into
+    /// `topo` with each row's count at `row_start[i + 1]`; the bodies are
+    /// binned.
+    fn search_by_body(&mut self, inp: &BuildInput, domain: &Domain, image: &Image) {
+        let nb = inp.body_first.len() - 1;
+        let n = inp.state.len();
+        // blocks of bodies of about BLOCK spheres
+        let per_block = (BLOCK * nb / n.max(1)).max(1);
+        let nblocks = nb.div_ceil(per_block);
+        if self.block_near.len() < nblocks.max(1) {
+            self.block_near.resize_with(nblocks.max(1), Vec::new);
         }
-        let acc = self.row_start[n] as usize;
-        if !serial {
+        let search = &self.by_body;
+        if rayon::current_num_threads() == 1 || nblocks <= 1 {
             self.topo.clear();
-            for b in &self.block_topo[..nblocks] {
-                self.topo.extend_from_slice(b);
+            let (topo, rows) = (&mut self.topo, &mut self.row_start);
+            for a in 0..nb {
+                search.rows_of(a, inp, domain, image, &mut self.block_near[0], |i, j, s| {
+                    topo.push(PairTopo::new(j, s));
+                    rows[i + 1] += 1;
+                });
             }
+            return;
         }
-        debug_assert_eq!(self.topo.len(), acc);
-        set_row_steps(&self.row_start, &mut self.topo);
+        if self.block_topo.len() < nblocks {
+            self.block_topo.resize_with(nblocks, Vec::new);
+        }
+        let counts = crate::par::shared::SharedMut::new(&mut self.row_start[1..]);
+        self.block_topo[..nblocks]
+            .par_iter_mut()
+            .zip(&mut self.block_near[..nblocks])
+            .enumerate()
+            .for_each(|(blk, (out, near))| {
+                out.clear();
+                for a in blk * per_block..((blk + 1) * per_block).min(nb) {
+                    search.rows_of(a, inp, domain, image, near, |i, j, s| {
+                        out.push(PairTopo::new(j, s));
+                        // SAFETY: the rows of body a's spheres belong to
+                        // this block only.
+                        unsafe { *counts.get(i) += 1 };
+                    });
+                }
+            });
+        concat_blocks(&mut self.topo, &self.block_topo[..nblocks]);
+    }
 
-        // 5. restore the history of pairs that persist (stored from the lower
-        //    to the higher global id; pairs here run from i to j > i)
+    /// Restores the history of the pairs of a new list that persist, from
+    /// `history`, and sizes the per-pair and per-body state.
+    fn restore(&mut self, inp: &BuildInput, history: Carried) {
+        let n = inp.state.len();
+        let acc = self.topo.len();
+        // the history of pairs that persist (stored from the lower to the
+        // higher global id; pairs here run from i to j > i)
         let gid = inp.gid;
         self.tangential.clear();
         self.tangential.resize(acc, DVec3::ZERO);
@@ -460,8 +528,8 @@ impl PairList {
             });
         }
 
-        // 6. the bodies' packed state (the column lists wait for a pair
-        //    stage on several threads: prepare_seams)
+        // the bodies' packed state (the column lists wait for a pair stage
+        // on several threads: prepare_seams)
         let nb = inp.body.last().map_or(0, |&b| b as usize + 1);
         self.body.clear();
         self.body.resize(nb, PairBody::default());
@@ -472,7 +540,7 @@ impl PairList {
 /// (called twice per item): `start` gets the offsets (`buckets + 1`),
 /// `items` the items bucket by bucket, ascending within each; `cursor` is
 /// scratch.
-fn counting_sort(
+pub(super) fn counting_sort(
     n: usize,
     buckets: usize,
     key: impl Fn(usize) -> usize,
@@ -496,6 +564,14 @@ fn counting_sort(
         let c = &mut cursor[key(i)];
         items[*c as usize] = i as u32;
         *c += 1;
+    }
+}
+
+/// `topo` from the blocks' candidates, in block order.
+fn concat_blocks(topo: &mut Vec<PairTopo>, blocks: &[Vec<PairTopo>]) {
+    topo.clear();
+    for b in blocks {
+        topo.extend_from_slice(b);
     }
 }
 
@@ -526,11 +602,7 @@ struct Search<'a> {
     cell_start: &'a [u32],
     cell_items: &'a [u32],
     cell_xr: &'a [[f64; 4]],
-    /// The bodies' bounding spheres, to pass over the runs out of reach
-    /// (None: tests every sphere).
-    bounds: Option<&'a BodyBounds>,
-    length: DVec3,
-    half: DVec3,
+    image: Image,
 }
 
 impl Search<'_> {
@@ -583,9 +655,7 @@ impl Search<'_> {
     /// the cell's spheres from the first one past the end of `i`'s body: a
     /// cell wholly before it is passed over, one wholly after it taken
     /// whole, any other cut there by a binary search; only the rest get the
-    /// distance test (on many-sphere bodies, only the runs of bodies within
-    /// reach, see [`BodyBounds`]). On stones of 50 spheres most spheres near
-    /// `i` are its own stone's or lie before it.
+    /// distance test.
     #[inline(always)]
     fn scan(
         &self,
@@ -599,12 +669,10 @@ impl Search<'_> {
         let xi = inp.state[i].position;
         let ri = inp.radius[i] + inp.skin;
         let first = inp.body_first[inp.body[i] as usize + 1].max(i as u32 + 1);
-        let any_periodic = self.domain.periodic.iter().any(|&p| p);
         for k in k0..k1 {
             let (c0, c1) = (self.cell_start[k] as usize, self.cell_start[k + 1] as usize);
             // a cell wholly before `first` (or empty) is passed over, and one
-            // wholly after it taken whole, without the binary search (its
-            // dependent loads were a fifth of the build on stones)
+            // wholly after it taken whole, without the binary search
             if c0 == c1 || self.cell_items[c1 - 1] < first {
                 continue;
             }
@@ -613,65 +681,13 @@ impl Search<'_> {
             } else {
                 c0 + self.cell_items[c0..c1].partition_point(|&j| j < first)
             };
-            match self.bounds {
-                None => self.test(i, xi, ri, any_periodic, c0..c1, f, count),
-                Some(bounds) => {
-                    // the cell body by body, each run found by a binary
-                    // search (the cell's spheres ascend): a run out of reach
-                    // costs a few comparisons instead of its distance tests
-                    let mut c = c0;
-                    while c < c1 {
-                        let b = inp.body[self.cell_items[c] as usize] as usize;
-                        let next_body = inp.body_first[b + 1];
-                        let end = if self.cell_items[c1 - 1] < next_body {
-                            c1
-                        } else {
-                            c + self.cell_items[c..c1].partition_point(|&j| j < next_body)
-                        };
-                        if !bounds.out_of_reach(b, xi, ri, self.domain.periodic, self.length) {
-                            self.test(i, xi, ri, any_periodic, c..end, f, count);
-                        }
-                        c = end;
-                    }
+            for (&j, xr) in self.cell_items[c0..c1].iter().zip(&self.cell_xr[c0..c1]) {
+                let xj = DVec3::new(xr[0], xr[1], xr[2]);
+                if let Some(shift) = self.image.candidate(xi, ri, xj, xr[3]) {
+                    debug_assert!(j as usize > i && inp.body[j as usize] != inp.body[i]);
+                    f(j, shift);
+                    *count += 1;
                 }
-            }
-        }
-    }
-
-    /// The distance test of `i` (centre `xi`, radius plus skin `ri`)
-    /// against the cell-list entries `cs`, candidates to `f`.
-    #[allow(clippy::too_many_arguments)]
-    #[inline(always)]
-    fn test(
-        &self,
-        i: usize,
-        xi: DVec3,
-        ri: f64,
-        any_periodic: bool,
-        cs: std::ops::Range<usize>,
-        f: &mut impl FnMut(u32, [i8; 3]),
-        count: &mut u32,
-    ) {
-        let inp = self.inp;
-        for (&j, xr) in self.cell_items[cs.clone()].iter().zip(&self.cell_xr[cs]) {
-            let mut d = xi - DVec3::new(xr[0], xr[1], xr[2]);
-            let mut shift = [0i8; 3];
-            if any_periodic {
-                // minimum image; the division only runs for pairs that
-                // straddle the boundary
-                for a in 0..3 {
-                    if self.domain.periodic[a] && d[a].abs() > self.half[a] {
-                        let s = -(d[a] / self.length[a]).round();
-                        shift[a] = s as i8;
-                        d[a] += s * self.length[a];
-                    }
-                }
-            }
-            let cut = ri + xr[3];
-            if d.length_squared() < cut * cut {
-                debug_assert!(j as usize > i && inp.body[j as usize] != inp.body[i]);
-                f(j, shift);
-                *count += 1;
             }
         }
     }
