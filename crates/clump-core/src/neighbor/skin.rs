@@ -80,23 +80,33 @@ pub const SKIN_MAX: f64 = 0.5;
 /// spheres, in units of the smallest radius: a rebuild costs `R` steps, and
 /// the candidate pairs of a skin one radius thick cost `c` steps' work.
 ///
-/// Both depend on the shape. A sphere's neighbour search scans every sphere
-/// in the 27 cells around it, and a clump of many overlapping spheres
-/// packs many of them there (its own, mostly), so `R` grows with `k`;
-/// those spheres are mostly buried inside their clump, with no partner
-/// across a gap, so `c` does not. Measured with `clump bench` in phase B,
-/// from the stage shares and rebuild counts at two skins each (one thread):
+/// Both depend on the shape. On a clump of a few spheres the neighbour
+/// search scans the spheres of the 27 cells around each sphere; clumps of
+/// many spheres are searched by body pairs ([`super::body_search`]), so `R`
+/// grows far less with `k` than the spheres in a cell do. The candidates
+/// of many-sphere clumps are mostly buried inside their clump, with no
+/// partner across a gap, so `c` does not grow with `k` either. Measured
+/// in phase B (one thread):
 ///
 /// | bed | k | R, steps | c, steps per r_min of skin | 2R/c |
 /// |---|---|---|---|---|
 /// | settled tetra bed, 2 000 clumps | 4 | 13 | 0.66 | 39 |
-/// | stone pile, 200 stones | 50 | 36 | 0.25 | 288 |
+/// | stone pile, 200 stones | 50 | 11 | | 50 |
 ///
-/// The line through the two points, `2R/c = 17.3 + 5.41 k`, is used for
-/// every `k`; a bed of single spheres gets 23. Only the speed depends on
-/// it: any skin gives the same contacts.
+/// The tetra bed's point is from `clump bench` at two skins (its stage
+/// shares and rebuild counts). The stone pile's `R` is from its stage
+/// shares (62 rebuilds at 6.8 % of phase B); its `2R/c` is the fastest of
+/// the skins an in-process A/B compared (2R/c of 20 to 144 against 288,
+/// the old model's: 50 ran 5.7 % faster on one thread and 3.8 % on two).
+/// The line through the two points, `2R/c = 38.94 + 0.240 (k − 4)`, is
+/// used for every `k`; a bed of single spheres gets 38.2. Only the speed
+/// depends on it: any skin gives the same contacts.
 fn skin_cost(k: usize) -> f64 {
-    17.3 + 5.41 * k as f64
+    // (k, 2R/c) of the tetra bed and of the stone pile
+    const TETRA: (f64, f64) = (4.0, 38.94);
+    const STONES: (f64, f64) = (50.0, 50.0);
+    let slope = (STONES.1 - TETRA.1) / (STONES.0 - TETRA.0);
+    TETRA.1 + (k as f64 - TETRA.0) * slope
 }
 
 /// The skin (m) for the next neighbour list, from the motion since the last
@@ -129,13 +139,13 @@ mod tests {
         let (r, top) = (1e-3, 2e-3);
         assert_eq!(adapted_skin(r, top, 1e-9, 1000, 4), SKIN_MIN * r);
         assert_eq!(adapted_skin(r, top, 1e-2, 10, 4), top);
-        // u = 1e-7 m per step, k = 4: s = √((17.3 + 21.64) · 1e-7 · 1e-3)
+        // u = 1e-7 m per step, k = 4: s = √(38.94 · 1e-7 · 1e-3)
         let s = adapted_skin(r, top, 1e-5, 100, 4);
         assert!((s - (38.94f64 * 1e-10).sqrt()).abs() < 1e-12, "{s}");
         let s4 = adapted_skin(r, top, 4e-5, 100, 4);
         assert!((s4 / s - 2.0).abs() < 1e-12);
         let stone = adapted_skin(r, top, 1e-5, 100, 50);
-        assert!((stone / s - (287.8f64 / 38.94).sqrt()).abs() < 1e-12);
+        assert!((stone / s - (50.0f64 / 38.94).sqrt()).abs() < 1e-12);
     }
 
     /// The body bound holds for every sphere of random rigid motions, and
