@@ -66,6 +66,19 @@ pub fn tetra_template() -> ClumpTemplate {
 /// −9.81 m/s² along z. `skin`: the Verlet skin (m), `None` for the engine's
 /// default. Run a few thousand steps to let it settle into a dense bed.
 pub fn tetra_lattice_bed(nx: usize, ny: usize, nz: usize, skin: Option<f64>) -> World {
+    lattice_bed(&[tetra_template()], nx, ny, nz, skin)
+}
+
+/// [`tetra_lattice_bed`] with the bodies of `templates` (body `k` of the
+/// lattice, counted x first, has template `k mod templates.len()`), each
+/// template no wider than the lattice pitch, of the tetra's material.
+pub fn lattice_bed(
+    templates: &[ClumpTemplate],
+    nx: usize,
+    ny: usize,
+    nz: usize,
+    skin: Option<f64>,
+) -> World {
     let m = tetra_material();
     let mats = vec![m];
     let table = ContactTable::new(&mats, |_, _| tetra_contact()).expect("valid contact model");
@@ -84,9 +97,10 @@ pub fn tetra_lattice_bed(nx: usize, ny: usize, nz: usize, skin: Option<f64>) -> 
         multi_contact: MultiContact::Sum,
     };
     let mut w = World::new(config, mats, table);
-    let t = w
-        .add_template(tetra_template(), 0)
-        .expect("material 0 exists");
+    let ids: Vec<_> = templates
+        .iter()
+        .map(|t| w.add_template(t.clone(), 0).expect("material 0 exists"))
+        .collect();
     w.add_wall(Wall {
         name: "floor".into(),
         shape: WallShape::Plane {
@@ -103,6 +117,7 @@ pub fn tetra_lattice_bed(nx: usize, ny: usize, nz: usize, skin: Option<f64>) -> 
     for z in 0..nz {
         for y in 0..ny {
             for x in 0..nx {
+                let t = ids[k as usize % ids.len()];
                 k += 1;
                 let q = DQuat::from_euler(
                     glam::EulerRot::ZXZ,

@@ -58,6 +58,13 @@ pub fn omega_world_rot(rot: &DMat3, l_world: DVec3, inv_inertia: DVec3) -> DVec3
         // spherical top: R (c Rᵀ L) = c L exactly (no round-off of the rotation)
         return l_world * inv_inertia.x;
     }
+    omega_world_rot_general(rot, l_world, inv_inertia)
+}
+
+/// [`omega_world_rot`] of a body that is not a spherical top, by the
+/// general formula `R I⁻¹ Rᵀ L` with no branch.
+#[inline(always)]
+pub fn omega_world_rot_general(rot: &DMat3, l_world: DVec3, inv_inertia: DVec3) -> DVec3 {
     let l_body = DVec3::new(
         rot.x_axis.dot(l_world),
         rot.y_axis.dot(l_world),

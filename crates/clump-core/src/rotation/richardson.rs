@@ -19,7 +19,7 @@
 use glam::{DQuat, DVec3};
 
 use super::body_dynamics::inverse_inertia;
-use crate::math::quat_from_rotation_vector;
+use crate::math::{quat_from_rotation_vector, quat_from_small_rotation_vector};
 
 /// World-frame angular velocity (rad/s) `ω = R I⁻¹ Rᵀ L` at orientation `q`
 /// (body → world) from the WORLD-frame angular momentum `l_world` (kg m²/s)
@@ -45,13 +45,40 @@ pub fn drift(q: DQuat, l_world: DVec3, inertia: DVec3, dt: f64) -> DQuat {
 /// formula). Cost: two `ω` evaluations and two exponential maps.
 #[inline(always)]
 fn drift_inv(q: DQuat, l_world: DVec3, inv_inertia: DVec3, dt: f64) -> DQuat {
+    drift_by(q, l_world, inv_inertia, dt, |v| {
+        (quat_from_rotation_vector(v), true)
+    })
+    .0
+}
+
+/// [`drift`] with the inverse principal moments `inv_inertia` (body frame,
+/// 1/(kg m²)) and both exponentials by their series alone, with no branch
+/// (for the first half's lanes): the orientation, and whether both series
+/// hold (half angles below 0.01). Where they do, this is [`drift`]'s
+/// result bit for bit; elsewhere the orientation is to be discarded.
+#[inline(always)]
+pub fn drift_small(q: DQuat, l_world: DVec3, inv_inertia: DVec3, dt: f64) -> (DQuat, bool) {
+    drift_by(q, l_world, inv_inertia, dt, quat_from_small_rotation_vector)
+}
+
+/// The drift of [`drift_inv`] with the exponential map `exp` (the
+/// quaternion of a rotation vector, and whether it holds).
+#[inline(always)]
+fn drift_by(
+    q: DQuat,
+    l_world: DVec3,
+    inv_inertia: DVec3,
+    dt: f64,
+    exp: impl Fn(DVec3) -> (DQuat, bool),
+) -> (DQuat, bool) {
     let half = 0.5 * dt;
     let w0 = omega_at(q, l_world, inv_inertia);
-    let e_half = quat_from_rotation_vector(w0 * half);
+    let (e_half, held0) = exp(w0 * half);
     let q_full = (e_half * e_half) * q;
     let q_half1 = e_half * q;
     let w1 = omega_at(q_half1, l_world, inv_inertia);
-    let q_half2 = quat_from_rotation_vector(w1 * half) * q_half1;
+    let (e1, held1) = exp(w1 * half);
+    let q_half2 = e1 * q_half1;
     // Both estimates are O(dt²) apart, hence in the same hemisphere.
-    (q_half2 * 2.0 - q_full).normalize()
+    ((q_half2 * 2.0 - q_full).normalize(), held0 & held1)
 }

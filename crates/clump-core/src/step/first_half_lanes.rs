@@ -1,9 +1,14 @@
 //! The first half step of up to eight bodies at once, one lane per body
 //! (structure of arrays), for the bodies of the common case: started, free
-//! on every axis, spherical tops (three equal principal moments: single
-//! spheres, regular tetrahedra, cubes of spheres) under a velocity-Verlet
-//! scheme whose free rotation of such a body is the exact exponential
-//! ([`crate::rotation::RotationScheme::drift`]).
+//! on every axis, under a velocity-Verlet scheme, and either
+//! - spherical tops (three equal principal moments: single spheres, regular
+//!   tetrahedra, cubes of spheres), whose free rotation every such scheme
+//!   takes as the exact exponential
+//!   ([`crate::rotation::RotationScheme::drift`]), or
+//! - asymmetric bodies (stones, any irregular clump) under the Richardson
+//!   scheme ([`crate::rotation::richardson`]), whose drift, two rotations
+//!   and two exponentials deep, is most of such a body's first half (a
+//!   block's lanes are all of one kind: [`BodyLanes::general`]).
 //!
 //! A body's first half (`integrate::FirstHalf::apply`: half kick, drift,
 //! rotation, ω, skin bound, sphere centres) is one long chain of dependent
@@ -18,7 +23,8 @@
 //! (`crate::par::simd`).
 //!
 //! Same bits: a lane runs the scalar path's own functions (the half kick,
-//! [`crate::rotation::spherical_top_drift_small`], `DMat3::from_quat`, the
+//! [`crate::rotation::spherical_top_drift_small`] or
+//! [`crate::rotation::richardson::drift_small`], `DMat3::from_quat`, the
 //! skin bound), the same IEEE operations in the same order, never contracted
 //! into FMA. The branches of the scalar path become flags: a lane whose
 //! rotation is too large for the series, or whose product is too far from
@@ -74,8 +80,14 @@ pub(crate) struct BodyLanes {
     pub dtfm: Row,
     /// The half kick's `dt/(2 f_a)`, s.
     pub dtt: Row,
-    /// The principal moment (all three equal), kg m².
+    /// The principal moment (all three equal), kg m²; for spherical tops.
     pub inertia: Row,
+    /// The inverse principal moments (body frame), 1/(kg m²); for
+    /// asymmetric bodies.
+    pub inv_inertia: Rows3,
+    /// The lanes hold asymmetric bodies under the Richardson scheme (else
+    /// spherical tops).
+    pub general: bool,
     /// Centre of mass at the last neighbour build, m: with `q_ref`, the
     /// skin check's reference pose.
     pub x_ref: Rows3,
@@ -126,6 +138,8 @@ impl BodyLanes {
             dtfm: zero,
             dtt: zero,
             inertia: zero,
+            inv_inertia: [zero; 3],
+            general: false,
             x_ref: [zero; 3],
             q_ref: [zero; 4],
             reach: zero,
@@ -155,6 +169,7 @@ impl BodyLanes {
             (zero, rest),
             0.0,
         );
+        self.set_inverse_inertia(k, DVec3::ONE);
     }
 
     /// Sets lane `k`'s inputs (world frame): centre `x`, velocity `v`,
@@ -238,22 +253,38 @@ impl BodyLanes {
         place_lanes(self, offsets);
     }
 
+    /// Sets lane `k`'s inverse principal moments (body frame, 1/(kg m²)),
+    /// for asymmetric bodies (after [`BodyLanes::set`]).
+    #[inline(always)]
+    pub(crate) fn set_inverse_inertia(&mut self, k: usize, inv: DVec3) {
+        set3(&mut self.inv_inertia, k, inv);
+    }
+
     /// Lane `k`: the half kick, the drift of the centre and of the
     /// orientation, ω from L, the rotation matrix, and the skin bound, as
     /// `integrate::FirstHalf::apply` computes them for a free, started
-    /// spherical top.
+    /// spherical top or, `general`, an asymmetric body under the
+    /// Richardson scheme.
     #[inline(always)]
-    fn lane(&mut self, k: usize, dt: f64, half_skin: f64) {
+    fn lane(&mut self, k: usize, dt: f64, half_skin: f64, general: bool) {
         let (mut v, mut l) = (get3(&self.v, k), get3(&self.l, k));
         let kick = HalfKick::from_quotients(self.dtfm[k], self.dtt[k]);
         kick.apply_free(&mut v, &mut l, get3(&self.f, k), get3(&self.m, k));
         let x = get3(&self.x, k) + v * dt;
         let inertia = self.inertia[k];
-        let (q, holds) =
-            crate::rotation::spherical_top_drift_small(get4(&self.q, k), l, inertia, dt);
+        let inv = get3(&self.inv_inertia, k);
+        let (q, holds) = if general {
+            crate::rotation::richardson::drift_small(get4(&self.q, k), l, inv, dt)
+        } else {
+            crate::rotation::spherical_top_drift_small(get4(&self.q, k), l, inertia, dt)
+        };
         let rot = DMat3::from_quat(q);
-        // ω = R I⁻¹ Rᵀ L = L / I for a spherical top (rotation::omega_world_rot)
-        let om = l * (1.0 / inertia);
+        let om = if general {
+            crate::rotation::body_dynamics::omega_world_rot_general(&rot, l, inv)
+        } else {
+            // ω = R I⁻¹ Rᵀ L = L / I for a spherical top (rotation::omega_world_rot)
+            l * (1.0 / inertia)
+        };
         let reach = self.reach[k];
         let bound =
             skin::body_displacement_bound(x, q, get3(&self.x_ref, k), get4(&self.q_ref, k), reach);
@@ -303,11 +334,18 @@ unsafe fn place_avx2(b: &mut BodyLanes, offsets: &[DVec3]) {
     place_lanes(b, offsets)
 }
 
-/// Every lane of `b`, in a loop the compiler vectorises.
+/// Every lane of `b`, in a loop the compiler vectorises (one loop per
+/// kind of body, with no branch inside).
 #[inline(always)]
 fn run_lanes(b: &mut BodyLanes, dt: f64, half_skin: f64) {
-    for k in 0..LANES {
-        b.lane(k, dt, half_skin);
+    if b.general {
+        for k in 0..LANES {
+            b.lane(k, dt, half_skin, true);
+        }
+    } else {
+        for k in 0..LANES {
+            b.lane(k, dt, half_skin, false);
+        }
     }
 }
 
@@ -351,6 +389,19 @@ mod tests {
     /// every other lane does.
     #[test]
     fn lanes_are_the_scalar_first_half_bit_for_bit() {
+        lanes_against_the_scalar_path(false);
+    }
+
+    /// The same for asymmetric bodies (three different principal moments)
+    /// under the Richardson scheme, the lanes of [`BodyLanes::general`].
+    #[test]
+    fn general_lanes_are_the_scalar_richardson_first_half_bit_for_bit() {
+        lanes_against_the_scalar_path(true);
+    }
+
+    /// The lanes of spherical tops (or, `general`, of asymmetric bodies)
+    /// against the scalar path, for the tests above.
+    fn lanes_against_the_scalar_path(general: bool) {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
         let dt = 1e-5;
         let half_skin = 2e-5;
@@ -372,14 +423,25 @@ mod tests {
         let (mut held, mut fast, mut near) = (0, 0, 0);
         for round in 0..400 {
             let mut b = BodyLanes::idle();
+            b.general = general;
             let mut inputs = Vec::new();
             for k in 0..LANES {
                 let x = rnd3(&mut rng, 0.1);
                 let q = DQuat::from_scaled_axis(rnd3(&mut rng, 3.0)).normalize();
                 let inertia = rng.gen_range(1e-12..1e-6);
+                let i3 = if general {
+                    // the moments of a stone, up to 2.5 times apart
+                    DVec3::new(
+                        inertia,
+                        inertia * rng.gen_range(1.05..1.6),
+                        inertia * rng.gen_range(1.7..2.5),
+                    )
+                } else {
+                    DVec3::splat(inertia)
+                };
                 // ω up to 100 rad/s, a few lanes far beyond the series
                 let spin = if (round + k) % 13 == 0 { 3e4 } else { 100.0 };
-                let l = rnd3(&mut rng, spin) * inertia;
+                let l = rnd3(&mut rng, spin) * i3;
                 let v = rnd3(&mut rng, 1.0);
                 let mass = rng.gen_range(1e-6..1e-2);
                 let f = rnd3(&mut rng, 1.0) * mass * 10.0;
@@ -401,7 +463,10 @@ mod tests {
                     (x_ref, q_ref),
                     reach,
                 );
-                inputs.push((x, v, l, q, f, m, mass, added, inertia, x_ref, q_ref, reach));
+                if general {
+                    b.set_inverse_inertia(k, crate::rotation::inverse_inertia(i3));
+                }
+                inputs.push((x, v, l, q, f, m, mass, added, i3, x_ref, q_ref, reach));
             }
             let offsets: Vec<DVec3> = (0..1 + round % SLOTS)
                 .map(|_| rnd3(&mut rng, 2e-3))
@@ -413,23 +478,31 @@ mod tests {
                 lanes.place(&offsets, simd);
                 outs.push(lanes);
             }
-            for (k, &(x, v, l, q, f, m, mass, added, inertia, x_ref, q_ref, reach)) in
+            for (k, &(x, v, l, q, f, m, mass, added, i3, x_ref, q_ref, reach)) in
                 inputs.iter().enumerate()
             {
                 // the scalar path, as integrate::FirstHalf::apply takes it
                 let (mut v1, mut l1) = (v, l);
                 HalfKick::new(dt, mass, added).apply_free(&mut v1, &mut l1, f, m);
                 let x1 = x + v1 * dt;
-                let i3 = DVec3::splat(inertia);
                 let q1 = RotationScheme::Richardson.drift(q, l1, i3, dt);
                 let om1 = omega_world(q1, l1, i3);
                 let rot1 = DMat3::from_quat(q1);
                 let bound = skin::body_displacement_bound(x1, q1, x_ref, q_ref, reach);
                 let within = skin::surely_within(bound, half_skin, x1.abs().max_element() + reach);
-                // the series holds below a half angle of 0.01 (h² < 1e-4)
-                let h2 = 0.25 * (l1 * (dt / inertia)).length_squared();
+                // the series holds below a half angle of 0.01 (h² < 1e-4);
+                // a spherical top turns by ω dt at once, an asymmetric body
+                // by ω dt/2 twice, ω changing a little between the two
+                let h2 = if general {
+                    0.25 * (omega_world(q, l1, i3) * (0.5 * dt)).length_squared()
+                } else {
+                    0.25 * (l1 * (dt / i3.x)).length_squared()
+                };
+                let clear = !general || !(0.9e-4..1.1e-4).contains(&h2);
                 for lanes in &outs {
-                    assert_eq!(lanes.holds[k], h2 < 1e-4, "series, lane {k}, h² = {h2}");
+                    if clear {
+                        assert_eq!(lanes.holds[k], h2 < 1e-4, "series, lane {k}, h² = {h2}");
+                    }
                     if !lanes.holds[k] {
                         fast += 1;
                         continue;
@@ -470,23 +543,23 @@ mod tests {
         );
     }
 
-    /// A settling tetra bed (spherical tops) with the bodies the lanes do
-    /// not take mixed in: one with a locked force axis, one with a locked
-    /// torque axis, one inserted to start later (it moves ballistically
-    /// until then), and one spun beyond the exponential's series. Every
-    /// body's state is the same bits with the lanes as on the scalar path
-    /// alone, after 1 500 steps with rebuilds on the way.
-    #[test]
-    fn a_bed_steps_the_same_bits_with_and_without_lanes() {
+    /// Runs the bed `bed` with its bodies `odd` (storage indices) made
+    /// bodies the lanes do not take: a locked force axis, a locked torque
+    /// axis, a start at step 700 (it moves ballistically until then), and
+    /// a spin beyond the exponential's series; 1 500 steps with the lanes
+    /// and on the scalar path alone give every body's state the same bits,
+    /// with rebuilds on the way.
+    fn same_bits_with_and_without_lanes(bed: impl Fn() -> crate::world::World, odd: [usize; 4]) {
         use std::sync::atomic::Ordering;
         let run = |scalar: bool| {
-            let mut w = crate::testbed::tetra_lattice_bed(6, 6, 3, None);
-            w.bodies.force_flag[3] = [true, true, false];
-            w.bodies.torque_flag[10] = [false, true, true];
-            w.bodies.start_step[20] = 700;
-            w.bodies.velocity[20] = DVec3::new(0.0, 0.0, -0.05);
-            let spin = w.bodies.inertia[30].x * 4e3;
-            w.bodies.angular_momentum[30] = DVec3::new(0.0, spin, spin);
+            let mut w = bed();
+            let [force, torque, late, spun] = odd;
+            w.bodies.force_flag[force] = [true, true, false];
+            w.bodies.torque_flag[torque] = [false, true, true];
+            w.bodies.start_step[late] = 700;
+            w.bodies.velocity[late] = DVec3::new(0.0, 0.0, -0.05);
+            let spin = w.bodies.inertia[spun].x * 4e3;
+            w.bodies.angular_momentum[spun] = DVec3::new(0.0, spin, spin);
             SCALAR_ONLY.store(scalar, Ordering::SeqCst);
             w.run(1500).unwrap();
             SCALAR_ONLY.store(false, Ordering::SeqCst);
@@ -496,5 +569,46 @@ mod tests {
         let (scalar, _) = run(true);
         assert!(rebuilds > 3, "only {rebuilds} rebuilds");
         assert!(lanes == scalar, "the lanes changed the bits");
+    }
+
+    /// A settling tetra bed (spherical tops) with the bodies the lanes do
+    /// not take mixed in ([`same_bits_with_and_without_lanes`]).
+    #[test]
+    fn a_bed_steps_the_same_bits_with_and_without_lanes() {
+        same_bits_with_and_without_lanes(
+            || crate::testbed::tetra_lattice_bed(6, 6, 3, None),
+            [3, 10, 20, 30],
+        );
+    }
+
+    /// An asymmetric clump of three unequal spheres (three different
+    /// principal moments).
+    fn stone() -> crate::shape::ClumpTemplate {
+        let s = [
+            (DVec3::ZERO, 1e-3),
+            (DVec3::new(1.1e-3, 0.0, 0.0), 0.8e-3),
+            (DVec3::new(0.0, 0.9e-3, 0.3e-3), 0.7e-3),
+        ]
+        .map(|(center, radius)| crate::shape::Sphere { center, radius });
+        let density = crate::testbed::tetra_material().density;
+        crate::shape::ClumpTemplate::from_spheres("stone", &s, density).unwrap()
+    }
+
+    /// A settling bed of asymmetric stones and tetrahedra (two stones to a
+    /// tetrahedron, so that blocks hold both kinds) under the Richardson
+    /// scheme, with the bodies the lanes do not take among the stones
+    /// ([`same_bits_with_and_without_lanes`]).
+    #[test]
+    fn a_stone_bed_steps_the_same_bits_with_and_without_lanes() {
+        let stone = stone();
+        let i = stone.principal_inertia;
+        assert!(i.x < i.y && i.y < i.z, "not asymmetric: {i}");
+        let templates = [stone.clone(), stone, crate::testbed::tetra_template()];
+        let bed = || {
+            let mut w = crate::testbed::lattice_bed(&templates, 6, 6, 3, None);
+            w.config.rotation = RotationScheme::Richardson;
+            w
+        };
+        same_bits_with_and_without_lanes(bed, [3, 10, 19, 31]);
     }
 }

@@ -80,6 +80,13 @@ fn lanes_off() -> bool {
     false
 }
 
+/// Fewest asymmetric bodies of a block for which [`BodyLanes`] run: a run
+/// of the Richardson lanes costs about four such bodies' scalar first
+/// halves (eight lanes in two vectors of four on AVX2, whose chains of
+/// dependent operations are as long as one body's), so blocks of many-sphere
+/// stones, two to a chunk, are stepped one by one.
+const GENERAL_MIN: usize = 4;
+
 /// A body's kicked state and its load, held from its gather to its first
 /// half; all world frame.
 #[derive(Clone, Copy, Default)]
@@ -109,6 +116,9 @@ pub(crate) struct FirstHalf {
     /// Whether the scheme lets [`BodyLanes`] take spherical tops (a
     /// velocity-Verlet drift by the exact exponential).
     lanes: bool,
+    /// Whether [`BodyLanes`] may also take asymmetric bodies (the
+    /// Richardson scheme, [`BodyLanes::general`]).
+    general_lanes: bool,
     /// The vector instructions [`BodyLanes`] run with.
     simd: crate::par::simd::Simd,
     pos: SharedMut<DVec3>,
@@ -167,6 +177,7 @@ impl FirstHalf {
             lanes: w.config.rotation.kicks_torque()
                 && w.config.rotation != crate::rotation::RotationScheme::RichardsonLiggghts
                 && !lanes_off(),
+            general_lanes: w.config.rotation == crate::rotation::RotationScheme::Richardson,
             simd: crate::par::simd::simd(),
             pos: SharedMut::new(&mut b.position),
             vel: SharedMut::new(&mut b.velocity),
@@ -294,14 +305,29 @@ impl FirstHalf {
         let mut stale = false;
         let mut take = [false; LANES];
         if let (true, Some(_)) = (self.lanes, &self.sst) {
+            // the lanes take the block's spherical tops or, under the
+            // Richardson scheme, its asymmetric bodies: whichever are more,
+            // and asymmetric ones only from GENERAL_MIN on (the lanes cost
+            // eight bodies' work however few they hold)
+            let (mut top, mut asym) = ([false; LANES], [false; LANES]);
+            for k in 0..held.len() {
+                let i = b0 + k;
+                if self.kicks.lanes_take(self.step, i) {
+                    let inertia = self.kicks.props.inertia(i);
+                    top[k] = inertia.x == inertia.y && inertia.y == inertia.z && inertia.x > 0.0;
+                    // (ω's formula goes by the inverse moments, the drift's
+                    // by the moments: a body is general by both)
+                    let inv = self.kicks.props.inverse_inertia(i);
+                    asym[k] = !top[k] && self.general_lanes && !(inv.x == inv.y && inv.y == inv.z);
+                }
+            }
+            let count = |t: &[bool; LANES]| t.iter().filter(|&&t| t).count();
+            lanes.general = count(&asym) > count(&top) && count(&asym) >= GENERAL_MIN;
+            take = if lanes.general { asym } else { top };
             for (k, h) in held.iter().enumerate() {
                 let i = b0 + k;
-                let inertia = self.kicks.props.inertia(i);
-                take[k] = self.kicks.lanes_take(self.step, i)
-                    && inertia.x == inertia.y
-                    && inertia.y == inertia.z
-                    && inertia.x > 0.0;
                 if take[k] {
+                    let inertia = self.kicks.props.inertia(i);
                     let kick = self.kicks.props.half_kick(i, self.kicks.dt);
                     let reach = self.treach.read(self.kicks.props.template(i));
                     lanes.set(
@@ -312,6 +338,9 @@ impl FirstHalf {
                         self.xref_pose.read(i),
                         reach,
                     );
+                    if lanes.general {
+                        lanes.set_inverse_inertia(k, self.kicks.props.inverse_inertia(i));
+                    }
                 }
             }
             if take.contains(&true) {
