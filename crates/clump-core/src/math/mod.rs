@@ -20,6 +20,7 @@ pub mod transform;
 pub use euler::{euler_to_matrix_a, euler_to_quat, matrix_a_to_euler, quat_to_euler};
 pub use quat::{
     quat_distance, quat_from_rotation_vector, quat_from_small_rotation_vector,
-    quat_to_rotation_vector, renormalize, renormalize_near_unit, sin_cos, skew, wrap_angle_2pi,
+    quat_to_rotation_vector, renormalize, renormalize_near_unit, sin_cos, sin_cos_small, skew,
+    wrap_angle_2pi,
 };
 pub use transform::{matrix_a_to_quat, quat_to_matrix_a, rotation_matrix_to_quat};

@@ -115,12 +115,20 @@ fn cos_series(x2: f64) -> f64 {
 /// below 1e-17 relative) and libm otherwise.
 #[inline]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    if x.abs() < 0.02 {
-        let x2 = x * x;
-        (x * sinc_series(x2), cos_series(x2))
-    } else {
-        x.sin_cos()
+    match sin_cos_small(x) {
+        (s, c, true) => (s, c),
+        _ => x.sin_cos(),
     }
+}
+
+/// [`sin_cos`] by the series alone, with no branch (so that a loop over
+/// several bodies vectorises): `(sin x, cos x)`, and whether the series
+/// holds there (|x| < 0.02). Where it does, this is [`sin_cos`]'s result
+/// bit for bit; elsewhere the values are to be discarded.
+#[inline(always)]
+pub fn sin_cos_small(x: f64) -> (f64, f64, bool) {
+    let x2 = x * x;
+    (x * sinc_series(x2), cos_series(x2), x.abs() < 0.02)
 }
 
 /// `q/|q|` for a quaternion that is unit up to round-off (the product of

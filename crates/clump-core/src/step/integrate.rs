@@ -5,7 +5,7 @@
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
 use super::body_props::BodyProps;
-use super::first_half_lanes::{BodyLanes, LANES};
+use super::first_half_lanes::{BodyLanes, LaneKind, LANES};
 use super::kinematics::sphere_position;
 use crate::neighbor::skin;
 use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};
@@ -81,10 +81,10 @@ fn lanes_off() -> bool {
 }
 
 /// Fewest asymmetric bodies of a block for which [`BodyLanes`] run: a run
-/// of the Richardson lanes costs about four such bodies' scalar first
-/// halves (eight lanes in two vectors of four on AVX2, whose chains of
-/// dependent operations are as long as one body's), so blocks of many-sphere
-/// stones, two to a chunk, are stepped one by one.
+/// of the Richardson or NO_SQUISH lanes costs about three to four such
+/// bodies' scalar first halves (eight lanes in two vectors of four on AVX2,
+/// whose chains of dependent operations are as long as one body's), so
+/// blocks of many-sphere stones, two to a chunk, are stepped one by one.
 const GENERAL_MIN: usize = 4;
 
 /// A body's kicked state and its load, held from its gather to its first
@@ -116,9 +116,9 @@ pub(crate) struct FirstHalf {
     /// Whether the scheme lets [`BodyLanes`] take spherical tops (a
     /// velocity-Verlet drift by the exact exponential).
     lanes: bool,
-    /// Whether [`BodyLanes`] may also take asymmetric bodies (the
-    /// Richardson scheme, [`BodyLanes::general`]).
-    general_lanes: bool,
+    /// The lanes' kind for asymmetric bodies under the scheme, if they take
+    /// them (Richardson and NO_SQUISH).
+    general_lanes: Option<LaneKind>,
     /// The vector instructions [`BodyLanes`] run with.
     simd: crate::par::simd::Simd,
     pos: SharedMut<DVec3>,
@@ -177,7 +177,11 @@ impl FirstHalf {
             lanes: w.config.rotation.kicks_torque()
                 && w.config.rotation != crate::rotation::RotationScheme::RichardsonLiggghts
                 && !lanes_off(),
-            general_lanes: w.config.rotation == crate::rotation::RotationScheme::Richardson,
+            general_lanes: match w.config.rotation {
+                crate::rotation::RotationScheme::Richardson => Some(LaneKind::Richardson),
+                crate::rotation::RotationScheme::NoSquish => Some(LaneKind::NoSquish),
+                _ => None,
+            },
             simd: crate::par::simd::simd(),
             pos: SharedMut::new(&mut b.position),
             vel: SharedMut::new(&mut b.velocity),
@@ -306,9 +310,9 @@ impl FirstHalf {
         let mut take = [false; LANES];
         if let (true, Some(_)) = (self.lanes, &self.sst) {
             // the lanes take the block's spherical tops or, under the
-            // Richardson scheme, its asymmetric bodies: whichever are more,
-            // and asymmetric ones only from GENERAL_MIN on (the lanes cost
-            // eight bodies' work however few they hold)
+            // Richardson and NO_SQUISH schemes, its asymmetric bodies:
+            // whichever are more, and asymmetric ones only from GENERAL_MIN
+            // on (the lanes cost eight bodies' work however few they hold)
             let (mut top, mut asym) = ([false; LANES], [false; LANES]);
             for k in 0..held.len() {
                 let i = b0 + k;
@@ -316,14 +320,22 @@ impl FirstHalf {
                     let inertia = self.kicks.props.inertia(i);
                     top[k] = inertia.x == inertia.y && inertia.y == inertia.z && inertia.x > 0.0;
                     // (ω's formula goes by the inverse moments, the drift's
-                    // by the moments: a body is general by both)
+                    // by the moments: a body is general by both; the lanes'
+                    // NO_SQUISH has no branch for a zero moment)
                     let inv = self.kicks.props.inverse_inertia(i);
-                    asym[k] = !top[k] && self.general_lanes && !(inv.x == inv.y && inv.y == inv.z);
+                    asym[k] = !top[k]
+                        && self.general_lanes.is_some()
+                        && !(inv.x == inv.y && inv.y == inv.z)
+                        && inertia.min_element() > 0.0;
                 }
             }
             let count = |t: &[bool; LANES]| t.iter().filter(|&&t| t).count();
-            lanes.general = count(&asym) > count(&top) && count(&asym) >= GENERAL_MIN;
-            take = if lanes.general { asym } else { top };
+            let general = count(&asym) > count(&top) && count(&asym) >= GENERAL_MIN;
+            lanes.kind = match self.general_lanes {
+                Some(kind) if general => kind,
+                _ => LaneKind::Top,
+            };
+            take = if general { asym } else { top };
             for (k, h) in held.iter().enumerate() {
                 let i = b0 + k;
                 if take[k] {
@@ -338,8 +350,8 @@ impl FirstHalf {
                         self.xref_pose.read(i),
                         reach,
                     );
-                    if lanes.general {
-                        lanes.set_inverse_inertia(k, self.kicks.props.inverse_inertia(i));
+                    if general {
+                        lanes.set_moments(k, inertia, self.kicks.props.inverse_inertia(i));
                     }
                 }
             }
