@@ -371,9 +371,9 @@ impl PairList {
         image: Image,
     ) {
         let n = inp.state.len();
-        // bin spheres into cells (counting sort)
-        //    (each sphere's cell is computed where it is needed, here twice
-        //    and once in the search, rather than kept per sphere)
+        // bin spheres into cells (counting sort; each sphere's cell is
+        // computed where it is needed, here twice and once in the search,
+        // rather than kept per sphere)
         let cell = |x: DVec3| grid.index(grid.coords(domain.wrap(x)));
         counting_sort(
             n,
