@@ -314,19 +314,25 @@ impl FirstHalf {
             // whichever are more, and asymmetric ones only from GENERAL_MIN
             // on (the lanes cost eight bodies' work however few they hold)
             let (mut top, mut asym) = ([false; LANES], [false; LANES]);
+            // each body's principal moments and, for an asymmetric one,
+            // their inverses, read once for the choice and the lanes
+            let mut moments = [(DVec3::ZERO, DVec3::ZERO); LANES];
             for k in 0..held.len() {
                 let i = b0 + k;
                 if self.kicks.lanes_take(self.step, i) {
                     let inertia = self.kicks.props.inertia(i);
+                    moments[k].0 = inertia;
                     top[k] = inertia.x == inertia.y && inertia.y == inertia.z && inertia.x > 0.0;
-                    // (ω's formula goes by the inverse moments, the drift's
-                    // by the moments: a body is general by both; the lanes'
-                    // NO_SQUISH has no branch for a zero moment)
-                    let inv = self.kicks.props.inverse_inertia(i);
-                    asym[k] = !top[k]
-                        && self.general_lanes.is_some()
-                        && !(inv.x == inv.y && inv.y == inv.z)
-                        && inertia.min_element() > 0.0;
+                    if !top[k] && self.general_lanes.is_some() {
+                        // (ω's formula goes by the inverse moments, the
+                        // drift's by the moments: a body is general by both;
+                        // the lanes' NO_SQUISH has no branch for a zero
+                        // moment)
+                        let inv = self.kicks.props.inverse_inertia(i);
+                        moments[k].1 = inv;
+                        asym[k] =
+                            !(inv.x == inv.y && inv.y == inv.z) && inertia.min_element() > 0.0;
+                    }
                 }
             }
             let count = |t: &[bool; LANES]| t.iter().filter(|&&t| t).count();
@@ -339,7 +345,7 @@ impl FirstHalf {
             for (k, h) in held.iter().enumerate() {
                 let i = b0 + k;
                 if take[k] {
-                    let inertia = self.kicks.props.inertia(i);
+                    let (inertia, inv) = moments[k];
                     let kick = self.kicks.props.half_kick(i, self.kicks.dt);
                     let reach = self.treach.read(self.kicks.props.template(i));
                     lanes.set(
@@ -351,7 +357,7 @@ impl FirstHalf {
                         reach,
                     );
                     if general {
-                        lanes.set_moments(k, inertia, self.kicks.props.inverse_inertia(i));
+                        lanes.set_moments(k, inertia, inv);
                     }
                 }
             }
