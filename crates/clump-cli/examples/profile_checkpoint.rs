@@ -9,6 +9,11 @@
 //! times K neighbour rebuilds (`World::prepare`) instead of stepping.
 //! `PROFILE_THREADS` sets the thread count (default 1); the main thread is
 //! one of the pool's, so a profiler sees every stage under `profiled`.
+//! `PROFILE_ALTERNATE=T` steps the checkpoint in stretches of 500 steps,
+//! alternately on one thread and on `T` threads, in one process, and reports
+//! each side's wall and CPU time, stage times and the speed-up: the host's
+//! drift over minutes, larger than the effects sought, then falls on both
+//! sides alike.
 
 use std::time::Instant;
 
@@ -60,6 +65,10 @@ fn body() {
         );
         return;
     }
+    if let Ok(t) = std::env::var("PROFILE_ALTERNATE") {
+        alternate(&mut w, steps, t.parse().expect("PROFILE_ALTERNATE"));
+        return;
+    }
     let r0 = w.rebuilds;
     w.stage_times = Default::default();
     if std::env::var_os("PROFILE_WAIT").is_some() {
@@ -107,6 +116,62 @@ fn body() {
     for (name, t) in w.stage_times.rows() {
         println!("  {name:>18}: {:7.1} ns per sphere-step", t / ss * 1e9);
     }
+}
+
+/// `steps` steps of `w` in stretches of [`STRETCH`] steps, alternately on one
+/// thread and on `threads` threads (a pool each; the stepping runs inside
+/// the pool, as in `clump run`), with each side's totals.
+fn alternate(w: &mut clump_core::world::World, steps: u64, threads: usize) {
+    const STRETCH: u64 = 500;
+    let counts = [1, threads];
+    let pools = counts.map(|t| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(t)
+            .build()
+            .expect("rayon pool")
+    });
+    // per side: wall s, CPU s, and the stage times (s, the calling thread's)
+    let mut wall = [0.0f64; 2];
+    let mut cpu = [0.0f64; 2];
+    let mut stages = [[0.0f64; 4]; 2];
+    let mut done = [0u64; 2];
+    for k in 0..steps.div_ceil(STRETCH) {
+        let side = (k % 2) as usize;
+        let n = STRETCH.min(steps - k * STRETCH);
+        let before = w.stage_times.rows();
+        let (t, c0) = (Instant::now(), cpu_seconds());
+        pools[side].install(|| w.run(n).expect("step failed"));
+        wall[side] += t.elapsed().as_secs_f64();
+        cpu[side] += cpu_seconds() - c0;
+        for (q, ((_, a), (_, b))) in w.stage_times.rows().iter().zip(before).enumerate() {
+            stages[side][q] += a - b;
+        }
+        done[side] += n;
+    }
+    let spheres = w.spheres().len() as f64;
+    for side in 0..2 {
+        let ss = spheres * done[side] as f64;
+        println!(
+            "{} thread(s), {} steps: {:.3} s, {:.3} M sphere-steps/s; CPU {:.1} ns per sphere-step",
+            counts[side],
+            done[side],
+            wall[side],
+            ss / wall[side] / 1e6,
+            cpu[side] / ss * 1e9
+        );
+        for (q, (name, _)) in w.stage_times.rows().iter().enumerate() {
+            println!(
+                "  {name:>18}: {:7.1} ns per sphere-step",
+                stages[side][q] / ss * 1e9
+            );
+        }
+    }
+    let rate = |side: usize| done[side] as f64 / wall[side];
+    println!(
+        "speed-up on {threads} threads: {:.3} (efficiency {:.3})",
+        rate(1) / rate(0),
+        rate(1) / rate(0) / threads as f64
+    );
 }
 
 /// CPU time (user + system, all threads) of this process, s.
