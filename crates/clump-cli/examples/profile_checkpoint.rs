@@ -123,6 +123,11 @@ fn body() {
 /// the pool, as in `clump run`), with each side's totals.
 fn alternate(w: &mut clump_core::world::World, steps: u64, threads: usize) {
     const STRETCH: u64 = 500;
+    assert!(
+        steps >= 2 * STRETCH && threads >= 1,
+        "PROFILE_ALTERNATE needs STEPS ≥ {} (a stretch of {STRETCH} steps each way) and T ≥ 1",
+        2 * STRETCH
+    );
     let counts = [1, threads];
     let pools = counts.map(|t| {
         rayon::ThreadPoolBuilder::new()
