@@ -121,6 +121,11 @@ pub struct BenchArgs {
     /// stage times are the best round's.
     #[arg(long, default_value_t = 5)]
     pub scaling_rounds: usize,
+    /// Internal: run one timed Clump round in this process and print its
+    /// figures (the bench runs each round as such a child process; see
+    /// `bench_round`).
+    #[arg(long, hide = true)]
+    pub child_round: bool,
 }
 
 /// Figures of one timed run.
@@ -143,6 +148,9 @@ pub(crate) fn median(v: &[Figures], key: fn(&Figures) -> f64) -> f64 {
 pub fn run(args: &BenchArgs) -> Result<()> {
     if args.threads == 0 {
         bail!("--threads: the bench needs at least 1 thread (got 0)");
+    }
+    if args.child_round {
+        return crate::bench_round::child(args);
     }
     if !args.scaling.is_empty() {
         return scaling(args);
@@ -173,8 +181,16 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     );
     let mut clump = Vec::new();
     let mut peer = Vec::new();
+    let scenario = scenario_path(args);
     for round in 0..rounds {
-        let f = run_clump(args, na, nb)?;
+        let f = crate::bench_round::run(&crate::bench_round::Round {
+            scenario: &scenario,
+            threads: args.threads,
+            skin: args.skin,
+            na,
+            nb,
+            dump: args.dump.as_deref(),
+        })?;
         report("clump", round, na, nb, &f);
         clump.push(f);
         if let Some(bin) = &lig {
@@ -287,39 +303,6 @@ pub fn build_world(path: &Path, skin: Option<f64>) -> Result<(World, u64, u64)> 
     Ok((w, sc.stages[0].steps, sc.stages[1].steps))
 }
 
-fn run_clump(args: &BenchArgs, na: u64, nb: u64) -> Result<Figures> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads)
-        .build()?;
-    reset_peak_rss();
-    pool.install(|| {
-        let (mut w, _, _) = build_world(&scenario_path(args), args.skin)?;
-        w.prepare()?;
-        let (t0, c0) = (Instant::now(), cpu_seconds());
-        w.run(na)?;
-        let (a, ca) = (t0.elapsed().as_secs_f64(), cpu_seconds() - c0);
-        let (t1, c1) = (Instant::now(), cpu_seconds());
-        w.run(nb)?;
-        let (b, cb) = (t1.elapsed().as_secs_f64(), cpu_seconds() - c1);
-        let ns = w.spheres().len() as f64;
-        errln!(
-            "clump: CPU time (all threads) phase A {ca:.2} s ({:.3} M sph-steps per CPU s), phase B {cb:.2} s ({:.3} M sph-steps per CPU s)",
-            ns * na as f64 / ca / 1e6,
-            ns * nb as f64 / cb / 1e6
-        );
-        print_end_state(&w);
-        if let Some(p) = &args.dump {
-            write_dump(&w, p)?;
-        }
-        Ok(Figures {
-            a_seconds: a,
-            b_seconds: b,
-            spheres: w.spheres().len(),
-            peak_rss_mb: peak_rss_mb(),
-        })
-    })
-}
-
 /// Prints (stderr) the bodies, contacts, lost bodies, kinetic energy and
 /// rebuilds of `w` at the end of a timed run, and its state fingerprint.
 pub(crate) fn print_end_state(w: &World) {
@@ -354,8 +337,9 @@ pub fn state_fingerprint(w: &World) -> u64 {
     h
 }
 
-/// Final sphere centres in the LIGGGHTS/LAMMPS dump format, ordered by body id.
-fn write_dump(w: &World, path: &Path) -> Result<()> {
+/// Final sphere centres in the LIGGGHTS/LAMMPS dump format, ordered by body
+/// id, every number as Rust writes f64 (it reads back exactly).
+pub(crate) fn write_dump(w: &World, path: &Path) -> Result<()> {
     use std::fmt::Write;
     let sp = w.spheres();
     let mut order: Vec<usize> = (0..w.bodies.len()).collect();
@@ -380,7 +364,7 @@ fn write_dump(w: &World, path: &Path) -> Result<()> {
             let x = sp.position(k);
             writeln!(
                 s,
-                "{id} {} {:.9e} {:.9e} {:.9e} {:.6e}",
+                "{id} {} {:e} {:e} {:e} {:e}",
                 w.bodies.id[b], x.x, x.y, x.z, sp.radius[k]
             )?;
             id += 1;
@@ -405,25 +389,9 @@ pub(crate) fn cpu_seconds() -> f64 {
         .unwrap_or(f64::NAN)
 }
 
-/// Peak resident set size of this process so far, MB (Linux VmHWM), or
-/// since the last [`reset_peak_rss`].
+/// Peak resident set size of this process so far, MB (Linux VmHWM).
 pub(crate) fn peak_rss_mb() -> f64 {
     proc_status_mb("VmHWM:")
-}
-
-/// Starts a round's memory figure afresh, as if in a new process: hands the
-/// heap that earlier rounds freed back to the system (glibc `malloc_trim`;
-/// freed but kept, it would stay resident) and resets the peak to the
-/// resident set now (Linux `/proc/self/clear_refs`, value 5). Without it, a
-/// later round's peak is the high-water mark of every round before it.
-/// Does nothing where either is missing.
-pub(crate) fn reset_peak_rss() {
-    #[cfg(all(target_os = "linux", target_env = "gnu"))]
-    // SAFETY: malloc_trim only returns free heap pages to the system.
-    unsafe {
-        libc::malloc_trim(0);
-    }
-    let _ = std::fs::write("/proc/self/clear_refs", "5");
 }
 
 /// Resident memory of this process now, MB (Linux; NaN elsewhere).

@@ -11,6 +11,7 @@ use std::process::ExitCode;
 #[macro_use]
 mod term;
 
+mod bench_round;
 mod bench_stone;
 mod check_words;
 mod cmd_bench;

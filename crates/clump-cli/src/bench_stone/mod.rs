@@ -40,9 +40,7 @@
 //! states (the last round's): bed height, packing fraction and contacts,
 //! computed the same way from the final sphere centres of both.
 
-use crate::cmd_bench::{
-    median, peak_rss_mb, report, run_liggghts_input, which, BenchArgs, Figures,
-};
+use crate::cmd_bench::{median, report, run_liggghts_input, which, BenchArgs, Figures};
 use anyhow::{bail, Context, Result};
 use clump_core::shape::sphere::Sphere;
 use clump_core::shape::template::ClumpTemplate;
@@ -100,59 +98,6 @@ const BED_GAP: f64 = 0.002;
 /// LIGGGHTS' neighbour skin, m (the tutorial's 4 mm is 1.4 smallest radii;
 /// 1 mm keeps its lists as lean as Clump's).
 const LIGGGHTS_SKIN: f64 = 0.001;
-
-/// Runs Clump on `scenario` for `na` + `nb` steps; the figures and the final state.
-fn run_clump_stone(
-    scenario: &Path,
-    threads: usize,
-    skin: Option<f64>,
-    na: u64,
-    nb: u64,
-) -> Result<(Figures, FinalState)> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()?;
-    crate::cmd_bench::reset_peak_rss();
-    pool.install(|| {
-        let (mut w, _, _) = crate::cmd_bench::build_world(scenario, skin)?;
-        w.prepare()?;
-        let t0 = Instant::now();
-        w.run(na)?;
-        let a = t0.elapsed().as_secs_f64();
-        w.stage_times = Default::default();
-        let (t1, r1, c1) = (Instant::now(), w.rebuilds, crate::cmd_bench::cpu_seconds());
-        w.run(nb)?;
-        let b = t1.elapsed().as_secs_f64();
-        let cb = crate::cmd_bench::cpu_seconds() - c1;
-        let st = w.stage_times;
-        let total = st.rows().iter().map(|r| r.1).sum::<f64>().max(1e-12);
-        let shares: Vec<String> = st
-            .rows()
-            .iter()
-            .map(|(name, t)| format!("{name} {:.1} %", 100.0 * t / total))
-            .collect();
-        errln!(
-            "clump: phase B by stage: {} ({:.2} s of {:.2} s wall, CPU time of all threads {:.2} s; {} rebuilds, skin {:.3} mm at the end, {:.1} ns per sphere-step)",
-            shares.join(", "),
-            total,
-            b,
-            cb,
-            w.rebuilds - r1,
-            w.skin() * 1e3,
-            1e9 * b / (w.spheres().len() as f64 * nb.max(1) as f64)
-        );
-        crate::cmd_bench::print_end_state(&w);
-        Ok((
-            Figures {
-                a_seconds: a,
-                b_seconds: b,
-                spheres: w.spheres().len(),
-                peak_rss_mb: peak_rss_mb(),
-            },
-            clump_final(&w),
-        ))
-    })
-}
 
 /// Settles the bed's lattice in Clump alone (`steps` steps) and returns
 /// the settled poses at rest. Reuses `settled.csv` in `dir` when its key
@@ -359,17 +304,25 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
     let (mut clump, mut peer) = (Vec::new(), Vec::new());
     let (mut cfin, mut lfin) = (None, None);
     for round in 0..rounds {
-        let (f, fin) = run_clump_stone(&files.scenario, args.threads, args.skin, na, nb)?;
+        let final_dump = dir.join("clump_final.dump");
+        let f = crate::bench_round::run(&crate::bench_round::Round {
+            scenario: &files.scenario,
+            threads: args.threads,
+            skin: args.skin,
+            na,
+            nb,
+            dump: Some(&final_dump),
+        })?;
         report("clump", round, na, nb, &f);
         clump.push(f);
-        cfin = Some(fin);
+        cfin = Some(final_from_dump(&final_dump, &per_body)?);
         if let Some(bin) = &lig {
             let vars = [("NA", na.to_string()), ("NB", nb.to_string())];
             let f =
                 run_liggghts_input(bin, &files.liggghts, "in.stone", &vars, na, nb, nsph_total)?;
             report("liggghts", round, na, nb, &f);
             peer.push(f);
-            lfin = Some(liggghts_final(
+            lfin = Some(final_from_dump(
                 &files.liggghts.join("final.dump"),
                 &per_body,
             )?);
@@ -545,7 +498,14 @@ mod tests {
         assert_eq!((na, nb), (10, 10));
         w.prepare().unwrap();
         assert_eq!(w.templates.len(), ns);
-        let f = clump_final(&w);
+        // as the bench reads Clump's final state back: through its dump
+        let dump = d.join("clump_final.dump");
+        crate::cmd_bench::write_dump(&w, &dump).unwrap();
+        let per_body: Vec<usize> = poses
+            .iter()
+            .map(|p| stones[p.kind].0.spheres.len())
+            .collect();
+        let f = final_from_dump(&dump, &per_body).unwrap();
         assert_eq!(f.pos.len(), lig.len());
         for (a, b) in f.pos.iter().zip(&lig) {
             assert!((*a - *b).length() < 1e-9, "{a} vs {b}");
@@ -617,7 +577,7 @@ mod tests {
             "ITEM: ATOMS id x y z radius\n1 0 0 0 1\n2 0 0 0 1\n3 0 0 0 1\n4 0 0 0 1\n5 0 0 0 1\n",
         )
         .unwrap();
-        let f = liggghts_final(&dump, &[2, 1, 2]).unwrap();
+        let f = final_from_dump(&dump, &[2, 1, 2]).unwrap();
         assert_eq!(f.body, vec![0, 0, 1, 2, 2]);
         let _ = std::fs::remove_dir_all(&d);
     }

@@ -14,26 +14,11 @@ pub struct FinalState {
     pub body: Vec<usize>,
 }
 
-/// The final state of a Clump world (bodies in id order = IC order).
-pub(super) fn clump_final(w: &clump_core::world::World) -> FinalState {
-    let sp = w.spheres();
-    let mut order: Vec<usize> = (0..w.bodies.len()).collect();
-    order.sort_by_key(|&b| w.bodies.id[b]);
-    let mut f = FinalState::default();
-    for (k, b) in order.into_iter().enumerate() {
-        for s in sp.of_body(b) {
-            f.pos.push(sp.position(s));
-            f.rad.push(sp.radius[s]);
-            f.body.push(k);
-        }
-    }
-    f
-}
-
-/// The final state in a LIGGGHTS dump (`id x y z radius`, sorted by id;
-/// LIGGGHTS numbers the spheres of each inserted body consecutively, and
-/// `per_body` are the bodies' sphere counts in insertion order).
-pub(super) fn liggghts_final(path: &Path, per_body: &[usize]) -> Result<FinalState> {
+/// The final state in a LIGGGHTS-format dump (`id x y z radius`, sorted by
+/// id), LIGGGHTS' or Clump's (`clump bench --dump`): both number the spheres
+/// of each body consecutively, bodies in insertion order, and `per_body`
+/// are the bodies' sphere counts in that order.
+pub(super) fn final_from_dump(path: &Path, per_body: &[usize]) -> Result<FinalState> {
     let text =
         std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
     let lines: Vec<&str> = text.lines().collect();
