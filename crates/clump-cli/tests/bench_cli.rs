@@ -29,6 +29,27 @@ fn bench_bad_options_are_named_errors() {
     }
 }
 
+/// The bench's internal one-round mode (which it runs as a child process
+/// per round) names what it lacks instead of running a default case.
+#[test]
+fn a_child_round_without_its_inputs_is_refused() {
+    let err = refused(&["--child-round", "--na", "10", "--nb", "10"]);
+    assert!(
+        err.contains("--child-round") && err.contains("--scenario"),
+        "{err}"
+    );
+    let err = refused(&[
+        "--child-round",
+        "--scenario",
+        "/nonexistent/bed.toml",
+        "--na",
+        "10",
+        "--nb",
+        "10",
+    ]);
+    assert!(err.contains("/nonexistent/bed.toml"), "{err}");
+}
+
 /// The stone cases refuse a missing stone template, or no stones, with a
 /// named error (no panic), and run a tiny procedural pile end to end.
 #[test]
