@@ -273,7 +273,15 @@ pub fn scenario_path(args: &BenchArgs) -> PathBuf {
 /// and settings, and the bodies of its file insertion. Returns the world and
 /// the step counts of its two stages (phase A, phase B).
 pub fn build_world(path: &Path, skin: Option<f64>) -> Result<(World, u64, u64)> {
-    let sc = clump_io::scenario::load(path).map_err(|e| anyhow::anyhow!("{e}"))?;
+    // the scenario's diagnostic starts with its own "error: ", which the
+    // bench's caller prints once for every error
+    let sc = clump_io::scenario::load(path).map_err(|e| {
+        let text = e.to_string();
+        anyhow::anyhow!(
+            "{}",
+            text.strip_prefix("error: ").unwrap_or(&text).trim_end()
+        )
+    })?;
     if sc.stages.len() != 2 {
         bail!(
             "{}: the benchmark needs two stages (fall, dense), found {}",

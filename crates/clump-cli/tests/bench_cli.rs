@@ -48,6 +48,7 @@ fn a_child_round_without_its_inputs_is_refused() {
         "10",
     ]);
     assert!(err.contains("/nonexistent/bed.toml"), "{err}");
+    assert!(!err.contains("error: error:"), "{err}");
 }
 
 /// The stone cases refuse a missing stone template, or no stones, with a
