@@ -302,9 +302,10 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
     );
     let rounds = args.liggghts_rounds.max(1);
     let (mut clump, mut peer) = (Vec::new(), Vec::new());
-    let (mut cfin, mut lfin) = (None, None);
+    // each round overwrites both codes' final dumps; the last round's are
+    // compared after the loop
+    let final_dump = dir.join("clump_final.dump");
     for round in 0..rounds {
-        let final_dump = dir.join("clump_final.dump");
         let f = crate::bench_round::run(&crate::bench_round::Round {
             scenario: &files.scenario,
             threads: args.threads,
@@ -315,19 +316,23 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
         })?;
         report("clump", round, na, nb, &f);
         clump.push(f);
-        cfin = Some(final_from_dump(&final_dump, &per_body)?);
         if let Some(bin) = &lig {
             let vars = [("NA", na.to_string()), ("NB", nb.to_string())];
             let f =
                 run_liggghts_input(bin, &files.liggghts, "in.stone", &vars, na, nb, nsph_total)?;
             report("liggghts", round, na, nb, &f);
             peer.push(f);
-            lfin = Some(final_from_dump(
-                &files.liggghts.join("final.dump"),
-                &per_body,
-            )?);
         }
     }
+    let cfin = final_from_dump(&final_dump, &per_body)?;
+    let lfin = if peer.is_empty() {
+        None
+    } else {
+        Some(final_from_dump(
+            &files.liggghts.join("final.dump"),
+            &per_body,
+        )?)
+    };
     let tput = |s: f64, steps: u64| nsph_total as f64 * steps as f64 / s;
     let (ca, cb) = (
         tput(median(&clump, |f| f.a_seconds), na),
@@ -375,22 +380,20 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
         .map(|p| stones[p.kind].0.template.volume)
         .sum::<f64>()
         / n as f64;
-    if let Some(c) = &cfin {
-        let pc = physics(c, vol, footprint);
-        print_physics("clump", &pc, case);
-        if let Some(l) = &lfin {
-            let pl = physics(l, vol, footprint);
-            print_physics("liggghts", &pl, case);
-            let rel = |a: f64, b: f64| 100.0 * (a - b) / b;
-            outln!(
-                "physics clump vs liggghts: mean sphere height {:+.2} %, surface {:+.2} %, packing fraction {:+.2} %, sphere contacts {:+.2} %, body contacts {:+.2} %",
-                rel(pc.mean_z, pl.mean_z),
-                rel(pc.surface, pl.surface),
-                rel(pc.phi, pl.phi),
-                rel(pc.sphere_contacts as f64, pl.sphere_contacts as f64),
-                rel(pc.body_contacts as f64, pl.body_contacts as f64)
-            );
-        }
+    let pc = physics(&cfin, vol, footprint);
+    print_physics("clump", &pc, case);
+    if let Some(l) = &lfin {
+        let pl = physics(l, vol, footprint);
+        print_physics("liggghts", &pl, case);
+        let rel = |a: f64, b: f64| 100.0 * (a - b) / b;
+        outln!(
+            "physics clump vs liggghts: mean sphere height {:+.2} %, surface {:+.2} %, packing fraction {:+.2} %, sphere contacts {:+.2} %, body contacts {:+.2} %",
+            rel(pc.mean_z, pl.mean_z),
+            rel(pc.surface, pl.surface),
+            rel(pc.phi, pl.phi),
+            rel(pc.sphere_contacts as f64, pl.sphere_contacts as f64),
+            rel(pc.body_contacts as f64, pl.body_contacts as f64)
+        );
     }
     Ok(())
 }
