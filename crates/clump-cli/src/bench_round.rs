@@ -44,6 +44,13 @@ const TAG: &str = "clump-round";
 
 /// Runs `round` in a child process of this executable; its figures.
 pub(crate) fn run(round: &Round) -> Result<Figures> {
+    // the host's state around a multi-threaded round (crate::core_latency)
+    let probe = || {
+        (round.threads >= 2)
+            .then(crate::core_latency::round_trip_ns)
+            .flatten()
+    };
+    let before = probe();
     let exe = std::env::current_exe().context("finding the clump executable for a bench round")?;
     let mut cmd = Command::new(&exe);
     cmd.args(["bench", "--child-round", "--scenario"])
@@ -74,8 +81,12 @@ pub(crate) fn run(round: &Round) -> Result<Figures> {
         );
     }
     let text = String::from_utf8_lossy(&out.stdout);
-    parse_figures(&text).with_context(|| {
+    let f = parse_figures(&text).with_context(|| {
         format!("the Clump round printed no `{TAG}` line of four numbers; it printed:\n{text}")
+    })?;
+    Ok(Figures {
+        cross_core_ns: [before, probe()],
+        ..f
     })
 }
 
@@ -93,6 +104,7 @@ fn parse_figures(text: &str) -> Option<Figures> {
             b_seconds: b,
             spheres: spheres as usize,
             peak_rss_mb: peak,
+            cross_core_ns: [None; 2],
         }),
         _ => None,
     }
@@ -146,6 +158,7 @@ pub(crate) fn child(args: &BenchArgs) -> Result<()> {
             b_seconds: b,
             spheres: w.spheres().len(),
             peak_rss_mb: peak_rss_mb(),
+            cross_core_ns: [None; 2],
         })
     })?;
     outln!(

@@ -135,6 +135,9 @@ pub(crate) struct Figures {
     pub(crate) b_seconds: f64,
     pub(crate) spheres: usize,
     pub(crate) peak_rss_mb: f64,
+    /// A cache line's round trip between two cores just before and just
+    /// after the run, ns (`core_latency`; multi-threaded Clump rounds only).
+    pub(crate) cross_core_ns: [Option<f64>; 2],
 }
 
 /// The median of `key` over `v` (the upper one of an even count).
@@ -243,8 +246,20 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 
 pub(crate) fn report(code: &str, round: usize, na: u64, nb: u64, f: &Figures) {
     let ns = f.spheres as f64;
+    // which state the host's cores were in (crate::core_latency)
+    let cores = match f.cross_core_ns {
+        [None, None] => String::new(),
+        [before, after] => {
+            let ns = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.0}"));
+            format!(
+                "  cross-core round trip {} / {} ns (before / after)",
+                ns(before),
+                ns(after)
+            )
+        }
+    };
     outln!(
-        "round {round} {code}: A {:.2} s ({:.3} M sph-steps/s)  B {:.2} s ({:.3} M sph-steps/s)  peak RSS {:.1} MB",
+        "round {round} {code}: A {:.2} s ({:.3} M sph-steps/s)  B {:.2} s ({:.3} M sph-steps/s)  peak RSS {:.1} MB{cores}",
         f.a_seconds,
         ns * na as f64 / f.a_seconds / 1e6,
         f.b_seconds,
@@ -514,6 +529,7 @@ pub(crate) fn run_liggghts_input(
             b_seconds: loops[b].1,
             spheres,
             peak_rss_mb: rss,
+            cross_core_ns: [None; 2],
         }),
         _ => bail!(
             "LIGGGHTS failed or its loop times could not be read (input {}); its output ends with:\n{}",

@@ -21,6 +21,7 @@ mod cmd_resume;
 mod cmd_run;
 mod cmd_template;
 mod cmd_validate;
+mod core_latency;
 mod memory;
 mod ranks;
 
