@@ -4,11 +4,11 @@
 //! On a shared virtual machine the guest cannot see where the host places
 //! its vCPUs, and the placement changes: on the 2-vCPU Zen 3 host of
 //! docs/performance.md §8 this round trip alternated between about 100 and
-//! about 450 ns within minutes, and Clump's two-thread tetra bed ran at
-//! 30–31 M sphere-steps/s in the first state and at 26–28 M in the second
-//! (the bodies on the seam between the threads' runs cross between the
-//! cores every step). A round's figure next to this measure says which
-//! state the host was in.
+//! about 450 ns within minutes, and on a quiet stretch Clump's two-thread
+//! tetra bed ran at 31.1–31.7 M sphere-steps/s in the first state and at
+//! 28.2–28.3 M in the second (the bodies on the seam between the threads'
+//! runs cross between the cores every step). A round's figure next to
+//! this measure says which state the host was in.
 //!
 //! Two threads take turns on one atomic word: one writes an odd value and
 //! spins until the other answers with the next even one. No `spin_loop`
@@ -63,8 +63,10 @@ fn answer(word: &AtomicU64) {
             return;
         }
         if v % 2 == 1 {
-            // only this thread moves the word on from an odd value
-            word.store(v + 1, Ordering::Release);
+            // only if the word still holds `v`: a plain store could
+            // overwrite a STOP written meanwhile (by an asker that gave up
+            // while this thread was descheduled), and never return
+            let _ = word.compare_exchange(v, v + 1, Ordering::AcqRel, Ordering::Acquire);
         }
     }
 }
@@ -100,21 +102,34 @@ fn ping(word: &AtomicU64) -> Option<f64> {
 mod tests {
     use super::*;
 
+    /// The answering side moves an odd value on to the next even one,
+    /// leaves even values alone, and returns on STOP (which it never
+    /// overwrites).
+    #[test]
+    fn the_answering_side_moves_odd_values_on_and_stops() {
+        let w = AtomicU64::new(5);
+        std::thread::scope(|s| {
+            s.spawn(|| answer(&w));
+            while w.load(Ordering::Acquire) != 6 {
+                std::thread::yield_now();
+            }
+            w.store(STOP, Ordering::Release);
+        });
+        assert_eq!(w.load(Ordering::Acquire), STOP);
+    }
+
     /// On a machine with two processors the probe answers with a round
     /// trip that a cache line can take (above the ~1 ns of one L1 hit and
     /// below the limit's share per trip); with one it declines.
     #[test]
     fn the_probe_measures_a_plausible_round_trip_or_declines() {
         let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
-        match round_trip_ns() {
-            Some(ns) => {
-                assert!(cpus >= 2);
-                let most = LIMIT.as_secs_f64() * 1e9 / TRIPS as f64;
-                assert!(ns > 1.0 && ns <= most, "round trip {ns} ns");
-            }
-            // declined: one processor, or the other thread not scheduled
-            // alongside (a loaded test machine)
-            None => {}
+        // None: one processor, or the other thread not scheduled alongside
+        // (a loaded test machine)
+        if let Some(ns) = round_trip_ns() {
+            assert!(cpus >= 2);
+            let most = LIMIT.as_secs_f64() * 1e9 / TRIPS as f64;
+            assert!(ns > 1.0 && ns <= most, "round trip {ns} ns");
         }
     }
 }
