@@ -250,11 +250,11 @@ pub(crate) fn report(code: &str, round: usize, na: u64, nb: u64, f: &Figures) {
     let cores = match f.cross_core_ns {
         [None, None] => String::new(),
         [before, after] => {
-            let ns = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.0}"));
+            let shown = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.0}"));
             format!(
                 "  cross-core round trip {} / {} ns (before / after)",
-                ns(before),
-                ns(after)
+                shown(before),
+                shown(after)
             )
         }
     };
