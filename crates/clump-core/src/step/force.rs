@@ -417,12 +417,17 @@ fn gather_after(
             PartnerCounts::default(),
             [WallTouch::default(); MAX_TOUCHES_PER_WALL],
             BodyLanes::idle(),
+            [Held::default(); FIRST_HALF_BLOCK],
         )
     };
-    let gather_chunk = |(wcounts, touch_buf, lanes): &mut (
+    // `held`: the bodies of a block, from their final kicks to their
+    // first half; one array per thread (every slot is written before it is
+    // read), not a zeroed one per chunk
+    let gather_chunk = |(wcounts, touch_buf, lanes, held): &mut (
         PartnerCounts,
         [WallTouch; MAX_TOUCHES_PER_WALL],
         BodyLanes,
+        [Held; FIRST_HALF_BLOCK],
     ),
                         c: usize| {
         // SAFETY: chunk c's statistics slot and wall loads are written by
@@ -444,7 +449,6 @@ fn gather_after(
         // the next entry whose sphere is to be prefetched
         let mut e_pf = e;
         let mut stale = false;
-        let mut held = [Held::default(); FIRST_HALF_BLOCK];
         // the bodies' statistics, stored in the chunk's slot at its end
         let mut tally = BodyTally::default();
         for k0 in (b0..b1).step_by(FIRST_HALF_BLOCK) {
