@@ -126,6 +126,39 @@ pub struct SlidingOutput {
 }
 
 impl SlidingLaw {
+    /// Rows of a vector loop whose lanes carry their own law: the law's
+    /// constants, one row each ([`Self::store_lane`], [`Self::load_lane`]).
+    pub const LANE_ROWS: usize = 8;
+
+    /// Stores the law as lane `k` of `rows`, one constant a row (numbers
+    /// only: `hertz` as 1 or 0).
+    #[inline(always)]
+    pub fn store_lane<const N: usize>(&self, rows: &mut [[f64; N]; Self::LANE_ROWS], k: usize) {
+        rows[0][k] = if self.hertz { 1.0 } else { 0.0 };
+        rows[1][k] = self.fn_floor;
+        rows[2][k] = self.kn_coef;
+        rows[3][k] = self.kt_coef;
+        rows[4][k] = self.gn_coef;
+        rows[5][k] = self.gt_coef;
+        rows[6][k] = self.energy_factor;
+        rows[7][k] = self.friction;
+    }
+
+    /// The law stored as lane `k` of `rows` by [`Self::store_lane`].
+    #[inline(always)]
+    pub fn load_lane<const N: usize>(rows: &[[f64; N]; Self::LANE_ROWS], k: usize) -> Self {
+        SlidingLaw {
+            hertz: rows[0][k] != 0.0,
+            fn_floor: rows[1][k],
+            kn_coef: rows[2][k],
+            kt_coef: rows[3][k],
+            gn_coef: rows[4][k],
+            gt_coef: rows[5][k],
+            energy_factor: rows[6][k],
+            friction: rows[7][k],
+        }
+    }
+
     /// Normal force with its dashpot and the tensile clamp, then the
     /// tangential history spring with its dashpot and Coulomb limit (see the
     /// [module docs](self)), updating the spring `xi` (m, world). `n` is the
@@ -516,4 +549,28 @@ impl ContactModel {
             }
         }
     }
+}
+
+/// Hertz and linear laws, clamped and tensile, for tests of the loops that
+/// run [`SlidingLaw`] as vector lanes.
+#[cfg(test)]
+pub(crate) fn sample_laws() -> Vec<SlidingLaw> {
+    use super::{Material, NormalLaw};
+    let mat = Material {
+        youngs_modulus: 5e6,
+        poisson_ratio: 0.3,
+        density: 2500.0,
+    };
+    let mut laws = vec![];
+    for normal in [NormalLaw::Hertz, NormalLaw::Linear { kn: 2e3, kt: 1e3 }] {
+        for tensile in [false, true] {
+            let p = PairProperties {
+                normal,
+                tensile,
+                ..PairProperties::default()
+            };
+            laws.push(*ContactModel::new(&mat, &mat, &p).unwrap().sliding_law());
+        }
+    }
+    laws
 }

@@ -35,7 +35,7 @@ pub(crate) const LOOPS: usize = 4;
 /// Spheres a body chunk aims at (see [`body_chunk`]).
 const CHUNK_SPHERES: usize = 128;
 /// Most bodies per chunk.
-const MAX_BODY_CHUNK: usize = 32;
+pub(crate) const MAX_BODY_CHUNK: usize = 32;
 
 /// Bodies per chunk of the pair stage (the rows of their spheres), of the
 /// gather and of the first half step, for clumps of up to `k` spheres:

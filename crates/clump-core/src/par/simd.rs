@@ -55,3 +55,21 @@ pub(crate) fn set3<const N: usize>(r: &mut [[f64; N]; 3], k: usize, x: glam::DVe
     r[1][k] = x.y;
     r[2][k] = x.z;
 }
+
+/// The vector instruction sets this processor has, for tests that compare
+/// a loop compiled for each.
+#[cfg(test)]
+pub(crate) fn levels() -> Vec<Simd> {
+    let mut levels = vec![Simd::Baseline];
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            levels.push(Simd::Avx2);
+        }
+        if simd() == Simd::Avx512 {
+            levels.push(Simd::Avx512);
+        }
+    }
+    eprintln!("levels on this processor: {levels:?}");
+    levels
+}

@@ -18,7 +18,7 @@ use super::body_props::BodyProps;
 use super::first_half_lanes::{BodyLanes, LANES};
 use super::integrate::{FinalKick, FirstHalf, Held};
 use super::pair_kernel::RowCtx;
-use super::wall_contacts::WallPass;
+use super::wall_contacts::{ChunkSums, WallPass, WallScratch};
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::pairs::column_sum;
 use crate::par::affinity::{
@@ -29,7 +29,7 @@ use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
 use crate::sphere::SPHERE_ID_BITS;
 use crate::stats::{all_finite, BodyTally, ContactStats};
-use crate::wall::{WallLoad, WallTouch, MAX_TOUCHES_PER_WALL};
+use crate::wall::WallLoad;
 use crate::world::World;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -414,8 +414,7 @@ fn gather_after(
     );
     let init = || {
         (
-            PartnerCounts::default(),
-            [WallTouch::default(); MAX_TOUCHES_PER_WALL],
+            WallScratch::new(),
             BodyLanes::idle(),
             [Held::default(); FIRST_HALF_BLOCK],
         )
@@ -423,45 +422,65 @@ fn gather_after(
     // `held`: the bodies of a block, from their final kicks to their
     // first half; one array per thread (every slot is written before it is
     // read), not a zeroed one per chunk
-    let gather_chunk = |(wcounts, touch_buf, lanes, held): &mut (
-        PartnerCounts,
-        [WallTouch; MAX_TOUCHES_PER_WALL],
-        BodyLanes,
-        [Held; FIRST_HALF_BLOCK],
-    ),
-                        c: usize| {
-        // SAFETY: chunk c's statistics slot and wall loads are written by
-        // chunk c only.
-        let stat = unsafe {
-            for wi in 0..nw {
-                *loads.get(c * nw + wi) = WallLoad::default();
-            }
-            stats_out.get(c)
-        };
-        *stat = ContactStats::default();
-        let b0 = c * chunk;
-        let b1 = (b0 + chunk).min(nb);
-        // the chunk's entries of the wall list, ascending with its bodies
-        let (mut e, e_end) = (
-            wall_pass.chunk_start[c] as usize,
-            wall_pass.chunk_start[c + 1] as usize,
-        );
-        // the next entry whose sphere is to be prefetched
-        let mut e_pf = e;
-        let mut stale = false;
-        // the bodies' statistics, stored in the chunk's slot at its end
-        let mut tally = BodyTally::default();
-        for k0 in (b0..b1).step_by(FIRST_HALF_BLOCK) {
-            let k1 = (k0 + FIRST_HALF_BLOCK).min(b1);
-            for bi in k0..k1 {
-                // SAFETY: body bi is handled by this chunk only.
-                let com = unsafe {
-                    if lag {
-                        (*pair_body.ptr(bi)).position
-                    } else {
-                        pos.read(bi)
-                    }
+    let gather_chunk =
+        |(walls, lanes, held): &mut (WallScratch, BodyLanes, [Held; FIRST_HALF_BLOCK]),
+         c: usize| {
+            // SAFETY: chunk c's statistics slot and wall loads are written by
+            // chunk c only.
+            let stat = unsafe {
+                for wi in 0..nw {
+                    *loads.get(c * nw + wi) = WallLoad::default();
+                }
+                stats_out.get(c)
+            };
+            *stat = ContactStats::default();
+            let b0 = c * chunk;
+            let b1 = (b0 + chunk).min(nb);
+            // the chunk's entries of the wall list, ascending with its bodies
+            let (mut e, e_end) = (
+                wall_pass.chunk_start[c] as usize,
+                wall_pass.chunk_start[c + 1] as usize,
+            );
+            // the next entry whose sphere is to be prefetched
+            let mut e_pf = e;
+            // SAFETY: body bi is chunk c's, handled by this chunk only.
+            let com_of = |bi: usize| unsafe {
+                if lag {
+                    (*pair_body.ptr(bi)).position
+                } else {
+                    pos.read(bi)
+                }
+            };
+            // the load a body has from gravity and the pair stage's sums:
+            // force (N) and torque about its centre of mass (N m), world frame
+            let pair_load = |bi: usize| {
+                // --- sphere–sphere contacts: summed by the pair stage, or
+                // here for a body on the seam between two threads' runs
+                // SAFETY: body bi is handled by this chunk only; its sum
+                // is read and reset for the next step.
+                let own = std::mem::take(unsafe { &mut (*pair_body.ptr(bi)).col });
+                // SAFETY: the pair stage of this body's run is over.
+                let pl = if unsafe { ready.read(bi) } {
+                    own
+                } else {
+                    // SAFETY: the pair list was built for these bodies (a
+                    // rebuild precedes every gather after a change), and the
+                    // pair stage is over.
+                    own.add(unsafe {
+                        column_sum(pairs.load_j.as_ptr(), &pairs.col_start, &pairs.col_pair, bi)
+                    })
                 };
+                // SAFETY: bi < nb.
+                (unsafe { mass.mass(bi) } * gravity + pl.force, pl.torque)
+            };
+            let mut sums = ChunkSums { c, b0, stat };
+            // --- the bodies with wall entries (in the order of the list, which
+            // is theirs): their pair loads, then their wall touches (collected
+            // body by body, their law run in batches) added to them
+            let mut walled = 0u64;
+            while e < e_end {
+                // SAFETY: e < e_end ≤ the number of entries.
+                let bi = unsafe { at(&sp.body, at(wall_pass.entry_sphere, e) as usize) } as usize;
                 // the body's entries: e0..e
                 let e0 = e;
                 let s_end = sp.of_body(bi).end;
@@ -490,113 +509,108 @@ fn gather_after(
                     };
                     e_pf += 1;
                 }
-                // the column sum of a body a few ahead (the pair stage wrote
-                // it; 7 % of this pass at 10⁶ spheres, read here)
-                if bi + BODY_PREFETCH < b1 {
-                    // SAFETY: a body of this chunk; a prefetch never faults.
-                    unsafe {
-                        prefetch(std::ptr::addr_of!((*pair_body.ptr(bi + BODY_PREFETCH)).col));
-                    }
-                }
-                // --- sphere–sphere contacts: summed by the pair stage, or
-                // here for a body on the seam between two threads' runs
-                // SAFETY: body bi is handled by this chunk only; its sum
-                // is read and reset for the next step.
-                let own = std::mem::take(unsafe { &mut (*pair_body.ptr(bi)).col });
-                // SAFETY: the pair stage of this body's run is over.
-                let pl = if unsafe { ready.read(bi) } {
-                    own
-                } else {
-                    // SAFETY: the pair list was built for these bodies (a
-                    // rebuild precedes every gather after a change), and the
-                    // pair stage is over.
-                    own.add(unsafe {
-                        column_sum(pairs.load_j.as_ptr(), &pairs.col_start, &pairs.col_pair, bi)
-                    })
+                walls.load[bi - b0] = pair_load(bi);
+                walled |= 1 << (bi - b0);
+                // SAFETY: the entries e0..e are body bi's, chunk c's.
+                unsafe {
+                    wall_pass.collect(
+                        walls,
+                        bi,
+                        com_of(bi),
+                        e0..e,
+                        owned.map_or(true, |o| o[bi]),
+                        &mut sums,
+                    )
                 };
-                // SAFETY: bi < nb.
-                let mass_i = unsafe { mass.mass(bi) };
-                let mut f = mass_i * gravity + pl.force;
-                let mut m = pl.torque;
-                // --- sphere–wall contacts
-                if e > e0 {
-                    // SAFETY: the entries e0..e are body bi's, chunk c's.
-                    unsafe {
-                        wall_pass.body(
-                            bi,
-                            com,
-                            e0..e,
-                            c,
-                            wcounts,
-                            touch_buf,
-                            owned.map_or(true, |o| o[bi]).then_some(&mut *stat),
-                            &mut f,
-                            &mut m,
-                        )
-                    };
-                }
-                // the body's velocities as local values, kicked, then stored
-                // once: read back from memory right after the kick's
-                // per-component stores, they could not be forwarded (a
-                // stall measured at 6-8 % of this pass)
-                // SAFETY: body bi is handled by this chunk only.
-                let (mut v, mut l, mut om) = unsafe {
-                    let l = angm.read(bi);
-                    if lag {
-                        let pb = pair_body.ptr(bi);
-                        ((*pb).velocity, l, (*pb).angular_velocity)
+            }
+            // SAFETY: the touches are chunk c's.
+            unsafe { wall_pass.flush(walls, &mut sums) };
+            let stat = sums.stat;
+            let mut stale = false;
+            // the bodies' statistics, stored in the chunk's slot at its end
+            let mut tally = BodyTally::default();
+            // --- the final kicks and the first halves, block by block
+            for k0 in (b0..b1).step_by(FIRST_HALF_BLOCK) {
+                let k1 = (k0 + FIRST_HALF_BLOCK).min(b1);
+                for bi in k0..k1 {
+                    // the column sum of a body a few ahead (the pair stage
+                    // wrote it; 7 % of this pass at 10⁶ spheres, read here)
+                    if bi + BODY_PREFETCH < b1 {
+                        // SAFETY: a body of this chunk; a prefetch never faults.
+                        unsafe {
+                            prefetch(std::ptr::addr_of!((*pair_body.ptr(bi + BODY_PREFETCH)).col));
+                        }
+                    }
+                    let (f, m) = if walled >> (bi - b0) & 1 != 0 {
+                        walls.load[bi - b0]
                     } else {
-                        (vel.read(bi), l, omega.read(bi))
-                    }
-                };
-                // the force and torque are kept for the next step's first
-                // half, unless it takes them now
-                if next.is_none() {
-                    // SAFETY: body bi is handled by this chunk only.
-                    unsafe {
-                        *force.get(bi) = f;
-                        *torque.get(bi) = m;
-                    }
-                }
-                if let Some(k) = &kick {
+                        pair_load(bi)
+                    };
+                    let com = com_of(bi);
                     // SAFETY: bi < nb.
-                    unsafe { k.apply(bi, &mut v, &mut l, &mut om, f, m) };
-                }
-                // --- health statistics (folded into this pass: no extra
-                // sweep): the kinetic energy at the end of the step, after
-                // the kick (a force that would fling a body out of the
-                // domain shows here, before the body is removed)
-                let ke = 0.5 * mass_i * v.length_squared() + 0.5 * om.dot(l);
-                if owned.is_some_and(|o| !o[bi]) {
-                    // a ghost: its owner counts it
-                } else {
-                    tally.add(ke, mass_i, || all_finite(ke, [com, f, m]), || b.id[bi]);
-                }
-                if next.is_some() {
-                    held[bi - k0] = Held { v, l, om, f, m };
-                } else if kick.is_some() {
+                    let mass_i = unsafe { mass.mass(bi) };
+                    // the body's velocities as local values, kicked, then stored
+                    // once: read back from memory right after the kick's
+                    // per-component stores, they could not be forwarded (a
+                    // stall measured at 6-8 % of this pass)
                     // SAFETY: body bi is handled by this chunk only.
-                    unsafe {
-                        *vel.get(bi) = v;
-                        *angm.get(bi) = l;
-                        *omega.get(bi) = om;
+                    let (mut v, mut l, mut om) = unsafe {
+                        let l = angm.read(bi);
                         if lag {
-                            *pos.get(bi) = com;
+                            let pb = pair_body.ptr(bi);
+                            ((*pb).velocity, l, (*pb).angular_velocity)
+                        } else {
+                            (vel.read(bi), l, omega.read(bi))
+                        }
+                    };
+                    // the force and torque are kept for the next step's first
+                    // half, unless it takes them now
+                    if next.is_none() {
+                        // SAFETY: body bi is handled by this chunk only.
+                        unsafe {
+                            *force.get(bi) = f;
+                            *torque.get(bi) = m;
+                        }
+                    }
+                    if let Some(k) = &kick {
+                        // SAFETY: bi < nb.
+                        unsafe { k.apply(bi, &mut v, &mut l, &mut om, f, m) };
+                    }
+                    // --- health statistics (folded into this pass: no extra
+                    // sweep): the kinetic energy at the end of the step, after
+                    // the kick (a force that would fling a body out of the
+                    // domain shows here, before the body is removed)
+                    let ke = 0.5 * mass_i * v.length_squared() + 0.5 * om.dot(l);
+                    if owned.is_some_and(|o| !o[bi]) {
+                        // a ghost: its owner counts it
+                    } else {
+                        tally.add(ke, mass_i, || all_finite(ke, [com, f, m]), || b.id[bi]);
+                    }
+                    if next.is_some() {
+                        held[bi - k0] = Held { v, l, om, f, m };
+                    } else if kick.is_some() {
+                        // SAFETY: body bi is handled by this chunk only.
+                        unsafe {
+                            *vel.get(bi) = v;
+                            *angm.get(bi) = l;
+                            *omega.get(bi) = om;
+                            if lag {
+                                *pos.get(bi) = com;
+                            }
                         }
                     }
                 }
+                if let Some(h) = next {
+                    // SAFETY: bodies k0..k1 (and their spheres) are handled
+                    // by this chunk only; it stores their state.
+                    stale |= unsafe { h.apply_block(k0, &mut held[..k1 - k0], lanes) };
+                }
             }
-            if let Some(h) = next {
-                // SAFETY: bodies k0..k1 (and their spheres) are handled
-                // by this chunk only; it stores their state.
-                stale |= unsafe { h.apply_block(k0, &mut held[..k1 - k0], lanes) };
+            tally.store(stat);
+            if stale {
+                any_stale.store(true, Ordering::Relaxed);
             }
-        }
-        tally.store(stat);
-        if stale {
-            any_stale.store(true, Ordering::Relaxed);
-        }
-    };
+        };
     let gather_cost = body_chunk_cost(body_cost, nb, chunk);
     let pair_time = match &rows {
         None => {

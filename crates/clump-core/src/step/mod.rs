@@ -47,11 +47,13 @@ mod first_half_lanes;
 pub mod force;
 pub mod integrate;
 pub mod kinematics;
+mod law_lanes;
 mod pair_kernel;
 mod partition;
 pub mod rebuild;
 pub mod run;
 mod wall_contacts;
+mod wall_lanes;
 
 use crate::world::World;
 use std::time::Instant;

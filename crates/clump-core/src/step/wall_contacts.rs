@@ -1,20 +1,32 @@
-//! The sphere–wall contacts of one body, in the gather: for each of its
-//! spheres in the wall list, the walls near it (the list's mask), their
-//! touches (analytic shapes and meshes, `crate::wall`), each touch's history
-//! slot carried from the last step (by face for analytic walls, by contact
+//! The sphere–wall contacts of a body chunk, in the gather: for each sphere
+//! in the wall list, the walls near it (the list's mask), their touches
+//! (analytic shapes and meshes, `crate::wall`), each touch's history slot
+//! carried from the last step (by face for analytic walls, by contact
 //! normal for meshes, so a contact sliding across triangles keeps its
 //! spring), the contact law (`crate::contact`), and the sums: the force and
 //! torque on the body, the load on the wall, the statistics, the contact
 //! records when the step keeps them.
+//!
+//! The touches are collected body by body ([`WallPass::collect`]) with their
+//! geometry and contact-point velocities, and their law runs in batches
+//! ([`WallPass::flush`]): as the lanes of one vector loop
+//! (`super::wall_lanes`) for the models that have it, the scalar
+//! composition for the others (evaluated as they are collected). The sums
+//! are then made in the touches' order, as they are collected, so the
+//! results do not depend on where a batch ends.
 
+use super::law_lanes::{finish_sliding, run_law};
+use super::wall_lanes::{WallLanes, WALL_BATCH};
 use crate::body::Bodies;
 use crate::contact::geometry::contact_point;
 use crate::contact::record::WallRecord;
-use crate::contact::{ContactHistory, ContactInput, ContactTable};
+use crate::contact::{ContactHistory, ContactInput, ContactOutput, ContactTable};
 use crate::multi_contact::{MultiContact, PartnerCounts};
 use crate::neighbor::walls::{WallList, WALL_SLOTS};
 use crate::neighbor::PairBody;
+use crate::par::affinity::MAX_BODY_CHUNK;
 use crate::par::shared::{at, SharedMut};
+use crate::par::simd::{get3, set3, simd, Simd};
 use crate::sphere::{point_velocity, Spheres};
 use crate::stats::ContactStats;
 use crate::wall::{TriMesh, Wall, WallLoad, WallShape, WallTouch, MAX_TOUCHES_PER_WALL};
@@ -47,6 +59,86 @@ pub(super) struct WallPass<'a> {
     walls_average: bool,
     recording: bool,
     records: SharedMut<Vec<WallRecord>>,
+    /// The vector instructions the law loop may use.
+    simd: Simd,
+}
+
+/// A touch collected for the law, summed at the next [`WallPass::flush`];
+/// its law's inputs are in the lanes, at the same index. World frame, SI
+/// units.
+#[derive(Clone, Copy, Default)]
+struct Pending {
+    /// The body.
+    body: u32,
+    sphere: u32,
+    wall: u32,
+    /// Its wall-list entry.
+    entry: u32,
+    /// Face (analytic wall) or normal code (mesh) of its history slot.
+    patch: u16,
+    /// Its slot among its entry's new histories; `WALL_SLOTS` for none.
+    slot: u8,
+    /// The body is this world's own (a ghost's loads and statistics are
+    /// its owner's).
+    owned: bool,
+    /// Its law ran as it was collected (a model the lanes do not have;
+    /// the result is in [`WallScratch::scalar`]).
+    done: bool,
+    /// Lever arm of the contact point from the body's centre of mass, m.
+    lever: DVec3,
+    /// Lever arm of the contact point from the wall's motion centre, m.
+    wall_lever: DVec3,
+    /// Multi-contact scale of its force.
+    scale: f64,
+    /// Its rolling spring (N m), which the lanes' law leaves as it is.
+    rolling: DVec3,
+}
+
+/// Per thread: the touches awaiting their law, the lanes that run it, and
+/// the loads of the chunk's bodies.
+pub(super) struct WallScratch {
+    counts: PartnerCounts,
+    buf: [WallTouch; MAX_TOUCHES_PER_WALL],
+    pending: [Pending; WALL_BATCH],
+    len: usize,
+    lanes: WallLanes,
+    /// Per touch: its contact model ([`ContactTable::index`]).
+    model: [u32; WALL_BATCH],
+    /// Per touch: its tangential spring before the law, m.
+    spring0: [DVec3; WALL_BATCH],
+    /// Per touch whose law ran as it was collected: the result and the
+    /// history after it.
+    scalar: [(ContactOutput, ContactHistory); WALL_BATCH],
+    /// Per body of the chunk, from its first: the force (N) and the torque
+    /// about the body's centre of mass (N m), world frame. The gather
+    /// seeds a body's before its touches are collected; each touch adds to
+    /// them at the flush, in the touches' order.
+    pub load: [(DVec3, DVec3); MAX_BODY_CHUNK],
+}
+
+impl WallScratch {
+    /// Empty.
+    pub(super) fn new() -> Self {
+        WallScratch {
+            counts: PartnerCounts::default(),
+            buf: [WallTouch::default(); MAX_TOUCHES_PER_WALL],
+            pending: [Pending::default(); WALL_BATCH],
+            len: 0,
+            lanes: WallLanes::zeroed(),
+            model: [0; WALL_BATCH],
+            spring0: [DVec3::ZERO; WALL_BATCH],
+            scalar: [Default::default(); WALL_BATCH],
+            load: [(DVec3::ZERO, DVec3::ZERO); MAX_BODY_CHUNK],
+        }
+    }
+}
+
+/// Where a chunk's touches are summed: its index and first body, and its
+/// contact statistics.
+pub(super) struct ChunkSums<'s> {
+    pub c: usize,
+    pub b0: usize,
+    pub stat: &'s mut ContactStats,
 }
 
 impl<'a> WallPass<'a> {
@@ -99,6 +191,7 @@ impl<'a> WallPass<'a> {
                 .any(|x| x.multi_contact == MultiContact::Average),
             recording,
             records: SharedMut::new(records),
+            simd: simd(),
         }
     }
 
@@ -112,33 +205,42 @@ impl<'a> WallPass<'a> {
         lo.chain((64..self.nw).filter(|&wi| self.walls[wi].active))
     }
 
-    /// The wall contacts of body `bi` (centre of mass `com`), whose
-    /// wall-list entries are `entries`, in chunk `c`: adds their force and
-    /// torque about `com` to `f` and `m`, their loads to the chunk's wall
-    /// loads and their statistics to `stat`, and carries their history
-    /// slots.
+    /// Body `bi`'s velocity and angular velocity (world frame) as the
+    /// step's pair stage saw them.
+    #[inline(always)]
+    fn body_velocity(&self, bi: usize) -> (DVec3, DVec3) {
+        match &self.lagged {
+            // SAFETY: a body of the pair list, which is built for these
+            // bodies whenever they lag
+            Some(pb) => unsafe {
+                let pb = pb.ptr(bi);
+                ((*pb).velocity, (*pb).angular_velocity)
+            },
+            None => (self.b.velocity[bi], self.b.angular_velocity[bi]),
+        }
+    }
+
+    /// Collects the wall touches of body `bi` (centre of mass `com`), whose
+    /// wall-list entries are `entries`, into `ws`, and carries their
+    /// history slots: each entry's new keys are written here, its new
+    /// histories when the law has run. A full batch is flushed into `sums`
+    /// on the way; the body's load in `ws` must be seeded before.
     ///
     /// # Safety
-    /// Body `bi` and the entries are chunk `c`'s, handled by one thread.
+    /// Body `bi` and the entries are chunk `sums.c`'s, handled by one thread.
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    pub(super) unsafe fn body(
+    pub(super) unsafe fn collect(
         &self,
+        ws: &mut WallScratch,
         bi: usize,
         com: DVec3,
         entries: Range<usize>,
-        c: usize,
-        wcounts: &mut PartnerCounts,
-        buf: &mut [WallTouch; MAX_TOUCHES_PER_WALL],
-        mut stat: Option<&mut ContactStats>,
-        f: &mut DVec3,
-        m: &mut DVec3,
+        owned: bool,
+        sums: &mut ChunkSums,
     ) {
-        let (e0, e) = (entries.start, entries.end);
         if self.walls_average {
-            wcounts.clear();
-            let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
-            for q in e0..e {
+            ws.counts.clear();
+            for q in entries.clone() {
                 let s = self.entry_sphere[q] as usize;
                 for wi in self.candidates(q) {
                     let k = self.walls[wi].shape.contacts(
@@ -146,132 +248,254 @@ impl<'a> WallPass<'a> {
                         self.sp.position(s),
                         self.sp.state[s].radius,
                         0.0,
-                        &mut buf,
+                        &mut ws.buf,
                     );
                     for _ in 0..k {
-                        wcounts.add(wi as u64);
+                        ws.counts.add(wi as u64);
                     }
                 }
             }
         }
-        let ctx = WallCtx {
-            sp: self.sp,
-            b: self.b,
-            lagged: self.lagged,
-            table: self.table,
-            walls: self.walls,
-            dt: self.dt,
-            bi,
-            com,
-        };
-        for q in e0..e {
-            // SAFETY: entry q is of body bi, handled by this
-            // chunk only.
-            let (s, key, hist) = unsafe {
-                (
-                    at(self.entry_sphere, q) as usize,
-                    self.keys.get(q),
-                    self.hists.get(q),
-                )
-            };
+        let (v, wb) = self.body_velocity(bi);
+        let mass = self.b.mass[bi];
+        for q in entries {
+            // SAFETY: entry q is of body bi, handled by this chunk only;
+            // its slots are read here, and written only where no other
+            // reference to them lives (a flush writes its histories)
+            let (s, old_key) = unsafe { (at(self.entry_sphere, q) as usize, *self.keys.get(q)) };
             let mut cand = self.candidates(q).peekable();
             if cand.peek().is_none() {
                 // no wall to test: only clear what a contact left
-                if key[0] != 0 {
-                    *key = [0; WALL_SLOTS];
-                    *hist = [ContactHistory::default(); WALL_SLOTS];
+                if old_key[0] != 0 {
+                    unsafe {
+                        *self.keys.get(q) = [0; WALL_SLOTS];
+                        *self.hists.get(q) = [ContactHistory::default(); WALL_SLOTS];
+                    }
                 }
                 continue;
             }
+            // the histories before this step: a flush may write the new
+            // ones before this entry's last touch is matched
+            let old_hist = if old_key[0] != 0 {
+                unsafe { *self.hists.get(q) }
+            } else {
+                [ContactHistory::default(); WALL_SLOTS]
+            };
             let mut new_key = [0u32; WALL_SLOTS];
-            let mut new_hist = [ContactHistory::default(); WALL_SLOTS];
             let mut n_new = 0;
             let mut used = [false; WALL_SLOTS];
+            let (x, r) = (self.sp.position(s), self.sp.state[s].radius);
             for wi in cand {
                 let wall = &self.walls[wi];
-                let r = self.sp.state[s].radius;
                 // a JKR contact lives on while apart by less than its reach
-                let reach = if self.table.any_reach() && key.iter().any(|&x| slot_wall(x) == wi) {
+                let reach = if self.table.any_reach() && old_key.iter().any(|&k| slot_wall(k) == wi)
+                {
                     self.table.get(self.sp.material[s], wall.material).reach(r)
                 } else {
                     0.0
                 };
-                let k = wall
-                    .shape
-                    .contacts(self.meshes, self.sp.position(s), r, reach, buf);
+                let k = wall.shape.contacts(self.meshes, x, r, reach, &mut ws.buf);
                 let is_mesh = matches!(wall.shape, WallShape::Mesh { .. });
-                for touch in &buf[..k] {
+                for t in 0..k {
+                    let touch = ws.buf[t];
                     let (patch, old) = if is_mesh {
                         let patch = oct_encode(touch.normal);
-                        (patch, match_mesh_slot(key, &used, wi, touch.normal))
+                        (patch, match_mesh_slot(&old_key, &used, wi, touch.normal))
                     } else {
                         let patch = touch.face as u16;
                         let slot_key = slot_key(wi, patch);
-                        (patch, key.iter().position(|&x| x == slot_key))
+                        (patch, old_key.iter().position(|&k| k == slot_key))
                     };
-                    let slot_key = slot_key(wi, patch);
                     if touch.overlap <= 0.0 && old.is_none() {
                         // a near miss within the reach, not a live contact
                         continue;
                     }
-                    let mut h = match old {
+                    let history = match old {
                         Some(o) => {
                             used[o] = true;
-                            hist[o]
+                            old_hist[o]
                         }
                         None => ContactHistory::default(),
                     };
-                    let scale = if wall.multi_contact == MultiContact::Average {
-                        1.0 / wcounts.get(wi as u64) as f64
-                    } else {
-                        1.0
-                    };
-                    let (fw, mw, tw, energy, fn_w) = ctx.evaluate(s, wi, touch, &mut h);
-                    if self.recording {
-                        // SAFETY: chunk c's list is written by chunk c only.
-                        unsafe { self.records.get(c) }.push(WallRecord {
-                            sphere: s as u32,
-                            wall: wi as u32,
-                            patch,
-                            normal: touch.normal,
-                            overlap: touch.overlap,
-                            force: fw * scale,
-                            normal_force: fn_w * scale,
-                            spring: h.tangential,
-                        });
-                    }
-                    *f += fw * scale;
-                    *m += mw * scale;
-                    // a ghost body (partitioned world) adds neither: its
-                    // owner does
-                    if let Some(stat) = stat.as_deref_mut() {
-                        // SAFETY: row c of the chunk loads belongs to this chunk only.
-                        let load = unsafe { self.loads.get(c * self.nw + wi) };
-                        load.force -= fw * scale;
-                        load.torque -= tw * scale;
-                        stat.wall_contacts += 1;
-                        stat.elastic_energy += energy * scale;
-                        let ratio = touch.overlap / self.sp.state[s].radius;
-                        if ratio > stat.max_overlap_ratio {
-                            stat.max_overlap_ratio = ratio;
-                            stat.max_overlap_bodies = [self.b.id[bi], 0];
-                            stat.max_overlap_wall = wi as u32 + 1;
-                        }
-                    }
-                    if n_new < WALL_SLOTS {
-                        new_key[n_new] = slot_key;
-                        new_hist[n_new] = h;
+                    let slot = if n_new < WALL_SLOTS {
+                        new_key[n_new] = slot_key(wi, patch);
                         n_new += 1;
+                        n_new - 1
+                    } else {
+                        WALL_SLOTS
+                    };
+                    let n = touch.normal;
+                    let xc = contact_point(x, n, r, touch.overlap);
+                    let v_body = point_velocity(com, v, wb, xc);
+                    let mut v_wall = wall.surface_velocity_at(xc);
+                    v_wall -= n * n.dot(wall.motion.surface_velocity);
+                    let model = self.table.index(self.sp.material[s], wall.material);
+                    let t = ws.len;
+                    let l = &mut ws.lanes;
+                    set3(&mut l.normal, t, n);
+                    l.overlap[t] = touch.overlap;
+                    set3(&mut l.vrel, t, v_body - v_wall);
+                    l.radius[t] = r;
+                    l.mass[t] = mass;
+                    set3(&mut l.spring, t, history.tangential);
+                    ws.spring0[t] = history.tangential;
+                    ws.model[t] = model;
+                    let law = self.table.by_index(model);
+                    let done = law.is_extended() || law.has_rolling() || scalar_only();
+                    if done {
+                        let mut h = history;
+                        let input = ContactInput {
+                            normal: n,
+                            overlap: touch.overlap,
+                            rel_velocity: v_body - v_wall,
+                            rel_omega: wb - wall.motion.angular_velocity,
+                            radius: r,
+                            radius_sum: f64::INFINITY,
+                            mass,
+                            dt: self.dt,
+                        };
+                        ws.scalar[t] = (law.evaluate(&input, &mut h), h);
+                    }
+                    ws.pending[t] = Pending {
+                        body: bi as u32,
+                        sphere: s as u32,
+                        wall: wi as u32,
+                        entry: q as u32,
+                        patch,
+                        slot: slot as u8,
+                        owned,
+                        done,
+                        lever: xc - com,
+                        wall_lever: xc - wall.motion.center,
+                        scale: if wall.multi_contact == MultiContact::Average {
+                            1.0 / ws.counts.get(wi as u64) as f64
+                        } else {
+                            1.0
+                        },
+                        rolling: history.rolling,
+                    };
+                    ws.len += 1;
+                    if ws.len == WALL_BATCH {
+                        self.flush(ws, sums);
                     }
                 }
             }
-            // most spheres touch no wall: skip the write then
-            if n_new > 0 || key[0] != 0 {
-                *key = new_key;
-                *hist = new_hist;
+            if n_new > 0 || old_key[0] != 0 {
+                // the slots n_new.. cleared; the flush writes the others
+                unsafe {
+                    *self.keys.get(q) = new_key;
+                    for h in &mut self.hists.get(q)[n_new..] {
+                        *h = ContactHistory::default();
+                    }
+                }
             }
         }
     }
+
+    /// Runs the law of the touches in `ws` and sums them, in their order,
+    /// into the bodies' loads, the chunk's wall loads and statistics, the
+    /// records and the entries' history slots; empties `ws`.
+    ///
+    /// # Safety
+    /// The touches are of chunk `sums.c`'s bodies, handled by one thread.
+    pub(super) unsafe fn flush(&self, ws: &mut WallScratch, sums: &mut ChunkSums) {
+        let len = ws.len;
+        if len == 0 {
+            return;
+        }
+        ws.len = 0;
+        // the law over every lane (those already evaluated are not read)
+        let first = ws.model[0];
+        let law = if ws.model[..len].iter().all(|&m| m == first) {
+            Some(*self.table.by_index(first).sliding_law())
+        } else {
+            for (k, &m) in ws.model[..len].iter().enumerate() {
+                self.table
+                    .by_index(m)
+                    .sliding_law()
+                    .store_lane(&mut ws.lanes.law, k);
+            }
+            None
+        };
+        let l = &mut ws.lanes;
+        run_law(l, len, law.as_ref(), self.dt, self.simd);
+        let spring0 = &ws.spring0;
+        finish_sliding(l, len, law.as_ref(), self.dt, |k| spring0[k]);
+        let c = sums.c;
+        for (t, p) in ws.pending[..len].iter().enumerate() {
+            let (out, history) = if p.done {
+                ws.scalar[t]
+            } else {
+                (
+                    ContactOutput {
+                        force: get3(&l.force, t),
+                        torque: DVec3::ZERO,
+                        elastic_energy: l.energy[t],
+                        normal_force: l.normal_force[t],
+                    },
+                    ContactHistory {
+                        tangential: get3(&l.spring, t),
+                        rolling: p.rolling,
+                    },
+                )
+            };
+            let scale = p.scale;
+            let (wi, bi) = (p.wall as usize, p.body as usize);
+            let fw = out.force;
+            let mw = p.lever.cross(fw) + out.torque;
+            let tw = p.wall_lever.cross(fw) + out.torque;
+            if self.recording {
+                // SAFETY: chunk c's list is written by chunk c only.
+                unsafe { self.records.get(c) }.push(WallRecord {
+                    sphere: p.sphere,
+                    wall: p.wall,
+                    patch: p.patch,
+                    normal: get3(&l.normal, t),
+                    overlap: l.overlap[t],
+                    force: fw * scale,
+                    normal_force: out.normal_force * scale,
+                    spring: history.tangential,
+                });
+            }
+            let (f, m) = &mut ws.load[bi - sums.b0];
+            *f += fw * scale;
+            *m += mw * scale;
+            // a ghost body (partitioned world) adds neither: its owner does
+            if p.owned {
+                // SAFETY: row c of the chunk loads belongs to this chunk only.
+                let load = unsafe { self.loads.get(c * self.nw + wi) };
+                load.force -= fw * scale;
+                load.torque -= tw * scale;
+                let stat = &mut *sums.stat;
+                stat.wall_contacts += 1;
+                stat.elastic_energy += out.elastic_energy * scale;
+                let ratio = l.overlap[t] / l.radius[t];
+                if ratio > stat.max_overlap_ratio {
+                    stat.max_overlap_ratio = ratio;
+                    stat.max_overlap_bodies = [self.b.id[bi], 0];
+                    stat.max_overlap_wall = p.wall + 1;
+                }
+            }
+            if (p.slot as usize) < WALL_SLOTS {
+                // SAFETY: the entry is of chunk c's bodies.
+                unsafe { self.hists.get(p.entry as usize)[p.slot as usize] = history };
+            }
+        }
+    }
+}
+
+/// Tests only: every touch takes the scalar composition (the lanes off).
+#[cfg(test)]
+pub(super) static SCALAR_ONLY: std::sync::atomic::AtomicBool =
+    std::sync::atomic::AtomicBool::new(false);
+
+/// Tests only: whether every touch takes the scalar composition.
+#[inline(always)]
+fn scalar_only() -> bool {
+    #[cfg(test)]
+    return SCALAR_ONLY.load(std::sync::atomic::Ordering::SeqCst);
+    #[cfg(not(test))]
+    false
 }
 
 /// The indices of the set bits of a mask, ascending.
@@ -373,68 +597,137 @@ pub fn oct_decode(k: u16) -> glam::DVec3 {
     glam::DVec3::new(x, y, z).normalize()
 }
 
-struct WallCtx<'a> {
-    sp: &'a Spheres,
-    b: &'a Bodies,
-    lagged: Option<SharedMut<PairBody>>,
-    table: &'a ContactTable,
-    walls: &'a [Wall],
-    dt: f64,
-    bi: usize,
-    com: DVec3,
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::BodyInit;
+    use crate::boundary::Domain;
+    use crate::contact::{Material, RollingLaw};
+    use crate::testbed::{
+        state_bits, tetra_contact, tetra_material, tetra_template, LATTICE_PITCH,
+    };
+    use crate::wall::WallMotion;
+    use crate::world::{AddedMass, World, WorldConfig};
+    use glam::DQuat;
+    use std::sync::atomic::Ordering;
 
-impl WallCtx<'_> {
-    /// One sphere–wall contact: returns (force on the body, torque on the body
-    /// about its centre of mass, torque on the wall about its motion centre
-    /// *from the body's side* i.e. of the force on the body, elastic energy,
-    /// signed normal force on the body).
-    #[inline]
-    fn evaluate(
-        &self,
-        s: usize,
-        wi: usize,
-        touch: &WallTouch,
-        h: &mut ContactHistory,
-    ) -> (DVec3, DVec3, DVec3, f64, f64) {
-        let wall = &self.walls[wi];
-        let r = self.sp.state[s].radius;
-        let n = touch.normal;
-        let xc = contact_point(self.sp.position(s), n, r, touch.overlap);
-        let bi = self.bi;
-        let (v, wb) = match &self.lagged {
-            // SAFETY: a body of the pair list, which is built for these
-            // bodies whenever they lag
-            Some(pb) => unsafe {
-                let pb = pb.ptr(bi);
-                ((*pb).velocity, (*pb).angular_velocity)
+    /// Tetrahedra of two materials thrown sideways into a box open in y:
+    /// a floor (Sum), and two side walls of the other material, one of
+    /// them averaging its touches per body (Average). The two materials'
+    /// pairs have different laws, and one pair a rolling couple (scalar
+    /// composition), so that the batches mix models and both paths.
+    fn bed() -> World {
+        let soft = Material {
+            youngs_modulus: 2e6,
+            ..tetra_material()
+        };
+        let mats = vec![tetra_material(), soft];
+        let table = ContactTable::new(&mats, |a, b| {
+            let mut p = tetra_contact();
+            if a != b {
+                p.friction = 0.3;
+                p.restitution = 0.4;
+            }
+            if a == 1 && b == 1 {
+                p.rolling = RollingLaw::Cdt;
+                p.rolling_friction = 0.1;
+            }
+            p
+        })
+        .unwrap();
+        let (nx, ny, nz) = (8, 8, 2);
+        let lx = nx as f64 * LATTICE_PITCH;
+        let config = WorldConfig {
+            domain: Domain {
+                lo: DVec3::new(-0.001, 0.0, -0.001),
+                hi: DVec3::new(lx + 0.001, ny as f64 * LATTICE_PITCH, 0.03),
+                periodic: [false, true, false],
             },
-            None => (self.b.velocity[bi], self.b.angular_velocity[bi]),
+            gravity: DVec3::new(0.0, 0.0, -9.81),
+            dt: 1e-5,
+            rotation: Default::default(),
+            added_mass: AddedMass::default(),
+            skin: None,
+            multi_contact: MultiContact::Sum,
         };
-        let v_body = point_velocity(self.com, v, wb, xc);
-        let mut v_wall = wall.surface_velocity_at(xc);
-        let sv = wall.motion.surface_velocity;
-        v_wall -= n * n.dot(sv);
-        let input = ContactInput {
-            normal: n,
-            overlap: touch.overlap,
-            rel_velocity: v_body - v_wall,
-            rel_omega: wb - wall.motion.angular_velocity,
-            radius: r,
-            radius_sum: f64::INFINITY,
-            mass: self.b.mass[bi],
-            dt: self.dt,
+        let mut w = World::new(config, mats, table);
+        let t = [0, 1].map(|m| w.add_template(tetra_template(), m).unwrap());
+        let plane = |name: &str, point: DVec3, normal: DVec3, material, multi_contact| Wall {
+            name: name.into(),
+            shape: WallShape::Plane { point, normal },
+            material,
+            motion: WallMotion::default(),
+            multi_contact,
+            active: true,
         };
-        let model = self.table.get(self.sp.material[s], wall.material);
-        let out = model.evaluate(&input, h);
-        let m_body = (xc - self.com).cross(out.force) + out.torque;
-        let m_wall_from_body = (xc - wall.motion.center).cross(out.force) + out.torque;
-        (
-            out.force,
-            m_body,
-            m_wall_from_body,
-            out.elastic_energy,
-            out.normal_force,
-        )
+        w.add_wall(plane("floor", DVec3::ZERO, DVec3::Z, 0, MultiContact::Sum))
+            .unwrap();
+        w.add_wall(plane(
+            "left",
+            DVec3::ZERO,
+            DVec3::X,
+            1,
+            MultiContact::Average,
+        ))
+        .unwrap();
+        let right = DVec3::new(lx, 0.0, 0.0);
+        w.add_wall(plane("right", right, -DVec3::X, 1, MultiContact::Sum))
+            .unwrap();
+        let mut k = 0u32;
+        for z in 0..nz {
+            for y in 0..ny {
+                for x in 0..nx {
+                    k += 1;
+                    let k = k as f64;
+                    let q = DQuat::from_euler(glam::EulerRot::ZXZ, k * 0.7, k * 1.3, k * 0.4);
+                    let p =
+                        DVec3::new(x as f64 + 0.5, y as f64 + 0.5, z as f64 + 0.45) * LATTICE_PITCH;
+                    let side = if x < nx / 2 { -1.0 } else { 1.0 };
+                    let init = BodyInit {
+                        velocity: DVec3::new(0.1 * side, 0.0, -0.05),
+                        angular_velocity: DVec3::new(0.0, 20.0 * side, 0.0),
+                        ..BodyInit::at_rest(t[(x + y) % 2], p, q)
+                    };
+                    w.add_body(&init).unwrap();
+                }
+            }
+        }
+        w
+    }
+
+    /// The bed steps the same bits, with the same wall loads, whether the
+    /// touches' law runs as lanes or one touch at a time through the
+    /// contact model; many touches to a chunk (batches flushed part-way
+    /// through a body), sliding and sticking, mixed models.
+    #[test]
+    fn wall_touches_give_the_same_bits_as_lanes_and_one_by_one() {
+        let run = |scalar: bool| {
+            let mut w = bed();
+            SCALAR_ONLY.store(scalar, Ordering::SeqCst);
+            let mut most = 0;
+            for _ in 0..150 {
+                w.run(20).unwrap();
+                most = most.max(w.stats.wall_contacts);
+            }
+            SCALAR_ONLY.store(false, Ordering::SeqCst);
+            let loads: Vec<u64> = w
+                .walls
+                .loads()
+                .iter()
+                .flat_map(|l| [l.force, l.torque])
+                .flat_map(|v| v.to_array().map(f64::to_bits))
+                .collect();
+            (state_bits(&w), loads, most, w.rebuilds)
+        };
+        let (lanes, lanes_loads, most, rebuilds) = run(false);
+        let (scalar, scalar_loads, _, _) = run(true);
+        assert!(most > 3 * WALL_BATCH as u64, "only {most} wall contacts");
+        assert!(rebuilds > 3, "only {rebuilds} rebuilds");
+        assert!(lanes_loads.iter().any(|&x| x != 0), "no wall load");
+        assert!(lanes == scalar, "the lanes changed the bits");
+        assert!(
+            lanes_loads == scalar_loads,
+            "the lanes changed the wall loads"
+        );
     }
 }

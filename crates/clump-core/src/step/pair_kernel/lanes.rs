@@ -1,14 +1,12 @@
 //! The lanes of a batch of touching pairs: one array per quantity, one
-//! element per contact (structure of arrays), and the contact law run over
-//! them. The law loop has no branches and no indirect access, so the
-//! compiler turns it into vector instructions; it is compiled for AVX-512
-//! and AVX2 besides the baseline, and the widest the processor has runs
-//! (`crate::par::simd`). Every level gives the same bits.
+//! element per contact (structure of arrays), with each contact's geometry,
+//! kinematics and torques, for the law loop of `crate::step::law_lanes`.
 
 use super::BATCH;
 use crate::contact::geometry::sphere_pair;
 use crate::contact::{ContactHistory, ContactInput, ContactModel, SlidingLaw};
-use crate::par::simd::{get3, set3, Simd};
+use crate::par::simd::{get3, set3};
+use crate::step::law_lanes::LawLanes;
 use glam::DVec3;
 
 /// A 3-vector per lane (x, y and z rows), world frame.
@@ -69,9 +67,10 @@ pub(super) struct Lanes {
     /// Velocity of `j`'s body, m/s.
     pub velocity_j: Rows3,
     /// Per-lane law, when the batch mixes models ([`Lanes::set_law`]).
-    pub law: [[f64; BATCH]; 8],
+    pub law: [[f64; BATCH]; SlidingLaw::LANE_ROWS],
     /// Output of the law loop: 1 where the contact slides, its outputs
-    /// being those of a sticking contact until [`Lanes::finish_sliding`];
+    /// being those of a sticking contact until
+    /// [`crate::step::law_lanes::finish_sliding`];
     /// else 0. A number, not a `bool`: a `bool` output kept the compiler
     /// from vectorising the loop.
     pub slide: [f64; BATCH],
@@ -124,7 +123,7 @@ impl Lanes {
             arm_i: v3,
             arm_j: v3,
             velocity_j: v3,
-            law: [v; 8],
+            law: [v; SlidingLaw::LANE_ROWS],
             slide: v,
         }
     }
@@ -132,90 +131,12 @@ impl Lanes {
     /// Stores lane `k`'s law.
     #[inline(always)]
     pub(super) fn set_law(&mut self, k: usize, law: &SlidingLaw) {
-        let v = &mut self.law;
-        v[0][k] = if law.hertz { 1.0 } else { 0.0 };
-        v[1][k] = law.fn_floor;
-        v[2][k] = law.kn_coef;
-        v[3][k] = law.kt_coef;
-        v[4][k] = law.gn_coef;
-        v[5][k] = law.gt_coef;
-        v[6][k] = law.energy_factor;
-        v[7][k] = law.friction;
-    }
-
-    /// Lane `k`'s law, as stored by [`Self::set_law`].
-    #[inline(always)]
-    fn law(&self, k: usize) -> SlidingLaw {
-        let v = &self.law;
-        SlidingLaw {
-            hertz: v[0][k] != 0.0,
-            fn_floor: v[1][k],
-            kn_coef: v[2][k],
-            kt_coef: v[3][k],
-            gn_coef: v[4][k],
-            gt_coef: v[5][k],
-            energy_factor: v[6][k],
-            friction: v[7][k],
-        }
-    }
-
-    /// Contact `k`: the geometry (`crate::contact::geometry`), the
-    /// contact-point velocities from the bodies' velocities and angular
-    /// velocities, `R*`, `m*`, the law, and the torques of its force about
-    /// the two bodies' centres of mass: the contact point is
-    /// `x_c = x_i − a_i n = x_j + a_j n`, so its lever arms from the centres
-    /// of mass are `x_c − r_cm,i = c_i − a_i n` and `x_c − r_cm,j = c_j +
-    /// a_j n` (with the spheres' lever arms `c = x_s − r_cm`), and the
-    /// torques are `(x_c − r_cm,i) × f` on `i`'s body and
-    /// `(x_c − r_cm,j) × (−f) = f × (x_c − r_cm,j)` on `j`'s (docs/theory.md
-    /// T-11). The kinematics has both lever arms already: one cross product
-    /// each, 12 multiplications a contact fewer (of about 110 in the law
-    /// loop) than summing `c × f` and `a (n × f)`.
-    #[inline(always)]
-    fn contact(&mut self, k: usize, law: &SlidingLaw, dt: f64) {
-        self.contact_as::<true>(k, law, dt);
-    }
-
-    /// [`Self::contact`], and whether the contact slides; with `LIMIT`
-    /// false, the outputs of a contact that sticks, whether or not it does
-    /// ([`SlidingLaw::evaluate_as`]).
-    #[inline(always)]
-    fn contact_as<const LIMIT: bool>(&mut self, k: usize, law: &SlidingLaw, dt: f64) -> bool {
-        let c = self.kinematics(k);
-        let mut xi = get3(&self.spring, k);
-        let (out, slide) =
-            law.evaluate_as::<LIMIT>(c.normal, c.overlap, c.vrel, c.radius, c.mass, dt, &mut xi);
-        set3(&mut self.spring, k, xi);
-        self.store(k, &c, out.force, out.energy, out.normal_force, out.kn);
-        slide
-    }
-
-    /// The contacts among lanes `0..len` that the law loop found sliding,
-    /// evaluated again with the Coulomb limit from their spring before the
-    /// step, `spring(k)` (the loop overwrote the lane's): afterwards every
-    /// lane holds what [`Self::contact`] gives, and no lane is flagged.
-    /// `law` as for [`run_law`].
-    #[inline(always)]
-    pub(super) fn finish_sliding(
-        &mut self,
-        len: usize,
-        law: Option<&SlidingLaw>,
-        dt: f64,
-        spring: impl Fn(usize) -> DVec3,
-    ) {
-        for k in 0..len.min(BATCH) {
-            if self.slide[k] != 0.0 {
-                set3(&mut self.spring, k, spring(k));
-                let law = law.copied().unwrap_or_else(|| self.law(k));
-                self.contact(k, &law, dt);
-                self.slide[k] = 0.0;
-            }
-        }
+        law.store_lane(&mut self.law, k);
     }
 
     /// Contact `k` of a pair whose model runs the scalar composition
     /// ([`ContactModel::is_extended`]): the same geometry, kinematics and
-    /// torques as [`Self::contact`], the law and its rolling couple from
+    /// torques as [`LawLanes::contact_as`], the law and its rolling couple from
     /// [`ContactModel::evaluate`], starting from the history `h` (updated;
     /// the lane's spring is set to `h.tangential`).
     #[inline(never)]
@@ -350,77 +271,60 @@ impl Lanes {
     }
 }
 
-/// Runs [`law_lanes`] over the first `len` lanes, compiled for the vector
-/// instructions `simd` (detected on this processor by [`simd`]).
-#[inline(always)]
-pub(super) fn run_law(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64, simd: Simd) {
-    #[cfg(target_arch = "x86_64")]
-    match simd {
-        // SAFETY: `simd` was detected on this processor.
-        Simd::Avx512 => return unsafe { law_lanes_avx512(l, len, law, dt) },
-        Simd::Avx2 => return unsafe { law_lanes_avx2(l, len, law, dt) },
-        Simd::Baseline => {}
+impl LawLanes for Lanes {
+    const LANES: usize = BATCH;
+
+    #[inline(always)]
+    fn lane_law(&self, k: usize) -> SlidingLaw {
+        SlidingLaw::load_lane(&self.law, k)
     }
-    let _ = simd;
-    law_lanes(l, len, law, dt);
-}
 
-/// [`law_lanes`] compiled for AVX-512 (8 doubles per vector).
-///
-/// # Safety
-/// The processor supports AVX-512 F, VL and DQ.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f,avx512vl,avx512dq")]
-unsafe fn law_lanes_avx512(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
-    law_lanes(l, len, law, dt)
-}
+    /// Contact `k`: the geometry (`crate::contact::geometry`), the
+    /// contact-point velocities from the bodies' velocities and angular
+    /// velocities, `R*`, `m*`, the law, and the torques of its force about
+    /// the two bodies' centres of mass: the contact point is
+    /// `x_c = x_i − a_i n = x_j + a_j n`, so its lever arms from the centres
+    /// of mass are `x_c − r_cm,i = c_i − a_i n` and `x_c − r_cm,j = c_j +
+    /// a_j n` (with the spheres' lever arms `c = x_s − r_cm`), and the
+    /// torques are `(x_c − r_cm,i) × f` on `i`'s body and
+    /// `(x_c − r_cm,j) × (−f) = f × (x_c − r_cm,j)` on `j`'s (docs/theory.md
+    /// T-11). The kinematics has both lever arms already: one cross product
+    /// each, 12 multiplications a contact fewer (of about 110 in the law
+    /// loop) than summing `c × f` and `a (n × f)`.
+    #[inline(always)]
+    fn contact_as<const LIMIT: bool>(&mut self, k: usize, law: &SlidingLaw, dt: f64) -> bool {
+        let c = self.kinematics(k);
+        let mut xi = get3(&self.spring, k);
+        let (out, slide) =
+            law.evaluate_as::<LIMIT>(c.normal, c.overlap, c.vrel, c.radius, c.mass, dt, &mut xi);
+        set3(&mut self.spring, k, xi);
+        self.store(k, &c, out.force, out.energy, out.normal_force, out.kn);
+        slide
+    }
 
-/// [`law_lanes`] compiled for AVX2 (4 doubles per vector).
-///
-/// # Safety
-/// The processor supports AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn law_lanes_avx2(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
-    law_lanes(l, len, law, dt)
-}
+    #[inline(always)]
+    fn slide(&self, k: usize) -> f64 {
+        self.slide[k]
+    }
 
-/// The contact geometry and the law over lanes `0..len`: `law` is the model
-/// of every lane, or `None` when the lanes carry their own
-/// ([`Lanes::set_law`]). Every lane takes the outputs of a contact that
-/// sticks, and a lane that slides is flagged ([`Lanes::slide`]) for
-/// [`Lanes::finish_sliding`].
-#[inline(always)]
-fn law_lanes(l: &mut Lanes, len: usize, law: Option<&SlidingLaw>, dt: f64) {
-    match law {
-        Some(law) => {
-            for k in 0..len.min(BATCH) {
-                l.slide[k] = if l.contact_as::<false>(k, law, dt) {
-                    1.0
-                } else {
-                    0.0
-                };
-            }
-        }
-        None => {
-            for k in 0..len.min(BATCH) {
-                let law = l.law(k);
-                l.slide[k] = if l.contact_as::<false>(k, &law, dt) {
-                    1.0
-                } else {
-                    0.0
-                };
-            }
-        }
+    #[inline(always)]
+    fn set_slide(&mut self, k: usize, slide: f64) {
+        self.slide[k] = slide;
+    }
+
+    #[inline(always)]
+    fn set_spring(&mut self, k: usize, xi: DVec3) {
+        set3(&mut self.spring, k, xi);
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::{ContactModel, Material, NormalLaw, PairProperties};
-    use crate::par::simd::simd;
-    use crate::par::simd::{get3, set3, Simd};
+    use crate::contact::model::sample_laws;
+    use crate::par::simd::levels;
+    use crate::par::simd::{get3, set3};
+    use crate::step::law_lanes::{finish_sliding, law_lanes, run_law};
 
     /// Lanes of contacts with overlaps of 0 to 20 % of the radius, sliding
     /// and sticking springs, random velocities; `mixed`: every lane its own
@@ -465,43 +369,6 @@ mod tests {
         l
     }
 
-    /// Hertz and linear laws, clamped and tensile.
-    fn test_laws() -> Vec<SlidingLaw> {
-        let mat = Material {
-            youngs_modulus: 5e6,
-            poisson_ratio: 0.3,
-            density: 2500.0,
-        };
-        let mut laws = vec![];
-        for normal in [NormalLaw::Hertz, NormalLaw::Linear { kn: 2e3, kt: 1e3 }] {
-            for tensile in [false, true] {
-                let p = PairProperties {
-                    normal,
-                    tensile,
-                    ..PairProperties::default()
-                };
-                laws.push(*ContactModel::new(&mat, &mat, &p).unwrap().sliding_law());
-            }
-        }
-        laws
-    }
-
-    /// The vector instruction sets this processor has.
-    fn levels() -> Vec<Simd> {
-        let mut levels = vec![Simd::Baseline];
-        #[cfg(target_arch = "x86_64")]
-        {
-            if std::arch::is_x86_feature_detected!("avx2") {
-                levels.push(Simd::Avx2);
-            }
-            if simd() == Simd::Avx512 {
-                levels.push(Simd::Avx512);
-            }
-        }
-        eprintln!("levels on this processor: {levels:?}");
-        levels
-    }
-
     /// Every row of `got` has the bits of `want`'s (`what` names the case).
     fn assert_same_bits(got: &Lanes, want: &Lanes, what: &str) {
         for ((name, q, g), (_, _, w)) in got.rows().into_iter().zip(want.rows()) {
@@ -522,7 +389,7 @@ mod tests {
     /// instruction set of this processor.
     #[test]
     fn sliding_contacts_evaluated_again_give_the_full_law() {
-        let (laws, levels) = (test_laws(), levels());
+        let (laws, levels) = (sample_laws(), levels());
         for (case, law) in [None, Some(&laws[0]), Some(&laws[2])]
             .into_iter()
             .enumerate()
@@ -530,8 +397,8 @@ mod tests {
             let base = lanes(case as u64 + 11, &laws, law.is_none());
             let mut want = base;
             for k in 0..BATCH {
-                let lw = law.copied().unwrap_or_else(|| want.law(k));
-                want.contact(k, &lw, 1e-5);
+                let lw = law.copied().unwrap_or_else(|| want.lane_law(k));
+                want.contact_as::<true>(k, &lw, 1e-5);
             }
             for &level in &levels {
                 let mut l = base;
@@ -542,7 +409,7 @@ mod tests {
                     sliding > 0 && 2 * sliding < BATCH,
                     "{level:?}, case {case}: {sliding} of {BATCH} lanes slide"
                 );
-                l.finish_sliding(BATCH, law, 1e-5, |k| get3(&base.spring, k));
+                finish_sliding(&mut l, BATCH, law, 1e-5, |k| get3(&base.spring, k));
                 assert_same_bits(&l, &want, &format!("{level:?}, case {case}"));
             }
         }
@@ -553,7 +420,7 @@ mod tests {
     /// run time; results must not depend on the machine's choice).
     #[test]
     fn law_lanes_same_bits_at_every_simd_level() {
-        let (laws, levels) = (test_laws(), levels());
+        let (laws, levels) = (sample_laws(), levels());
         for (case, law) in [None, Some(&laws[0]), Some(&laws[3])]
             .into_iter()
             .enumerate()

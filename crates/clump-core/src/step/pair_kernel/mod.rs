@@ -25,7 +25,7 @@
 //!    same bits. The loop takes every contact as sticking, which spares
 //!    it the Coulomb limit's square root and divisions; the few that slide
 //!    are evaluated again with the limit from their stored spring
-//!    ([`lanes::Lanes::finish_sliding`]). Pairs whose model runs the scalar
+//!    ([`crate::step::law_lanes::finish_sliding`]). Pairs whose model runs the scalar
 //!    composition ([`crate::contact::ContactModel::is_extended`], e.g.
 //!    LIGGGHTS' tangential rule) are evaluated again by
 //!    [`crate::contact::ContactModel::evaluate`] from their stored history,
@@ -53,8 +53,9 @@ use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
 use crate::par::simd::{get3, set3, Simd};
 use crate::stats::ContactStats;
+use crate::step::law_lanes::{finish_sliding, run_law};
 use glam::DVec3;
-use lanes::{run_law, Lanes};
+use lanes::Lanes;
 
 mod lanes;
 
@@ -394,7 +395,7 @@ impl RowCtx<'_> {
         // the contacts that slide, with the Coulomb limit, from their
         // stored spring
         let pairs = &batch.pair;
-        l.finish_sliding(len, law.as_ref(), self.dt, |k| {
+        finish_sliding(l, len, law.as_ref(), self.dt, |k| {
             self.tangential.read(pairs[k] as usize)
         });
         if table.any_extended() {
