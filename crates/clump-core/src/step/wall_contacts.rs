@@ -136,8 +136,11 @@ impl WallScratch {
 /// Where a chunk's touches are summed: its index and first body, and its
 /// contact statistics.
 pub(super) struct ChunkSums<'s> {
+    /// The chunk: its row of wall loads and its list of records.
     pub c: usize,
+    /// Its first body (the bodies' loads are indexed from it).
     pub b0: usize,
+    /// Its contact statistics.
     pub stat: &'s mut ContactStats,
 }
 
