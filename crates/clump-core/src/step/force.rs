@@ -5,8 +5,10 @@
 //! side to the column sum of `j`'s body, or recorded with the pair when
 //! that body is on a seam between two threads' runs,
 //! `neighbor::pairs::column_sum`; a body's row and column sums meet in
-//! `PairBody::col`), then a per-body gather in a fixed order
-//! with sphere–wall contacts and gravity, which also applies the final kick.
+//! `PairBody::col`), then a gather by chunks of bodies in a fixed order:
+//! the pair sums and gravity, the sphere–wall contacts of the bodies with
+//! wall-list entries (`step::wall_contacts`, their law run as vector
+//! lanes), and per body the final kick.
 //!
 //! Body force and torque (docs/theory.md T-11), world frame:
 //! `F = m g + Σ_s F_s`, `M = Σ_s [(x_s − r_cm) × F_s + T_s]`, where `F_s` is
@@ -419,9 +421,10 @@ fn gather_after(
             [Held::default(); FIRST_HALF_BLOCK],
         )
     };
-    // `held`: the bodies of a block, from their final kicks to their
-    // first half; one array per thread (every slot is written before it is
-    // read), not a zeroed one per chunk
+    // per thread: `walls`, the wall touches awaiting their law and the
+    // chunk's bodies' loads; `held`, the bodies of a block, from their
+    // final kicks to their first half (every slot is written before it is
+    // read, so one array per thread, not a zeroed one per chunk)
     let gather_chunk =
         |(walls, lanes, held): &mut (WallScratch, BodyLanes, [Held; FIRST_HALF_BLOCK]),
          c: usize| {
