@@ -332,12 +332,13 @@ impl<'a> WallPass<'a> {
                     let v_body = point_velocity(com, v, wb, xc);
                     let mut v_wall = wall.surface_velocity_at(xc);
                     v_wall -= n * n.dot(wall.motion.surface_velocity);
+                    let vrel = v_body - v_wall;
                     let model = self.table.index(self.sp.material[s], wall.material);
                     let t = ws.len;
                     let l = &mut ws.lanes;
                     set3(&mut l.normal, t, n);
                     l.overlap[t] = touch.overlap;
-                    set3(&mut l.vrel, t, v_body - v_wall);
+                    set3(&mut l.vrel, t, vrel);
                     l.radius[t] = r;
                     l.mass[t] = mass;
                     set3(&mut l.spring, t, history.tangential);
@@ -350,7 +351,7 @@ impl<'a> WallPass<'a> {
                         let input = ContactInput {
                             normal: n,
                             overlap: touch.overlap,
-                            rel_velocity: v_body - v_wall,
+                            rel_velocity: vrel,
                             rel_omega: wb - wall.motion.angular_velocity,
                             radius: r,
                             radius_sum: f64::INFINITY,
