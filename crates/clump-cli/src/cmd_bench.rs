@@ -61,6 +61,11 @@ pub struct BenchArgs {
     /// comparison.
     #[arg(long)]
     pub liggghts_tangential: bool,
+    /// Stone pile and mix: seed of the stones' random poses. One pile is one
+    /// sample of a random packing; several seeds give both codes the same
+    /// ensemble, for the physics comparison.
+    #[arg(long, default_value_t = crate::bench_stone::PILE_SEED)]
+    pub pose_seed: u64,
     /// Stone bed: steps of the Clump-only settling that makes the common
     /// initial condition from the loose lattice (done once, kept in `--work`).
     #[arg(long, default_value_t = 40000)]

@@ -89,6 +89,8 @@ const DENSITY: f64 = 2500.0;
 const PILE_WALL_RADIUS: f64 = 0.26;
 /// The tutorial's insertion region: cylinder radius, bottom and top, m.
 const PILE_REGION: (f64, f64, f64) = (0.25, 0.1, 0.4);
+/// The pile's and the mix's default pose seed (`--pose-seed`).
+pub const PILE_SEED: u64 = 32452843;
 /// Initial velocity of the pile's stones, m/s (the tutorial's).
 const PILE_VZ: f64 = -1.0;
 /// Side of the bed's box footprint, m (about).
@@ -193,6 +195,8 @@ pub struct Plan {
     pub threads: usize,
     /// Clump uses LIGGGHTS' tangential rule.
     pub liggghts_tangential: bool,
+    /// Pile and mix: seed of the stones' random poses.
+    pub pose_seed: u64,
 }
 
 /// Writes the case's files (initial condition, Clump scenario, LIGGGHTS
@@ -214,12 +218,13 @@ pub fn prepare(
         settle,
         threads,
         liggghts_tangential: lt,
+        pose_seed,
     } = *plan;
     let (list, fractions): (Vec<Stone>, Vec<f64>) = stones.iter().cloned().unzip();
     match case {
         StoneCase::Pile | StoneCase::Mix => {
             let kinds = kinds_by_fraction(n, &fractions);
-            let poses = pile_poses(&list, &kinds, 32452843)?;
+            let poses = pile_poses(&list, &kinds, pose_seed)?;
             let files = write_case(dir, &list, &poses, Geometry::Pile, na, nb, lt)?;
             let area = std::f64::consts::PI * PILE_WALL_RADIUS.powi(2);
             Ok((files, poses, area))
@@ -275,6 +280,7 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
             settle: args.bed_settle,
             threads: args.threads,
             liggghts_tangential: args.liggghts_tangential,
+            pose_seed: args.pose_seed,
         },
     )?;
     // spheres of each body in initial-condition order, and in all
@@ -400,7 +406,7 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
 
 fn print_physics(code: &str, p: &Physics, case: StoneCase) {
     outln!(
-        "physics {code:8}: {} bodies, mean sphere height {:.4} m, surface {:.4} m, {} {:.4}, sphere contacts {}, body contacts {}",
+        "physics {code:8}: {} bodies, mean sphere height {:.6} m, surface {:.6} m, {} {:.5}, sphere contacts {}, body contacts {}",
         p.bodies,
         p.mean_z,
         p.surface,
@@ -451,6 +457,7 @@ mod tests {
                 settle: 0,
                 threads: 1,
                 liggghts_tangential: false,
+                pose_seed: PILE_SEED,
             },
         )
         .unwrap();
@@ -604,6 +611,32 @@ mod tests {
     }
 
     /// The bed's lattice holds no overlapping stones and stays in its box.
+    /// `--pose-seed`: another seed pours another pile (every stone placed
+    /// anew, still inside the region and clear of the others), the same
+    /// seed the same pile.
+    #[test]
+    fn another_pose_seed_pours_another_pile() {
+        let stone = load_stone("procedural").unwrap();
+        let stones = [stone.clone()];
+        let kinds = vec![0; 30];
+        let a = pile_poses(&stones, &kinds, PILE_SEED).unwrap();
+        let b = pile_poses(&stones, &kinds, 1).unwrap();
+        let again = pile_poses(&stones, &kinds, 1).unwrap();
+        assert!(b.iter().zip(&again).all(|(p, q)| p.x == q.x && p.q == q.q));
+        assert!(a.iter().zip(&b).all(|(p, q)| (p.x - q.x).length() > 1e-3));
+        let (rr, z0, z1) = PILE_REGION;
+        let spheres: Vec<Vec<Sphere>> = b.iter().map(|p| placed(&stone, p).collect()).collect();
+        for (k, sp) in spheres.iter().enumerate() {
+            for s in sp {
+                assert!(s.center.truncate().length() + s.radius <= rr + 1e-12);
+                assert!(s.center.z - s.radius >= z0 - 1e-12 && s.center.z + s.radius <= z1 + 1e-12);
+            }
+            for other in &spheres[..k] {
+                assert!(!overlapping(sp, other));
+            }
+        }
+    }
+
     #[test]
     fn bed_lattice_is_loose_and_inside() {
         let stone = load_stone("procedural").unwrap();
