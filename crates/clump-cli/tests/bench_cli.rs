@@ -96,6 +96,14 @@ fn stone_bench_errors_and_a_tiny_procedural_pile() {
     ] {
         assert!(work.join(f).is_file(), "{f} missing");
     }
+    // `--pose-seed` pours another pile: another initial condition
+    let ic = std::fs::read_to_string(work.join("ic.csv")).unwrap();
+    let seeded = work.with_extension("seed7");
+    tiny_stone_bench_with("stone-pile", 10, &seeded, &["--pose-seed", "7"]);
+    let ic7 = std::fs::read_to_string(seeded.join("ic.csv")).unwrap();
+    assert_eq!(ic.lines().count(), ic7.lines().count());
+    assert_ne!(ic, ic7);
+    let _ = std::fs::remove_dir_all(&seeded);
     let _ = std::fs::remove_dir_all(&work);
     // the mixed case: six templates, each with its file for both codes
     let out = tiny_stone_bench("stone-mix", 12, &work);
@@ -113,11 +121,22 @@ fn stone_bench_errors_and_a_tiny_procedural_pile() {
 /// `clump bench --case <case>` with the procedural stone, `stones` stones
 /// and 20 + 10 steps, into `work`; its stdout (it must succeed).
 fn tiny_stone_bench(case: &str, stones: usize, work: &std::path::Path) -> String {
+    tiny_stone_bench_with(case, stones, work, &[])
+}
+
+/// [`tiny_stone_bench`] with the further arguments `extra`.
+fn tiny_stone_bench_with(
+    case: &str,
+    stones: usize,
+    work: &std::path::Path,
+    extra: &[&str],
+) -> String {
     let o = Command::new(env!("CARGO_BIN_EXE_clump"))
         .args(["bench", "--case", case, "--stone", "procedural", "--stones"])
         .arg(stones.to_string())
         .args(["--na", "20", "--nb", "10", "--work"])
         .arg(work)
+        .args(extra)
         .output()
         .unwrap();
     let out = String::from_utf8_lossy(&o.stdout).into_owned();
