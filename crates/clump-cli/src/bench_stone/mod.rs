@@ -20,8 +20,8 @@
 //! (`scenario.toml`) and the LIGGGHTS input (`liggghts/in.stone`, with
 //! `liggghts/ins.in` placing each stone at its pose).
 //!
-//! - **stone pile**: `--stones` (200) stones at random poses (seeded, no two
-//!   overlapping) in the tutorial's insertion region, the cylinder r = 0.25 m,
+//! - **stone pile**: `--stones` (200) stones at random poses (seeded by
+//!   `--pose-seed`, no two overlapping) in the tutorial's insertion region, the cylinder r = 0.25 m,
 //!   0.1 < z < 0.4 m, moving down at 1 m/s, fall into a cylinder r = 0.26 m
 //!   on the floor z = 0. Phase A: the fall; phase B: the pile, timed on its own.
 //! - **stone bed**: `--stones` (2000) stones on a loose lattice (each stone
@@ -38,7 +38,9 @@
 //!
 //! After the rounds the bench compares the physics of the two codes' final
 //! states (the last round's): bed height, packing fraction and contacts,
-//! computed the same way from the final sphere centres of both.
+//! computed the same way from the final sphere centres of both. One pile is
+//! one sample of a random packing; `scripts/pile-ensemble.py` compares the
+//! two codes over several pose seeds.
 
 use crate::cmd_bench::{median, report, run_liggghts_input, which, BenchArgs, Figures};
 use anyhow::{bail, Context, Result};
@@ -610,7 +612,6 @@ mod tests {
         }
     }
 
-    /// The bed's lattice holds no overlapping stones and stays in its box.
     /// `--pose-seed`: another seed pours another pile (every stone placed
     /// anew, still inside the region and clear of the others), the same
     /// seed the same pile.
@@ -637,6 +638,7 @@ mod tests {
         }
     }
 
+    /// The bed's lattice holds no overlapping stones and stays in its box.
     #[test]
     fn bed_lattice_is_loose_and_inside() {
         let stone = load_stone("procedural").unwrap();
