@@ -73,3 +73,16 @@ pub(crate) fn levels() -> Vec<Simd> {
     eprintln!("levels on this processor: {levels:?}");
     levels
 }
+
+/// Uniform numbers in [0, 1) from a xorshift sequence seeded by `seed`
+/// (non-zero), for tests that fill lanes with varied inputs.
+#[cfg(test)]
+pub(crate) fn unit_numbers(seed: u64) -> impl FnMut() -> f64 {
+    let mut s = seed;
+    move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    }
+}

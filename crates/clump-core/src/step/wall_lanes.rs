@@ -118,20 +118,14 @@ impl LawLanes for WallLanes {
 mod tests {
     use super::*;
     use crate::contact::model::sample_laws;
-    use crate::par::simd::levels;
+    use crate::par::simd::{levels, unit_numbers};
     use crate::step::law_lanes::{finish_sliding, run_law};
 
     /// Touches with overlaps of 0 to 20 % of the radius, random contact
     /// velocities, and springs from far inside the Coulomb cone to far
     /// outside it; `mixed`: every lane its own law.
     fn lanes(seed: u64, laws: &[SlidingLaw], mixed: bool) -> WallLanes {
-        let mut s = seed;
-        let mut u = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut u = unit_numbers(seed);
         let v3 =
             |a: f64, u: &mut dyn FnMut() -> f64| DVec3::new(u() - 0.5, u() - 0.5, u() - 0.5) * a;
         let mut l = WallLanes::zeroed();

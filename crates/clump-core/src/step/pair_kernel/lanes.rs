@@ -322,21 +322,15 @@ impl LawLanes for Lanes {
 mod tests {
     use super::*;
     use crate::contact::model::sample_laws;
-    use crate::par::simd::levels;
     use crate::par::simd::{get3, set3};
+    use crate::par::simd::{levels, unit_numbers};
     use crate::step::law_lanes::{finish_sliding, law_lanes, run_law};
 
     /// Lanes of contacts with overlaps of 0 to 20 % of the radius, sliding
     /// and sticking springs, random velocities; `mixed`: every lane its own
     /// law (Hertz and linear, clamped and tensile).
     fn lanes(seed: u64, laws: &[SlidingLaw], mixed: bool) -> Lanes {
-        let mut s = seed;
-        let mut u = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut u = unit_numbers(seed);
         let mut l = Lanes::zeroed();
         for k in 0..BATCH {
             fn v3(u: &mut impl FnMut() -> f64, a: f64) -> DVec3 {
