@@ -192,7 +192,7 @@ impl World {
     /// The touching contacts of the step that ended at the current step
     /// boundary, when that step recorded them (see the module docs).
     pub fn contacts(&self) -> Result<Contacts<'_>, ContactsError> {
-        if self.neighbors.records.step != Some(self.step) || self.phase.topology_dirty {
+        if self.neighbors.records.step != Some(self.step) || self.phase.topology_dirty() {
             return Err(ContactsError::NotRecorded { step: self.step });
         }
         Ok(Contacts {

@@ -61,7 +61,7 @@ pub struct WorldState {
 impl World {
     /// Captures the dynamic state. Call between steps.
     pub fn save_state(&mut self) -> Result<WorldState, StepError> {
-        if !self.phase.forces_ready {
+        if !self.phase.forces_ready() {
             self.prepare()?;
         }
         let mut pair_history: Vec<_> = if self.neighbors.history_pending {
@@ -201,7 +201,7 @@ impl World {
         self.neighbors.wall_list = WallList::from_per_sphere(&s.wall_key, &s.wall_hist);
         rebuild::rebuild(self, false).map_err(|e| e.to_string())?;
         self.rebuilds = self.rebuilds.saturating_sub(1);
-        self.phase.forces_ready = true;
+        self.phase.forces_evaluated();
         Ok(())
     }
 }

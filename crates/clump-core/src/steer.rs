@@ -143,8 +143,7 @@ impl World {
             .collect();
         self.bodies.permute(&keep);
         self.lost.record(crate::lost::LossCause::Removed);
-        self.phase.topology_dirty = true;
-        self.phase.forces_ready = false;
+        self.phase.topology_changed();
         Ok(())
     }
 }

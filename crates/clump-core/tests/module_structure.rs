@@ -9,16 +9,9 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
-    for e in std::fs::read_dir(dir).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_dir() {
-            sources(&p, out);
-        } else if p.extension().is_some_and(|x| x == "rs") {
-            out.push(p);
-        }
-    }
-}
+mod structure;
+
+use structure::sources;
 
 /// The top-level module a file belongs to (`lib` for lib.rs).
 fn owner(src: &Path, file: &Path) -> String {
@@ -123,4 +116,75 @@ fn no_source_file_beyond_800_lines() {
         })
         .collect();
     assert!(long.is_empty(), "files over 800 lines: {long:?}");
+}
+
+
+/// The crates whose files are checked: every crate of the repository.
+fn crate_sources() -> Vec<PathBuf> {
+    let crates = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut out: Vec<PathBuf> = std::fs::read_dir(&crates)
+        .unwrap()
+        .map(|e| e.unwrap().path().join("src"))
+        .filter(|p| p.is_dir())
+        .collect();
+    out.sort();
+    out
+}
+
+/// No circle of imports between the files of a crate: a file that imports
+/// an item of another (through `use` or a path in the code) depends on it,
+/// and no file depends on itself through others.
+#[test]
+fn no_import_circle_between_files() {
+    let mut found = Vec::new();
+    for src in crate_sources() {
+        for c in structure::circles(&src) {
+            found.push(format!("{}:\n    {}", src.display(), c.join("\n    ")));
+        }
+    }
+    assert!(found.is_empty(), "import circles:\n{}", found.join("\n"));
+}
+
+/// No function beyond 150 lines in clump-core: one screen of ideas.
+#[test]
+fn no_function_beyond_150_lines() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    sources(&src, &mut files);
+    files.sort();
+    let long: Vec<String> = files
+        .iter()
+        .flat_map(|f| structure::long_functions(f, 150))
+        .collect();
+    assert!(long.is_empty(), "functions over 150 lines:\n{}", long.join("\n"));
+}
+
+/// The structure checks find what they look for: a circle between two
+/// files and a long function, in sources written for the test.
+#[test]
+fn the_checks_find_a_circle_and_a_long_function() {
+    let dir = std::env::temp_dir().join(format!("clump-structure-{}", std::process::id()));
+    let src = dir.join("src");
+    std::fs::create_dir_all(src.join("a")).unwrap();
+    std::fs::write(src.join("lib.rs"), "mod a;\nmod c;\n").unwrap();
+    std::fs::write(src.join("a/mod.rs"), "mod b;\npub use b::Thing;\npub struct Other;\n").unwrap();
+    std::fs::write(
+        src.join("a/b.rs"),
+        "// crate::c::Gone in a comment is no import\nuse crate::c::{Helper, more::{X}};\npub struct Thing;\n",
+    )
+    .unwrap();
+    let long_body = "    let x = 1;\n".repeat(160);
+    std::fs::write(
+        src.join("c.rs"),
+        format!("pub struct Helper;\nfn uses() {{ let _ = crate::a::Thing; }}\nfn long() {{\n{long_body}}}\n"),
+    )
+    .unwrap();
+    let circles = structure::circles(&src);
+    assert_eq!(circles.len(), 1, "{circles:?}");
+    assert!(circles[0].iter().any(|l| l.starts_with("a/b.rs")), "{circles:?}");
+    assert!(circles[0].iter().any(|l| l.starts_with("c.rs")), "{circles:?}");
+    let long = structure::long_functions(&src.join("c.rs"), 150);
+    assert_eq!(long.len(), 1, "{long:?}");
+    assert!(long[0].contains("long (162 lines)"), "{long:?}");
+    std::fs::remove_dir_all(&dir).ok();
 }

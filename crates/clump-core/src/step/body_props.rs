@@ -6,7 +6,6 @@
 
 use crate::body::{AxisFlags, Bodies};
 use crate::par::shared::SharedMut;
-use crate::step::integrate::HalfKick;
 use crate::world::props::{PropsTable, TemplateProps, FREE};
 use glam::DVec3;
 
@@ -66,17 +65,22 @@ impl BodyProps {
         }
     }
 
-    /// Body `i`'s half kick over `dt/2`, `dt` (s) the table's time step:
-    /// its template row's (the same bits as computing it), else computed
-    /// from its own mass.
+    /// Body `i`'s half-kick quotients `dt/(2 m f_a)` (s/kg) and
+    /// `dt/(2 f_a)` (s) from its template row, when every body takes its
+    /// own from there (the same bits as computing them); else None.
     #[inline(always)]
-    pub(crate) unsafe fn half_kick(&self, i: usize, dt: f64) -> HalfKick {
-        let row = self.row(i);
+    pub(crate) unsafe fn row_kick(&self, i: usize) -> Option<(f64, f64)> {
         if self.uniform {
-            HalfKick::from_quotients(row.kick.0, row.kick.1)
+            Some(self.row(i).kick)
         } else {
-            HalfKick::new(dt, self.mass.read(i), row.factor)
+            None
         }
+    }
+
+    /// Body `i`'s own mass, kg, from the body arrays.
+    #[inline(always)]
+    pub(crate) unsafe fn own_mass(&self, i: usize) -> f64 {
+        self.mass.read(i)
     }
 
     /// Body `i`'s added-mass factor.

@@ -11,7 +11,7 @@
 //!   exponentials, is most of such a body's first half (a block's lanes are
 //!   all of one kind: [`LaneKind`]).
 //!
-//! A body's first half (`integrate::FirstHalf::apply`: half kick, drift,
+//! A body's first half (`first_half::FirstHalf::apply`: half kick, drift,
 //! rotation, ω, skin bound, sphere centres) is one long chain of dependent
 //! operations, 43 ns a body on the settled tetra bed (10.8 ns a
 //! sphere-step, measured as a pass of its own); the processor overlaps
@@ -34,7 +34,7 @@
 //! scalar path; a body whose bound comes near half the skin takes the exact
 //! per-sphere test.
 
-use super::integrate::HalfKick;
+use super::kick::HalfKick;
 use super::kinematics::sphere_position;
 use crate::neighbor::skin;
 use crate::par::simd::{get3, set3, Simd};
@@ -278,7 +278,7 @@ impl BodyLanes {
 
     /// Lane `k`: the half kick, the drift of the centre and of the
     /// orientation, ω from L, the rotation matrix, and the skin bound, as
-    /// `integrate::FirstHalf::apply` computes them for a free, started
+    /// `first_half::FirstHalf::apply` computes them for a free, started
     /// body of `kind`.
     #[inline(always)]
     fn lane(&mut self, k: usize, dt: f64, half_skin: f64, kind: LaneKind) {
@@ -517,7 +517,7 @@ mod tests {
             for (k, &(x, v, l, q, f, m, mass, added, i3, x_ref, q_ref, reach)) in
                 inputs.iter().enumerate()
             {
-                // the scalar path, as integrate::FirstHalf::apply takes it
+                // the scalar path, as first_half::FirstHalf::apply takes it
                 let (mut v1, mut l1) = (v, l);
                 HalfKick::new(dt, mass, added).apply_free(&mut v1, &mut l1, f, m);
                 let x1 = x + v1 * dt;

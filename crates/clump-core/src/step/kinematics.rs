@@ -19,7 +19,7 @@ pub fn sphere_position(com: DVec3, rot: &DMat3, offset: DVec3) -> DVec3 {
 }
 
 /// Recomputes every sphere's world position from its body's current pose.
-pub fn update_spheres(w: &mut World) {
+pub(crate) fn update_spheres(w: &mut World) {
     let b = &w.bodies;
     place_spheres(&mut w.spheres, b, &w.templates, |bi| {
         (b.position[bi], b.orientation[bi])
@@ -32,7 +32,7 @@ pub fn update_spheres(w: &mut World) {
 /// stored; a rebuild that needs them places the spheres there, builds, and
 /// then calls [`update_spheres`]. The same formula as every other stage, so
 /// the same bits as the spheres had at the build.
-pub fn spheres_at_reference_poses(w: &mut World) {
+pub(crate) fn spheres_at_reference_poses(w: &mut World) {
     let poses = &w.neighbors.reference_pose;
     place_spheres(&mut w.spheres, &w.bodies, &w.templates, |bi| poses[bi]);
 }

@@ -104,7 +104,7 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
         // poses (the spheres go back to the current poses below)
         rebuild_sphere_topology(w);
         spheres_at_reference_poses(w);
-        w.phase.topology_dirty = false;
+        w.phase.lists_built();
         if w.part.is_some() {
             // each sphere continues its own wall slots (filtered below)
             let n = w.spheres.len();
@@ -148,7 +148,7 @@ pub(crate) fn references_at_current_poses(w: &mut World) {
             .zip(&w.bodies.orientation)
             .map(|(&x, &q)| (x, q)),
     );
-    w.phase.topology_dirty = false;
+    w.phase.lists_built();
 }
 
 /// Builds the pair list on `w.neighbors.grid` at the spheres' positions,
@@ -196,7 +196,7 @@ fn adapt_skin(w: &mut World) {
     if w.config.skin.is_some() {
         return;
     }
-    if w.phase.topology_dirty
+    if w.phase.topology_dirty()
         || w.neighbors.reference_pose.len() != w.bodies.len()
         || w.step <= w.neighbors.built_step
     {

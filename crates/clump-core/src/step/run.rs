@@ -196,12 +196,12 @@ impl World {
     ) -> Result<Advance, StepError> {
         while self.step < event.step {
             let interrupt = hook.stop_requested();
-            if interrupt && self.phase.first_half_done.is_none() {
+            if interrupt && !self.phase.first_half_done() {
                 return Ok(Advance::Interrupted);
             }
             let last = self.step + 1 == event.step;
             self.neighbors.records.set_recording(last && event.contacts);
-            self.step_fused(!last && !interrupt)?;
+            self.take_step(!last && !interrupt)?;
             let report = self.report();
             if hook.end_of_step(&report) == Flow::Stop {
                 return Ok(Advance::Tripped);
@@ -221,7 +221,7 @@ impl World {
         hook: &mut H,
     ) -> Result<Advance, StepError> {
         let mut end = Advance::Reached;
-        if !self.phase.forces_ready {
+        if !self.phase.forces_ready() {
             // the whole world's first forces (or after new bodies), as one
             // process takes them; the rebuild splits it
             self.prepare()?;
@@ -251,7 +251,7 @@ impl World {
                 self.neighbors.records.set_recording(event.contacts);
                 super::partition::join::whole_step(self)?;
             } else {
-                self.step_partitioned()?;
+                self.take_step(false)?;
             }
             let report = self.report();
             tripped = hook.end_of_step(&report) == Flow::Stop;

@@ -178,7 +178,7 @@ impl World {
         }
         self.walls.list.push(wall);
         self.walls.loads.push(WallLoad::default());
-        self.phase.forces_ready = false;
+        self.phase.forces_changed();
         Ok(self.walls.len() - 1)
     }
 
@@ -199,8 +199,7 @@ impl World {
         let id = self.next_id;
         self.next_id += 1;
         self.bodies.push(id, init, t.mass, t.principal_inertia);
-        self.phase.topology_dirty = true;
-        self.phase.forces_ready = false;
+        self.phase.topology_changed();
         Ok(id)
     }
 

@@ -149,7 +149,7 @@ pub(crate) fn whole_step(w: &mut World) -> Result<(), StepError> {
             crate::step::rebuild::rebuild(w, false)?;
             w.rebuilds = w.rebuilds.saturating_sub(1);
         }
-        w.step_fused(false)
+        w.take_step(false)
     })();
     w.part = part;
     result
