@@ -11,10 +11,8 @@ use std::process::ExitCode;
 #[macro_use]
 mod term;
 
-mod bench_round;
-mod bench_stone;
+mod bench;
 mod check_words;
-mod cmd_bench;
 mod cmd_check;
 mod cmd_post;
 mod cmd_resume;
@@ -44,7 +42,7 @@ enum Commands {
     /// Mass properties of a multi-sphere template file (`x y z r` per line).
     Template(cmd_template::TemplateArgs),
     /// Benchmarks (the shared tetra bed; `--case stone-pile`, `stone-bed`), optionally side by side with LIGGGHTS.
-    Bench(cmd_bench::BenchArgs),
+    Bench(bench::BenchArgs),
     /// Run the validation suite and write report.md with PNG plots.
     Validate(cmd_validate::ValidateArgs),
     /// Plots, coarse-grained fields and force chains from a run's folder.
@@ -66,7 +64,7 @@ fn main() -> ExitCode {
         Commands::Resume(a) => cmd_resume::run(&a),
         Commands::Validate(a) => cmd_validate::run(&a),
         Commands::Post(a) => cmd_post::run(&a),
-        Commands::Bench(a) => match cmd_bench::run(&a) {
+        Commands::Bench(a) => match bench::run(&a) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 errln!("error: {e:#}");

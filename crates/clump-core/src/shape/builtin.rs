@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::sphere::Sphere;
+use super::template_sphere::Sphere;
 
 /// One sphere of radius `radius` (m) at the origin.
 pub fn single_sphere(radius: f64) -> Vec<Sphere> {

@@ -54,7 +54,7 @@ use thiserror::Error;
 use super::eigen::principal_frame;
 use super::error::ShapeError;
 use super::mass_properties::{mass_properties, MassProperties};
-use super::sphere::Sphere;
+use super::template_sphere::Sphere;
 use crate::wall::mesh::{MeshError, TriMesh};
 
 /// Options of [`generate`].

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::eigen::principal_frame;
 use super::error::ShapeError;
-use super::sphere::{validate_spheres, Sphere};
+use super::template_sphere::{validate_spheres, Sphere};
 use super::union_integral::union_integrals;
 
 /// Requested accuracy: results with a larger estimated relative error are

@@ -14,7 +14,7 @@
 //! Templates of fewer than [`MIN_SPHERES`] spheres are integrated whole, as
 //! one slab without cuts, so their results do not change.
 
-use super::sphere::Sphere;
+use super::template_sphere::Sphere;
 
 /// Fewest spheres for which a template is cut into slabs.
 pub(crate) const MIN_SPHERES: usize = 256;

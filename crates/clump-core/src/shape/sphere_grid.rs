@@ -8,7 +8,7 @@
 //! sorted by cell, so the candidates of a sphere come in a fixed order
 //! (no hashing), and the callers get the same results as an all-pairs loop.
 
-use super::sphere::Sphere;
+use super::template_sphere::Sphere;
 use glam::DVec3;
 
 /// Spheres bucketed by cell.
@@ -77,4 +77,44 @@ impl SphereGrid {
             }
         }
     }
+}
+
+/// Indices (ascending) of the spheres that contribute to the boundary of the
+/// union: a sphere is left out when it lies entirely inside another sphere
+/// (within a relative tolerance of a few ulps); of several coincident
+/// identical spheres only the first is kept.
+///
+/// The spheres must be valid (see [`super::template_sphere::validate_spheres`]); frame-independent.
+pub fn union_sphere_indices(spheres: &[Sphere]) -> Vec<usize> {
+    let n = spheres.len();
+    let grid = SphereGrid::new(spheres);
+    let mut keep = Vec::with_capacity(n);
+    for i in 0..n {
+        let si = &spheres[i];
+        let mut inside = false;
+        // a sphere that contains sphere i has its centre within r_max of
+        // i's, so it is among the grid neighbours
+        grid.for_each_near(spheres, i, |j| {
+            if inside {
+                return;
+            }
+            let sj = &spheres[j];
+            let d = (si.center - sj.center).length();
+            let tol = 4.0 * f64::EPSILON * (sj.radius + sj.center.abs().max_element());
+            // Is sphere i inside sphere j?
+            if d + si.radius <= sj.radius + tol {
+                // Mutual containment means (numerically) identical spheres:
+                // keep the lower index only.
+                let tol_i = 4.0 * f64::EPSILON * (si.radius + si.center.abs().max_element());
+                let mutual = d + sj.radius <= si.radius + tol_i;
+                if !mutual || j < i {
+                    inside = true;
+                }
+            }
+        });
+        if !inside {
+            keep.push(i);
+        }
+    }
+    keep
 }

@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use super::error::ShapeError;
 use super::mass_properties::{mass_properties, MassProperties};
-use super::sphere::Sphere;
+use super::template_sphere::Sphere;
 
 /// A clump template in its principal body frame: centre of mass at the origin,
 /// axes along the principal axes of inertia (ascending moments along body

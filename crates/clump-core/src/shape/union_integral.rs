@@ -34,7 +34,8 @@ use rayon::prelude::*;
 use super::disc_union::{Disc, DiscUnion};
 use super::progress::Progress;
 use super::slabs::{cut_events, slabs, Slab};
-use super::sphere::{union_sphere_indices, Sphere};
+use super::sphere_grid::union_sphere_indices;
+use super::template_sphere::Sphere;
 use super::sphere_grid::SphereGrid;
 
 /// Geometric (density-free) properties of a union of spheres, input frame.
@@ -321,7 +322,62 @@ fn breakpoints(sph: &[Sphere]) -> Vec<f64> {
 
 /// Integrates the union of `spheres` (which must be valid: non-empty, finite,
 /// radii > 0). Overlaps, duplicates and contained spheres are counted once.
+///
+/// The union is cut into slabs and, along z, into windows between the
+/// breakpoints where its cross-section changes shape; each window is
+/// integrated by Gauss–Kronrod (15 points) and the windows with the largest
+/// error are halved until the relative error is below [`TOLERANCE`].
 pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
+    let (origin, shifted, l) = centred_union(spheres);
+    let slabs = slabs(&shifted);
+    let windows = slab_windows(&slabs);
+    let new_slicer = || Slicer {
+        slabs: &slabs,
+        slab: 0,
+        discs: Vec::with_capacity(shifted.len()),
+        union: DiscUnion::new(),
+        evaluations: 0,
+    };
+    // First pass over all sub-intervals, in parallel (each result depends on
+    // its interval only, so the outcome does not depend on the thread count).
+    let progress = Progress::new(shifted.len());
+    let intervals = windows.len();
+    let segments: Vec<Segment> = windows
+        .par_iter()
+        .map_init(new_slicer, |slicer, &(slab, a, b)| {
+            let (value, error) = gk15(slicer, slab, a, b, 0.0, 1.0);
+            progress.interval_done(intervals);
+            Segment {
+                slab,
+                a,
+                b,
+                t0: 0.0,
+                t1: 1.0,
+                value,
+                error,
+                norm: 0.0,
+            }
+        })
+        .collect();
+    let mut slicer = new_slicer();
+    slicer.evaluations = 15 * segments.len();
+    // Scales of the 10 components (volume-like, ×L, ×L²), from a first estimate
+    // of the volume: the largest sphere is a lower bound.
+    let vmax = shifted.iter().map(|s| s.volume()).fold(0.0, f64::max);
+    let total_volume: f64 = segments.iter().map(|s| s.value[0]).sum::<f64>().max(vmax);
+    let scales: Vals = {
+        let (v, v1, v2) = (total_volume, total_volume * l, total_volume * l * l);
+        [v, v1, v1, v1, v2, v2, v2, v2, v2, v2]
+    };
+    let max_evaluations = 2_000_000usize.max(2000 * shifted.len());
+    let segs = refine(segments, &scales, &mut slicer, max_evaluations, &progress);
+    finish(&segs, origin, l, slicer.evaluations)
+}
+
+/// The spheres of the union's boundary, shifted to their volume-weighted
+/// centre: that centre (m), the shifted spheres, and their reach `l` from
+/// it (m).
+fn centred_union(spheres: &[Sphere]) -> (DVec3, Vec<Sphere>, f64) {
     let kept: Vec<Sphere> = union_sphere_indices(spheres)
         .into_iter()
         .map(|i| spheres[i])
@@ -342,10 +398,14 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
         .iter()
         .map(|s| s.center.length() + s.radius)
         .fold(0.0, f64::max);
+    (origin, shifted, l)
+}
 
-    // breakpoints of each slab: its spheres' events and those of its cuts
-    let slabs = slabs(&shifted);
-    let windows: Vec<(usize, f64, f64)> = slabs
+/// The integration windows along z of every slab, `(slab, z0, z1)`:
+/// between the breakpoints of its spheres and of its cuts, within the
+/// slab's extent.
+fn slab_windows(slabs: &[Slab]) -> Vec<(usize, f64, f64)> {
+    slabs
         .iter()
         .enumerate()
         .flat_map(|(k, slab)| {
@@ -373,47 +433,20 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
                 .map(|w| (k, w[0], w[1]))
                 .collect::<Vec<_>>()
         })
-        .collect();
+        .collect()
+}
 
-    let new_slicer = || Slicer {
-        slabs: &slabs,
-        slab: 0,
-        discs: Vec::with_capacity(shifted.len()),
-        union: DiscUnion::new(),
-        evaluations: 0,
-    };
-
-    // Scales of the 10 components (volume-like, ×L, ×L²), from a first estimate
-    // of the volume: the largest sphere is a lower bound.
-    let vmax = shifted.iter().map(|s| s.volume()).fold(0.0, f64::max);
-    // First pass over all sub-intervals, in parallel (each result depends on
-    // its interval only, so the outcome does not depend on the thread count).
-    let progress = Progress::new(shifted.len());
-    let intervals = windows.len();
-    let segments: Vec<Segment> = windows
-        .par_iter()
-        .map_init(new_slicer, |slicer, &(slab, a, b)| {
-            let (value, error) = gk15(slicer, slab, a, b, 0.0, 1.0);
-            progress.interval_done(intervals);
-            Segment {
-                slab,
-                a,
-                b,
-                t0: 0.0,
-                t1: 1.0,
-                value,
-                error,
-                norm: 0.0,
-            }
-        })
-        .collect();
-    let mut slicer = new_slicer();
-    slicer.evaluations = 15 * segments.len();
-    let total_volume: f64 = segments.iter().map(|s| s.value[0]).sum::<f64>().max(vmax);
-    let scales: Vals = {
-        let (v, v1, v2) = (total_volume, total_volume * l, total_volume * l * l);
-        [v, v1, v1, v1, v2, v2, v2, v2, v2, v2]
-    };
+/// Halves the segment of the largest error until the summed error,
+/// measured against `scales`, is below [`TOLERANCE`] (or the evaluations
+/// reach `max_evaluations`); returns the segments sorted by position, so
+/// that their sums run in a fixed order.
+fn refine(
+    segments: Vec<Segment>,
+    scales: &Vals,
+    slicer: &mut Slicer,
+    max_evaluations: usize,
+    progress: &Progress,
+) -> Vec<Segment> {
     let norm = |e: &Vals| -> f64 {
         e.iter()
             .zip(scales.iter())
@@ -427,7 +460,6 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
         total_err += s.norm;
         heap.push(s);
     }
-    let max_evaluations = 2_000_000usize.max(2000 * shifted.len());
     while total_err > TOLERANCE && slicer.evaluations < max_evaluations {
         let Some(seg) = heap.pop() else { break };
         progress.refining(total_err, TOLERANCE);
@@ -439,7 +471,7 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
         }
         total_err -= seg.norm;
         for (t0, t1) in [(seg.t0, tm), (tm, seg.t1)] {
-            let (value, error) = gk15(&mut slicer, seg.slab, seg.a, seg.b, t0, t1);
+            let (value, error) = gk15(slicer, seg.slab, seg.a, seg.b, t0, t1);
             let n = norm(&error);
             total_err += n;
             heap.push(Segment {
@@ -466,9 +498,15 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
             .then(p.a.total_cmp(&q.a))
             .then(p.t0.total_cmp(&q.t0))
     });
+    segs
+}
+
+/// The integrals from the refined segments: volume, centroid (shifted back
+/// by `origin`), second moment about the centroid, and the error bound.
+fn finish(segs: &[Segment], origin: DVec3, l: f64, evaluations: usize) -> UnionIntegrals {
     let mut val = [0.0; NC];
     let mut err = [0.0; NC];
-    for s in &segs {
+    for s in segs {
         for c in 0..NC {
             val[c] += s.value[c];
             err[c] += s.error[c];
@@ -502,7 +540,7 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
         centroid: origin + c,
         second_moment: second,
         relative_error_bound,
-        evaluations: slicer.evaluations,
+        evaluations,
     }
 }
 

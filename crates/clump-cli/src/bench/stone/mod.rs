@@ -42,9 +42,10 @@
 //! one sample of a random packing; `scripts/pile-ensemble.py` compares the
 //! two codes over several pose seeds.
 
-use crate::cmd_bench::{median, report, run_liggghts_input, which, BenchArgs, Figures};
+use super::measure::{median, report, run_liggghts_input, which, Figures};
+use super::BenchArgs;
 use anyhow::{bail, Context, Result};
-use clump_core::shape::sphere::Sphere;
+use clump_core::shape::Sphere;
 use clump_core::shape::template::ClumpTemplate;
 use glam::{DQuat, DVec3};
 use std::fmt::Write as _;
@@ -146,7 +147,7 @@ fn settled_bed(
         .build()?;
     let t0 = Instant::now();
     let poses = pool.install(|| -> Result<Vec<Pose>> {
-        let (mut w, _, _) = crate::cmd_bench::build_world(&files.scenario, None)?;
+        let (mut w, _, _) = super::measure::build_world(&files.scenario, None)?;
         w.prepare()?;
         w.run(steps)?;
         let th = w.thermo();
@@ -314,7 +315,7 @@ pub fn run(args: &BenchArgs, case: StoneCase) -> Result<()> {
     // compared after the loop
     let final_dump = dir.join("clump_final.dump");
     for round in 0..rounds {
-        let f = crate::bench_round::run(&crate::bench_round::Round {
+        let f = super::round::run(&super::round::Round {
             scenario: &files.scenario,
             threads: args.threads,
             skin: args.skin,
@@ -506,13 +507,13 @@ mod tests {
         let total: usize = poses.iter().map(|p| stones[p.kind].0.spheres.len()).sum();
         assert_eq!(lig.len(), total);
         // Clump's side
-        let (mut w, na, nb) = crate::cmd_bench::build_world(&files.scenario, None).unwrap();
+        let (mut w, na, nb) = super::measure::build_world(&files.scenario, None).unwrap();
         assert_eq!((na, nb), (10, 10));
         w.prepare().unwrap();
         assert_eq!(w.templates.len(), ns);
         // as the bench reads Clump's final state back: through its dump
         let dump = d.join("clump_final.dump");
-        crate::cmd_bench::write_dump(&w, &dump).unwrap();
+        super::measure::write_dump(&w, &dump).unwrap();
         let per_body: Vec<usize> = poses
             .iter()
             .map(|p| stones[p.kind].0.spheres.len())
@@ -554,7 +555,7 @@ mod tests {
         .unwrap();
         let sc = std::fs::read_to_string(&f.scenario).unwrap();
         assert!(sc.contains("tangential = \"liggghts\""));
-        crate::cmd_bench::build_world(&f.scenario, None).unwrap();
+        super::measure::build_world(&f.scenario, None).unwrap();
         let _ = std::fs::remove_dir_all(&d);
     }
 

@@ -15,9 +15,8 @@
 //! and its diagnostics (CPU times, stage shares, end state, fingerprint)
 //! on stderr, which the bench passes through.
 
-use crate::cmd_bench::{
-    build_world, cpu_seconds, peak_rss_mb, print_end_state, write_dump, BenchArgs, Figures,
-};
+use super::measure::{build_world, cpu_seconds, peak_rss_mb, print_end_state, write_dump, Figures};
+use super::BenchArgs;
 use anyhow::{bail, Context, Result};
 use std::path::Path;
 use std::process::{Command, Stdio};
