@@ -118,7 +118,6 @@ fn no_source_file_beyond_800_lines() {
     assert!(long.is_empty(), "files over 800 lines: {long:?}");
 }
 
-
 /// The crates whose files are checked: every crate of the repository.
 fn crate_sources() -> Vec<PathBuf> {
     let crates = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -156,7 +155,11 @@ fn no_function_beyond_150_lines() {
         .iter()
         .flat_map(|f| structure::long_functions(f, 150))
         .collect();
-    assert!(long.is_empty(), "functions over 150 lines:\n{}", long.join("\n"));
+    assert!(
+        long.is_empty(),
+        "functions over 150 lines:\n{}",
+        long.join("\n")
+    );
 }
 
 /// The structure checks find what they look for: a circle between two
@@ -167,7 +170,11 @@ fn the_checks_find_a_circle_and_a_long_function() {
     let src = dir.join("src");
     std::fs::create_dir_all(src.join("a")).unwrap();
     std::fs::write(src.join("lib.rs"), "mod a;\nmod c;\n").unwrap();
-    std::fs::write(src.join("a/mod.rs"), "mod b;\npub use b::Thing;\npub struct Other;\n").unwrap();
+    std::fs::write(
+        src.join("a/mod.rs"),
+        "mod b;\npub use b::Thing;\npub struct Other;\n",
+    )
+    .unwrap();
     std::fs::write(
         src.join("a/b.rs"),
         "// crate::c::Gone in a comment is no import\nuse crate::c::{Helper, more::{X}};\npub struct Thing;\n",
@@ -181,8 +188,14 @@ fn the_checks_find_a_circle_and_a_long_function() {
     .unwrap();
     let circles = structure::circles(&src);
     assert_eq!(circles.len(), 1, "{circles:?}");
-    assert!(circles[0].iter().any(|l| l.starts_with("a/b.rs")), "{circles:?}");
-    assert!(circles[0].iter().any(|l| l.starts_with("c.rs")), "{circles:?}");
+    assert!(
+        circles[0].iter().any(|l| l.starts_with("a/b.rs")),
+        "{circles:?}"
+    );
+    assert!(
+        circles[0].iter().any(|l| l.starts_with("c.rs")),
+        "{circles:?}"
+    );
     let long = structure::long_functions(&src.join("c.rs"), 150);
     assert_eq!(long.len(), 1, "{long:?}");
     assert!(long[0].contains("long (162 lines)"), "{long:?}");

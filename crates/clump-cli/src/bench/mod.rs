@@ -151,9 +151,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     match args.case {
         Case::Tetra => {}
-        Case::StonePile => {
-            return stone::run(args, stone::StoneCase::Pile)
-        }
+        Case::StonePile => return stone::run(args, stone::StoneCase::Pile),
         Case::StoneBed => return stone::run(args, stone::StoneCase::Bed),
         Case::StoneMix => return stone::run(args, stone::StoneCase::Mix),
     }

@@ -58,4 +58,15 @@ impl ContactRecords {
     pub fn set_recording(&mut self, on: bool) {
         self.recording = on;
     }
+
+    /// When the step now running stores records: one empty list of wall
+    /// contacts per gather chunk of `nchunks`. Returns whether it stores.
+    pub(crate) fn start_wall_chunks(&mut self, nchunks: usize) -> bool {
+        if self.recording {
+            self.wall.resize_with(nchunks, Vec::new);
+            self.wall.truncate(nchunks);
+            self.wall.iter_mut().for_each(Vec::clear);
+        }
+        self.recording
+    }
 }

@@ -38,9 +38,9 @@ pub mod planar;
 mod progress;
 mod set;
 mod slabs;
-pub mod template_sphere;
 mod sphere_grid;
 pub mod template;
+pub mod template_sphere;
 pub mod union_integral;
 
 pub use builtin::{cube_octet, rod, single_sphere, tetrahedron};
@@ -49,5 +49,5 @@ pub use error::ShapeError;
 pub use mass_properties::{mass_properties, naive_mass_properties, MassProperties};
 pub use set::TemplateSet;
 pub use sphere_grid::union_sphere_indices;
-pub use template_sphere::Sphere;
 pub use template::ClumpTemplate;
+pub use template_sphere::Sphere;

@@ -55,4 +55,3 @@ pub fn validate_spheres(spheres: &[Sphere]) -> Result<(), ShapeError> {
     }
     Ok(())
 }
-

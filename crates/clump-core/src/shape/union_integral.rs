@@ -35,8 +35,8 @@ use super::disc_union::{Disc, DiscUnion};
 use super::progress::Progress;
 use super::slabs::{cut_events, slabs, Slab};
 use super::sphere_grid::union_sphere_indices;
-use super::template_sphere::Sphere;
 use super::sphere_grid::SphereGrid;
+use super::template_sphere::Sphere;
 
 /// Geometric (density-free) properties of a union of spheres, input frame.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -5,8 +5,8 @@
 //! the orientation by the chosen [`crate::rotation::RotationScheme`].
 
 use super::body_props::BodyProps;
-use super::kick::{Held, Kicks};
 use super::first_half_lanes::{BodyLanes, LaneKind, LANES};
+use super::kick::{Held, Kicks};
 use super::kinematics::sphere_position;
 use crate::neighbor::skin;
 use crate::par::affinity::{body_chunk_cost, for_each_chunk_with, INITIAL_LOOP};

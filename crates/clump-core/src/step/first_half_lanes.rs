@@ -431,6 +431,27 @@ mod tests {
         lanes_against_the_scalar_path(LaneKind::NoSquish);
     }
 
+    /// The squared half angle a lane's series is judged by: the series
+    /// holds below a half angle of 0.01 (h² < 1e-4): a spherical top turns
+    /// by ω dt at once, a body under Richardson by ω dt/2 twice, ω changing
+    /// a little between the two; NO_SQUISH turns about its principal axes
+    /// y and z by ω_k dt/2 and about x by ω_x dt, and its series holds
+    /// below a half angle of 0.02 (the angles scaled here to compare with
+    /// 1e-4 alike).
+    fn series_h2(kind: LaneKind, q: DQuat, l1: DVec3, i3: DVec3, dt: f64) -> f64 {
+        match kind {
+            LaneKind::Top => 0.25 * (l1 * (dt / i3.x)).length_squared(),
+            LaneKind::Richardson => 0.25 * (omega_world(q, l1, i3) * (0.5 * dt)).length_squared(),
+            LaneKind::NoSquish => {
+                let w = crate::rotation::omega_body(q, l1, i3).abs();
+                let half = [0.5 * w.x * dt, 0.25 * w.y * dt, 0.25 * w.z * dt]
+                    .into_iter()
+                    .fold(0.0, f64::max);
+                (half / 0.02).powi(2) * 1e-4
+            }
+        }
+    }
+
     /// The lanes of `kind` against the scalar path, for the tests above.
     fn lanes_against_the_scalar_path(kind: LaneKind) {
         let general = kind != LaneKind::Top;
@@ -526,26 +547,7 @@ mod tests {
                 let rot1 = DMat3::from_quat(q1);
                 let bound = skin::body_displacement_bound(x1, q1, x_ref, q_ref, reach);
                 let within = skin::surely_within(bound, half_skin, x1.abs().max_element() + reach);
-                // the series holds below a half angle of 0.01 (h² < 1e-4):
-                // a spherical top turns by ω dt at once, a body under
-                // Richardson by ω dt/2 twice, ω changing a little between
-                // the two; NO_SQUISH turns about its principal axes y and
-                // z by ω_k dt/2 and about x by ω_x dt, and its series holds
-                // below a half angle of 0.02 (the angles scaled here to
-                // compare with 1e-4 alike)
-                let h2 = match kind {
-                    LaneKind::Top => 0.25 * (l1 * (dt / i3.x)).length_squared(),
-                    LaneKind::Richardson => {
-                        0.25 * (omega_world(q, l1, i3) * (0.5 * dt)).length_squared()
-                    }
-                    LaneKind::NoSquish => {
-                        let w = crate::rotation::omega_body(q, l1, i3).abs();
-                        let half = [0.5 * w.x * dt, 0.25 * w.y * dt, 0.25 * w.z * dt]
-                            .into_iter()
-                            .fold(0.0, f64::max);
-                        (half / 0.02).powi(2) * 1e-4
-                    }
-                };
+                let h2 = series_h2(kind, q, l1, i3, dt);
                 let clear = !general || !(0.8e-4..1.25e-4).contains(&h2);
                 for lanes in &outs {
                     if clear {

@@ -28,12 +28,14 @@ use super::body_props::BodyProps;
 use super::first_half::FirstHalf;
 use super::first_half_lanes::{BodyLanes, LANES};
 use super::kick::{FinalKick, Held};
+use super::pair_kernel::RowCtx;
 use super::pair_stage::{pair_cost, pair_forces, pair_run, prepare_pairs, row_ctx};
 use super::wall_contacts::{ChunkSums, WallPass, WallScratch};
 use crate::neighbor::pairs::column_sum;
 use crate::neighbor::{PairBody, PairList};
 use crate::par::affinity::{
-    body_chunk_cost, for_each_chunk_with, for_each_run_then, FORCE_LOOP, GATHER_LOOP,
+    body_chunk_cost, for_each_chunk_with, for_each_run_then, Balance, FORCE_LOOP, GATHER_LOOP,
+    LOOPS,
 };
 use crate::par::prefetch::prefetch;
 use crate::par::shared::{at, SharedMut};
@@ -154,13 +156,7 @@ fn gather_after(
     // thread, and move between the cores' caches twice a step
     chunk_stats.resize(nchunks, ContactStats::default());
     chunk_wall_loads.resize(nchunks * nw, WallLoad::default());
-    // this step keeps its contacts (crate::contacts): each chunk its own list
-    let recording = records.recording;
-    if recording {
-        records.wall.resize_with(nchunks, Vec::new);
-        records.wall.truncate(nchunks);
-        records.wall.iter_mut().for_each(Vec::clear);
-    }
+    let recording = records.start_wall_chunks(nchunks);
     // inside a fused stretch the bodies' centres, velocities and angular
     // velocities are current in the packed copy only (StepPhase::bodies_lag);
     // lagging bodies are kicked here, and a first half fused into this
@@ -171,7 +167,16 @@ fn gather_after(
     let ready = SharedMut::new(body_ready);
     let (rows, pairs) = if pairs_first {
         let record = recording.then(|| SharedMut::new(&mut records.pair));
-        let (rows, pairs) = row_ctx(sp, table, config, pairs, ready, record, part.as_deref(), chunk);
+        let (rows, pairs) = row_ctx(
+            sp,
+            table,
+            config,
+            pairs,
+            ready,
+            record,
+            part.as_deref(),
+            chunk,
+        );
         (Some(rows), pairs)
     } else {
         (None, &*pairs)
@@ -220,6 +225,32 @@ fn gather_after(
             recording,
         ),
     };
+    let gather_cost = body_chunk_cost(body_cost, nb, chunk);
+    let pair_stats = SharedMut::new(chunk_pair_stats);
+    let (any_stale, pair_time) =
+        run_chunks(&g, rows.as_ref(), nchunks, gather_cost, balance, pair_stats);
+    *stats = total_stats(chunk_pair_stats, chunk_stats, sp);
+    sum_wall_loads(wall_loads, chunk_wall_loads, nchunks);
+    if !next.as_ref().is_some_and(FirstHalf::lags) {
+        phase.bodies_caught_up();
+    }
+    (any_stale, pair_time)
+}
+
+/// Runs the gather's chunks, each once: the gather alone, or with `rows`
+/// each thread's run of chunks through the pair stage and then the gather
+/// ([`pairs_and_gather`]). Returns whether a sphere moved more than half
+/// the skin in a fused first half, and the time the calling thread spent
+/// in the pair stage.
+fn run_chunks(
+    g: &Gather,
+    rows: Option<&RowCtx>,
+    nchunks: usize,
+    gather_cost: impl Fn(usize) -> u64 + Sync,
+    balance: &mut [Balance; LOOPS],
+    pair_stats: SharedMut<ContactStats>,
+) -> (bool, Duration) {
+    let (chunk, nb, ready) = (g.chunk, g.nb, g.ready);
     let any_stale = AtomicBool::new(false);
     // SAFETY: every chunk is gathered once, on one thread.
     let gather_chunk = |s: &mut ChunkScratch, c: usize| {
@@ -227,11 +258,16 @@ fn gather_after(
             any_stale.store(true, Ordering::Relaxed);
         }
     };
-    let gather_cost = body_chunk_cost(body_cost, nb, chunk);
-    let pair_time = match &rows {
+    let pair_time = match rows {
         None => {
             let balance = &mut balance[GATHER_LOOP];
-            for_each_chunk_with(nchunks, gather_cost, balance, ChunkScratch::new, gather_chunk);
+            for_each_chunk_with(
+                nchunks,
+                gather_cost,
+                balance,
+                ChunkScratch::new,
+                gather_chunk,
+            );
             Duration::ZERO
         }
         Some(rows) => {
@@ -241,7 +277,6 @@ fn gather_after(
             let fed_earlier = |c: usize| {
                 (c * chunk..((c + 1) * chunk).min(nb)).any(|b| !unsafe { ready.read(b) })
             };
-            let pair_stats = SharedMut::new(chunk_pair_stats);
             for_each_run_then(
                 nchunks,
                 |c| pair_cost(rows, c),
@@ -255,11 +290,6 @@ fn gather_after(
             )
         }
     };
-    *stats = total_stats(chunk_pair_stats, chunk_stats, sp);
-    sum_wall_loads(wall_loads, chunk_wall_loads, nchunks);
-    if !next.as_ref().is_some_and(FirstHalf::lags) {
-        phase.bodies_caught_up();
-    }
     (any_stale.into_inner(), pair_time)
 }
 
@@ -546,7 +576,12 @@ impl Gather<'_> {
         }
         let mass = self.mass.mass(bi);
         let ke = 0.5 * mass * h.v.length_squared() + 0.5 * h.om.dot(h.l);
-        tally.add(ke, mass, || all_finite(ke, [com, h.f, h.m]), || self.ids[bi]);
+        tally.add(
+            ke,
+            mass,
+            || all_finite(ke, [com, h.f, h.m]),
+            || self.ids[bi],
+        );
     }
 
     /// Body `bi`'s kicked state: held in `slot` for the next first half

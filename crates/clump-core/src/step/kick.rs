@@ -27,7 +27,6 @@ pub(crate) struct Held {
     pub m: DVec3,
 }
 
-
 /// The second half kick, `v += F dt/(2 m')`, `L += M dt/(2 f_a)`, ω from L
 /// (world frame), of one body at a time: the force gather
 /// ([`super::force::gather`]) applies it to each body as soon as that body's
@@ -94,7 +93,11 @@ pub(super) struct Kicks {
 }
 
 impl Kicks {
-    pub(super) fn new(dt: f64, rotation: crate::rotation::RotationScheme, props: BodyProps) -> Self {
+    pub(super) fn new(
+        dt: f64,
+        rotation: crate::rotation::RotationScheme,
+        props: BodyProps,
+    ) -> Self {
         Kicks {
             dt,
             torque_kicks: rotation.kicks_torque(),

@@ -147,7 +147,11 @@ pub(super) fn pair_cost(rows: &RowCtx, c: usize) -> u64 {
 /// This run owns the rows of its bodies in the half list, their bodies'
 /// pair loads and its chunks' statistics slots, no other run's; the column
 /// sums it adds to are of bodies complete in it.
-pub(super) unsafe fn pair_run(rows: &RowCtx, run: std::ops::Range<usize>, stats: &SharedMut<ContactStats>) {
+pub(super) unsafe fn pair_run(
+    rows: &RowCtx,
+    run: std::ops::Range<usize>,
+    stats: &SharedMut<ContactStats>,
+) {
     let first = &rows.sp.body_first;
     let nb = first.len().saturating_sub(1);
     for c in run.clone() {

@@ -144,7 +144,13 @@ impl StepPhase {
 
     /// Whether the body arrays lag the packed pair records.
     pub(crate) fn bodies_lag(&self) -> bool {
-        matches!(self, StepPhase::FirstHalfDone { bodies_lag: true, .. })
+        matches!(
+            self,
+            StepPhase::FirstHalfDone {
+                bodies_lag: true,
+                ..
+            }
+        )
     }
 
     /// The body arrays are current again.

@@ -402,7 +402,11 @@ fn absolute(base: &[String], dir_module: bool, p: &[String]) -> Option<Vec<Strin
 /// The file that defines what `abs` names: the deepest module file on the
 /// path, or, where that file only re-exports the item, the file of its
 /// folder that defines it.
-fn resolve(files: &[File], by_module: &BTreeMap<&[String], usize>, abs: &[String]) -> Option<usize> {
+fn resolve(
+    files: &[File],
+    by_module: &BTreeMap<&[String], usize>,
+    abs: &[String],
+) -> Option<usize> {
     let (k, &file) = (0..=abs.len())
         .rev()
         .find_map(|k| by_module.get(&abs[..k]).map(|f| (k, f)))?;
@@ -491,7 +495,14 @@ pub fn circles(src: &Path) -> Vec<Vec<String>> {
                     let deps: Vec<String> = g[i]
                         .iter()
                         .filter(|d| c.contains(d))
-                        .map(|&d| files[d].path.strip_prefix(src).unwrap().display().to_string())
+                        .map(|&d| {
+                            files[d]
+                                .path
+                                .strip_prefix(src)
+                                .unwrap()
+                                .display()
+                                .to_string()
+                        })
                         .collect();
                     format!("{rel} -> [{}]", deps.join(", "))
                 })

@@ -45,8 +45,8 @@
 use super::measure::{median, report, run_liggghts_input, which, Figures};
 use super::BenchArgs;
 use anyhow::{bail, Context, Result};
-use clump_core::shape::Sphere;
 use clump_core::shape::template::ClumpTemplate;
+use clump_core::shape::Sphere;
 use glam::{DQuat, DVec3};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
