@@ -2,7 +2,7 @@
 //!
 //! A body leaves when its centre of mass crosses a non-periodic side of the
 //! domain (counted per side), when its position is no longer finite, or when
-//! a driver removes it ([`crate::World::remove_body`]). The counts are part
+//! a driver removes it (`crate::World::remove_body`). The counts are part
 //! of the checkpointed state, so a resumed run reports the same totals.
 
 use serde::{Deserialize, Serialize};

@@ -3,7 +3,7 @@
 //! same contacts, in other orders, so the contacts must add up to them to
 //! round-off; and observing or steering must not change the physics.
 
-use clump_core::contacts::{Contact, Partner};
+use clump_core::recorded_contacts::{Contact, Partner};
 use clump_core::step::run::{Driver, Event, Flow, StepHook, StepReport};
 use clump_core::testbed::tetra_lattice_bed;
 use clump_core::world::World;

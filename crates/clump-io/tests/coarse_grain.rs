@@ -169,7 +169,7 @@ fn settled_bed_mass_momentum_balance_floor_and_love_weber() {
     let outer = |f: DVec3, l: DVec3| DMat3::from_cols(f * l.x, f * l.y, f * l.z);
     for c in w.contacts().unwrap() {
         love -= outer(c.force(), l_of(c.body_id, c.point));
-        if let clump_core::contacts::Partner::Sphere { body_id, .. } = c.partner {
+        if let clump_core::recorded_contacts::Partner::Sphere { body_id, .. } = c.partner {
             love -= outer(-c.force(), l_of(body_id, c.point));
         }
     }

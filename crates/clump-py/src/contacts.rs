@@ -2,7 +2,7 @@
 //! read from `World::contacts` (the forces the kernels summed, bit for bit).
 
 use crate::errors::SimulationError;
-use clump_core::contacts::Partner;
+use clump_core::recorded_contacts::Partner;
 use clump_core::world::World;
 use numpy::ndarray::Array2;
 use numpy::IntoPyArray;

@@ -1,6 +1,6 @@
 //! Per-contact records: what a step keeps of each contact it evaluated when
 //! a driver asks for them (read through `World::contacts`, see
-//! `crate::contacts`). Written by the pair kernel and the gather.
+//! `crate::recorded_contacts`). Written by the pair kernel and the gather.
 
 use glam::DVec3;
 

@@ -12,9 +12,9 @@
 //! - [`skin`]: the rebuild trigger: any sphere displaced by more than half the
 //!   skin since the last build, which counts rotation because it measures the
 //!   sphere centres themselves.
-//! - [`body_search`]: the pair search by body pairs on many-sphere bodies,
-//!   binned by their bounding spheres ([`body_bounds`]); its rows ascend.
-//! - [`carry`]: contact histories carried across a rebuild that re-sorts
+//! - `body_search`: the pair search by body pairs on many-sphere bodies,
+//!   binned by their bounding spheres (`body_bounds`); its rows ascend.
+//! - `carry`: contact histories carried across a rebuild that re-sorts
 //!   the bodies, by storage index (global ids for a checkpoint or ranks).
 //! - [`walls`]: the wall Verlet list, the spheres with a wall to test and
 //!   their sphere–wall contact slots.
@@ -31,6 +31,7 @@ pub mod topo;
 pub mod walls;
 
 pub use grid::CellGrid;
-pub use pairs::{BodyLoad, PairBody, PairList};
+pub(crate) use pairs::PairBody;
+pub use pairs::{BodyLoad, PairList};
 pub(crate) use state::NeighborState;
 pub use topo::PairTopo;

@@ -46,7 +46,7 @@ impl BodyLoad {
 /// angular velocity, mass, column sum).
 #[repr(C, align(64))]
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct PairBody {
+pub(crate) struct PairBody {
     /// Centre of mass, world frame, m.
     pub position: DVec3,
     /// Velocity of the centre of mass, world frame, m/s.
@@ -94,7 +94,7 @@ pub struct PairList {
     /// to `topo`; torque about that body's centre of mass), recorded only
     /// when that body is on a seam between two threads' runs (see
     /// `body`), and zero for a pair that does not touch: the gather sums
-    /// such a body's column through `col_pair` ([`column_sum`]). Empty,
+    /// such a body's column through `col_pair` (`column_sum`). Empty,
     /// like the column lists, until a pair stage runs on several threads
     /// ([`PairList::prepare_seams`]): one run has no seam, and the 48
     /// bytes a pair are most of a candidate's storage.
@@ -104,7 +104,7 @@ pub struct PairList {
     /// lever arms are applied per contact in the vectorised law, and the
     /// per-sphere sums, 96 bytes a sphere read and written every step, are
     /// gone.)
-    pub body: Vec<PairBody>,
+    pub(crate) body: Vec<PairBody>,
     /// Multi-contact scale of each pair's force (`1/n` under `average`,
     /// parallel to `topo`; empty under `sum`).
     pub scale: Vec<f64>,
@@ -192,7 +192,7 @@ pub struct BuildInput<'a> {
 
 impl PairList {
     /// Copies the bodies' centres, velocities, angular velocities and
-    /// masses into [`PairList::body`] (built for `b`'s bodies), keeping the
+    /// masses into `PairList::body` (built for `b`'s bodies), keeping the
     /// column sums.
     pub fn refresh_bodies(&mut self, b: &crate::body::Bodies) {
         for (i, pb) in self.body.iter_mut().enumerate().take(b.len()) {

@@ -5,7 +5,7 @@
 //! centres) counts rotation: a sphere at distance R from the centre of mass
 //! of a body that turns by an angle α moves by up to αR. The check runs in
 //! the integration pass that moves the spheres
-//! ([`crate::step::integrate::initial`]): first per body, from its pose now
+//! (`crate::step::integrate::initial`): first per body, from its pose now
 //! and at the build ([`body_displacement_bound`]), which clears most bodies
 //! without reading their spheres' reference positions; the spheres of a
 //! body the bound does not clear take the exact test ([`moved_too_far`]).

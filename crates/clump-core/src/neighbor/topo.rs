@@ -6,7 +6,7 @@
 //! sphere), so it needs each pair's row `i`. A stored `u32` row per pair
 //! would add 4 bytes to the 8 a candidate streams in the detect pass.
 //! Instead the row follows from the previous pair's by a step of 0 to 126
-//! kept in the spare bits of the flag byte ([`RowWalk`]); a longer step (a
+//! kept in the spare bits of the flag byte (`RowWalk`); a longer step (a
 //! run of more than a hundred spheres without candidates, as in a dilute
 //! gas) is looked up in the row offsets.
 

@@ -16,7 +16,7 @@
 //!   the DEM step it replaces both angular-momentum half kicks: the torque
 //!   of the force evaluation at the start of the step, held constant in the
 //!   world frame, is taken into the body frame with `q_0` and with the
-//!   predicted `q_½` (see [`crate::step::integrate`]).
+//!   predicted `q_½` (see `crate::step::integrate`).
 //! - [`RotationScheme::ZhaoVanWachemSplit`]: velocity-Verlet half kicks of
 //!   `L` around a torque-free Zhao–van Wachem drift.
 //! - [`RotationScheme::RichardsonLiggghts`]: LIGGGHTS' own linearised

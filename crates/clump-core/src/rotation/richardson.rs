@@ -8,7 +8,7 @@
 //! recomputed from `L` at the intermediate orientation), and the extrapolation
 //! `q1 = normalise(2 q_half2 − q_full)` cancels the leading error term, giving
 //! a second-order scheme. The full step and the first half step share
-//! `ω(q)` and one exponential (see [`drift_inv`]).
+//! `ω(q)` and one exponential (see `drift_inv`).
 //!
 //! Difference from LAMMPS: LAMMPS uses the linearised sub-step
 //! `q + ½ h ω ⊗ q` followed by normalisation; we use the exact exponential map,

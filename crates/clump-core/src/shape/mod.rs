@@ -20,7 +20,7 @@
 //! in [`MassProperties::relative_error_bound`].
 //!
 //! Submodules:
-//! - [`sphere`] — the [`Sphere`] type;
+//! - `sphere` — the [`Sphere`] type;
 //! - [`error`] — [`ShapeError`];
 //! - [`mass_properties`](mod@mass_properties) — [`MassProperties`] and [`mass_properties()`];
 //! - [`template`] — [`ClumpTemplate`] (principal body frame);

@@ -326,7 +326,7 @@ fn breakpoints(sph: &[Sphere]) -> Vec<f64> {
 /// The union is cut into slabs and, along z, into windows between the
 /// breakpoints where its cross-section changes shape; each window is
 /// integrated by Gauss–Kronrod (15 points) and the windows with the largest
-/// error are halved until the relative error is below [`TOLERANCE`].
+/// error are halved until the relative error is below `TOLERANCE`.
 pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
     let (origin, shifted, l) = centred_union(spheres);
     let slabs = slabs(&shifted);

@@ -1,26 +1,26 @@
 //! The step pipeline (velocity Verlet, as LIGGGHTS `fix multisphere`).
-//! [`World::take_step`] reads top to bottom as the list of stages:
+//! `World::take_step` reads top to bottom as the list of stages:
 //!
-//! 1. **first half** ([`first_half`]): half kick of v and L ([`kick`]),
+//! 1. **first half** (`first_half`): half kick of v and L (`kick`),
 //!    drift of the centre of mass, the rotation scheme's drift of the
 //!    orientation; the body's spheres follow, r = r_cm + Aᵀ r_b
 //!    ([`kinematics`]), and are checked against the Verlet skin. Inside a
 //!    fused stretch of steps ([`World::run`]) the previous step's gather
 //!    already did it, body by body.
 //! 2. **walls move** (prescribed motion).
-//! 3. **neighbours** ([`rebuild`]), only when a sphere moved more than half
+//! 3. **neighbours** (`rebuild`), only when a sphere moved more than half
 //!    the skin or bodies were added or removed: wrap, remove lost bodies,
 //!    sort by cell, build the pair and wall lists, carry histories.
-//! 4. **pair stage** ([`pair_stage`], kernel in `pair_kernel`): the
+//! 4. **pair stage** (`pair_stage`, kernel in `pair_kernel`): the
 //!    contact force of every touching sphere pair, summed per body.
-//! 5. **gather** ([`gather`]): per body, in a fixed order, its pair load,
-//!    body forces (gravity), wall contacts ([`wall_contacts`]), the second
+//! 5. **gather** (`gather`): per body, in a fixed order, its pair load,
+//!    body forces (gravity), wall contacts (`wall_contacts`), the second
 //!    half kick, the health tally, and inside a fused stretch the next
 //!    step's first half. The pair stage and the gather are one parallel
 //!    call: each thread takes its run of bodies through both.
 //!
 //! A world split over ranks takes the same stages; the rank exchanges are
-//! hooks in them ([`ranks`]): the skin check or-ed over the ranks, the
+//! hooks in them (`ranks`): the skin check or-ed over the ranks, the
 //! bodies migrating at a rebuild, the ghosts' state and the statistics
 //! exchanged after the gather. Such a step is never fused.
 //!

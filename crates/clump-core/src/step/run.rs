@@ -63,7 +63,7 @@ impl Event {
     }
 }
 
-/// What one completed step reports to [`Driver::end_of_step`].
+/// What one completed step reports to `Driver::end_of_step`.
 #[derive(Debug, Clone, Copy)]
 pub struct StepReport<'a> {
     /// The world's step number after the step.

@@ -44,7 +44,7 @@ pub enum WallShape {
         /// Spheres inside (`true`) or outside (`false`).
         inside: bool,
     },
-    /// A triangle mesh (two-sided): [`World::meshes`](crate::world::World::meshes)`[mesh]`
+    /// A triangle mesh (two-sided): `World::meshes`](crate::world::World::meshes)`[mesh`
     /// placed at the pose `x_world = position + orientation · x_mesh`. The
     /// pose moves with the wall's motion; the mesh is static geometry. See
     /// [`super::mesh`] for the contact rules.
@@ -86,7 +86,7 @@ impl WallShape {
     /// Touching faces for a sphere with centre `x` (world, m) and radius `r`
     /// (m), within the extra distance `margin` ≥ 0 (m; use 0 for real
     /// contacts); `meshes` is the mesh table of the world
-    /// ([`World::meshes`](crate::world::World::meshes)) that
+    /// (`WallSet::meshes` (`World::walls`)) that
     /// [`WallShape::Mesh`] indexes. Writes into `out` and returns the count. A
     /// touch with `overlap ≤ 0` is only reported when `margin > 0` (it is
     /// then a near miss within the margin). A mesh wall gives one touch per

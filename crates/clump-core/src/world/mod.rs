@@ -53,18 +53,12 @@ pub struct WorldConfig {
 /// Errors while setting up a world.
 #[derive(Debug, Error)]
 pub enum WorldError {
-    /// A contact model could not be built.
-    #[error("contact model: {0}")]
-    Contact(String),
     /// A reference to a missing template or material.
     #[error("{0}")]
     BadReference(String),
     /// A value given to a steering method is out of range.
     #[error("{0}")]
     BadValue(String),
-    /// The neighbour grid could not be built.
-    #[error("neighbour grid: {0}")]
-    Grid(String),
 }
 
 /// The state of one simulation: the sets the step pipeline works on, each

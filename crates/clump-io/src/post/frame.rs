@@ -6,7 +6,7 @@
 //! network and the flow measurement work the same in both.
 
 use clump_core::boundary::Domain;
-use clump_core::contacts::Partner;
+use clump_core::recorded_contacts::Partner;
 use clump_core::sphere::SPHERE_ID_BITS;
 use clump_core::world::World;
 use glam::{DQuat, DVec3};

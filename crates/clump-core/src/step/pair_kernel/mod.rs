@@ -43,7 +43,7 @@
 //!
 //! The batch keeps pair order, so every sum is taken in ascending pair order
 //! and the results do not depend on the thread count. When the step keeps
-//! contact records ([`crate::contacts`]), the scatter also stores each
+//! contact records ([`crate::recorded_contacts`]), the scatter also stores each
 //! pair's normal, overlap and forces.
 
 use crate::contact::{ContactHistory, ContactInput};
@@ -101,7 +101,7 @@ pub(super) struct RowCtx<'a> {
     /// (written; false: the gather sums it from `load_j`).
     pub body_ready: SharedMut<bool>,
     /// Per pair: the contact's record, when this step keeps them
-    /// ([`crate::contacts`]).
+    /// ([`crate::recorded_contacts`]).
     pub record: Option<SharedMut<crate::contact::record::PairRecord>>,
     /// The vector instructions the law loop may use ([`simd`]).
     pub simd: Simd,

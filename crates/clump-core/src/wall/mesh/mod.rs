@@ -3,7 +3,7 @@
 //!
 //! A [`TriMesh`] is static geometry in its own *mesh frame* (m). A mesh wall
 //! ([`super::WallShape::Mesh`]) refers to one by index into
-//! [`World::meshes`](crate::world::World::meshes) and carries the *pose* that
+//! `WallSet::meshes` (`World::walls`) and carries the *pose* that
 //! maps the mesh frame to the world frame, `x_world = position + orientation ·
 //! x_mesh`; the pose moves with the wall's prescribed motion and is part of
 //! the checkpointed wall, the mesh itself comes from the scenario.
