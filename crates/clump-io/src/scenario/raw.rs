@@ -4,7 +4,7 @@
 //! on every field. Each table is declared with [`table!`], which also gives
 //! its list of keys ([`super::keys`]): a new key is one field here, with
 //! its doc comment. Validation and cross-references are resolved in
-//! [`super::build`]. See `docs/scenario.md` for the reference.
+//! [`super::resolve`]. See `docs/scenario.md` for the reference.
 
 use super::keys::table;
 use clump_core::contact::{DampingLaw, RollingLaw, TangentialLaw, TwistingLaw};
