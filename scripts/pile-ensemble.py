@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The stone pile's physics against LIGGGHTS over an ensemble of piles
-(docs/performance.md, section 8).
+(docs/performance.md, section 4).
 
     python3 scripts/pile-ensemble.py [--case stone-pile|stone-mix]
         [--seeds 1,2,3,...] [--threads T] [--liggghts-tangential]

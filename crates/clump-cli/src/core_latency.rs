@@ -3,7 +3,7 @@
 //!
 //! On a shared virtual machine the guest cannot see where the host places
 //! its vCPUs, and the placement changes: on the 2-vCPU Zen 3 host of
-//! docs/performance.md §8 this round trip alternated between about 100 and
+//! docs/performance.md §2 this round trip alternated between about 100 and
 //! about 450 ns within minutes, and on a quiet stretch Clump's two-thread
 //! tetra bed ran at 31.1–31.7 M sphere-steps/s in the first state and at
 //! 28.2–28.3 M in the second (the bodies on the seam between the threads'

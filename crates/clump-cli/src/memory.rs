@@ -2,8 +2,8 @@
 //!
 //! A run holds about [`BYTES_PER_SPHERE`] per sphere (sphere and body state,
 //! neighbour and contact lists), measured with `clump bench --scaling`
-//! (docs/performance.md: 530–553 bytes per sphere of tetrahedron clumps,
-//! 10⁴–10⁶ spheres), rounded up.
+//! (docs/performance.md §3: 345–553 bytes per sphere of tetrahedron clumps,
+//! 10⁴–10⁶ spheres, over the builds measured), rounded up.
 
 use clump_io::scenario::Scenario;
 

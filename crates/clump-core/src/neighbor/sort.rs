@@ -10,7 +10,7 @@
 //! cache. A Z-curve (Morton) order keeps most neighbours as close, but the
 //! partner across one of its coarse block faces lies up to half the bed
 //! away; on the periodic 10⁶-sphere tetra bed that cost 3–5 % of the step
-//! (docs/performance.md §8).
+//! (docs/performance.md §5).
 
 use super::grid::CellGrid;
 use glam::DVec3;

@@ -11,7 +11,7 @@
 
 mod bodies_file;
 pub mod bounds;
-mod build;
+mod resolve;
 pub mod diag;
 pub mod guard;
 pub mod keys;
@@ -22,15 +22,27 @@ mod source;
 pub mod units;
 
 pub use bodies_file::BodyFileFormat;
-pub use build::{DT_ERROR_FRACTION, DT_WARN_FRACTION, PACK_ERROR_FRACTION};
+pub use resolve::{DT_ERROR_FRACTION, DT_WARN_FRACTION, PACK_ERROR_FRACTION};
 pub use diag::{Diagnostic, Location, ScenarioError, Severity};
 pub use model::*;
 pub use source::{Seg, Source};
 
 use clump_core::contact::ContactTable;
-use clump_core::world::World;
+use clump_core::world::{World, WorldError};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+
+/// Why [`Scenario::build_world`] failed: the engine refused what the
+/// validation let through (the messages are the engine's).
+#[derive(Debug, thiserror::Error)]
+pub enum BuildWorldError {
+    /// The contact model of a pair of materials could not be built.
+    #[error("{0}")]
+    ContactTable(String),
+    /// A template or wall names a material that does not exist.
+    #[error(transparent)]
+    World(#[from] WorldError),
+}
 
 /// Where the files a scenario refers to come from: the disk (relative to the
 /// scenario's folder) or, when resuming, the copies stored in a checkpoint.
@@ -112,7 +124,7 @@ pub fn parse(path: &Path, text: String, mut files: Files) -> Result<Scenario, Sc
     let src = Source::new(path, text);
     let raw: raw::RawScenario =
         toml::from_str(&src.text).map_err(|e| ScenarioError::one(src.from_toml_error(&e)))?;
-    build::build(&src, raw, &mut files)
+    resolve::resolve(&src, raw, &mut files)
 }
 
 impl Scenario {
@@ -138,21 +150,19 @@ impl Scenario {
 
     /// Builds the engine world: materials, contact table, templates and
     /// walls (no bodies).
-    pub fn build_world(&self) -> Result<World, String> {
+    pub fn build_world(&self) -> Result<World, BuildWorldError> {
         let n = self.materials.len();
         let table = ContactTable::new(&self.materials, |a, b| self.pair_table[a * n + b])
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| BuildWorldError::ContactTable(e.to_string()))?;
         let mut world = World::new(self.config, self.materials.clone(), table);
         for t in &self.templates {
-            world
-                .add_template(t.template.clone(), t.material)
-                .map_err(|e| e.to_string())?;
+            world.add_template(t.template.clone(), t.material)?;
         }
         for m in &self.meshes {
             world.add_mesh(m.clone());
         }
         for w in &self.walls {
-            world.add_wall(w.clone()).map_err(|e| e.to_string())?;
+            world.add_wall(w.clone())?;
         }
         Ok(world)
     }

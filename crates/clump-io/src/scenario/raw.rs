@@ -1,9 +1,12 @@
 //! The scenario file as written (serde structures, `deny_unknown_fields`).
 //!
 //! These types mirror the TOML layout one to one; units are SI and are stated
-//! on every field. Validation and cross-references are resolved in
-//! [`super::build`]. See `docs/scenario.md` for the reference.
+//! on every field. Each table is declared with [`table!`], which also gives
+//! its list of keys ([`super::keys`]): a new key is one field here, with
+//! its doc comment. Validation and cross-references are resolved in
+//! [`super::resolve`]. See `docs/scenario.md` for the reference.
 
+use super::keys::table;
 use clump_core::contact::{DampingLaw, RollingLaw, TangentialLaw, TwistingLaw};
 use clump_core::insert::FractionBasis;
 use clump_core::multi_contact::MultiContact;
@@ -12,44 +15,44 @@ use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer};
 use std::fmt;
 
-/// The whole scenario file.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawScenario {
-    /// `[simulation]`: time step, gravity, duration.
-    pub simulation: Option<RawSimulation>,
-    /// `[domain]`: simulation box and periodic axes.
-    pub domain: Option<RawDomain>,
-    /// `[integrator]`: rotation scheme, added mass.
-    #[serde(default)]
-    pub integrator: RawIntegrator,
-    /// `[[material]]` entries.
-    #[serde(default)]
-    pub material: Vec<RawMaterial>,
-    /// `[contact]`: default contact properties for pairs not listed.
-    #[serde(default)]
-    pub contact: RawContact,
-    /// `[[pair]]` entries: contact properties of one pair of materials.
-    #[serde(default)]
-    pub pair: Vec<RawPair>,
-    /// `[[template]]` entries: clump shapes.
-    #[serde(default)]
-    pub template: Vec<RawTemplate>,
-    /// `[[mix]]` entries: particle mixes.
-    #[serde(default)]
-    pub mix: Vec<RawMix>,
-    /// `[[insert]]` entries.
-    #[serde(default)]
-    pub insert: Vec<RawInsert>,
-    /// `[[wall]]` entries.
-    #[serde(default)]
-    pub wall: Vec<RawWall>,
-    /// `[[stage]]` entries, run in order.
-    #[serde(default)]
-    pub stage: Vec<RawStage>,
-    /// `[output]`.
-    #[serde(default)]
-    pub output: RawOutput,
+table! {
+    /// The whole scenario file.
+    pub struct RawScenario {
+        /// `[simulation]`: time step, gravity, duration.
+        pub simulation: Option<RawSimulation>,
+        /// `[domain]`: simulation box and periodic axes.
+        pub domain: Option<RawDomain>,
+        /// `[integrator]`: rotation scheme, added mass.
+        #[serde(default)]
+        pub integrator: RawIntegrator,
+        /// `[[material]]` entries.
+        #[serde(default)]
+        pub material: Vec<RawMaterial>,
+        /// `[contact]`: default contact properties for pairs not listed.
+        #[serde(default)]
+        pub contact: RawContact,
+        /// `[[pair]]` entries: contact properties of one pair of materials.
+        #[serde(default)]
+        pub pair: Vec<RawPair>,
+        /// `[[template]]` entries: clump shapes.
+        #[serde(default)]
+        pub template: Vec<RawTemplate>,
+        /// `[[mix]]` entries: particle mixes.
+        #[serde(default)]
+        pub mix: Vec<RawMix>,
+        /// `[[insert]]` entries.
+        #[serde(default)]
+        pub insert: Vec<RawInsert>,
+        /// `[[wall]]` entries.
+        #[serde(default)]
+        pub wall: Vec<RawWall>,
+        /// `[[stage]]` entries, run in order.
+        #[serde(default)]
+        pub stage: Vec<RawStage>,
+        /// `[output]`.
+        #[serde(default)]
+        pub output: RawOutput,
+    }
 }
 
 /// A time step: a number of seconds or `"auto"`.
@@ -90,31 +93,31 @@ impl<'de> Deserialize<'de> for DtSpec {
     }
 }
 
-/// `[simulation]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawSimulation {
-    /// Time step, s, or `"auto"` (default `"auto"`).
-    pub dt: Option<DtSpec>,
-    /// Fraction of the Rayleigh time used by `dt = "auto"` (default 0.2).
-    pub dt_fraction: Option<f64>,
-    /// Gravity, world frame, m/s² (default `[0, 0, -9.81]`).
-    pub gravity: Option<[f64; 3]>,
-    /// Duration of the single implicit stage when there is no `[[stage]]`, s.
-    pub duration: Option<f64>,
-    /// Steps of the single implicit stage when there is no `[[stage]]`.
-    pub steps: Option<u64>,
-    /// Verlet skin, m (default: adapted to the motion at every neighbour
-    /// build, `clump_core::neighbor::skin::adapted_skin`).
-    pub skin: Option<f64>,
-    /// Several-contact treatment between two bodies (default `"sum"`).
-    pub multi_contact: Option<MultiContact>,
-    /// Largest overlap / smaller sphere radius before the run is stopped as
-    /// unstable (default 0.15).
-    pub max_overlap_ratio: Option<f64>,
-    /// Largest growth factor of the kinetic energy within about 100 steps
-    /// before the run is stopped as unstable (default 1000).
-    pub kinetic_energy_jump: Option<f64>,
+table! {
+    /// `[simulation]`.
+    pub struct RawSimulation {
+        /// Time step, s, or `"auto"` (default `"auto"`).
+        pub dt: Option<DtSpec>,
+        /// Fraction of the Rayleigh time used by `dt = "auto"` (default 0.2).
+        pub dt_fraction: Option<f64>,
+        /// Gravity, world frame, m/s² (default `[0, 0, -9.81]`).
+        pub gravity: Option<[f64; 3]>,
+        /// Duration of the single implicit stage when there is no `[[stage]]`, s.
+        pub duration: Option<f64>,
+        /// Steps of the single implicit stage when there is no `[[stage]]`.
+        pub steps: Option<u64>,
+        /// Verlet skin, m (default: adapted to the motion at every neighbour
+        /// build, `clump_core::neighbor::skin::adapted_skin`).
+        pub skin: Option<f64>,
+        /// Several-contact treatment between two bodies (default `"sum"`).
+        pub multi_contact: Option<MultiContact>,
+        /// Largest overlap / smaller sphere radius before the run is stopped as
+        /// unstable (default 0.15).
+        pub max_overlap_ratio: Option<f64>,
+        /// Largest growth factor of the kinetic energy within about 100 steps
+        /// before the run is stopped as unstable (default 1000).
+        pub kinetic_energy_jump: Option<f64>,
+    }
 }
 
 /// A coordinate axis name.
@@ -129,53 +132,53 @@ pub enum AxisName {
     Z,
 }
 
-/// `[domain]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawDomain {
-    /// Lower corner, world frame, m.
-    pub lo: Option<[f64; 3]>,
-    /// Upper corner, world frame, m.
-    pub hi: Option<[f64; 3]>,
-    /// Periodic axes, e.g. `["x", "y"]` (default none).
-    #[serde(default)]
-    pub periodic: Vec<AxisName>,
-    /// 2 (x–y plane, rotation about z) or 3 (default).
-    pub dimension: Option<u8>,
+table! {
+    /// `[domain]`.
+    pub struct RawDomain {
+        /// Lower corner, world frame, m.
+        pub lo: Option<[f64; 3]>,
+        /// Upper corner, world frame, m.
+        pub hi: Option<[f64; 3]>,
+        /// Periodic axes, e.g. `["x", "y"]` (default none).
+        #[serde(default)]
+        pub periodic: Vec<AxisName>,
+        /// 2 (motion in the x–y plane, rotation about z) or 3 (default).
+        pub dimension: Option<u8>,
+    }
 }
 
-/// `[integrator]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawIntegrator {
-    /// Rotation scheme (default the engine's, `"no_squish"`).
-    pub rotation: Option<RotationScheme>,
+table! {
+    /// `[integrator]`.
+    pub struct RawIntegrator {
+        /// Rotation scheme (default the engine's, `"no_squish"`).
+        pub rotation: Option<RotationScheme>,
+        /// `[integrator.added_mass]`.
+        pub added_mass: Option<RawAddedMass>,
+    }
+}
+
+table! {
     /// `[integrator.added_mass]`.
-    pub added_mass: Option<RawAddedMass>,
+    pub struct RawAddedMass {
+        /// Added-mass coefficient (dimensionless, default 0.5).
+        pub coefficient: Option<f64>,
+        /// Fluid density, kg/m³.
+        pub fluid_density: Option<f64>,
+    }
 }
 
-/// `[integrator.added_mass]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawAddedMass {
-    /// Added-mass coefficient (dimensionless, default 0.5).
-    pub coefficient: Option<f64>,
-    /// Fluid density, kg/m³.
-    pub fluid_density: Option<f64>,
-}
-
-/// `[[material]]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawMaterial {
-    /// Name used by templates, walls and pairs.
-    pub name: Option<String>,
-    /// Young's modulus, Pa.
-    pub youngs_modulus: Option<f64>,
-    /// Poisson's ratio (dimensionless).
-    pub poisson_ratio: Option<f64>,
-    /// Density, kg/m³.
-    pub density: Option<f64>,
+table! {
+    /// `[[material]]`.
+    pub struct RawMaterial {
+        /// Name used by templates, walls and pairs.
+        pub name: Option<String>,
+        /// Young's modulus, Pa.
+        pub youngs_modulus: Option<f64>,
+        /// Poisson's ratio (dimensionless).
+        pub poisson_ratio: Option<f64>,
+        /// Density, kg/m³.
+        pub density: Option<f64>,
+    }
 }
 
 /// Cohesion model name.
@@ -200,76 +203,75 @@ pub enum LawName {
     Linear,
 }
 
-/// `[contact]`: defaults for every pair of materials.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawContact {
-    /// Coefficient of restitution (dimensionless).
-    pub restitution: Option<f64>,
-    /// Sliding friction coefficient (dimensionless).
-    pub friction: Option<f64>,
-    /// Rolling friction coefficient (dimensionless).
-    pub rolling_friction: Option<f64>,
-    /// Normal law.
-    pub law: Option<LawName>,
-    /// Linear normal stiffness, N/m.
-    pub kn: Option<f64>,
-    /// Linear tangential stiffness, N/m.
-    pub kt: Option<f64>,
-    /// Damping law.
-    pub damping: Option<DampingLaw>,
-    /// Rolling resistance law.
-    pub rolling: Option<RollingLaw>,
-    /// Whether the normal force may be tensile (no clamp at zero).
-    pub tensile: Option<bool>,
-    /// Tangential rule: `"clump"` (default), `"liggghts"` or
-    /// `"mindlin_deresiewicz"` (micro-slip).
-    pub tangential: Option<TangentialLaw>,
-    /// Cohesion model: `"none"` (default), `"sjkr"` or `"jkr"`.
-    pub cohesion: Option<CohesionName>,
-    /// SJKR cohesion energy density, J/m³.
-    pub cohesion_energy_density: Option<f64>,
-    /// JKR work of adhesion, J/m².
-    pub surface_energy: Option<f64>,
-    /// Twisting resistance: `"none"` (default) or `"marshall"`.
-    pub twisting: Option<TwistingLaw>,
+/// The contact-law keys shared by `[contact]` and `[[pair]]`, declared
+/// here once: `contact_law_keys!(m! { args })` expands to
+/// `m! { args [keys] }`, so that [`table!`] appends them to both structs
+/// and [`RawPair::law`] copies them. A new key of the contact law is one
+/// entry here (its value type must be `Copy`).
+macro_rules! contact_law_keys {
+    ($then:ident! { $($args:tt)* }) => {
+        $then! { $($args)* [
+            /// Coefficient of restitution (dimensionless).
+            pub restitution: Option<f64>,
+            /// Sliding friction coefficient (dimensionless).
+            pub friction: Option<f64>,
+            /// Rolling friction coefficient (dimensionless).
+            pub rolling_friction: Option<f64>,
+            /// Normal law.
+            pub law: Option<LawName>,
+            /// Linear normal stiffness, N/m.
+            pub kn: Option<f64>,
+            /// Linear tangential stiffness, N/m.
+            pub kt: Option<f64>,
+            /// Damping law.
+            pub damping: Option<DampingLaw>,
+            /// Rolling resistance law.
+            pub rolling: Option<RollingLaw>,
+            /// Whether the normal force may be tensile (no clamp at zero).
+            pub tensile: Option<bool>,
+            /// Tangential rule: `"clump"` (default), `"liggghts"` or
+            /// `"mindlin_deresiewicz"` (micro-slip).
+            pub tangential: Option<TangentialLaw>,
+            /// Cohesion model: `"none"` (default), `"sjkr"` or `"jkr"`.
+            pub cohesion: Option<CohesionName>,
+            /// SJKR cohesion energy density, J/m³.
+            pub cohesion_energy_density: Option<f64>,
+            /// JKR work of adhesion, J/m².
+            pub surface_energy: Option<f64>,
+            /// Twisting resistance: `"none"` (default) or `"marshall"`.
+            pub twisting: Option<TwistingLaw>,
+        ] }
+    };
 }
 
-/// `[[pair]]`: like `[contact]` for one pair of materials.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawPair {
-    /// The two material names.
-    pub materials: Option<Vec<String>>,
-    /// Coefficient of restitution (dimensionless).
-    pub restitution: Option<f64>,
-    /// Sliding friction coefficient (dimensionless).
-    pub friction: Option<f64>,
-    /// Rolling friction coefficient (dimensionless).
-    pub rolling_friction: Option<f64>,
-    /// Normal law.
-    pub law: Option<LawName>,
-    /// Linear normal stiffness, N/m.
-    pub kn: Option<f64>,
-    /// Linear tangential stiffness, N/m.
-    pub kt: Option<f64>,
-    /// Damping law.
-    pub damping: Option<DampingLaw>,
-    /// Rolling resistance law.
-    pub rolling: Option<RollingLaw>,
-    /// Whether the normal force may be tensile (no clamp at zero).
-    pub tensile: Option<bool>,
-    /// Tangential rule: `"clump"` (default), `"liggghts"` or
-    /// `"mindlin_deresiewicz"` (micro-slip).
-    pub tangential: Option<TangentialLaw>,
-    /// Cohesion model: `"none"` (default), `"sjkr"` or `"jkr"`.
-    pub cohesion: Option<CohesionName>,
-    /// SJKR cohesion energy density, J/m³.
-    pub cohesion_energy_density: Option<f64>,
-    /// JKR work of adhesion, J/m².
-    pub surface_energy: Option<f64>,
-    /// Twisting resistance: `"none"` (default) or `"marshall"`.
-    pub twisting: Option<TwistingLaw>,
+contact_law_keys!(table! {
+    /// `[contact]`: the contact law of every pair of materials not listed
+    /// in a `[[pair]]`.
+    pub struct RawContact {}
+});
+
+contact_law_keys!(table! {
+    /// `[[pair]]`: the contact law of one pair of materials (keys left out
+    /// keep the `[contact]` value).
+    pub struct RawPair {
+        /// The two material names.
+        pub materials: Option<Vec<String>>,
+    }
+});
+
+/// `RawContact { key: $pair.key, … }` over the contact-law keys.
+macro_rules! copy_law {
+    ($pair:ident; [$($(#[doc = $doc:literal])+ pub $key:ident: $ty:ty,)*]) => {
+        RawContact { $($key: $pair.$key,)* }
+    };
+}
+
+impl RawPair {
+    /// The pair's contact-law keys, as a `[contact]` table.
+    pub fn law(&self) -> RawContact {
+        let pair = self;
+        contact_law_keys!(copy_law! { pair; })
+    }
 }
 
 /// Built-in template shape name.
@@ -286,41 +288,41 @@ pub enum ShapeName {
     CubeOctet,
 }
 
-/// `[[template]]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawTemplate {
-    /// Name.
-    pub name: Option<String>,
-    /// Material name.
-    pub material: Option<String>,
-    /// Inline spheres `[x, y, z, r]`, m (input frame).
-    pub spheres: Option<Vec<[f64; 4]>>,
-    /// LIGGGHTS `x y z r` file, relative to the scenario file.
-    pub file: Option<String>,
-    /// Built-in shape.
-    pub shape: Option<ShapeName>,
-    /// Sphere radius of a built-in shape, m.
-    pub radius: Option<f64>,
-    /// Number of spheres of a rod.
-    pub n: Option<u32>,
-    /// Centre spacing of a rod, m.
-    pub spacing: Option<f64>,
-    /// Edge of a tetrahedron or cube, m.
-    pub edge: Option<f64>,
-    /// Length scale factor applied to the spheres (dimensionless, default 1).
-    pub scale: Option<f64>,
-    /// Mass override, kg (needs `inertia`).
-    pub mass: Option<f64>,
-    /// Inertia tensor override about the centre of mass, input frame, kg m².
-    pub inertia: Option<[[f64; 3]; 3]>,
-    /// Centre of mass override, input frame, m (with `mass` and `inertia`,
-    /// which is then taken about this point).
-    pub center_of_mass: Option<[f64; 3]>,
-    /// Force flags per world axis of this template's bodies (LIGGGHTS `fflag`).
-    pub force_flags: Option<[bool; 3]>,
-    /// Torque flags per world axis of this template's bodies (LIGGGHTS `tflag`).
-    pub torque_flags: Option<[bool; 3]>,
+table! {
+    /// `[[template]]`.
+    pub struct RawTemplate {
+        /// Name.
+        pub name: Option<String>,
+        /// Material name.
+        pub material: Option<String>,
+        /// Inline spheres `[x, y, z, r]`, m (input frame).
+        pub spheres: Option<Vec<[f64; 4]>>,
+        /// LIGGGHTS `x y z r` file, relative to the scenario file.
+        pub file: Option<String>,
+        /// Built-in shape.
+        pub shape: Option<ShapeName>,
+        /// Sphere radius of a built-in shape, m.
+        pub radius: Option<f64>,
+        /// Number of spheres of a rod.
+        pub n: Option<u32>,
+        /// Centre spacing of a rod, m.
+        pub spacing: Option<f64>,
+        /// Edge of a tetrahedron or cube, m.
+        pub edge: Option<f64>,
+        /// Length scale factor applied to the spheres (dimensionless, default 1).
+        pub scale: Option<f64>,
+        /// Mass override, kg (needs `inertia`).
+        pub mass: Option<f64>,
+        /// Inertia tensor override about the centre of mass, input frame, kg m².
+        pub inertia: Option<[[f64; 3]; 3]>,
+        /// Centre of mass override, input frame, m (with `mass` and `inertia`,
+        /// which is then taken about this point).
+        pub center_of_mass: Option<[f64; 3]>,
+        /// Force flags per world axis of this template's bodies (LIGGGHTS `fflag`).
+        pub force_flags: Option<[bool; 3]>,
+        /// Torque flags per world axis of this template's bodies (LIGGGHTS `tflag`).
+        pub torque_flags: Option<[bool; 3]>,
+    }
 }
 
 /// Size distribution kind.
@@ -335,47 +337,47 @@ pub enum SizeKind {
     Normal,
 }
 
-/// Size distribution of one mix component (scale factors, dimensionless).
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawSize {
-    /// Kind of distribution.
-    pub distribution: Option<SizeKind>,
-    /// Scale of a fixed distribution.
-    pub scale: Option<f64>,
-    /// Smallest scale.
-    pub min: Option<f64>,
-    /// Largest scale.
-    pub max: Option<f64>,
-    /// Mean scale (normal).
-    pub mean: Option<f64>,
-    /// Standard deviation of the scale (normal).
-    pub std: Option<f64>,
+table! {
+    /// Size distribution of one mix component (scale factors, dimensionless).
+    pub struct RawSize {
+        /// Kind of distribution.
+        pub distribution: Option<SizeKind>,
+        /// Scale of a fixed distribution.
+        pub scale: Option<f64>,
+        /// Smallest scale.
+        pub min: Option<f64>,
+        /// Largest scale.
+        pub max: Option<f64>,
+        /// Mean scale (normal).
+        pub mean: Option<f64>,
+        /// Standard deviation of the scale (normal).
+        pub std: Option<f64>,
+    }
 }
 
-/// One `[[mix.component]]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawComponent {
-    /// Template name.
-    pub template: Option<String>,
-    /// Relative share (by number or mass), default 1.
-    pub fraction: Option<f64>,
-    /// Size distribution (default: the template as is).
-    pub size: Option<RawSize>,
+table! {
+    /// One `[[mix.component]]`.
+    pub struct RawComponent {
+        /// Template name.
+        pub template: Option<String>,
+        /// Relative share (by number or mass), default 1.
+        pub fraction: Option<f64>,
+        /// Size distribution (default: the template as is).
+        pub size: Option<RawSize>,
+    }
 }
 
-/// `[[mix]]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawMix {
-    /// Name.
-    pub name: Option<String>,
-    /// `"number"` (default) or `"mass"`.
-    pub basis: Option<FractionBasis>,
-    /// Components.
-    #[serde(default)]
-    pub component: Vec<RawComponent>,
+table! {
+    /// `[[mix]]`.
+    pub struct RawMix {
+        /// Name.
+        pub name: Option<String>,
+        /// `"number"` (default) or `"mass"`.
+        pub basis: Option<FractionBasis>,
+        /// Components.
+        #[serde(default)]
+        pub component: Vec<RawComponent>,
+    }
 }
 
 /// Region kind.
@@ -388,25 +390,25 @@ pub enum RegionKind {
     Cylinder,
 }
 
-/// An insertion region.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawRegion {
-    /// `"box"` or `"cylinder"`.
-    #[serde(rename = "type")]
-    pub kind: Option<RegionKind>,
-    /// Box lower corner, m.
-    pub lo: Option<[f64; 3]>,
-    /// Box upper corner, m.
-    pub hi: Option<[f64; 3]>,
-    /// Cylinder: centre of the bottom disc, m.
-    pub base: Option<[f64; 3]>,
-    /// Cylinder axis (unit vector, default `[0, 0, 1]`).
-    pub axis: Option<[f64; 3]>,
-    /// Cylinder radius, m.
-    pub radius: Option<f64>,
-    /// Cylinder height, m.
-    pub height: Option<f64>,
+table! {
+    /// An insertion region.
+    pub struct RawRegion {
+        /// `"box"` or `"cylinder"`.
+        #[key = "type"]
+        pub kind: Option<RegionKind>,
+        /// Box lower corner, m.
+        pub lo: Option<[f64; 3]>,
+        /// Box upper corner, m.
+        pub hi: Option<[f64; 3]>,
+        /// Cylinder: centre of the bottom disc, m.
+        pub base: Option<[f64; 3]>,
+        /// Cylinder axis (unit vector, default `[0, 0, 1]`).
+        pub axis: Option<[f64; 3]>,
+        /// Cylinder radius, m.
+        pub radius: Option<f64>,
+        /// Cylinder height, m.
+        pub height: Option<f64>,
+    }
 }
 
 /// The frame a body file's orientation quaternions map to the world frame.
@@ -434,60 +436,60 @@ pub enum InsertKind {
     Stream,
 }
 
-/// `[[insert]]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawInsert {
-    /// `"file"`, `"pack"` or `"stream"`.
-    pub kind: Option<InsertKind>,
-    /// Stage in which it happens (default the first).
-    pub stage: Option<String>,
-    /// Body file (kind = "file"), relative to the scenario file.
-    pub file: Option<String>,
-    /// Layout of the body file (kind = "file"; default `csv`).
-    pub format: Option<super::BodyFileFormat>,
-    /// Frame the body file's quaternions start from (kind = "file"; default `body`).
-    pub orientation_frame: Option<OrientationFrame>,
-    /// Mix name.
-    pub mix: Option<String>,
-    /// Template name (instead of a mix).
-    pub template: Option<String>,
-    /// Number of bodies (pack; stream: optional limit).
-    pub count: Option<u64>,
-    /// Solid volume fraction of the region (pack).
-    pub volume_fraction: Option<f64>,
-    /// Region.
-    pub region: Option<RawRegion>,
-    /// Random seed (default 1).
-    pub seed: Option<u64>,
-    /// Initial velocity, world frame, m/s.
-    pub velocity: Option<[f64; 3]>,
-    /// Fixed orientation quaternion `[w, x, y, z]` (default random).
-    pub orientation: Option<[f64; 4]>,
-    /// Stream rate, bodies/s.
-    pub bodies_per_second: Option<f64>,
-    /// Stream rate, kg/s.
-    pub kg_per_second: Option<f64>,
-    /// Stream start, s after the stage start.
-    pub start: Option<f64>,
-    /// Stream end, s after the stage start (default the end of the stage).
-    pub end: Option<f64>,
-    /// Placement attempts per body.
-    pub max_attempts: Option<u32>,
-    /// Fixed orientation as z-x-z Euler angles `[phi, theta, psi]`, rad.
-    pub euler: Option<[f64; 3]>,
-    /// Initial angular velocity, world frame, rad/s.
-    pub angular_velocity: Option<[f64; 3]>,
-    /// Force flags per world axis (override the template's).
-    pub force_flags: Option<[bool; 3]>,
-    /// Torque flags per world axis (override the template's).
-    pub torque_flags: Option<[bool; 3]>,
-    /// The bodies never move (LIGGGHTS `fix freeze`); they still make contacts.
-    pub fixed: Option<bool>,
-    /// The bodies keep their initial velocity and angular velocity.
-    pub driven: Option<bool>,
-    /// Stream: seconds each body moves ballistically after insertion.
-    pub start_after: Option<f64>,
+table! {
+    /// `[[insert]]`.
+    pub struct RawInsert {
+        /// `"file"`, `"pack"` or `"stream"`.
+        pub kind: Option<InsertKind>,
+        /// Stage in which it happens (default the first).
+        pub stage: Option<String>,
+        /// Body file (kind = "file"), relative to the scenario file.
+        pub file: Option<String>,
+        /// Layout of the body file (kind = "file"; default `csv`).
+        pub format: Option<super::BodyFileFormat>,
+        /// Frame the body file's quaternions start from (kind = "file"; default `body`).
+        pub orientation_frame: Option<OrientationFrame>,
+        /// Mix name.
+        pub mix: Option<String>,
+        /// Template name (instead of a mix).
+        pub template: Option<String>,
+        /// Number of bodies (pack; stream: optional limit).
+        pub count: Option<u64>,
+        /// Solid volume fraction of the region (pack).
+        pub volume_fraction: Option<f64>,
+        /// Region.
+        pub region: Option<RawRegion>,
+        /// Random seed (default 1).
+        pub seed: Option<u64>,
+        /// Initial velocity, world frame, m/s.
+        pub velocity: Option<[f64; 3]>,
+        /// Fixed orientation quaternion `[w, x, y, z]` (default random).
+        pub orientation: Option<[f64; 4]>,
+        /// Stream rate, bodies/s.
+        pub bodies_per_second: Option<f64>,
+        /// Stream rate, kg/s.
+        pub kg_per_second: Option<f64>,
+        /// Stream start, s after the stage start.
+        pub start: Option<f64>,
+        /// Stream end, s after the stage start (default the end of the stage).
+        pub end: Option<f64>,
+        /// Placement attempts per body.
+        pub max_attempts: Option<u32>,
+        /// Fixed orientation as z-x-z Euler angles `[phi, theta, psi]`, rad (pack, stream).
+        pub euler: Option<[f64; 3]>,
+        /// Initial angular velocity, world frame, rad/s (pack, stream).
+        pub angular_velocity: Option<[f64; 3]>,
+        /// Force flags per world axis (override the template's).
+        pub force_flags: Option<[bool; 3]>,
+        /// Torque flags per world axis (override the template's).
+        pub torque_flags: Option<[bool; 3]>,
+        /// The bodies never move (LIGGGHTS `fix freeze`); they still make contacts.
+        pub fixed: Option<bool>,
+        /// The bodies keep their initial velocity and angular velocity.
+        pub driven: Option<bool>,
+        /// Stream: seconds each body moves ballistically after insertion.
+        pub start_after: Option<f64>,
+    }
 }
 
 /// Wall kind.
@@ -504,218 +506,222 @@ pub enum WallKind {
     Mesh,
 }
 
-/// A rotation given as an axis and an angle (right-hand rule).
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawRotation {
-    /// Rotation axis, world frame (normalised; need not be unit).
-    pub axis: Option<[f64; 3]>,
-    /// Rotation angle, degrees (positive: counter-clockwise looking down the axis).
-    pub angle: Option<f64>,
+table! {
+    /// A rotation given as an axis and an angle (right-hand rule).
+    pub struct RawRotation {
+        /// Rotation axis, world frame (normalised; need not be unit).
+        pub axis: Option<[f64; 3]>,
+        /// Rotation angle, degrees (positive: counter-clockwise looking down the axis).
+        pub angle: Option<f64>,
+    }
 }
 
-/// `[[wall]]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawWall {
-    /// Name.
-    pub name: Option<String>,
-    /// Material name.
-    pub material: Option<String>,
-    /// `"plane"`, `"cylinder"`, `"box"`, `"mesh"`.
-    #[serde(rename = "type")]
-    pub kind: Option<WallKind>,
-    /// Mesh: STL or OBJ file, relative to the scenario file.
-    pub file: Option<String>,
-    /// Mesh: factor from file units to m (default 1).
-    pub scale: Option<f64>,
-    /// Mesh: rotation applied after scaling (file frame → world frame).
-    pub rotation: Option<RawRotation>,
-    /// Mesh: translation applied last, world frame, m (default 0).
-    pub offset: Option<[f64; 3]>,
-    /// Mesh: contacts whose normals are closer than this angle are one
-    /// contact patch, degrees (default 15).
-    pub merge_angle: Option<f64>,
-    /// Point about which the torque on the wall is reported, world frame, m
-    /// (default: the centre of rotation, moving with the wall).
-    pub torque_point: Option<[f64; 3]>,
-    /// Plane: a point; cylinder: a point on the axis, m.
-    pub point: Option<[f64; 3]>,
-    /// Plane unit normal (towards the particles).
-    pub normal: Option<[f64; 3]>,
-    /// Cylinder unit axis.
-    pub axis: Option<[f64; 3]>,
-    /// Cylinder radius, m.
-    pub radius: Option<f64>,
-    /// Cylinder/box: particles inside (default true).
-    pub inside: Option<bool>,
-    /// Box lower corner, m.
-    pub lo: Option<[f64; 3]>,
-    /// Box upper corner, m.
-    pub hi: Option<[f64; 3]>,
-    /// Translation velocity, m/s.
-    pub velocity: Option<[f64; 3]>,
-    /// Angular velocity about `center`, rad/s.
-    pub angular_velocity: Option<[f64; 3]>,
-    /// Centre of rotation, m.
-    pub center: Option<[f64; 3]>,
-    /// Extra tangential surface velocity, m/s.
-    pub surface_velocity: Option<[f64; 3]>,
-    /// Several-contact treatment.
-    pub multi_contact: Option<MultiContact>,
-    /// Whether the wall is active at the start (default true).
-    pub active: Option<bool>,
+table! {
+    /// `[[wall]]`.
+    pub struct RawWall {
+        /// Name.
+        pub name: Option<String>,
+        /// Material name.
+        pub material: Option<String>,
+        /// `"plane"`, `"cylinder"`, `"box"`, `"mesh"`.
+        #[key = "type"]
+        pub kind: Option<WallKind>,
+        /// Mesh: STL or OBJ file, relative to the scenario file.
+        pub file: Option<String>,
+        /// Mesh: factor from file units to m (default 1).
+        pub scale: Option<f64>,
+        /// Mesh: rotation applied after scaling (file frame → world frame).
+        pub rotation: Option<RawRotation>,
+        /// Mesh: translation applied last, world frame, m (default 0).
+        pub offset: Option<[f64; 3]>,
+        /// Mesh: contacts whose normals are closer than this angle are one
+        /// contact patch, degrees (default 15).
+        pub merge_angle: Option<f64>,
+        /// Point about which the torque on the wall is reported, world frame, m
+        /// (default: the centre of rotation, moving with the wall).
+        pub torque_point: Option<[f64; 3]>,
+        /// Plane: a point; cylinder: a point on the axis, m.
+        pub point: Option<[f64; 3]>,
+        /// Plane unit normal (towards the particles).
+        pub normal: Option<[f64; 3]>,
+        /// Cylinder unit axis.
+        pub axis: Option<[f64; 3]>,
+        /// Cylinder radius, m.
+        pub radius: Option<f64>,
+        /// Cylinder/box: particles inside (default true).
+        pub inside: Option<bool>,
+        /// Box lower corner, m.
+        pub lo: Option<[f64; 3]>,
+        /// Box upper corner, m.
+        pub hi: Option<[f64; 3]>,
+        /// Translation velocity, m/s.
+        pub velocity: Option<[f64; 3]>,
+        /// Angular velocity about `center`, rad/s.
+        pub angular_velocity: Option<[f64; 3]>,
+        /// Centre of rotation, m.
+        pub center: Option<[f64; 3]>,
+        /// Extra tangential surface velocity, m/s.
+        pub surface_velocity: Option<[f64; 3]>,
+        /// Several-contact treatment.
+        pub multi_contact: Option<MultiContact>,
+        /// Whether the wall is active at the start (default true).
+        pub active: Option<bool>,
+    }
 }
 
-/// `[[stage.wall]]`: a change to one wall at the start of a stage.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawWallChange {
-    /// Wall name.
-    pub name: Option<String>,
-    /// Set active/inactive.
-    pub active: Option<bool>,
-    /// New translation velocity, m/s.
-    pub velocity: Option<[f64; 3]>,
-    /// New angular velocity, rad/s.
-    pub angular_velocity: Option<[f64; 3]>,
-    /// New centre of rotation, m.
-    pub center: Option<[f64; 3]>,
-    /// New surface velocity, m/s.
-    pub surface_velocity: Option<[f64; 3]>,
+table! {
+    /// `[[stage.wall]]`: a change to one wall at the start of a stage.
+    pub struct RawWallChange {
+        /// Wall name.
+        pub name: Option<String>,
+        /// Set active/inactive.
+        pub active: Option<bool>,
+        /// New translation velocity, m/s.
+        pub velocity: Option<[f64; 3]>,
+        /// New angular velocity, rad/s.
+        pub angular_velocity: Option<[f64; 3]>,
+        /// New centre of rotation, m.
+        pub center: Option<[f64; 3]>,
+        /// New surface velocity, m/s.
+        pub surface_velocity: Option<[f64; 3]>,
+    }
 }
 
-/// `[[stage.body]]`: a change to one body at the start of a stage.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawBodyChange {
-    /// Global body id (1-based, in insertion order).
-    pub id: Option<u64>,
-    /// New centre-of-mass velocity, m/s.
-    pub velocity: Option<[f64; 3]>,
-    /// New angular velocity (world frame), rad/s.
-    pub angular_velocity: Option<[f64; 3]>,
+table! {
+    /// `[[stage.body]]`: a change to one body at the start of a stage.
+    pub struct RawBodyChange {
+        /// Global body id (1-based, in insertion order).
+        pub id: Option<u64>,
+        /// New centre-of-mass velocity, m/s.
+        pub velocity: Option<[f64; 3]>,
+        /// New angular velocity (world frame), rad/s.
+        pub angular_velocity: Option<[f64; 3]>,
+    }
 }
 
-/// `[[stage]]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawStage {
-    /// Name (default `stage1`, `stage2`, …).
-    pub name: Option<String>,
-    /// Duration, s.
-    pub duration: Option<f64>,
-    /// Duration in steps.
-    pub steps: Option<u64>,
-    /// New gravity from this stage on, m/s².
-    pub gravity: Option<[f64; 3]>,
-    /// Wall changes.
-    #[serde(default)]
-    pub wall: Vec<RawWallChange>,
-    /// Body changes.
-    #[serde(default)]
-    pub body: Vec<RawBodyChange>,
+table! {
+    /// `[[stage]]`.
+    pub struct RawStage {
+        /// Name (default `stage1`, `stage2`, …).
+        pub name: Option<String>,
+        /// Duration, s.
+        pub duration: Option<f64>,
+        /// Duration in steps.
+        pub steps: Option<u64>,
+        /// New gravity from this stage on, m/s².
+        pub gravity: Option<[f64; 3]>,
+        /// Wall changes.
+        #[serde(default)]
+        pub wall: Vec<RawWallChange>,
+        /// Body changes.
+        #[serde(default)]
+        pub body: Vec<RawBodyChange>,
+    }
 }
 
-/// An output interval.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawEvery {
-    /// Interval, s.
-    pub every: Option<f64>,
-    /// Interval, steps.
-    pub every_steps: Option<u64>,
+table! {
+    /// An output interval.
+    pub struct RawEvery {
+        /// Interval, s.
+        pub every: Option<f64>,
+        /// Interval, steps.
+        pub every_steps: Option<u64>,
+    }
 }
 
-/// `[output.trajectory]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawTrajectory {
-    /// Body ids (1-based global ids, in insertion order).
-    #[serde(default)]
-    pub bodies: Vec<u64>,
-    /// Interval, s.
-    pub every: Option<f64>,
-    /// Interval, steps.
-    pub every_steps: Option<u64>,
-    /// Also write the z-x-z Euler angles and the rows of A.
-    pub euler: Option<bool>,
-    /// Also write the body's force and torque.
-    pub loads: Option<bool>,
+table! {
+    /// `[output.trajectory]`.
+    pub struct RawTrajectory {
+        /// Body ids (1-based global ids, in insertion order).
+        #[serde(default)]
+        pub bodies: Vec<u64>,
+        /// Interval, s.
+        pub every: Option<f64>,
+        /// Interval, steps.
+        pub every_steps: Option<u64>,
+        /// Also write the z-x-z Euler angles and the rows of A.
+        pub euler: Option<bool>,
+        /// Also write the body's force and torque.
+        pub loads: Option<bool>,
+    }
 }
 
-/// `[output]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawOutput {
-    /// Output directory, relative to the working directory (default `out`).
-    pub directory: Option<String>,
-    /// VTK interval.
-    pub vtk: Option<RawEvery>,
-    /// Thermo interval.
-    pub thermo: Option<RawEvery>,
-    /// Checkpoint interval.
-    pub checkpoint: Option<RawEvery>,
-    /// Trajectories.
-    pub trajectory: Option<RawTrajectory>,
-    /// File format of the VTK frames.
-    pub vtk_format: Option<crate::vtu::VtkFormat>,
-    /// Contact frames interval.
-    pub contacts: Option<RawEvery>,
-    /// Coarse-grained fields.
-    pub fields: Option<RawFields>,
-    /// Flow measurement probes.
-    #[serde(default)]
-    pub flow: Vec<RawFlow>,
+table! {
+    /// `[output]`.
+    pub struct RawOutput {
+        /// Output directory, relative to the working directory (default `out`).
+        pub directory: Option<String>,
+        /// VTK interval.
+        pub vtk: Option<RawEvery>,
+        /// Thermo interval.
+        pub thermo: Option<RawEvery>,
+        /// Checkpoint interval.
+        pub checkpoint: Option<RawEvery>,
+        /// Trajectories.
+        pub trajectory: Option<RawTrajectory>,
+        /// File format of the VTK frames: `"vtp"` (default) or `"vtu"` (for readers without
+        /// PolyData, e.g. meshio).
+        pub vtk_format: Option<crate::vtu::VtkFormat>,
+        /// Contact frames interval: contacts_<step>.vtp (one line per contact),
+        /// network_<step>.csv and a bodies frame at the same step.
+        pub contacts: Option<RawEvery>,
+        /// Coarse-grained fields (`[output.fields]`).
+        pub fields: Option<RawFields>,
+        /// Flow measurement probes (`[[output.flow]]`), written to flow.csv.
+        #[serde(default)]
+        pub flow: Vec<RawFlow>,
+    }
 }
 
-/// `[[output.flow]]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawFlow {
-    /// Name.
-    pub name: Option<String>,
-    /// `plane` or `region`.
-    #[serde(rename = "type")]
-    pub kind: Option<String>,
-    /// Plane point, m.
-    pub point: Option<[f64; 3]>,
-    /// Plane normal.
-    pub normal: Option<[f64; 3]>,
-    /// Region lower corner, m.
-    pub lo: Option<[f64; 3]>,
-    /// Region upper corner, m.
-    pub hi: Option<[f64; 3]>,
-    /// Diameter bin edges, m.
-    pub bins: Option<Vec<f64>>,
-    /// Interval, s.
-    pub every: Option<f64>,
-    /// Interval, steps.
-    pub every_steps: Option<u64>,
+table! {
+    /// `[[output.flow]]`.
+    pub struct RawFlow {
+        /// Name of the probe (prefix of its flow.csv columns).
+        pub name: Option<String>,
+        /// `"plane"` (bodies crossing, with direction) or `"region"` (bodies held, size
+        /// distribution).
+        #[key = "type"]
+        pub kind: Option<String>,
+        /// A point of the plane, m.
+        pub point: Option<[f64; 3]>,
+        /// Normal of the plane; crossings along it count as positive.
+        pub normal: Option<[f64; 3]>,
+        /// Lower corner of the region (box), m.
+        pub lo: Option<[f64; 3]>,
+        /// Upper corner of the region (box), m.
+        pub hi: Option<[f64; 3]>,
+        /// Edges of the volume-equivalent diameter bins of the region's size distribution, m,
+        /// ascending.
+        pub bins: Option<Vec<f64>>,
+        /// Sampling interval, s (the same for every probe).
+        pub every: Option<f64>,
+        /// Sampling interval, steps.
+        pub every_steps: Option<u64>,
+    }
 }
 
-/// `[output.fields]`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawFields {
-    /// Interval, s.
-    pub every: Option<f64>,
-    /// Interval, steps.
-    pub every_steps: Option<u64>,
-    /// Grid axes.
-    #[serde(default)]
-    pub axes: Vec<String>,
-    /// Cells per axis.
-    #[serde(default)]
-    pub cells: Vec<i64>,
-    /// Lower ends, m.
-    pub lo: Option<Vec<f64>>,
-    /// Upper ends, m.
-    pub hi: Option<Vec<f64>>,
-    /// Kernel.
-    pub kernel: Option<crate::post::kernel::Kernel>,
-    /// Kernel width, m.
-    pub width: Option<f64>,
-    /// Time average.
-    pub average: Option<bool>,
+table! {
+    /// `[output.fields]`.
+    pub struct RawFields {
+        /// Interval, s.
+        pub every: Option<f64>,
+        /// Interval, steps.
+        pub every_steps: Option<u64>,
+        /// Grid axes, 1 to 3 of `"x"`, `"y"`, `"z"`; the fields are averaged over the others.
+        #[serde(default)]
+        pub axes: Vec<String>,
+        /// Cells along each grid axis (≥ 1).
+        #[serde(default)]
+        pub cells: Vec<i64>,
+        /// Lower end along each grid axis, m (default: the domain's).
+        pub lo: Option<Vec<f64>>,
+        /// Upper end along each grid axis, m (default: the domain's).
+        pub hi: Option<Vec<f64>>,
+        /// `"gaussian"` (cut at 3 widths, default) or `"lucy"`.
+        pub kernel: Option<crate::post::kernel::Kernel>,
+        /// Kernel width (standard deviation), m.
+        pub width: Option<f64>,
+        /// Also write the time average over the frames (default false).
+        pub average: Option<bool>,
+    }
 }

@@ -234,13 +234,9 @@ impl Source {
         // unknown key
         if let Some(rest) = msg.strip_prefix("unknown field `") {
             let (name, tail) = rest.split_once('`').unwrap_or((rest, ""));
-            let listed = backticked(tail);
-            // the key table of the struct serde names (the same keys, checked
-            // by a unit test); serde's own list if none matches
-            let allowed: Vec<String> = match super::keys::table_with(&listed) {
-                Some(t) => t.iter().map(|k| k.name.to_string()).collect(),
-                None => listed,
-            };
+            // serde lists the fields of the struct in order: the keys of its
+            // table (`keys::Table::KEYS`, declared with it)
+            let allowed = backticked(tail);
             let mut d = self.diag_at(
                 Severity::Error,
                 span.clone(),

@@ -22,7 +22,7 @@ pub(super) fn pair_table(
         cx,
         &[K("contact")],
         "[contact]",
-        &ContactFields::from_contact(&raw.contact),
+        &raw.contact,
         &PairProperties::default(),
     )?;
     let mut pair_table = vec![default_props; nmat * nmat];
@@ -66,81 +66,18 @@ pub(super) fn pair_table(
                     prev + 1
                 )));
         }
-        let props = contact_props(
-            cx,
-            &t,
-            "[[pair]]",
-            &ContactFields::from_pair(pr),
-            &default_props,
-        )?;
+        let props = contact_props(cx, &t, "[[pair]]", &pr.law(), &default_props)?;
         pair_table[a * nmat + b] = props;
         pair_table[b * nmat + a] = props;
     }
     Ok(pair_table)
 }
 
-/// Contact keys shared by `[contact]` and `[[pair]]`.
-struct ContactFields {
-    restitution: Option<f64>,
-    friction: Option<f64>,
-    rolling_friction: Option<f64>,
-    law: Option<LawName>,
-    kn: Option<f64>,
-    kt: Option<f64>,
-    damping: Option<clump_core::contact::DampingLaw>,
-    rolling: Option<RollingLaw>,
-    tensile: Option<bool>,
-    tangential: Option<TangentialLaw>,
-    cohesion: Option<CohesionName>,
-    cohesion_energy_density: Option<f64>,
-    surface_energy: Option<f64>,
-    twisting: Option<TwistingLaw>,
-}
-
-impl ContactFields {
-    fn from_contact(c: &RawContact) -> Self {
-        ContactFields {
-            restitution: c.restitution,
-            friction: c.friction,
-            rolling_friction: c.rolling_friction,
-            law: c.law,
-            kn: c.kn,
-            kt: c.kt,
-            damping: c.damping,
-            rolling: c.rolling,
-            tensile: c.tensile,
-            tangential: c.tangential,
-            cohesion: c.cohesion,
-            cohesion_energy_density: c.cohesion_energy_density,
-            surface_energy: c.surface_energy,
-            twisting: c.twisting,
-        }
-    }
-    fn from_pair(c: &RawPair) -> Self {
-        ContactFields {
-            restitution: c.restitution,
-            friction: c.friction,
-            rolling_friction: c.rolling_friction,
-            law: c.law,
-            kn: c.kn,
-            kt: c.kt,
-            damping: c.damping,
-            rolling: c.rolling,
-            tensile: c.tensile,
-            tangential: c.tangential,
-            cohesion: c.cohesion,
-            cohesion_energy_density: c.cohesion_energy_density,
-            surface_energy: c.surface_energy,
-            twisting: c.twisting,
-        }
-    }
-}
-
 fn contact_props(
     cx: &mut Cx,
     base: &[Seg],
     what: &str,
-    f: &ContactFields,
+    f: &RawContact,
     dflt: &PairProperties,
 ) -> R<PairProperties> {
     let p = |k: &'static str| {
@@ -308,7 +245,7 @@ fn cohesion(
     cx: &mut Cx,
     base: &[Seg],
     what: &str,
-    f: &ContactFields,
+    f: &RawContact,
     dflt: CohesionLaw,
 ) -> R<CohesionLaw> {
     let p = |k: &'static str| {

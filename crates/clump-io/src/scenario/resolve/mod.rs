@@ -1,6 +1,6 @@
-//! Validation and resolution of a parsed scenario: names become indices,
-//! defaults are filled in, physical ranges are checked and every error points
-//! at the offending key.
+//! Resolution of a parsed scenario ([`super::raw`] → [`super::Scenario`]):
+//! names become indices, defaults are filled in, physical ranges are checked
+//! and every error points at the offending key.
 #![allow(
     clippy::result_large_err,
     clippy::neg_cmp_op_on_partial_ord,
@@ -229,7 +229,7 @@ fn unique_name(cx: &Cx, path: &[Seg], kind: &str, name: &str, seen: &[String]) -
 }
 
 /// Resolves a parsed scenario.
-pub(super) fn build(
+pub(super) fn resolve(
     src: &Source,
     raw: RawScenario,
     files: &mut Files,
@@ -241,7 +241,7 @@ pub(super) fn build(
         errors: Vec::new(),
         section_start: 0,
     };
-    let sc = build_inner(&mut cx, raw).map_err(|first| {
+    let sc = resolve_sections(&mut cx, raw).map_err(|first| {
         let mut diagnostics = vec![first];
         diagnostics.append(&mut cx.errors);
         super::ScenarioError { diagnostics }
@@ -252,7 +252,7 @@ pub(super) fn build(
     })
 }
 
-fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
+fn resolve_sections(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
     let sim = raw.simulation.clone().unwrap_or_default();
     // sections in file order; each runs when what it needs was built
     let mats = cx.section(|cx| materials::materials(cx, &raw));
