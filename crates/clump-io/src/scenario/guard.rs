@@ -20,7 +20,7 @@
 //! numerical blow-up overshoots it (and the NaN and kinetic-energy checks
 //! remain).
 
-use super::model::{InsertDef, InsertSpec, MixDef, StageDef, TemplateDef};
+use super::model::{InsertDef, InsertSpec, MixDef, OverlapEstimate, StageDef, TemplateDef};
 use clump_core::contact::material::effective_modulus;
 use clump_core::contact::normal::hertz_max_overlap;
 use clump_core::contact::{Material, NormalLaw, PairProperties};
@@ -111,17 +111,6 @@ impl MotionBounds {
 
 /// Factor between the largest expected overlap and the guard's default.
 pub const GUARD_MARGIN: f64 = 1.5;
-
-/// The largest expected overlap of a scenario's contacts.
-#[derive(Debug, Clone, PartialEq)]
-pub struct OverlapEstimate {
-    /// Overlap / smaller sphere radius of the worst contact.
-    pub ratio: f64,
-    /// The impact speed assumed, m/s.
-    pub speed: f64,
-    /// The worst contact, in words (e.g. "template 'stone' on wall material 'steel'").
-    pub what: String,
-}
 
 /// Inputs of [`expected_overlap`], borrowed from the scenario being built.
 pub struct Contacts<'a> {

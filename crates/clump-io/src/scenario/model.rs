@@ -55,7 +55,7 @@ pub struct Scenario {
     pub stability: HealthLimits,
     /// The largest overlap expected for the scenario's contacts, from which
     /// the default `max_overlap_ratio` follows (see [`super::guard`]).
-    pub overlap_estimate: Option<super::guard::OverlapEstimate>,
+    pub overlap_estimate: Option<OverlapEstimate>,
     /// Stages, in order.
     pub stages: Vec<StageDef>,
     /// Output settings.
@@ -298,4 +298,15 @@ impl Scenario {
             } => expected_bodies * mean_spheres(&spec.mix),
         }
     }
+}
+
+/// The largest expected overlap of a scenario's contacts.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OverlapEstimate {
+    /// Overlap / smaller sphere radius of the worst contact.
+    pub ratio: f64,
+    /// The impact speed assumed, m/s.
+    pub speed: f64,
+    /// The worst contact, in words (e.g. "template 'stone' on wall material 'steel'").
+    pub what: String,
 }
