@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every test suite of the repository, the README's one test command:
-#   1. the Rust suite: cargo test --workspace --profile ci (needs no Python);
+#   1. the Rust suite: cargo test --workspace --profile ci (needs no Python),
+#      and clump-core's API docs built without a warning;
 #   2. the Python package: a virtual environment (.venv-test, or $CLUMP_VENV)
 #      with maturin, numpy, pytest and matplotlib, `pip install
 #      ./crates/clump-py` (the same `ci` build) and its pytest suite, which also
@@ -19,6 +20,9 @@ cd "$(dirname "$0")/.."
 status=0
 echo "== Rust suite: cargo test --workspace --profile ci --no-fail-fast"
 cargo test --workspace --profile ci --no-fail-fast || status=1
+
+echo "== API docs: cargo doc -p clump-core --no-deps, warnings are errors"
+RUSTDOCFLAGS="-D warnings" cargo doc -p clump-core --no-deps --profile ci || status=1
 
 echo "== Python package: crates/clump-py"
 venv="${CLUMP_VENV:-.venv-test}"

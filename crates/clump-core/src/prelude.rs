@@ -6,9 +6,9 @@
 pub use crate::body::BodyInit;
 pub use crate::boundary::Domain;
 pub use crate::contact::{ContactError, ContactTable, Material, PairProperties};
-pub use crate::recorded_contacts::{Contact, ContactsError, Partner};
 pub use crate::insert::InsertError;
 pub use crate::multi_contact::MultiContact;
+pub use crate::recorded_contacts::{Contact, ContactsError, Partner};
 pub use crate::rotation::RotationScheme;
 pub use crate::shape::{ClumpTemplate, ShapeError, Sphere};
 pub use crate::step::run::{Advance, Driver, Event, Flow, RunEnd, StepHook, StepReport, Steps};

@@ -5,7 +5,7 @@
 
 use crate::arrays::{column, quats, rows_in, vec3s, UNIT_TOLERANCE};
 use crate::errors::value_error;
-use crate::sim::Simulation;
+use crate::simulation::Simulation;
 use clump_core::sphere::SPHERE_ID_BITS;
 use glam::{DQuat, DVec3};
 use numpy::ndarray::Array2;

@@ -12,6 +12,7 @@ mod dict;
 mod errors;
 mod order;
 mod sim;
+mod simulation;
 mod template;
 mod walls;
 
@@ -23,7 +24,7 @@ fn _clump(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ScenarioError", py.get_type::<errors::ScenarioError>())?;
     m.add("SimulationError", py.get_type::<errors::SimulationError>())?;
     m.add("UnstableError", py.get_type::<errors::UnstableError>())?;
-    m.add_class::<sim::Simulation>()?;
+    m.add_class::<simulation::Simulation>()?;
     m.add_class::<access::Bodies>()?;
     m.add_class::<access::Spheres>()?;
     m.add_class::<walls::Walls>()?;

@@ -4,96 +4,15 @@
 
 use crate::access::{Bodies, Spheres};
 use crate::errors::{self, from_run, value_error};
+use crate::simulation::{steps_for, Simulation, SIGNAL_POLL};
 use crate::walls::Walls;
-use clump_io::run::{Runner, Tally, Until};
+use clump_io::run::{Runner, Until};
 use clump_io::scenario::{self, Files};
 use clump_io::vtk::VtkSeries;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
-
-/// How long the engine steps without the GIL before it looks for Ctrl-C.
-const SIGNAL_POLL: Duration = Duration::from_millis(100);
-
-/// A scenario's run: the runner of `clump run`, stepped from Python (SI
-/// units; vectors in the world frame unless named `_body`).
-#[pyclass(module = "clump._clump")]
-pub struct Simulation {
-    pub(crate) runner: Runner,
-    /// Steps and wall time since the simulation was made (for the manifest).
-    tally: Tally,
-    /// Body storage indices sorted by id (see `order`).
-    pub(crate) body_order: Vec<usize>,
-    /// Sphere storage indices sorted by sphere id.
-    pub(crate) sphere_order: Vec<usize>,
-    /// VTK series started by `write_vtk`, by folder.
-    vtk: Vec<(PathBuf, VtkSeries)>,
-}
-
-impl Simulation {
-    /// The simulation of `runner`, with the boundary work of its current
-    /// step done (stage start, insertions, outputs), as a step would begin.
-    fn new(py: Python<'_>, mut runner: Runner) -> PyResult<Self> {
-        let text = runner.scenario().text.clone();
-        let step = runner.world().step;
-        let mut tally = Tally::start(&runner);
-        runner
-            .step_until(step, true, None, &mut tally)
-            .map_err(|e| from_run(py, e, Some(&text)))?;
-        Ok(Simulation {
-            runner,
-            tally,
-            body_order: Vec::new(),
-            sphere_order: Vec::new(),
-            vtk: Vec::new(),
-        })
-    }
-
-    /// Body storage indices in id order.
-    pub(crate) fn bodies_sorted(&mut self) -> &[usize] {
-        crate::order::ascending(&self.runner.world().bodies.id, &mut self.body_order);
-        &self.body_order
-    }
-
-    /// Sphere storage indices in sphere-id order.
-    pub(crate) fn spheres_sorted(&mut self) -> &[usize] {
-        crate::order::ascending(&self.runner.world().spheres().gid, &mut self.sphere_order);
-        &self.sphere_order
-    }
-
-    /// The run of a parsed scenario, with an output folder or without.
-    fn open(
-        py: Python<'_>,
-        sc: Result<scenario::Scenario, scenario::ScenarioError>,
-        text: &str,
-        output_dir: Option<PathBuf>,
-        overwrite: bool,
-    ) -> PyResult<Self> {
-        let sc = sc.map_err(|e| errors::from_scenario(py, &e, Some(text)))?;
-        let runner = match output_dir {
-            Some(d) => Runner::new_in(sc, &d, overwrite),
-            None => Runner::detached(sc),
-        }
-        .map_err(|e| from_run(py, e, Some(text)))?;
-        Simulation::new(py, runner)
-    }
-
-    fn text(&self) -> String {
-        self.runner.scenario().text.clone()
-    }
-}
-
-/// Steps for `time` seconds at `dt`: the smallest whole number of steps
-/// that covers it (to a relative 1e-9, so that 1 s at 1e-4 s is 10 000).
-fn steps_for(time: f64, dt: f64) -> PyResult<u64> {
-    if !(time.is_finite() && time >= 0.0) {
-        return Err(value_error(format!(
-            "time must be finite and >= 0 (s), got {time}"
-        )));
-    }
-    Ok((time / dt * (1.0 - 1e-9)).ceil().max(0.0) as u64)
-}
+use std::time::Instant;
 
 #[pymethods]
 impl Simulation {

@@ -3,7 +3,7 @@
 
 use crate::arrays::{vec3_in, vec3_out};
 use crate::errors::value_error;
-use crate::sim::Simulation;
+use crate::simulation::Simulation;
 use numpy::PyArray1;
 use pyo3::exceptions::PyKeyError;
 use pyo3::prelude::*;

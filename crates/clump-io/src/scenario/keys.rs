@@ -13,9 +13,6 @@
 //! [`REGION_TYPE_KEYS`], [`INSERT_KIND_KEYS`]); a unit test checks that
 //! each is a key of its table.
 
-#[allow(unused_imports)] // named in the docs
-use super::raw::*;
-
 /// One key of a scenario table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Key {

@@ -11,20 +11,20 @@
 
 mod bodies_file;
 pub mod bounds;
-mod resolve;
 pub mod diag;
 pub mod guard;
 pub mod keys;
 mod model;
 mod placement;
 pub mod raw;
+mod resolve;
 mod source;
 pub mod units;
 
 pub use bodies_file::BodyFileFormat;
-pub use resolve::{DT_ERROR_FRACTION, DT_WARN_FRACTION, PACK_ERROR_FRACTION};
 pub use diag::{Diagnostic, Location, ScenarioError, Severity};
 pub use model::*;
+pub use resolve::{DT_ERROR_FRACTION, DT_WARN_FRACTION, PACK_ERROR_FRACTION};
 pub use source::{Seg, Source};
 
 use clump_core::contact::ContactTable;
