@@ -3,13 +3,12 @@
 //! the sphere topology and the pair list (history carried by global sphere
 //! ids).
 
-use super::kinematics::{spheres_at_reference_poses, update_spheres};
+use super::kinematics::{rebuild_sphere_topology, spheres_at_reference_poses, update_spheres};
 use super::StepError;
 use crate::neighbor::carry::{old_body_index, NONE};
 use crate::neighbor::pairs::BuildInput;
 use crate::neighbor::walls::NO_ENTRY;
 use crate::neighbor::{sort, CellGrid};
-use crate::sphere::sphere_gid;
 use crate::world::World;
 
 /// Rebuilds the neighbour list. With `reorganize`, bodies are first wrapped,
@@ -307,53 +306,4 @@ pub(crate) fn static_walls(walls: &[crate::wall::Wall]) -> u64 {
         }
     }
     m
-}
-
-/// Recomputes the per-sphere topology arrays from the bodies (storage order).
-pub(crate) fn rebuild_sphere_topology(w: &mut World) {
-    let sp = &mut w.spheres;
-    sp.body.clear();
-    sp.index_in_template.clear();
-    sp.gid.clear();
-    sp.radius.clear();
-    sp.material.clear();
-    sp.body_first.clear();
-    // exactly the spheres' number: grown by doubling, the tables would
-    // hold up to twice the memory they use
-    let total: usize = w
-        .bodies
-        .template
-        .iter()
-        .map(|&t| (w.templates.first[t as usize + 1] - w.templates.first[t as usize]) as usize)
-        .sum();
-    sp.body.reserve_exact(total);
-    sp.index_in_template.reserve_exact(total);
-    sp.gid.reserve_exact(total);
-    sp.radius.reserve_exact(total);
-    sp.material.reserve_exact(total);
-    sp.body_first.reserve_exact(w.bodies.len() + 1);
-    for (b, (&t, &id)) in w.bodies.template.iter().zip(&w.bodies.id).enumerate() {
-        sp.body_first.push(sp.body.len() as u32);
-        let (s0, s1) = (
-            w.templates.first[t as usize],
-            w.templates.first[t as usize + 1],
-        );
-        for k in 0..(s1 - s0) {
-            sp.body.push(b as u32);
-            sp.index_in_template.push(k);
-            sp.gid.push(sphere_gid(id, k));
-            sp.radius.push(w.templates.radius[(s0 + k) as usize]);
-            sp.material.push(w.templates.material(t as usize));
-        }
-    }
-    sp.body_first.push(sp.body.len() as u32);
-    let n = sp.body.len();
-    sp.state.resize(n, Default::default());
-    for (s, st) in sp.state.iter_mut().enumerate() {
-        st.radius = sp.radius[s];
-    }
-    sp.single_material = match sp.material.first() {
-        Some(&m) if sp.material.iter().all(|&x| x == m) => Some(m),
-        _ => None,
-    };
 }

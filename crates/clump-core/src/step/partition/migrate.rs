@@ -22,10 +22,9 @@ use crate::neighbor::sort::CellOrder;
 use crate::neighbor::walls::{WallList, WALL_SLOTS};
 use crate::neighbor::CellGrid;
 use crate::sphere::SPHERE_ID_BITS;
+use crate::step::kinematics::rebuild_sphere_topology;
 use crate::step::kinematics::sphere_position;
-use crate::step::rebuild::{
-    build_pair_list, build_wall_lists, rebuild_sphere_topology, references_at_current_poses,
-};
+use crate::step::rebuild::{build_pair_list, build_wall_lists, references_at_current_poses};
 use crate::step::StepError;
 use crate::world::World;
 use glam::{DMat3, DVec3};

@@ -5,8 +5,8 @@
 use crate::neighbor::grid::Extent;
 use crate::neighbor::CellGrid;
 use crate::partition::Regions;
+use crate::step::kinematics::rebuild_sphere_topology;
 use crate::step::kinematics::spheres_at_reference_poses;
-use crate::step::rebuild::rebuild_sphere_topology;
 use crate::step::StepError;
 use crate::world::World;
 use glam::DVec3;
