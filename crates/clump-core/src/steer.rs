@@ -108,6 +108,24 @@ impl World {
         Ok(())
     }
 
+    /// Sets the angular velocity `omega` (rad/s) and angular momentum `l`
+    /// (kg m²/s), world frame, of the body at storage index `i` as given,
+    /// neither derived from the other: the state of a restart from another
+    /// code, which carries both.
+    pub fn set_body_angular_state_at(
+        &mut self,
+        i: usize,
+        omega: DVec3,
+        l: DVec3,
+    ) -> Result<(), WorldError> {
+        finite("angular velocity", omega)?;
+        finite("angular momentum", l)?;
+        self.check_index(i)?;
+        self.bodies.angular_velocity[i] = omega;
+        self.bodies.angular_momentum[i] = l;
+        Ok(())
+    }
+
     /// Sets the DOF flags of the body at storage index `i`: per world axis,
     /// whether the force (`force_flag`) and the torque (`torque_flag`)
     /// component acts (LIGGGHTS `fflag`/`tflag`; a frozen component keeps

@@ -229,3 +229,10 @@ mod tests {
         assert_eq!(b.wall_contacts, 6 * a.wall_contacts);
     }
 }
+
+/// Fault injection for tests: sets body `i`'s velocity (m/s, world frame)
+/// past the steering methods' checks, so that a test can plant a value no
+/// driver could (a NaN) and watch the health check find it.
+pub fn inject_body_velocity(w: &mut World, i: usize, v: DVec3) {
+    w.bodies.velocity[i] = v;
+}

@@ -53,7 +53,7 @@ fn test1(mat: Material, n_coincident: usize, average: bool) -> (Impact, f64) {
     let imp = run_impact(&mut w, a, r, 100_000);
     let ia = w.body_index(a).unwrap();
     let ib = w.body_index(b).unwrap();
-    let rebound = 0.5 * (w.bodies.velocity[ib].x - w.bodies.velocity[ia].x);
+    let rebound = 0.5 * (w.bodies().velocity[ib].x - w.bodies().velocity[ia].x);
     (imp, rebound)
 }
 
@@ -121,7 +121,7 @@ fn wall_impact(mat: Material, props: PairProperties, r: f64, v: f64, dt: f64) ->
         .unwrap();
     let imp = run_impact(&mut w, a, r, 1_000_000);
     let ia = w.body_index(a).unwrap();
-    (imp, w.bodies.velocity[ia].z)
+    (imp, w.bodies().velocity[ia].z)
 }
 
 #[test]
@@ -240,15 +240,19 @@ fn test7_no_slip_sign_convention() {
         .unwrap();
     run_impact(&mut w, a, r, 1_000_000);
     let (ia, ib) = (w.body_index(a).unwrap(), w.body_index(b).unwrap());
-    let (wa, wb) = (w.bodies.angular_velocity[ia], w.bodies.angular_velocity[ib]);
+    let (wa, wb) = (
+        w.bodies().angular_velocity[ia],
+        w.bodies().angular_velocity[ib],
+    );
     eprintln!(
         "test7: ω' = {wa} / {wb}; v' = {} / {}",
-        w.bodies.velocity[ia], w.bodies.velocity[ib]
+        w.bodies().velocity[ia],
+        w.bodies().velocity[ib]
     );
     assert!((wa.z - omega).abs() / omega < 1e-6);
     assert!((wb.z + omega).abs() / omega < 1e-6);
-    assert!(w.bodies.velocity[ia].y.abs() < 1e-9 && w.bodies.velocity[ib].y.abs() < 1e-9);
-    assert!(w.bodies.velocity[ia].x < 0.0, "sphere a rebounds");
+    assert!(w.bodies().velocity[ia].y.abs() < 1e-9 && w.bodies().velocity[ib].y.abs() < 1e-9);
+    assert!(w.bodies().velocity[ia].x < 0.0, "sphere a rebounds");
 }
 
 /// Test 4: oblique impact on a wall on the gross-sliding branch (θ ≥ 35°):
@@ -285,8 +289,8 @@ fn test4_oblique_gross_sliding() {
             .unwrap();
         run_impact(&mut w, id, r, 1_000_000);
         let b = w.body_index(id).unwrap();
-        let v = w.bodies.velocity[b];
-        let om = w.bodies.angular_velocity[b];
+        let v = w.bodies().velocity[b];
+        let om = w.bodies().angular_velocity[b];
         let vt_ref = vt - mu * (1.0 + e) * vn;
         // spin about −y for motion along +x on a floor with normal +z (ω' = −(5/2)μ(1+e)v_n/R in the paper's sense)
         let om_ref = 2.5 * mu * (1.0 + e) * vn / r;

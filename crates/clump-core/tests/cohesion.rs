@@ -226,7 +226,7 @@ fn stretched_jkr_contact_survives_a_rebuild() {
     let a = w.add_body(&at(0.0)).unwrap();
     let b = w.add_body(&at(2.0 * r - 1e-6)).unwrap();
     w.run(1).unwrap();
-    let force = |w: &clump_core::world::World| -w.bodies.force[w.body_index(a).unwrap()].x;
+    let force = |w: &clump_core::world::World| -w.bodies().force[w.body_index(a).unwrap()].x;
     assert!(force(&w) > 0.0, "pressed together");
     // pulled apart to half the critical separation
     let d = -0.5 * dc;

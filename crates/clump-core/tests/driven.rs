@@ -71,24 +71,24 @@ fn fixed_body_never_moves_and_carries_the_weight() {
         .unwrap();
     w.run(30_000).unwrap();
     let b = w.body_index(fixed).unwrap();
-    assert_eq!(w.bodies.position[b], x0);
-    assert_eq!(w.bodies.orientation[b], q0);
-    assert_eq!(w.bodies.velocity[b], DVec3::ZERO);
-    assert_eq!(w.bodies.angular_velocity[b], DVec3::ZERO);
+    assert_eq!(w.bodies().position[b], x0);
+    assert_eq!(w.bodies().orientation[b], q0);
+    assert_eq!(w.bodies().velocity[b], DVec3::ZERO);
+    assert_eq!(w.bodies().angular_velocity[b], DVec3::ZERO);
     // the body force holds its own weight (gravity acts on every body) plus
     // the contact load
-    let contact = w.bodies.force[b] - mass(big) * g;
+    let contact = w.bodies().force[b] - mass(big) * g;
     let ms = mass(small);
     let s = w.body_index(free).unwrap();
     eprintln!(
         "contact force on the fixed body {contact}, weight of the resting sphere {}; resting v = {}",
         ms * G,
-        w.bodies.velocity[s]
+        w.bodies().velocity[s]
     );
-    assert!(w.bodies.velocity[s].length() < 1e-6);
+    assert!(w.bodies().velocity[s].length() < 1e-6);
     assert!((contact - ms * g).length() < 1e-6 * ms * G);
     // it rests at the static Hertz overlap
-    let delta = big + small - (w.bodies.position[s] - x0).length();
+    let delta = big + small - (w.bodies().position[s] - x0).length();
     let theory = hertz_overlap(big, small, ms * G);
     eprintln!("overlap {delta:.6e} m, Hertz {theory:.6e} m");
     assert!(rel(delta, theory) < 1e-4);
@@ -118,10 +118,10 @@ fn driven_body_follows_its_prescribed_motion() {
     w.run(n).unwrap();
     let b = w.body_index(id).unwrap();
     let time = n as f64 * 1e-4;
-    let x = w.bodies.position[b];
+    let x = w.bodies().position[b];
     let angle = om.length() * time;
     let exact = DQuat::from_axis_angle(om.normalize(), angle) * q0;
-    let dq = (w.bodies.orientation[b] * exact.conjugate()).normalize();
+    let dq = (w.bodies().orientation[b] * exact.conjugate()).normalize();
     let err_angle = 2.0 * dq.xyz().length();
     eprintln!(
         "driven: x = {x} (exact {}), orientation error {err_angle:.2e} rad after {angle:.1} rad",
@@ -129,12 +129,12 @@ fn driven_body_follows_its_prescribed_motion() {
     );
     assert!((x - v * time).length() < 1e-12 * (v * time).length());
     assert!(err_angle < 1e-11);
-    assert_eq!(w.bodies.velocity[b], v);
-    assert_eq!(w.bodies.angular_velocity[b], om);
+    assert_eq!(w.bodies().velocity[b], v);
+    assert_eq!(w.bodies().angular_velocity[b], om);
     // angular momentum consistent with ω: L = R I Rᵀ ω
-    let q = w.bodies.orientation[b];
-    let l = q * (w.bodies.inertia[b] * (q.conjugate() * om));
-    assert!((w.bodies.angular_momentum[b] - l).length() < 1e-12 * l.length());
+    let q = w.bodies().orientation[b];
+    let l = q * (w.bodies().inertia[b] * (q.conjugate() * om));
+    assert!((w.bodies().angular_momentum[b] - l).length() < 1e-12 * l.length());
 }
 
 /// A large sphere (radius R) driven to turn about the horizontal x axis at
@@ -180,17 +180,17 @@ fn driven_body_torque_is_the_coulomb_drag() {
     w.run(20_000).unwrap();
     let b = w.body_index(motor).unwrap();
     let s = w.body_index(pinned).unwrap();
-    let contact_force = w.bodies.force[b] - mass(big) * g;
-    let torque = w.bodies.torque[b];
+    let contact_force = w.bodies().force[b] - mass(big) * g;
+    let torque = w.bodies().torque[b];
     let theory = -mu * ms * G * (big - 0.5 * delta);
     eprintln!(
         "driven sphere: contact force {contact_force}, torque {torque} (theory x: {theory:.6e}); pinned sphere v = {}",
-        w.bodies.velocity[s]
+        w.bodies().velocity[s]
     );
     // pinned: still in x, y; at rest vertically
-    assert_eq!(w.bodies.position[s].x, 0.0);
-    assert_eq!(w.bodies.position[s].y, 0.0);
-    assert!(w.bodies.velocity[s].z.abs() < 1e-7);
+    assert_eq!(w.bodies().position[s].x, 0.0);
+    assert_eq!(w.bodies().position[s].y, 0.0);
+    assert!(w.bodies().velocity[s].z.abs() < 1e-7);
     assert!(rel(torque.x, theory) < 1e-6);
     assert!(torque.y.abs() < 1e-9 * theory.abs() && torque.z.abs() < 1e-9 * theory.abs());
     // the drag on the driven body points along the surface motion's

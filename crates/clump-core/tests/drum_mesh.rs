@@ -125,24 +125,24 @@ fn mesh_drum_carries_a_clump_in_rigid_rotation_until_it_tips_or_slips() {
     // settle at rest
     w.run(6000).unwrap();
     let b = w.body_index(id).unwrap();
-    assert!(w.bodies.velocity[b].length() < 1e-4);
+    assert!(w.bodies().velocity[b].length() < 1e-4);
     // turn the drum
     w.walls[drum].motion.angular_velocity = DVec3::new(0.0, OMEGA, 0.0);
     let omega = w.walls[drum].motion.angular_velocity;
     let c = w.walls[drum].motion.center;
-    let rc = (w.bodies.position[b] - c).length(); // COM distance from the axis
-    let theta_s = departure_angle(rc, w.bodies.mass[b]);
-    let theta0 = lift_angle(w.bodies.position[b]);
+    let rc = (w.bodies().position[b] - c).length(); // COM distance from the axis
+    let theta_s = departure_angle(rc, w.bodies().mass[b]);
+    let theta0 = lift_angle(w.bodies().position[b]);
     let t_start = w.time;
     let mut checked = 0;
     let mut slip_angle = None;
     while w.time - t_start < 0.7 {
         w.step().unwrap();
         let b = w.body_index(id).unwrap();
-        let x = w.bodies.position[b];
+        let x = w.bodies().position[b];
         let theta = lift_angle(x);
         let rigid_v = omega.cross(x - c);
-        let dv = (w.bodies.velocity[b] - rigid_v).length() / (OMEGA * rc);
+        let dv = (w.bodies().velocity[b] - rigid_v).length() / (OMEGA * rc);
         if slip_angle.is_none() && dv > 0.01 && theta > theta0 + 0.1 {
             slip_angle = Some(theta);
         }
@@ -152,7 +152,7 @@ fn mesh_drum_carries_a_clump_in_rigid_rotation_until_it_tips_or_slips() {
         if stick && w.step % 500 == 0 {
             // rigid-body rotation with the drum
             assert!(dv < 1e-3, "velocity off rigid rotation by {dv} at {theta}");
-            let dw = (w.bodies.angular_velocity[b] - omega).length() / OMEGA;
+            let dw = (w.bodies().angular_velocity[b] - omega).length() / OMEGA;
             assert!(dw < 1e-3, "angular velocity off by {dw}");
             // the contact points: the touching spheres projected radially
             // onto the drum surface
@@ -173,8 +173,8 @@ fn mesh_drum_carries_a_clump_in_rigid_rotation_until_it_tips_or_slips() {
                 let wall_v = w.walls[drum].surface_velocity_at(p);
                 assert!((wall_v - want).length() < 1e-12 * OMEGA * RD);
                 // and the clump's material point there moves with it
-                let xb = w.bodies.position[b];
-                let body_v = w.bodies.velocity[b] + w.bodies.angular_velocity[b].cross(p - xb);
+                let xb = w.bodies().position[b];
+                let body_v = w.bodies().velocity[b] + w.bodies().angular_velocity[b].cross(p - xb);
                 assert!(
                     (body_v - want).length() < 1e-3 * OMEGA * RD,
                     "contact point velocity {body_v}, ω × r = {want}"

@@ -175,7 +175,7 @@ fn settled_bed_comes_to_rest() {
     let mut w = settle_world(300, 3);
     w.prepare().unwrap();
     let pe0 = w.thermo().potential;
-    let n = w.bodies.len();
+    let n = w.bodies().len();
     for _ in 0..60_000 {
         w.step().unwrap();
     }
@@ -296,7 +296,7 @@ fn dimer_drop(normal: NormalLaw, e: f64, multi: MultiContact, tensile: bool) -> 
     w.add_wall(plane(DVec3::ZERO, DVec3::Z, multi)).unwrap();
     run_impact(&mut w, id, r, 10_000_000);
     let b = w.body_index(id).unwrap();
-    w.bodies.velocity[b].z / 1.0
+    w.bodies().velocity[b].z / 1.0
 }
 
 /// Restitution of the non-dimensional Hertz–Tsuji impact x'' = −x^{3/2} − c x^{1/4} x'

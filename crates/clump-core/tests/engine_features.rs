@@ -64,7 +64,7 @@ fn force_flags_freeze_world_axes() {
     w.run(n).unwrap();
     let b = w.body_index(id).unwrap();
     let time = n as f64 * 1e-4;
-    let (x, v) = (w.bodies.position[b], w.bodies.velocity[b]);
+    let (x, v) = (w.bodies().position[b], w.bodies().velocity[b]);
     eprintln!("fflag [1,1,0] under g = {g}: x = {x}, v = {v} at t = {time}");
     assert_eq!(x.z, 0.0);
     assert_eq!(v.z, 0.0);
@@ -72,8 +72,8 @@ fn force_flags_freeze_world_axes() {
     assert!(rel(v.x, 2.0 * time) < 1e-12);
     // gravity acts on the true clump mass
     let m = sphere_mass(0.01, 2500.0);
-    assert!(rel(w.bodies.mass[b], m) < 1e-12);
-    assert!((w.bodies.force[b] - m * g).length() < 1e-12 * m * G);
+    assert!(rel(w.bodies().mass[b], m) < 1e-12);
+    assert!((w.bodies().force[b] - m * g).length() < 1e-12 * m * G);
 }
 
 /// A world under gravity with friction `mu` (e = 0.5, dt = 1e-5) holding one
@@ -116,7 +116,7 @@ fn slide(torque_flag: [bool; 3], added: AddedMass, time: f64) -> (DVec3, DVec3) 
         .unwrap();
     w.run((time / 1e-5).round() as u64).unwrap();
     let b = w.body_index(id).unwrap();
-    (w.bodies.velocity[b], w.bodies.angular_velocity[b])
+    (w.bodies().velocity[b], w.bodies().angular_velocity[b])
 }
 
 #[test]
@@ -181,10 +181,10 @@ fn added_mass_free_fall() {
     let z_th = -0.5 * G / 1.2 * 0.1f64.powi(2);
     eprintln!(
         "added-mass free fall: z = {:.9e} (theory {z_th:.9e})",
-        w.bodies.position[b].z
+        w.bodies().position[b].z
     );
-    assert!(rel(w.bodies.position[b].z, z_th) < 1e-12);
-    assert!(rel(w.bodies.force[b].z, -sphere_mass(0.01, 2500.0) * G) < 1e-12);
+    assert!(rel(w.bodies().position[b].z, z_th) < 1e-12);
+    assert!(rel(w.bodies().force[b].z, -sphere_mass(0.01, 2500.0) * G) < 1e-12);
 }
 
 // ------------------------------------------------------------ walls
@@ -254,7 +254,7 @@ fn cylinder_inside_and_outside_rebound_and_wall_load() {
                 .unwrap();
             let impulse = run_wall_impact(&mut w, 1_000_000);
             let b = w.body_index(id).unwrap();
-            let v1 = w.bodies.velocity[b];
+            let v1 = w.bodies().velocity[b];
             let lost = m * (DVec3::new(v0, 0.0, 0.0) - v1);
             eprintln!("cylinder inside={inside} e={e}: v' = {v1}, wall impulse {impulse} (momentum lost {lost})");
             assert!(((-v1.x / v0) - e).abs() < 0.01, "rebound {v1}");
@@ -287,7 +287,7 @@ fn moving_plane_launches_sphere_at_one_plus_e_times_u() {
         w.add_wall(p).unwrap();
         run_wall_impact(&mut w, 1_000_000);
         let b = w.body_index(id).unwrap();
-        let vz = w.bodies.velocity[b].z;
+        let vz = w.bodies().velocity[b].z;
         eprintln!(
             "piston u={u} e={e}: sphere leaves at {vz:.6} (theory {:.6})",
             (1.0 + e) * u
@@ -332,7 +332,7 @@ fn wall_that_starts_moving_between_builds_hits_a_far_sphere() {
         "the moving wall must touch the sphere, with no neighbour build in between"
     );
     run_wall_impact(&mut w, 1_000_000);
-    let vz = w.bodies.velocity[w.body_index(id).unwrap()].z;
+    let vz = w.bodies().velocity[w.body_index(id).unwrap()].z;
     eprintln!(
         "wall started between builds: sphere leaves at {vz:.6} (theory {:.6})",
         (1.0 + e) * u
@@ -369,7 +369,7 @@ fn rotating_floor_drags_sphere_and_records_torque() {
         mean_torque += w.walls.loads()[0].torque / n as f64;
     }
     let b = w.body_index(id).unwrap();
-    let v = w.bodies.velocity[b];
+    let v = w.bodies().velocity[b];
     eprintln!(
         "turntable: v = {v} (theory (0, {:.5}, 0)); mean wall force {mean_load}, torque {mean_torque} (theory F_y {:.4e}, M_z {:.4e})",
         mu * G * time,
@@ -431,7 +431,7 @@ fn periodic_clump_straddling_the_boundary() {
             w.step().unwrap();
             contact_steps += (w.stats.pair_contacts > 0) as u32;
             let ia = w.body_index(a).unwrap();
-            let x = w.bodies.position[ia].x;
+            let x = w.bodies().position[ia].x;
             // wrapped at every neighbour build (as LAMMPS wraps atoms when
             // it re-neighbours); in between it moves less than half the skin
             if w.rebuilds > rebuilds {
@@ -449,10 +449,10 @@ fn periodic_clump_straddling_the_boundary() {
         }
         let (ia, ic) = (w.body_index(a).unwrap(), w.body_index(c).unwrap());
         (
-            w.bodies.velocity[ia],
-            w.bodies.angular_velocity[ia],
-            w.bodies.velocity[ic],
-            w.bodies.angular_velocity[ic],
+            w.bodies().velocity[ia],
+            w.bodies().angular_velocity[ia],
+            w.bodies().velocity[ic],
+            w.bodies().angular_velocity[ic],
             contact_steps,
             straddled,
         )
@@ -652,7 +652,7 @@ fn contact_history_survives_rebuild_and_resort() {
         w.run(3000).unwrap(); // settle
         let tangent = DVec3::new(tilt.cos(), 0.0, -tilt.sin());
         let tangent2 = DVec3::new(tilt.cos(), 0.0, tilt.sin());
-        let at = |w: &World, id| w.bodies.position[w.body_index(id).unwrap()];
+        let at = |w: &World, id| w.bodies().position[w.body_index(id).unwrap()];
         let (xb, xd) = (at(&w, b), at(&w, d));
         let before = (w.body_index(a), w.body_index(b), w.body_index(d));
         let rebuilds = w.rebuilds;
@@ -729,18 +729,18 @@ fn body_moves_ballistically_until_its_start_step() {
         w.step().unwrap();
         let b = w.body_index(id).unwrap();
         let x = x0 + v * (n as f64 * dt);
-        assert!((w.bodies.position[b] - x).length() < 1e-12, "step {n}");
-        assert_eq!(w.bodies.velocity[b], v);
-        assert_eq!(w.bodies.orientation[b], DQuat::IDENTITY);
+        assert!((w.bodies().position[b] - x).length() < 1e-12, "step {n}");
+        assert_eq!(w.bodies().velocity[b], v);
+        assert_eq!(w.bodies().orientation[b], DQuat::IDENTITY);
     }
     // from its start step on, gravity acts
     w.run(10).unwrap();
     let b = w.body_index(id).unwrap();
     eprintln!(
         "start step 500: 10 steps after it v = {}",
-        w.bodies.velocity[b]
+        w.bodies().velocity[b]
     );
-    assert!((w.bodies.velocity[b].z - (v.z - G * 10.0 * dt)).abs() < 1e-12);
+    assert!((w.bodies().velocity[b].z - (v.z - G * 10.0 * dt)).abs() < 1e-12);
 }
 
 // ------------------------------------------------------------ thermo
@@ -828,5 +828,5 @@ fn lost_bodies_are_counted_by_cause() {
     assert_eq!(l.removed, 1);
     assert_eq!(l.not_finite, 0);
     assert_eq!(l.total(), 4);
-    assert_eq!(w.bodies.len(), 1);
+    assert_eq!(w.bodies().len(), 1);
 }

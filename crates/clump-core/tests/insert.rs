@@ -73,10 +73,10 @@ fn count_spec(region: Region, n: usize, template: u32) -> PackSpec {
 /// World-frame spheres (centre, radius, body storage index) recomputed from the body poses.
 fn spheres_of(w: &World) -> Vec<(DVec3, f64, usize)> {
     let mut out = Vec::new();
-    for b in 0..w.bodies.len() {
-        let t = &w.templates[w.bodies.template[b] as usize];
+    for b in 0..w.bodies().len() {
+        let t = &w.templates[w.bodies().template[b] as usize];
         for s in &t.spheres {
-            let c = w.bodies.position[b] + w.bodies.orientation[b] * s.center;
+            let c = w.bodies().position[b] + w.bodies().orientation[b] * s.center;
             out.push((c, s.radius, b));
         }
     }
@@ -109,7 +109,7 @@ fn pack_300_tetra_no_overlap_inside() {
     let region = cube_region();
     let rep = pack(&mut w, &count_spec(region, 300, t), 7).unwrap();
     assert_eq!(rep.placed, 300);
-    assert_eq!(w.bodies.len(), 300);
+    assert_eq!(w.bodies().len(), 300);
     assert_eq!(rep.ids.len(), 300);
     assert!(
         rep.templates_added.is_empty(),
@@ -136,11 +136,11 @@ fn pack_300_tetra_no_overlap_inside() {
     assert_eq!(w.stats.pair_contacts, 0);
     // orientations are unit quaternions and not all equal
     assert!(w
-        .bodies
+        .bodies()
         .orientation
         .iter()
         .all(|q| (q.length() - 1.0).abs() < 1e-12));
-    assert!(w.bodies.orientation[0] != w.bodies.orientation[1]);
+    assert!(w.bodies().orientation[0] != w.bodies().orientation[1]);
 }
 
 #[test]
@@ -149,7 +149,7 @@ fn pack_is_deterministic_per_seed() {
         let mut w = open_world();
         let t = w.add_template(tetra(), 0).unwrap();
         pack(&mut w, &count_spec(cube_region(), 100, t), seed).unwrap();
-        (w.bodies.position.clone(), w.bodies.orientation.clone())
+        (w.bodies().position.clone(), w.bodies().orientation.clone())
     };
     let a = run(11);
     let b = run(11);
@@ -193,7 +193,7 @@ fn impossible_requests_fail_cleanly() {
         "{msg}"
     );
     assert_eq!(
-        w.bodies.len(),
+        w.bodies().len(),
         0,
         "a failed pack leaves the world unchanged"
     );
@@ -242,7 +242,7 @@ fn pack_respects_existing_bodies_walls_and_cylinders() {
         height: 0.03,
     };
     let rep = pack(&mut w, &count_spec(cyl, 40, t), 3).unwrap();
-    assert_eq!(w.bodies.len(), 160);
+    assert_eq!(w.bodies().len(), 160);
     let s = spheres_of(&w);
     assert!(worst_overlap(&s) <= 1e-15);
     assert!(
@@ -336,15 +336,15 @@ fn mix_by_mass_with_sizes() {
         .iter()
         .position(|t| t.name == "tetra" && (t.max_radius - 0.9e-3).abs() < 1e-15)
         .unwrap();
-    for b in 0..w.bodies.len() {
-        let tt = w.bodies.template[b] as usize;
+    for b in 0..w.bodies().len() {
+        let tt = w.bodies().template[b] as usize;
         if tt == big_scaled {
-            m_big += w.bodies.mass[b];
+            m_big += w.bodies().mass[b];
         } else {
             assert_eq!(w.templates[tt].name, "s");
-            m_small += w.bodies.mass[b];
+            m_small += w.bodies().mass[b];
         }
-        assert_eq!(w.bodies.velocity[b], DVec3::new(0.0, 0.0, -1.0));
+        assert_eq!(w.bodies().velocity[b], DVec3::new(0.0, 0.0, -1.0));
     }
     let frac = m_small / (m_small + m_big);
     assert!(
@@ -353,12 +353,12 @@ fn mix_by_mass_with_sizes() {
     );
     // one template for the fixed scale, one per distinct uniform scale
     let n_big = w
-        .bodies
+        .bodies()
         .template
         .iter()
         .filter(|&&t| t as usize == big_scaled)
         .count();
-    assert_eq!(w.templates.len(), 2 + 1 + (w.bodies.len() - n_big));
+    assert_eq!(w.templates.len(), 2 + 1 + (w.bodies().len() - n_big));
     assert!(worst_overlap(&spheres_of(&w)) <= 1e-15);
 }
 
@@ -398,10 +398,10 @@ fn stream_honours_rate() {
     assert_eq!(s.backlog(), 0);
     assert_eq!(total as u64, s.inserted());
     assert!((total as i64 - 100).abs() <= 1, "inserted {total}");
-    assert_eq!(w.bodies.len(), total);
+    assert_eq!(w.bodies().len(), total);
     // ballistic until the exit face: start steps lie in the future, by at most 0.02/2/dt steps
-    let last = w.bodies.len() - 1;
-    let ss = w.bodies.start_step[last];
+    let last = w.bodies().len() - 1;
+    let ss = w.bodies().start_step[last];
     assert!(
         ss >= w.step && ss <= w.step + 101,
         "start_step {ss} at step {}",
@@ -423,9 +423,9 @@ fn stream_honours_rate() {
         s.insert_due(&mut w).unwrap();
     }
     assert!(
-        (w.bodies.len() as i64 - 20).abs() <= 1,
+        (w.bodies().len() as i64 - 20).abs() <= 1,
         "{}",
-        w.bodies.len()
+        w.bodies().len()
     );
     assert!((s.inserted_mass() - 20.0 * m).abs() <= 1.01 * m);
     assert!(s.finished(w.time));
@@ -449,7 +449,7 @@ fn stream_postpones_when_full_and_resumes_bit_identically() {
         w.step().unwrap();
         s.insert_due(&mut w).unwrap();
     }
-    assert!(w.bodies.len() <= 2);
+    assert!(w.bodies().len() <= 2);
     assert!(s.postponed() > 0 && s.backlog() > 0);
 
     // resume: serialize the inserter and the world state, continue both ways
@@ -477,11 +477,11 @@ fn stream_postpones_when_full_and_resumes_bit_identically() {
         b.step().unwrap();
         sb.insert_due(&mut b).unwrap();
     }
-    assert!(a.bodies.len() > 100);
-    assert_eq!(a.bodies.id, b.bodies.id);
-    assert_eq!(a.bodies.position, b.bodies.position);
-    assert_eq!(a.bodies.orientation, b.bodies.orientation);
-    assert_eq!(a.bodies.start_step, b.bodies.start_step);
+    assert!(a.bodies().len() > 100);
+    assert_eq!(a.bodies().id, b.bodies().id);
+    assert_eq!(a.bodies().position, b.bodies().position);
+    assert_eq!(a.bodies().orientation, b.bodies().orientation);
+    assert_eq!(a.bodies().start_step, b.bodies().start_step);
 }
 
 #[test]
@@ -534,16 +534,16 @@ fn stream_start_after_and_flags() {
         }
     }
     let s0 = inserted_at.unwrap();
-    assert_eq!(w.bodies.start_step[0], s0 + 13);
-    assert_eq!(w.bodies.force_flag[0], [true, false, true]);
-    let (x0, v0) = (w.bodies.position[0], w.bodies.velocity[0]);
+    assert_eq!(w.bodies().start_step[0], s0 + 13);
+    assert_eq!(w.bodies().force_flag[0], [true, false, true]);
+    let (x0, v0) = (w.bodies().position[0], w.bodies().velocity[0]);
     w.run(13).unwrap();
     // ballistic: the velocity is untouched, the centre moved by v·13 dt
-    assert_eq!(w.bodies.velocity[0], v0);
-    assert!((w.bodies.position[0] - (x0 + v0 * 13.0 * 1e-4)).length() < 1e-15);
+    assert_eq!(w.bodies().velocity[0], v0);
+    assert!((w.bodies().position[0] - (x0 + v0 * 13.0 * 1e-4)).length() < 1e-15);
     w.run(100).unwrap();
     // then gravity acts: Δv_z = −g · 100 dt (the first kick of step s0 + 13
     // is already counted: every step from the start step on adds g dt)
-    let dv = w.bodies.velocity[0].z - v0.z;
+    let dv = w.bodies().velocity[0].z - v0.z;
     assert!((dv + 9.81 * 100.0 * 1e-4).abs() < 1e-12, "{dv}");
 }

@@ -265,17 +265,20 @@ fn rolling_on_triangulated_floor_matches_analytic_plane() {
         contacts += a.stats.wall_contacts;
         if step % 500 == 499 {
             let (ia, ib) = (a.body_index(ida).unwrap(), b.body_index(idb).unwrap());
-            let (pa, pb) = (a.bodies.position[ia], b.bodies.position[ib]);
+            let (pa, pb) = (a.bodies().position[ia], b.bodies().position[ib]);
             assert!(
                 rel_vec(pa, pb, pa.length()) < 1e-9,
                 "step {step}: {pa} vs {pb}"
             );
-            let (va, vb) = (a.bodies.velocity[ia], b.bodies.velocity[ib]);
+            let (va, vb) = (a.bodies().velocity[ia], b.bodies().velocity[ib]);
             assert!(
                 rel_vec(va, vb, va.length()) < 1e-9,
                 "step {step}: {va} vs {vb}"
             );
-            let (wa, wb) = (a.bodies.angular_velocity[ia], b.bodies.angular_velocity[ib]);
+            let (wa, wb) = (
+                a.bodies().angular_velocity[ia],
+                b.bodies().angular_velocity[ib],
+            );
             assert!(
                 rel_vec(wa, wb, wa.length()) < 1e-9,
                 "step {step}: {wa} vs {wb}"
@@ -294,7 +297,7 @@ fn rolling_on_triangulated_floor_matches_analytic_plane() {
     }
     // it touched most of the time and travelled over many triangles
     assert!(contacts > 25_000, "{contacts}");
-    let p = b.bodies.position[b.body_index(idb).unwrap()];
+    let p = b.bodies().position[b.body_index(idb).unwrap()];
     assert!(p.x > 0.03, "{p}");
 }
 
@@ -333,7 +336,7 @@ fn history_carries_across_triangles() {
             ..BodyInit::at_rest(t, DVec3::new(-0.0101, -0.0037, 0.00998), DQuat::IDENTITY)
         };
         let id = w.add_body(&body).unwrap();
-        let mass = w.bodies.mass[0];
+        let mass = w.bodies().mass[0];
         let mut worst: f64 = f64::INFINITY;
         for step in 0..8000 {
             w.step().unwrap();
@@ -342,8 +345,8 @@ fn history_carries_across_triangles() {
                 continue; // build-up and settling
             }
             let b = w.body_index(id).unwrap();
-            let f_contact = w.bodies.force[b] - mass * w.config.gravity;
-            let x = w.bodies.position[b];
+            let f_contact = w.bodies().force[b] - mass * w.config.gravity;
+            let x = w.bodies().position[b];
             let n = (x - w.walls.meshes()[0].closest_point(x).1).normalize();
             let fn_ = f_contact.dot(n);
             let ft = (f_contact - fn_ * n).length();
@@ -353,7 +356,7 @@ fn history_carries_across_triangles() {
             worst > 0.999,
             "kink {kink}: tangential force dropped to {worst} of the Coulomb limit"
         );
-        let x = w.bodies.position[0];
+        let x = w.bodies().position[0];
         assert!(x.x > -0.004, "{x}");
     }
 }

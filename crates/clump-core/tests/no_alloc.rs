@@ -154,7 +154,7 @@ fn memory_is_linear_in_the_number_of_bodies() {
     let measure = |nx: usize| {
         let mut w = bed(nx);
         w.run(200).unwrap();
-        let n = w.bodies.len();
+        let n = w.bodies().len();
         let pairs = w.pairs().len();
         let spheres = w.spheres().len();
         (n, pairs, spheres)

@@ -146,7 +146,7 @@ fn cloud(multi: MultiContact, rule: TangentialLaw) -> World {
 /// all touching sphere pairs of different bodies, plus gravity, with the
 /// models of `table`.
 fn reference(w: &World, table: &ContactTable, multi: MultiContact) -> HashMap<u64, (DVec3, DVec3)> {
-    let (b, sp) = (&w.bodies, w.spheres());
+    let (b, sp) = (&w.bodies(), w.spheres());
     let n = sp.len();
     let mut contacts = Vec::new();
     for i in 0..n {
@@ -223,7 +223,7 @@ fn compare(multi: MultiContact, rule: TangentialLaw) {
         stats.pair_contacts
     );
     // force and torque scales of the cloud, for the tolerance
-    let b = &w.bodies;
+    let b = &w.bodies();
     let fmax = (0..b.len())
         .map(|k| want[&b.id[k]].0.length())
         .fold(0.0, f64::max);

@@ -94,10 +94,14 @@ fn a_settling_periodic_bed_has_the_same_bits_on_1_to_4_ranks() {
 /// which changes as the body migrates.
 fn restricted_bed() -> World {
     let mut w = bed();
-    let b = w.bodies.len() - 3;
-    w.bodies.torque_flag[b] = [false, true, true];
-    w.bodies.position[b].z = 5.4 * clump_core::testbed::LATTICE_PITCH;
-    w.bodies.velocity[b] = clump_core::DVec3::new(1.0, 0.6, 0.0);
+    let b = w.bodies().len() - 3;
+    let free = w.bodies().force_flag[b];
+    w.set_body_dof_at(b, free, [false, true, true]).unwrap();
+    let mut x = w.bodies().position[b];
+    x.z = 5.4 * clump_core::testbed::LATTICE_PITCH;
+    w.set_body_position_at(b, x).unwrap();
+    w.set_body_velocity_at(b, clump_core::DVec3::new(1.0, 0.6, 0.0))
+        .unwrap();
     w
 }
 

@@ -18,7 +18,7 @@ fn bed() -> World {
 }
 
 fn bits(w: &World) -> Vec<u64> {
-    let b = &w.bodies;
+    let b = &w.bodies();
     (0..b.len())
         .flat_map(|i| {
             let (x, v, l, q) = (
@@ -71,7 +71,7 @@ impl Driver for Observer {
             w.step
         );
         // every body: Σ contact forces on its spheres + m g = its force
-        let mut f = vec![DVec3::ZERO; w.bodies.len()];
+        let mut f = vec![DVec3::ZERO; w.bodies().len()];
         let index = |id: u64| w.body_index(id).unwrap();
         for c in &contacts {
             f[index(c.body_id)] += c.force();
@@ -88,15 +88,15 @@ impl Driver for Observer {
                 "tangential force in the tangent plane"
             );
         }
-        let scale = w.bodies.mass[0] * 9.81;
+        let scale = w.bodies().mass[0] * 9.81;
         for (i, fi) in f.iter().enumerate() {
-            let expect = w.bodies.force[i];
-            let got = *fi + w.bodies.mass[i] * w.config.gravity;
+            let expect = w.bodies().force[i];
+            let got = *fi + w.bodies().mass[i] * w.config.gravity;
             assert!(
                 (got - expect).length() <= 1e-9 * scale,
                 "step {}: body {} force from contacts {got} vs engine {expect}",
                 w.step,
-                w.bodies.id[i]
+                w.bodies().id[i]
             );
         }
         self.checked += 1;
@@ -192,7 +192,7 @@ impl Driver for Kick {
 fn steering_at_a_boundary_equals_stopping_there_and_setting_the_state() {
     let (v, omega) = (DVec3::new(0.3, -0.1, 0.5), DVec3::new(4.0, 0.0, -2.0));
     let mut a = tetra_lattice_bed(4, 4, 2, None);
-    let id = a.bodies.id[5];
+    let id = a.bodies().id[5];
     let mut k = Kick {
         at: 400,
         end: 900,
@@ -221,13 +221,13 @@ fn steering_at_a_boundary_equals_stopping_there_and_setting_the_state() {
 fn a_removed_body_is_gone_and_the_rest_run_on() {
     let mut w = tetra_lattice_bed(4, 4, 2, None);
     w.run(200).unwrap();
-    let n = w.bodies.len();
-    let id = w.bodies.id[3];
+    let n = w.bodies().len();
+    let id = w.bodies().id[3];
     w.remove_body(id).unwrap();
-    assert_eq!(w.bodies.len(), n - 1);
+    assert_eq!(w.bodies().len(), n - 1);
     assert!(w.body_index(id).is_none());
     w.run(200).unwrap();
-    assert_eq!(w.bodies.len(), n - 1);
+    assert_eq!(w.bodies().len(), n - 1);
     assert!(w.spheres().len() == (n - 1) * 4);
     assert!(w.remove_body(id).is_err());
 }
@@ -263,7 +263,7 @@ fn a_removal_keeps_each_sphere_its_wall_contacts() {
     let sliding = || {
         let mut w = tetra_lattice_bed(6, 6, 1, None);
         w.run(6000).unwrap(); // landed on the floor
-        for id in w.bodies.id.clone() {
+        for id in w.bodies().id.clone() {
             w.set_body_velocity(id, DVec3::new(0.02, 0.01, 0.0))
                 .unwrap();
         }
@@ -275,7 +275,7 @@ fn a_removal_keeps_each_sphere_its_wall_contacts() {
     let reference = wall_springs(&mut reference);
     let mut w = sliding();
     // the first body in storage: every other one shifts down by one
-    let removed = w.bodies.id[0];
+    let removed = w.bodies().id[0];
     w.remove_body(removed).unwrap();
     let after = wall_springs(&mut w);
     let expected: std::collections::HashMap<_, _> = reference
@@ -330,9 +330,9 @@ fn floor_contacts_of_bodies_set_sliding_slide() {
         .get(w.walls[0].material, w.walls[0].material)
         .sliding_law()
         .friction;
-    let ids: Vec<u64> = w.bodies.id.clone();
+    let ids: Vec<u64> = w.bodies().id.clone();
     for id in ids {
-        let v = w.bodies.velocity[w.body_index(id).unwrap()];
+        let v = w.bodies().velocity[w.body_index(id).unwrap()];
         w.set_body_velocity(id, v + DVec3::new(1.0, 0.0, 0.0))
             .unwrap();
     }
@@ -392,9 +392,9 @@ fn a_trip_inside_fused_steps_hands_back_current_bodies() {
     let got = a.advance(end, &mut TripAfter(a.step + 170)).unwrap();
     assert_eq!(got, Advance::Tripped);
     let mut spheres = 0;
-    for i in 0..a.bodies.len() {
-        let t = &a.templates[a.bodies.template[i] as usize];
-        let (x, q) = (a.bodies.position[i], a.bodies.orientation[i]);
+    for i in 0..a.bodies().len() {
+        let t = &a.templates[a.bodies().template[i] as usize];
+        let (x, q) = (a.bodies().position[i], a.bodies().orientation[i]);
         let rot = clump_core::DMat3::from_quat(q);
         for (k, s) in a.spheres().of_body(i).enumerate() {
             let want = clump_core::step::kinematics::sphere_position(x, &rot, t.spheres[k].center);
@@ -405,8 +405,8 @@ fn a_trip_inside_fused_steps_hands_back_current_bodies() {
             );
             spheres += 1;
         }
-        let om = a.bodies.angular_momentum[i] / a.bodies.inertia[i].x;
-        let got = a.bodies.angular_velocity[i];
+        let om = a.bodies().angular_momentum[i] / a.bodies().inertia[i].x;
+        let got = a.bodies().angular_velocity[i];
         assert!(
             (got - om).length() <= 1e-12 * om.length(),
             "body {i}: ω {got} against L/I {om}"

@@ -151,7 +151,7 @@ impl TrajectoryWriter {
     /// Appends one row per tracked body present in `world` at `world.time`,
     /// and flushes.
     pub fn write(&mut self, world: &World) -> io::Result<()> {
-        let b = &world.bodies;
+        let b = &world.bodies();
         let mut index = vec![None; self.ids.len()];
         for (i, id) in b.id.iter().enumerate() {
             if let Some(&k) = self.slot.get(id) {

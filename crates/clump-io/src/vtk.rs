@@ -52,7 +52,7 @@ pub const CYLINDER_SEGMENTS: usize = 64;
 
 /// The spheres file (see the [module docs](self)) as bytes.
 pub fn spheres_vtp(world: &World) -> Vec<u8> {
-    let b = &world.bodies;
+    let b = &world.bodies();
     let mut pos = Vec::new();
     let mut vel = Vec::new();
     let mut rad = Vec::new();
@@ -95,7 +95,7 @@ pub type BodyCounts = std::collections::HashMap<u64, [u32; 3]>;
 /// The bodies file with the contact counts of `counts` (bodies missing
 /// there, or all when `None`, get −1: no force evaluation recorded).
 pub fn bodies_vtp_counted(world: &World, counts: Option<&BodyCounts>) -> Vec<u8> {
-    let b = &world.bodies;
+    let b = &world.bodies();
     let mut f = Vtp::default();
     let base = base_templates(world);
     let names: Vec<String> = (0..base.len())
@@ -519,7 +519,7 @@ impl VtkSeries {
         ];
         let write =
             |name: &str, vtp: Vec<u8>| write_atomic(self.dir.join(name), &self.format.encode(vtp));
-        if !world.bodies.is_empty() || !self.spheres.entries().is_empty() {
+        if !world.bodies().is_empty() || !self.spheres.entries().is_empty() {
             write(&names[0], spheres_vtp(world))?;
             write(&names[1], bodies_vtp_counted(world, counts))?;
             self.spheres.append(world.time, &names[0])?;

@@ -160,7 +160,7 @@ fn settled_bed_mass_momentum_balance_floor_and_love_weber() {
     let mut love = DMat3::ZERO;
     let l_of = |id: u64, p: DVec3| {
         let i = w.body_index(id).unwrap();
-        let mut l = p - w.bodies.position[i];
+        let mut l = p - w.bodies().position[i];
         for a in 0..2 {
             l[a] -= 0.02 * (l[a] / 0.02).round();
         }

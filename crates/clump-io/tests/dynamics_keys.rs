@@ -211,16 +211,22 @@ fn driven_sphere_from_a_scenario_feels_the_coulomb_torque() {
     let w = run.world();
     let b = w.body_index(1).unwrap();
     let theory = -0.3 * ms * G * (BIG - 0.5 * delta);
-    eprintln!("driven torque {} (theory {theory:.6e})", w.bodies.torque[b]);
-    assert_eq!(w.bodies.position[b], DVec3::ZERO);
-    assert!(((w.bodies.torque[b].x - theory) / theory).abs() < 1e-6);
+    eprintln!(
+        "driven torque {} (theory {theory:.6e})",
+        w.bodies().torque[b]
+    );
+    assert_eq!(w.bodies().position[b], DVec3::ZERO);
+    assert!(((w.bodies().torque[b].x - theory) / theory).abs() < 1e-6);
     // the same load in the driven body's trajectory (last row, column mx)
     let traj = d.join("out").join("traj_1.csv");
     let mx = support::last_value(&traj, "mx");
     assert_eq!(support::last_value(&traj, "time"), 0.2);
     assert!(((mx - theory) / theory).abs() < 1e-6, "trajectory mx {mx}");
     let s = w.body_index(2).unwrap();
-    assert_eq!((w.bodies.position[s].x, w.bodies.position[s].y), (0.0, 0.0));
+    assert_eq!(
+        (w.bodies().position[s].x, w.bodies().position[s].y),
+        (0.0, 0.0)
+    );
 }
 
 /// `fixed = true` on an insert: those bodies never move and carry what
@@ -250,10 +256,10 @@ fn fixed_insert_keeps_its_bodies_still() {
     run.run(RunOptions::default()).unwrap();
     let w = run.world();
     let b = w.body_index(1).unwrap();
-    assert_eq!(w.bodies.position[b], DVec3::new(0.01, 0.02, 0.03));
+    assert_eq!(w.bodies().position[b], DVec3::new(0.01, 0.02, 0.03));
     let ms = RHO * 4.0 / 3.0 * PI * SMALL.powi(3);
     let mb = RHO * 4.0 / 3.0 * PI * BIG.powi(3);
-    let contact = w.bodies.force[b].z + mb * G;
+    let contact = w.bodies().force[b].z + mb * G;
     eprintln!("fixed body carries {contact:.9} N, weight {:.9} N", ms * G);
     assert!((contact + ms * G).abs() < 1e-6 * ms * G);
     let e = parse(

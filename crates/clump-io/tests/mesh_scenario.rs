@@ -146,14 +146,14 @@ fn sphere_rests_on_a_scaled_rotated_offset_stl_floor_at_the_hertz_height() {
     let mut run = Runner::new(sc, &d.join("out")).unwrap();
     run.run(RunOptions::default()).unwrap();
     let w = run.world();
-    let z = w.bodies.position[0].z;
+    let z = w.bodies().position[0].z;
     let want = floor_z + R - delta;
     assert!(
         (z - want).abs() < 1e-3 * delta,
         "rest height {z}, Hertz {want} (overlap {} vs {delta})",
         floor_z + R - z
     );
-    assert!(w.bodies.velocity[0].length() < 1e-5);
+    assert!(w.bodies().velocity[0].length() < 1e-5);
     // thermo: the floor carries the weight; its torque about the torque
     // point P is (c − P) × F with the contact point c under the sphere
     let (h, r) = last_row(&d.join("out/thermo.csv"));
@@ -234,9 +234,9 @@ velocity = [0.0, 0.3, 0.0]
     second.run(RunOptions::default()).unwrap();
     let (a, b) = (full.world(), second.world());
     assert_eq!(a.step, b.step);
-    for i in 0..a.bodies.position.len() {
-        assert_eq!(a.bodies.position[i], b.bodies.position[i]);
-        assert_eq!(a.bodies.velocity[i], b.bodies.velocity[i]);
+    for i in 0..a.bodies().position.len() {
+        assert_eq!(a.bodies().position[i], b.bodies().position[i]);
+        assert_eq!(a.bodies().velocity[i], b.bodies().velocity[i]);
     }
     assert_eq!(a.walls[..], b.walls[..]);
     // the paddle rotated 20 rad/s for stage a, then slid 0.3 m/s for stage b

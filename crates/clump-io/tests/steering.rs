@@ -109,7 +109,7 @@ impl Driver for Kick {
 }
 
 fn bits(w: &World) -> Vec<u64> {
-    let b = &w.bodies;
+    let b = &w.bodies();
     let mut out = Vec::new();
     for i in 0..b.len() {
         for v in [b.position[i], b.velocity[i], b.angular_momentum[i]] {

@@ -125,15 +125,15 @@ fn sphere_rolls_down_an_incline_at_five_sevenths_g_sin_alpha() {
     );
     let w = r.world();
     let t = 0.1;
-    let v = w.bodies.velocity[0].dot(down);
+    let v = w.bodies().velocity[0].dot(down);
     let a = 5.0 / 7.0 * G * alpha.sin();
     eprintln!(
         "2D rolling sphere: v = {v:.6} m/s at t = {t} s, closed form {:.6}; omega_z = {}",
         a * t,
-        w.bodies.angular_velocity[0].z
+        w.bodies().angular_velocity[0].z
     );
     assert!(((v - a * t) / (a * t)).abs() < 2e-3);
-    assert!(((w.bodies.angular_velocity[0].z.abs() - v / R) / (v / R)).abs() < 2e-3);
+    assert!(((w.bodies().angular_velocity[0].z.abs() - v / R) / (v / R)).abs() < 2e-3);
 }
 
 /// A planar dimer lying along a 30° incline (both spheres touching) slides
@@ -161,19 +161,19 @@ fn dimer_slides_down_an_incline_at_the_coulomb_rate() {
     );
     let w = r.world();
     let t = 0.1;
-    let v = w.bodies.velocity[0].dot(down);
+    let v = w.bodies().velocity[0].dot(down);
     let a = G * (alpha.sin() - 0.2 * alpha.cos());
     eprintln!(
         "2D sliding dimer: v = {v:.6} m/s at t = {t} s, closed form {:.6}; omega_z = {:.3e}",
         a * t,
-        w.bodies.angular_velocity[0].z
+        w.bodies().angular_velocity[0].z
     );
     assert!(((v - a * t) / (a * t)).abs() < 2e-3);
 }
 
 /// Linear momentum (x, y) and angular momentum about z of the system.
 fn momenta(w: &clump_core::world::World) -> (DVec3, f64) {
-    let b = &w.bodies;
+    let b = &w.bodies();
     let mut p = DVec3::ZERO;
     let mut lz = 0.0;
     for i in 0..b.len() {
@@ -185,7 +185,7 @@ fn momenta(w: &clump_core::world::World) -> (DVec3, f64) {
 
 /// Every out-of-plane component is exactly zero (or, for z, the start value).
 fn assert_in_plane(w: &clump_core::world::World, z0: f64) {
-    let b = &w.bodies;
+    let b = &w.bodies();
     for i in 0..b.len() {
         let (q, wv, l) = (
             b.orientation[i],
@@ -213,12 +213,12 @@ fn two_dimers_collide_in_the_plane() {
     let r = run("collide", [0.0, 0.0], (0.6, 0.4), "", bodies, 60_000);
     let w = r.world();
     let (p1, l1) = momenta(w);
-    let turned = w.bodies.angular_velocity[0].z;
+    let turned = w.bodies().angular_velocity[0].z;
     eprintln!(
         "2D collision: p {p0} -> {p1}, Lz {l0:.9e} -> {l1:.9e}; dimer omega_z 20 -> {turned}"
     );
     assert!(
-        turned != 20.0 && w.bodies.velocity[0].x < 0.5,
+        turned != 20.0 && w.bodies().velocity[0].x < 0.5,
         "they must collide"
     );
     assert!((p1 - p0).length() < 1e-12 * p0.length());
@@ -255,7 +255,7 @@ fn long_run_stays_exactly_in_the_plane() {
     assert_in_plane(w, 0.001);
     let theta = support::last_value(&r.outdir().join("traj_1.csv"), "theta_2d");
     let b = w.body_index(1).unwrap();
-    let q = w.bodies.orientation[b];
+    let q = w.bodies().orientation[b];
     // the planar A_θ: the body x axis in the world is (cos θ, sin θ)
     let ex = q * DVec3::X;
     assert!((ex.x - theta.cos()).abs() < 1e-12 && (ex.y - theta.sin()).abs() < 1e-12);

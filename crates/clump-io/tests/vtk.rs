@@ -223,7 +223,7 @@ fn spheres_file_round_trips() {
     let w = world();
     let p = parse(&vtk::spheres_vtp(&w));
     let n: usize = w
-        .bodies
+        .bodies()
         .template
         .iter()
         .map(|&t| w.templates[t as usize].spheres.len())
@@ -241,14 +241,14 @@ fn spheres_file_round_trips() {
         (3 * n, n, 3 * n, n)
     );
     let mut k = 0;
-    for b in 0..w.bodies.len() {
-        let t = &w.templates[w.bodies.template[b] as usize];
+    for b in 0..w.bodies().len() {
+        let t = &w.templates[w.bodies().template[b] as usize];
         for s in &t.spheres {
-            let x = w.bodies.position[b] + w.bodies.orientation[b] * s.center;
-            let v =
-                w.bodies.velocity[b] + w.bodies.angular_velocity[b].cross(x - w.bodies.position[b]);
+            let x = w.bodies().position[b] + w.bodies().orientation[b] * s.center;
+            let v = w.bodies().velocity[b]
+                + w.bodies().angular_velocity[b].cross(x - w.bodies().position[b]);
             assert_eq!(rad[k], s.radius);
-            assert_eq!(ids[k] as u64, w.bodies.id[b]);
+            assert_eq!(ids[k] as u64, w.bodies().id[b]);
             assert_eq!(&pts[3 * k..3 * k + 3], &x.to_array());
             assert_eq!(&vel[3 * k..3 * k + 3], &v.to_array());
             k += 1;
@@ -261,7 +261,7 @@ fn spheres_file_round_trips() {
 fn bodies_file_round_trips() {
     let w = world();
     let p = parse(&vtk::bodies_vtp(&w));
-    let n = w.bodies.len();
+    let n = w.bodies().len();
     assert_eq!(p.n("NumberOfPoints"), n);
     let (_, pts) = p.f64s("Points", "Points");
     let (qc, q) = p.f64s("PointData", "quaternion");
@@ -273,18 +273,18 @@ fn bodies_file_round_trips() {
     let tpl = p.i32s("PointData", "template");
     assert_eq!(qc, 4);
     for b in 0..n {
-        let o = w.bodies.orientation[b];
-        assert_eq!(&pts[3 * b..3 * b + 3], &w.bodies.position[b].to_array());
+        let o = w.bodies().orientation[b];
+        assert_eq!(&pts[3 * b..3 * b + 3], &w.bodies().position[b].to_array());
         assert_eq!(&q[4 * b..4 * b + 4], &[o.w, o.x, o.y, o.z]);
-        assert_eq!(&vel[3 * b..3 * b + 3], &w.bodies.velocity[b].to_array());
+        assert_eq!(&vel[3 * b..3 * b + 3], &w.bodies().velocity[b].to_array());
         assert_eq!(
             &om[3 * b..3 * b + 3],
-            &w.bodies.angular_velocity[b].to_array()
+            &w.bodies().angular_velocity[b].to_array()
         );
         assert_eq!(&ex[3 * b..3 * b + 3], &(o * DVec3::X).to_array());
         assert_eq!(&ez[3 * b..3 * b + 3], &(o * DVec3::Z).to_array());
-        assert_eq!(mass[b], w.bodies.mass[b]);
-        assert_eq!(tpl[b] as u32, w.bodies.template[b]);
+        assert_eq!(mass[b], w.bodies().mass[b]);
+        assert_eq!(tpl[b] as u32, w.bodies().template[b]);
     }
 }
 
@@ -305,9 +305,9 @@ fn bodies_of_scaled_templates_report_their_base_template_and_scale() {
     let p = parse(&vtk::bodies_vtp(&w));
     let tpl = p.i32s("PointData", "template");
     let (_, scale) = p.f64s("PointData", "scale");
-    let n = w.bodies.len();
+    let n = w.bodies().len();
     for b in 0..n {
-        let (want_t, want_s) = match w.bodies.template[b] {
+        let (want_t, want_s) = match w.bodies().template[b] {
             2 => (0, 1.25),
             t => (t as i32, 1.0),
         };

@@ -57,7 +57,7 @@ fn no_check(_: usize, _: &[f64]) -> PyResult<()> {
 #[pymethods]
 impl Bodies {
     fn __len__(&self, py: Python<'_>) -> usize {
-        self.sim.borrow(py).runner.world().bodies.len()
+        self.sim.borrow(py).runner.world().bodies().len()
     }
 
     /// Global body ids (N,), ascending.
@@ -65,7 +65,7 @@ impl Bodies {
     fn id<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
         let mut s = self.sim.borrow_mut(py);
         let order = s.bodies_sorted().to_vec();
-        let b = &s.runner.world().bodies;
+        let b = &s.runner.world().bodies();
         column(py, &order, |i| b.id[i] as i64)
     }
 
@@ -74,7 +74,7 @@ impl Bodies {
     fn template<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
         let mut s = self.sim.borrow_mut(py);
         let order = s.bodies_sorted().to_vec();
-        let b = &s.runner.world().bodies;
+        let b = &s.runner.world().bodies();
         column(py, &order, |i| b.template[i] as i64)
     }
 
@@ -84,7 +84,7 @@ impl Bodies {
         let names: Vec<String> = self.sim.bind(py).getattr("template_names")?.extract()?;
         let mut s = self.sim.borrow_mut(py);
         let order = s.bodies_sorted().to_vec();
-        let b = &s.runner.world().bodies;
+        let b = &s.runner.world().bodies();
         Ok(order
             .iter()
             .map(|&i| {
@@ -101,7 +101,7 @@ impl Bodies {
     fn mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let mut s = self.sim.borrow_mut(py);
         let order = s.bodies_sorted().to_vec();
-        let b = &s.runner.world().bodies;
+        let b = &s.runner.world().bodies();
         column(py, &order, |i| b.mass[i])
     }
 
@@ -160,7 +160,7 @@ impl Bodies {
     fn quaternion<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let mut s = self.sim.borrow_mut(py);
         let order = s.bodies_sorted().to_vec();
-        let b = &s.runner.world().bodies;
+        let b = &s.runner.world().bodies();
         quats(py, &order, |i| b.orientation[i])
     }
 
@@ -177,7 +177,7 @@ impl Bodies {
             Ok(())
         };
         set_rows(py, &self.sim, value, 4, "quaternion", unit, |w, i, r| {
-            let x = w.bodies.position[i];
+            let x = w.bodies().position[i];
             w.set_body_pose_at(i, x, DQuat::from_xyzw(r[1], r[2], r[3], r[0]))
         })
     }
@@ -219,7 +219,7 @@ impl Bodies {
             "force_flag",
             flag_check,
             |w, i, r| {
-                let t = w.bodies.torque_flag[i];
+                let t = w.bodies().torque_flag[i];
                 w.set_body_dof_at(i, flags(r), t)
             },
         )
@@ -241,7 +241,7 @@ impl Bodies {
             "torque_flag",
             flag_check,
             |w, i, r| {
-                let f = w.bodies.force_flag[i];
+                let f = w.bodies().force_flag[i];
                 w.set_body_dof_at(i, f, flags(r))
             },
         )
@@ -271,7 +271,7 @@ impl Bodies {
     ) -> Bound<'py, PyArray2<f64>> {
         let mut s = self.sim.borrow_mut(py);
         let order = s.bodies_sorted().to_vec();
-        let b = &s.runner.world().bodies;
+        let b = &s.runner.world().bodies();
         vec3s(py, &order, |i| f(b, i))
     }
 
@@ -282,7 +282,7 @@ impl Bodies {
     ) -> Bound<'py, PyArray2<bool>> {
         let mut s = self.sim.borrow_mut(py);
         let order = s.bodies_sorted().to_vec();
-        let b = &s.runner.world().bodies;
+        let b = &s.runner.world().bodies();
         let mut a = Array2::<bool>::from_elem((order.len(), 3), false);
         for (r, &i) in order.iter().enumerate() {
             let v = f(b, i);

@@ -330,7 +330,7 @@ impl Simulation {
 
     /// Number of bodies.
     fn __len__(&self) -> usize {
-        self.runner.world().bodies.len()
+        self.runner.world().bodies().len()
     }
 
     fn __repr__(&self) -> String {
@@ -341,7 +341,7 @@ impl Simulation {
             w.step,
             self.runner.scenario().total_steps(),
             w.time,
-            w.bodies.len()
+            w.bodies().len()
         )
     }
 }

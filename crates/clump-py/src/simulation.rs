@@ -50,7 +50,7 @@ impl Simulation {
 
     /// Body storage indices in id order.
     pub(crate) fn bodies_sorted(&mut self) -> &[usize] {
-        crate::order::ascending(&self.runner.world().bodies.id, &mut self.body_order);
+        crate::order::ascending(&self.runner.world().bodies().id, &mut self.body_order);
         &self.body_order
     }
 

@@ -171,8 +171,8 @@ fn rest_overlap(g: &mut Group) -> Result<(), String> {
     )?;
     w.run(10_000).map_err(|e| e.to_string())?;
     let b = w.body_index(id).ok_or("body lost")?;
-    let delta = R - w.bodies.position[b].z;
-    let f = 0.5 * w.bodies.mass[b] * G;
+    let delta = R - w.bodies().position[b].z;
+    let f = 0.5 * w.bodies().mass[b] * G;
     let e_star = effective_modulus(&soft(), &Material::rigid());
     let expected = (3.0 * f / (4.0 * e_star * R.sqrt())).powf(2.0 / 3.0);
     g.cases.push(Case::relative(

@@ -46,7 +46,7 @@ fn add_sphere(w: &mut World, r: f64, x: DVec3, v: DVec3) -> Result<u64, String> 
 /// Body `id`'s position and velocity (m, m/s, world).
 fn motion(w: &World, id: u64) -> (DVec3, DVec3) {
     let b = w.body_index(id).expect("body");
-    (w.bodies.position[b], w.bodies.velocity[b])
+    (w.bodies().position[b], w.bodies().velocity[b])
 }
 
 /// `sjkr_wall.in`: a 2 mm sphere dropped at 0.3 m/s onto a plane of its
@@ -246,8 +246,8 @@ pub fn jkr_loading_cycle() -> Result<(Jkr, Vec<(f64, f64, bool)>), String> {
         w.run(1).map_err(|e| e.to_string())?;
         let ia = w.body_index(a).ok_or("lost body")?;
         let ib = w.body_index(b).ok_or("lost body")?;
-        let delta = 2.0 * r - (w.bodies.position[ib] - w.bodies.position[ia]).length();
-        out.push((delta, -w.bodies.force[ia].x, loading));
+        let delta = 2.0 * r - (w.bodies().position[ib] - w.bodies().position[ia]).length();
+        out.push((delta, -w.bodies().force[ia].x, loading));
         if loading && delta > 4e-6 {
             loading = false;
             w.set_body_velocity(b, DVec3::new(u, 0.0, 0.0))
@@ -285,7 +285,7 @@ pub fn jkr_impact(v: f64, dt: f64) -> Result<(Jkr, f64, Option<f64>), String> {
         DVec3::new(0.0, 0.0, r + 0.1 * dc),
         DVec3::new(0.0, 0.0, -v),
     )?;
-    let m = w.bodies.mass[w.body_index(id).ok_or("lost body")?];
+    let m = w.bodies().mass[w.body_index(id).ok_or("lost body")?];
     let mut touched = false;
     for _ in 0..(0.02 / dt) as usize {
         w.run(1).map_err(|e| e.to_string())?;

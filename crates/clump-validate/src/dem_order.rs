@@ -92,9 +92,9 @@ pub fn run_case(case: char, scheme: RotationScheme, dt: f64, t_end: f64) -> Resu
         .map(|id| {
             let b = w.body_index(id).ok_or("body lost")?;
             Ok((
-                w.bodies.position[b],
-                w.bodies.orientation[b],
-                w.bodies.angular_velocity[b],
+                w.bodies().position[b],
+                w.bodies().orientation[b],
+                w.bodies().angular_velocity[b],
             ))
         })
         .collect()

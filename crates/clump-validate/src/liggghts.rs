@@ -151,7 +151,8 @@ pub fn add_stone(w: &mut World, t: u32, r: &[f64], frame: DQuat) -> u64 {
         ))
         .unwrap();
     let b = w.body_index(id).unwrap();
-    w.bodies.angular_momentum[b] = v3(r, 14);
+    let omega = w.bodies().angular_velocity[b];
+    w.set_body_angular_state_at(b, omega, v3(r, 14)).unwrap();
     id
 }
 
@@ -160,10 +161,10 @@ pub fn add_stone(w: &mut World, t: u32, r: &[f64], frame: DQuat) -> u64 {
 pub fn state(w: &World, id: u64, frame: DQuat) -> State {
     let b = w.body_index(id).unwrap();
     State {
-        x: w.bodies.position[b],
-        v: w.bodies.velocity[b],
-        q: w.bodies.orientation[b] * frame,
-        w: w.bodies.angular_velocity[b],
+        x: w.bodies().position[b],
+        v: w.bodies().velocity[b],
+        q: w.bodies().orientation[b] * frame,
+        w: w.bodies().angular_velocity[b],
     }
 }
 

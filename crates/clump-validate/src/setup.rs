@@ -178,7 +178,7 @@ pub fn run_impact(w: &mut World, id: u64, radius: f64, max_steps: usize) -> Resu
         steps_in_contact += 1;
         let b = w.body_index(id).ok_or("body lost")?;
         let overlap = t.max_overlap_ratio * radius;
-        let force = (w.bodies.force[b] - w.bodies.mass[b] * w.config.gravity).length();
+        let force = (w.bodies().force[b] - w.bodies().mass[b] * w.config.gravity).length();
         imp.max_overlap = imp.max_overlap.max(overlap);
         imp.max_force = imp.max_force.max(force);
         imp.history
@@ -191,7 +191,7 @@ pub fn run_impact(w: &mut World, id: u64, radius: f64, max_steps: usize) -> Resu
 /// Velocity and angular velocity (world frame) of body `id`.
 pub fn motion(w: &World, id: u64) -> Result<(DVec3, DVec3), String> {
     let b = w.body_index(id).ok_or("body lost")?;
-    Ok((w.bodies.velocity[b], w.bodies.angular_velocity[b]))
+    Ok((w.bodies().velocity[b], w.bodies().angular_velocity[b]))
 }
 
 /// Hertz theory for an impact at relative normal speed `v` (m/s):

@@ -94,7 +94,7 @@ pub fn spin_down(
     for k in 1..=n {
         w.run(every as u64).map_err(|e| e.to_string())?;
         let b = w.body_index(id).ok_or("lost body")?;
-        out.push(((k * every) as f64 * dt, w.bodies.angular_velocity[b].z));
+        out.push(((k * every) as f64 * dt, w.bodies().angular_velocity[b].z));
     }
     Ok((sd, out))
 }

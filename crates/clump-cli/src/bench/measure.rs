@@ -129,7 +129,7 @@ pub(crate) fn print_end_state(w: &World) {
 /// bit for bit, to compare builds and thread counts.
 pub fn state_fingerprint(w: &World) -> u64 {
     let mut h = 0xcbf29ce484222325u64;
-    let b = &w.bodies;
+    let b = &w.bodies();
     let mut mix = |x: f64| {
         h ^= x.to_bits();
         h = h.wrapping_mul(0x100000001b3);
@@ -148,8 +148,8 @@ pub fn state_fingerprint(w: &World) -> u64 {
 pub(crate) fn write_dump(w: &World, path: &Path) -> Result<()> {
     use std::fmt::Write;
     let sp = w.spheres();
-    let mut order: Vec<usize> = (0..w.bodies.len()).collect();
-    order.sort_by_key(|&b| w.bodies.id[b]);
+    let mut order: Vec<usize> = (0..w.bodies().len()).collect();
+    order.sort_by_key(|&b| w.bodies().id[b]);
     let mut s = String::new();
     writeln!(
         s,
@@ -171,7 +171,11 @@ pub(crate) fn write_dump(w: &World, path: &Path) -> Result<()> {
             writeln!(
                 s,
                 "{id} {} {:e} {:e} {:e} {:e}",
-                w.bodies.id[b], x.x, x.y, x.z, sp.radius[k]
+                w.bodies().id[b],
+                x.x,
+                x.y,
+                x.z,
+                sp.radius[k]
             )?;
             id += 1;
         }

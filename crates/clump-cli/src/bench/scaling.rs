@@ -152,7 +152,7 @@ pub(super) fn scaling(args: &BenchArgs) -> Result<()> {
         outln!(
             "{:>9} {:>8} {:>20} {:>12} {:>14.3} {:>11.1} {:>13.1} {:>12.2} {:>13} {:>7.3} {:>9.0} {:>13.0}",
             ns,
-            w.bodies.len(),
+            w.bodies().len(),
             format!("{}x{} of {nx}x{nx}x{nz}", bed.k, bed.k),
             format!("{}x{}", bed.reps, args.steps),
             rate / 1e6,

@@ -72,10 +72,11 @@ pub struct World {
     pub contact_table: ContactTable,
     /// Clump templates (body frame) with their materials.
     pub templates: TemplateSet,
-    /// The bodies: the one owner of body state. Read freely; change through
-    /// the world's methods ([`crate::steer`]), which keep what the step
-    /// derives from it consistent.
-    pub bodies: Bodies,
+    /// The bodies: the one owner of body state, read through
+    /// [`World::bodies`] and changed only through the world's methods
+    /// ([`crate::steer`]), which keep what the step derives from it
+    /// consistent.
+    pub(crate) bodies: Bodies,
     /// The walls with their meshes and loads.
     pub walls: WallSet,
     /// Steps taken.
@@ -109,6 +110,14 @@ pub struct World {
 }
 
 impl World {
+    /// The bodies (storage order): position, velocity, orientation,
+    /// angular momentum and velocity, force, torque, mass properties and
+    /// flags, world frame, SI units. Read-only: change them through the
+    /// steering methods ([`crate::steer`]).
+    pub fn bodies(&self) -> &Bodies {
+        &self.bodies
+    }
+
     /// A new, empty world.
     pub fn new(config: WorldConfig, materials: Vec<Material>, contact_table: ContactTable) -> Self {
         World {

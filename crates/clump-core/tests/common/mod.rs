@@ -91,7 +91,7 @@ pub fn run_impact(w: &mut World, body_id: u64, radius: f64, max_steps: usize) ->
             let b = w.body_index(body_id).unwrap();
             imp.max_force = imp
                 .max_force
-                .max((w.bodies.force[b] - w.bodies.mass[b] * w.config.gravity).length());
+                .max((w.bodies().force[b] - w.bodies().mass[b] * w.config.gravity).length());
         } else if started {
             break;
         }

@@ -159,7 +159,7 @@ impl Frame {
 
     /// The world's bodies, without contacts.
     pub fn bodies_only(world: &World) -> Frame {
-        let b = &world.bodies;
+        let b = &world.bodies();
         let base = base_templates(world);
         let bodies = (0..b.len())
             .map(|i| {
@@ -201,7 +201,7 @@ impl Frame {
 /// The contacts of the step that ended at the world's boundary, when it
 /// recorded them.
 fn contacts(world: &World) -> Option<Vec<ContactState>> {
-    let b = &world.bodies;
+    let b = &world.bodies();
     {
         let radius = |gid: u64| -> f64 {
             let i = world.body_index(gid >> SPHERE_ID_BITS).unwrap_or(0);

@@ -73,7 +73,7 @@ fn hex3(v: glam::DVec3) -> [String; 3] {
 /// Every body's state (sorted by global id) with the exact bit patterns of
 /// position, velocity, orientation and angular momentum in hex, as JSON.
 pub fn final_state_json(world: &World) -> String {
-    let b = &world.bodies;
+    let b = &world.bodies();
     let mut idx: Vec<usize> = (0..b.len()).collect();
     idx.sort_by_key(|&i| b.id[i]);
     let bodies: Vec<serde_json::Value> = idx

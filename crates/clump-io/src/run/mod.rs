@@ -499,7 +499,7 @@ impl Runner {
             time: self.world.time,
             wall_time,
             sphere_steps,
-            bodies: self.world.bodies.len(),
+            bodies: self.world.bodies().len(),
             spheres: self.world.spheres().len(),
             checkpoint: self.out.last_checkpoint.clone(),
         };

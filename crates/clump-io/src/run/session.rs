@@ -206,7 +206,7 @@ impl Runner {
             time: self.world.time,
             wall_time: t_start.elapsed().as_secs_f64(),
             sphere_steps,
-            bodies: self.world.bodies.len(),
+            bodies: self.world.bodies().len(),
             spheres: self.world.spheres().len(),
             checkpoint: self.out.last_checkpoint.clone(),
         }

@@ -227,6 +227,7 @@ pub fn kind_specific(kinds: &[KindKeys]) -> Vec<&'static str> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::raw::*;
     use super::*;
     use serde::de::DeserializeOwned;
 

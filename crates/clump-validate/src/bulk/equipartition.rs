@@ -32,16 +32,21 @@ pub fn run(g: &mut Group, dir: &Path) -> Result<(), String> {
     let placed = fill(&mut w, t, DVec3::ZERO, DVec3::splat(l), n, 3)?;
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let mut mean = DVec3::ZERO;
-    for v in w.bodies.velocity.iter_mut() {
-        *v = DVec3::new(
-            rng.gen_range(-1.0..1.0),
-            rng.gen_range(-1.0..1.0),
-            rng.gen_range(-1.0..1.0),
-        ) * 0.5;
-        mean += *v / placed as f64;
+    let mut v: Vec<DVec3> = (0..w.bodies().len())
+        .map(|_| {
+            DVec3::new(
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            ) * 0.5
+        })
+        .collect();
+    for vi in &v {
+        mean += *vi / placed as f64;
     }
-    for v in w.bodies.velocity.iter_mut() {
-        *v -= mean;
+    for (i, vi) in v.iter_mut().enumerate() {
+        *vi -= mean;
+        w.set_body_velocity_at(i, *vi).map_err(|e| e.to_string())?;
     }
     w.prepare().map_err(|e| e.to_string())?;
     let steps = 60_000u64;

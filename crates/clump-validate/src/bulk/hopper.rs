@@ -94,7 +94,7 @@ pub struct Discharge {
 /// Discharged mass so far: spheres taken out below the floor plus those
 /// below it still in the domain, kg.
 fn discharged(w: &World, m: f64) -> f64 {
-    let below = w.bodies.position.iter().filter(|p| p.z < 0.0).count() as u64;
+    let below = w.bodies().position.iter().filter(|p| p.z < 0.0).count() as u64;
     (w.lost.total() + below) as f64 * m
 }
 
@@ -147,7 +147,7 @@ pub fn discharge(d0: f64) -> Result<Discharge, String> {
     let t0 = std::time::Instant::now();
     let n_settle = settle(&mut w, 1_500, 20_000, 1e-3 * m * G * D)?;
     // bulk density between 3 d above the floor and 3 d below the surface
-    let mut z: Vec<f64> = w.bodies.position.iter().map(|p| p.z).collect();
+    let mut z: Vec<f64> = w.bodies().position.iter().map(|p| p.z).collect();
     z.sort_by(|a, b| a.total_cmp(b));
     let surface = z[(0.95 * z.len() as f64) as usize] + R;
     let (z0, z1) = (3.0 * D, surface - 3.0 * D);
@@ -180,7 +180,7 @@ pub fn discharge(d0: f64) -> Result<Discharge, String> {
         let ov = w.stats.max_overlap_ratio;
         if ov > flow_overlap.0 {
             let b = w.body_index(w.stats.max_overlap_bodies[0]);
-            flow_overlap = (ov, b.map_or(f64::NAN, |b| w.bodies.position[b].z));
+            flow_overlap = (ov, b.map_or(f64::NAN, |b| w.bodies().position[b].z));
         }
         let (t_now, out) = (w.time - t_open, discharged(&w, m) - m0);
         history.push((t_now, out * 1e3));
@@ -194,7 +194,7 @@ pub fn discharge(d0: f64) -> Result<Discharge, String> {
         }
         // constant head: put back what left, at rest above the surface (as
         // many as fit now; the rest at the next sample)
-        let mut missing = n.saturating_sub(w.bodies.len());
+        let mut missing = n.saturating_sub(w.bodies().len());
         while missing > 0 {
             let spec = PackSpec {
                 region: insert_region,

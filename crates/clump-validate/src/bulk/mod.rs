@@ -62,7 +62,7 @@ pub fn settle(
         if n >= min_steps {
             let t = w.thermo();
             let ke = t.kinetic_translational + t.kinetic_rotational;
-            if ke < ke_per_body * w.bodies.len().max(1) as f64 {
+            if ke < ke_per_body * w.bodies().len().max(1) as f64 {
                 break;
             }
         }

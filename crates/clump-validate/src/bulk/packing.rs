@@ -57,7 +57,7 @@ fn bed(mu: f64, e: f64, seed: u64) -> Result<(f64, (f64, f64), Vec<(f64, f64)>, 
     }
     let m = sphere_mass(R, mat.density);
     settle(&mut w, 40_000, 150_000, 1e-4 * m * 9.81 * 2.0 * R)?;
-    let mut z: Vec<f64> = w.bodies.position.clone().iter().map(|p| p.z).collect();
+    let mut z: Vec<f64> = w.bodies().position.clone().iter().map(|p| p.z).collect();
     z.sort_by(|a, b| a.total_cmp(b));
     let top = z[(0.95 * z.len() as f64) as usize];
     let (z0, z1) = (6.0 * R, top - 4.0 * R);

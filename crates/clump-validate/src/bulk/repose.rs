@@ -175,7 +175,7 @@ fn pedestal(w: &mut World, radius: f64, seed: u64) -> Result<f64, String> {
 /// Free clumps (template `t`) at rest (speed below 0.05 m/s) above the
 /// pedestal: their number and the highest top of their bounding spheres (m).
 fn resting(w: &World, t: u32, br: f64) -> (usize, f64) {
-    let b = &w.bodies;
+    let b = w.bodies();
     (0..b.len())
         .filter(|&i| b.template[i] == t && b.position[i].z > 0.0 && b.velocity[i].length() < 0.05)
         .fold((0, 0.0), |(n, top), i| {
@@ -297,7 +297,7 @@ pub fn heap(spec: &HeapSpec) -> Result<Heap, String> {
     let sp = w.spheres();
     for (s, x) in sp.positions().enumerate() {
         let r = x.x.hypot(x.y);
-        if w.bodies.template[sp.body[s] as usize] != t || x.z < 0.0 || r >= rp {
+        if w.bodies().template[sp.body[s] as usize] != t || x.z < 0.0 || r >= rp {
             continue;
         }
         let sec = sector(x.x, x.y);
@@ -309,12 +309,12 @@ pub fn heap(spec: &HeapSpec) -> Result<Heap, String> {
             *c = c.max(h);
         }
     }
-    let on: Vec<f64> = (0..w.bodies.len())
+    let on: Vec<f64> = (0..w.bodies().len())
         .filter(|&i| {
-            let x = w.bodies.position[i];
-            w.bodies.template[i] == t && x.z > 0.0 && x.x.hypot(x.y) < rp
+            let x = w.bodies().position[i];
+            w.bodies().template[i] == t && x.z > 0.0 && x.x.hypot(x.y) < rp
         })
-        .map(|i| w.bodies.position[i].z - base)
+        .map(|i| w.bodies().position[i].z - base)
         .collect();
     let clumps_left = on.len();
     let centroid = on.iter().sum::<f64>() / on.len().max(1) as f64;

@@ -165,15 +165,15 @@ fn settled_bed(
             );
         }
         let to_body = stone.template.input_to_body;
-        let mut order: Vec<usize> = (0..w.bodies.len()).collect();
-        order.sort_by_key(|&b| w.bodies.id[b]);
+        let mut order: Vec<usize> = (0..w.bodies().len()).collect();
+        order.sort_by_key(|&b| w.bodies().id[b]);
         Ok(order
             .into_iter()
             .map(|b| Pose {
                 kind: 0,
-                x: w.bodies.position[b],
+                x: w.bodies().position[b],
                 // body → world times file → body
-                q: (w.bodies.orientation[b] * to_body).normalize(),
+                q: (w.bodies().orientation[b] * to_body).normalize(),
                 vz: 0.0,
             })
             .collect())
@@ -507,13 +507,13 @@ mod tests {
         let total: usize = poses.iter().map(|p| stones[p.kind].0.spheres.len()).sum();
         assert_eq!(lig.len(), total);
         // Clump's side
-        let (mut w, na, nb) = super::measure::build_world(&files.scenario, None).unwrap();
+        let (mut w, na, nb) = super::super::measure::build_world(&files.scenario, None).unwrap();
         assert_eq!((na, nb), (10, 10));
         w.prepare().unwrap();
         assert_eq!(w.templates.len(), ns);
         // as the bench reads Clump's final state back: through its dump
         let dump = d.join("clump_final.dump");
-        super::measure::write_dump(&w, &dump).unwrap();
+        super::super::measure::write_dump(&w, &dump).unwrap();
         let per_body: Vec<usize> = poses
             .iter()
             .map(|p| stones[p.kind].0.spheres.len())
@@ -523,8 +523,8 @@ mod tests {
         for (a, b) in f.pos.iter().zip(&lig) {
             assert!((*a - *b).length() < 1e-9, "{a} vs {b}");
         }
-        for b in 0..w.bodies.len() {
-            assert!((w.bodies.velocity[b] - DVec3::new(0.0, 0.0, PILE_VZ)).length() < 1e-12);
+        for b in 0..w.bodies().len() {
+            assert!((w.bodies().velocity[b] - DVec3::new(0.0, 0.0, PILE_VZ)).length() < 1e-12);
         }
         let input = std::fs::read_to_string(files.liggghts.join("in.stone")).unwrap();
         for (s, _) in stones {
@@ -555,7 +555,7 @@ mod tests {
         .unwrap();
         let sc = std::fs::read_to_string(&f.scenario).unwrap();
         assert!(sc.contains("tangential = \"liggghts\""));
-        super::measure::build_world(&f.scenario, None).unwrap();
+        super::super::measure::build_world(&f.scenario, None).unwrap();
         let _ = std::fs::remove_dir_all(&d);
     }
 
