@@ -29,6 +29,7 @@ pub mod contact;
 pub mod contacts;
 pub mod dof;
 pub mod health;
+pub mod heat;
 pub mod insert;
 pub mod lost;
 pub mod math;

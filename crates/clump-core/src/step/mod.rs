@@ -21,6 +21,10 @@
 //!    the gather to each body as soon as its force and torque are summed
 //!    (same pass).
 //!
+//! With heat on (`World::heat`), [`heat`] runs between stages 3 and 4: the
+//! bodies' temperatures take one explicit step from the conduction through
+//! the contacts at the centres stage 4 reads.
+//!
 //! Inside [`World::run`], the gather of every step but the last also applies
 //! stage 1 and 2 of the next step to each body shortly after its final kick
 //! (`integrate::FirstHalf`; to a block of 8 bodies after their kicks, so
@@ -45,6 +49,7 @@
 pub(crate) mod body_props;
 mod first_half_lanes;
 pub mod force;
+mod heat;
 pub mod integrate;
 pub mod kinematics;
 mod law_lanes;
@@ -188,6 +193,11 @@ impl World {
         } else if wall_started {
             rebuild::wall_started(self);
             lap(&mut times.neighbor, &mut t);
+        }
+        // heat: conduction at the sphere centres the forces will see (its
+        // time is counted with the gather's)
+        if self.heat.is_some() {
+            heat::conduct(self);
         }
         let fuse = fuse_next && !self.phase.topology_dirty;
         // SAFETY: the gather touches each body in one chunk only, and
