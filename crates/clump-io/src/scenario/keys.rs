@@ -57,6 +57,17 @@ pub const SCENARIO_KEYS: &[Key] = &[
     key("wall", "`[[wall]]` entries."),
     key("stage", "`[[stage]]` entries, run in order."),
     key("output", "`[output]`."),
+    key("heat", "`[heat]`: heat transfer (off without it)."),
+];
+
+/// The keys of `[heat]` ([`RawHeat`]).
+pub const HEAT_KEYS: &[Key] = &[
+    key(
+        "conductance",
+        "Contact conductance: `\"batchelor_obrien\"` (default, H = 2 k* a) or `\"geometric\"` (LIGGGHTS' overlap area).",
+    ),
+    key("temperature", "Initial temperature of bodies whose template gives none, K."),
+    key("convection", "Convection from a fluid: not available yet (needs a `[fluid]`)."),
 ];
 
 /// The keys of `[simulation]` ([`RawSimulation`]).
@@ -110,6 +121,14 @@ pub const MATERIAL_KEYS: &[Key] = &[
     key("youngs_modulus", "Young's modulus, Pa."),
     key("poisson_ratio", "Poisson's ratio (dimensionless)."),
     key("density", "Density, kg/m³."),
+    key(
+        "thermal_conductivity",
+        "Thermal conductivity, W/(m K) (with `[heat]`).",
+    ),
+    key(
+        "specific_heat",
+        "Specific heat capacity, J/(kg K) (with `[heat]`).",
+    ),
 ];
 
 /// The keys of `[contact]` ([`RawContact`]).
@@ -220,6 +239,14 @@ pub const TEMPLATE_KEYS: &[Key] = &[
         "torque_flags",
         "Torque flags per world axis of the template's bodies (LIGGGHTS `tflag`).",
     ),
+    key(
+        "temperature",
+        "Initial temperature of its bodies, K (with `[heat]`).",
+    ),
+    key(
+        "heat_source",
+        "Volumetric heat source of its bodies, W/m³ (with `[heat]`, default 0).",
+    ),
 ];
 
 /// The keys of the `size` of a `[[mix.component]]` ([`RawSize`]).
@@ -323,6 +350,10 @@ pub const INSERT_KEYS: &[Key] = &[
         "start_after",
         "Stream: seconds each body moves ballistically after insertion.",
     ),
+    key(
+        "temperature",
+        "Initial temperature of the inserted bodies, K (with `[heat]`; default the template's).",
+    ),
 ];
 
 /// The keys of the `rotation` of a mesh `[[wall]]` ([`RawRotation`]).
@@ -361,6 +392,7 @@ pub const WALL_KEYS: &[Key] = &[
     key("surface_velocity", "Extra tangential surface velocity, m/s."),
     key("multi_contact", "Several-contact treatment."),
     key("active", "Whether the wall is active at the start (default true)."),
+    key("temperature", "Fixed temperature, K (with `[heat]`; default adiabatic)."),
 ];
 
 /// The keys of `[[stage.wall]]` ([`RawWallChange`]).
@@ -596,6 +628,7 @@ pub const TABLES: &[&[Key]] = &[
     OUTPUT_KEYS,
     FIELDS_KEYS,
     FLOW_KEYS,
+    HEAT_KEYS,
 ];
 
 /// The table whose keys are `names`, in order (serde lists a struct's
@@ -682,6 +715,7 @@ mod tests {
             case!(RawOutput, OUTPUT_KEYS),
             case!(RawFields, FIELDS_KEYS),
             case!(RawFlow, FLOW_KEYS),
+            case!(RawHeat, HEAT_KEYS),
         ];
         assert_eq!(cases.len(), TABLES.len(), "every table is checked");
         for (raw, table, fields) in cases {

@@ -154,6 +154,11 @@ impl Scenario {
         for w in &self.walls {
             world.add_wall(w.clone()).map_err(|e| e.to_string())?;
         }
+        if let Some(h) = &self.heat {
+            world
+                .enable_heat(h.model.clone())
+                .map_err(|e| e.to_string())?;
+        }
         Ok(world)
     }
 
