@@ -401,3 +401,57 @@ fn lattice_conductivity_matches_batchelor_obrien() {
     println!("fcc: k_e = {k_fcc:.9e} W/(m K), Batchelor–O'Brien {bo_fcc:.9e}");
     assert!((k_fcc - bo_fcc).abs() < 1e-6 * bo_fcc);
 }
+
+/// A bed of tetrahedral clumps falls onto a floor at 400 K and packs while
+/// conducting (every contact, rebuilds, periodic sides): the temperatures
+/// have the same bits on 1 and 3 threads, and the heat the bodies gained
+/// is the heat the floor gave, to round-off.
+#[test]
+fn a_settling_bed_conducts_the_same_bits_on_any_thread_count_and_conserves_heat() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut w = clump_core::testbed::tetra_lattice_bed(5, 5, 4, None);
+            let thermal = Some(ThermalMaterial {
+                conductivity: 5.0,
+                specific_heat: 1.0,
+            });
+            w.enable_heat(HeatModel {
+                conductance: Conductance::BatchelorObrien,
+                materials: vec![thermal; w.materials.len()],
+                wall_temperature: vec![Some(400.0)],
+                template_temperature: vec![300.0; w.templates.len()],
+                template_source: vec![0.0; w.templates.len()],
+            })
+            .unwrap();
+            let content = |w: &World| w.thermo().heat.unwrap().heat_content;
+            let c0 = content(&w);
+            w.run(6000).unwrap();
+            let th = w.thermo().heat.unwrap();
+            let gained = content(&w) - c0;
+            let ids = w.bodies.id.clone();
+            let mut t: Vec<(u64, u64)> = ids
+                .iter()
+                .zip(&w.bodies.temperature)
+                .map(|(&i, &t)| (i, t.to_bits()))
+                .collect();
+            t.sort();
+            (t, gained, th.wall_heat[0], th.max_temperature, th.stability)
+        })
+    };
+    let (a, gained, wall, hottest, stability) = run(1);
+    let (b, ..) = run(3);
+    println!(
+        "tetra bed: heat from the floor {wall:.6e} J, gained by the bodies {gained:.6e} J, hottest {hottest:.3} K, stability ratio {stability:.3e}"
+    );
+    assert!(hottest > 300.1, "no heat reached the bed: {hottest}");
+    assert!(wall > 0.0);
+    assert!(
+        ((gained - wall) / wall).abs() < 1e-9,
+        "{gained} J gained, {wall} J from the floor"
+    );
+    assert!(a == b, "temperatures differ between 1 and 3 threads");
+}
