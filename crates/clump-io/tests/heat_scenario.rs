@@ -18,7 +18,9 @@ const N: usize = 5;
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("clump-heat-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
+    for sub in ["a", "b", "c"] {
+        std::fs::create_dir_all(d.join(sub)).unwrap();
+    }
     d
 }
 
@@ -306,4 +308,53 @@ fn bad_heat_input_is_refused_at_its_key() {
         ("dt = 5e-5", 0),
         "above the thermal stability limit",
     );
+}
+
+/// Initial temperatures: the body file's `temperature` column over the
+/// insert's `temperature` over the template's (conduction off, k = 0, so
+/// they stay).
+#[test]
+fn initial_temperatures_come_from_the_file_then_the_insert_then_the_template() {
+    let still = [
+        (
+            "thermal_conductivity = 10000.0\nspecific_heat",
+            "thermal_conductivity = 0.0\nspecific_heat",
+        ),
+        ("fixed = true\n", "fixed = true\ntemperature = 500.0\n"),
+    ];
+    let temps = |d: &Path, column: bool| {
+        let path = chain(d, 10, &still);
+        if column {
+            let mut csv = String::from("template,x,y,z,temperature\n");
+            for k in 0..N {
+                csv.push_str(&format!("sphere,{:?},0,0,{}\n", x(k), 310 + 10 * k));
+            }
+            std::fs::write(d.join("chain.csv"), csv).unwrap();
+        }
+        let mut r = Runner::new(scenario::load(&path).unwrap(), &d.join("out")).unwrap();
+        r.run(RunOptions::default()).unwrap();
+        let w = r.world();
+        (1..=N as u64)
+            .map(|id| w.bodies.temperature[w.body_index(id).unwrap()])
+            .collect::<Vec<f64>>()
+    };
+    let d = dir("initial");
+    assert_eq!(
+        temps(&d.join("a"), true),
+        [310.0, 320.0, 330.0, 340.0, 350.0]
+    );
+    assert_eq!(temps(&d.join("b"), false), [500.0; N]);
+    // a temperature of 0 K in the file is refused at the insert's file
+    let path = chain(&d.join("c"), 10, &[]);
+    std::fs::write(
+        d.join("c/chain.csv"),
+        "template,x,y,z,temperature\nsphere,0,0,0,0\n",
+    )
+    .unwrap();
+    let msg = scenario::load(&path).err().unwrap().to_string();
+    assert!(
+        msg.contains("chain.csv:2: temperature must be > 0 K"),
+        "{msg}"
+    );
+    let _ = std::fs::remove_dir_all(&d);
 }

@@ -124,17 +124,25 @@ impl Runner {
 }
 
 /// Gives the bodies insert `k` just appended (storage indices from `from`
-/// on) the insert's `temperature`, where it has one.
+/// on) the insert's `temperature`, and then its body file's `temperature`
+/// column, where it has them.
 fn insert_temperature(
     scenario: &crate::scenario::Scenario,
     world: &mut clump_core::world::World,
     k: usize,
     from: usize,
 ) {
-    let Some(t) = scenario.heat.as_ref().and_then(|h| h.insert_temperature[k]) else {
+    let Some(h) = scenario.heat.as_ref() else {
         return;
     };
-    for b in from..world.bodies.len() {
-        world.bodies.temperature[b] = t;
+    if let Some(t) = h.insert_temperature[k] {
+        for b in from..world.bodies.len() {
+            world.bodies.temperature[b] = t;
+        }
+    }
+    if let Some(ts) = &h.file_temperature[k] {
+        for (b, &t) in (from..world.bodies.len()).zip(ts) {
+            world.bodies.temperature[b] = t;
+        }
     }
 }

@@ -75,6 +75,9 @@ pub struct HeatDef {
     /// Per `[[insert]]`: the initial temperature of its bodies, K (`None`:
     /// their templates').
     pub insert_temperature: Vec<Option<f64>>,
+    /// Per `[[insert]]`: the `temperature` column of its body file, one per
+    /// body (K; over the insert's and the template's), if it has one.
+    pub file_temperature: Vec<Option<Vec<f64>>>,
     /// The thermal stability limit of the time step, s (T-54).
     pub stability_limit: f64,
     /// The template that sets it.

@@ -32,7 +32,14 @@ pub(super) struct HeatInput<'a> {
 /// The heat model, or `None` without `[heat]` (then no heat key may be
 /// given).
 pub(super) fn heat(cx: &mut Cx, raw: &RawScenario, inp: &HeatInput) -> R<Option<HeatDef>> {
+    let file_temperature = file_temperatures(cx, raw)?;
     let Some(h) = &raw.heat else {
+        if let Some(i) = file_temperature.iter().position(|t| t.is_some()) {
+            return Err(cx
+                .err(&[K("insert"), I(i), K("file")], "the body file has a 'temperature' column, but the scenario no [heat]: heat transfer is off")
+                .label("has no effect")
+                .note("help: add a [heat] table to turn heat transfer on (docs/scenario.md), or remove the column"));
+        }
         return no_heat_keys(cx, raw).map(|()| None);
     };
     if h.convection.is_some() {
@@ -117,9 +124,32 @@ pub(super) fn heat(cx: &mut Cx, raw: &RawScenario, inp: &HeatInput) -> R<Option<
     Ok(Some(HeatDef {
         model,
         insert_temperature,
+        file_temperature,
         stability_limit: limit,
         limiting_template,
     }))
+}
+
+/// The `temperature` column of each CSV body file (`None` for other
+/// inserts and files without one).
+fn file_temperatures(cx: &mut Cx, raw: &RawScenario) -> R<Vec<Option<Vec<f64>>>> {
+    let mut out = Vec::new();
+    for (i, ins) in raw.insert.iter().enumerate() {
+        let csv = ins.format.unwrap_or_default() == super::bodies_file::BodyFileFormat::Csv;
+        let t = match (&ins.kind, &ins.file) {
+            (Some(InsertKind::File), Some(f)) if csv => {
+                let path = [K("insert"), I(i), K("file")];
+                let bytes = cx.read_file(&path, "body", f)?;
+                super::bodies_file::temperature_column(&bytes).map_err(|(line, msg)| {
+                    cx.err(&path, format!("{f}:{line}: {msg}"))
+                        .label("in this file")
+                })?
+            }
+            _ => None,
+        };
+        out.push(t);
+    }
+    Ok(out)
 }
 
 /// A temperature key: finite and above 0 K.
