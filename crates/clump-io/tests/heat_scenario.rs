@@ -137,6 +137,15 @@ fn a_chain_scenario_reaches_the_series_solution_and_writes_its_temperatures() {
     let path = chain(&d, 6000, &[]);
     let sc = scenario::load(&path).unwrap_or_else(|e| panic!("{e}"));
     let h = sc.heat.as_ref().unwrap();
+    // T-54's bound: m c_p over 12 wall-form conductances at the guard's overlap
+    let mass = 2500.0 * 4.0 / 3.0 * std::f64::consts::PI * R.powi(3);
+    let ratio = sc.stability.max_overlap_ratio;
+    let bound = mass * 800.0 / (12.0 * 2.0 * K * (R * ratio * R).sqrt());
+    assert!(
+        (h.stability_limit - bound).abs() < 1e-12 * bound,
+        "{} {bound}",
+        h.stability_limit
+    );
     assert!(sc.config.dt < h.stability_limit, "{}", h.stability_limit);
     let out = d.join("out");
     let mut r = Runner::new(sc, &out).unwrap();
