@@ -126,6 +126,15 @@ fn report(sc: &Scenario) {
         }
         _ => outln!("  dt = {:.4e} s (explicit; no templates)", ts.dt),
     }
+    if let Some(h) = &sc.heat {
+        outln!(
+            "  heat ({:?} conductance): thermal stability limit {:.4e} s (template '{}'), dt = {:.3e} of it (refused above 1)",
+            h.model.conductance,
+            h.stability_limit,
+            h.limiting_template,
+            ts.dt / h.stability_limit
+        );
+    }
     outln!("\nstages:");
     for s in &sc.stages {
         outln!(

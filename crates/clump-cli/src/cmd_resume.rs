@@ -49,7 +49,11 @@ pub fn run(args: &ResumeArgs) -> ExitCode {
         errln!("error: --steps {n} is not after the checkpoint's step {at}; nothing would be run\n  = help: --steps counts from the start of the original run: give a step above {at}");
         return ExitCode::from(2);
     }
-    ranks.split(&mut runner);
+    if let Err(e) = ranks.split(&mut runner) {
+        errln!("error: {e}");
+        ranks.fail(2);
+        return ExitCode::from(2);
+    }
     let code = drive(runner, args.threads, args.steps, &ranks);
     if let Some(d) = &scratch {
         ranks.finish(d);

@@ -267,7 +267,11 @@ pub fn run(args: &RunArgs) -> ExitCode {
             return code;
         }
     };
-    ranks.split(&mut runner);
+    if let Err(e) = ranks.split(&mut runner) {
+        errln!("error: {e}");
+        ranks.fail(2);
+        return ExitCode::from(2);
+    }
     let code = drive(runner, args.threads, args.steps, &ranks);
     ranks.finish(&mine);
     code

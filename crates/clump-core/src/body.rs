@@ -83,6 +83,11 @@ pub struct Bodies {
     pub torque_flag: Vec<AxisFlags>,
     /// Step from which forces act (ballistic before it).
     pub start_step: Vec<u64>,
+    /// Temperature, K (one per body: lumped). Empty while the world has no
+    /// heat (`World::heat`), else one per body.
+    pub temperature: Vec<f64>,
+    /// Heat source, W. Empty while the world has no heat, else one per body.
+    pub heat_source: Vec<f64>,
 }
 
 impl Bodies {
@@ -137,6 +142,8 @@ impl Bodies {
         self.force_flag.extend_from_slice(&other.force_flag);
         self.torque_flag.extend_from_slice(&other.torque_flag);
         self.start_step.extend_from_slice(&other.start_step);
+        self.temperature.extend_from_slice(&other.temperature);
+        self.heat_source.extend_from_slice(&other.heat_source);
     }
 
     /// Reorders all arrays so that new index `k` holds old index `perm[k]`.
@@ -155,6 +162,13 @@ impl Bodies {
             dst.clear();
             dst.extend(perm.iter().map(|&k| src[k as usize]));
         }
+        // the heat arrays are empty without heat, and stay so
+        fn gather_opt(src: &[f64], perm: &[u32], dst: &mut Vec<f64>) {
+            dst.clear();
+            if !src.is_empty() {
+                gather(src, perm, dst);
+            }
+        }
         gather(&self.id, perm, &mut out.id);
         gather(&self.template, perm, &mut out.template);
         gather(&self.position, perm, &mut out.position);
@@ -169,5 +183,7 @@ impl Bodies {
         gather(&self.force_flag, perm, &mut out.force_flag);
         gather(&self.torque_flag, perm, &mut out.torque_flag);
         gather(&self.start_step, perm, &mut out.start_step);
+        gather_opt(&self.temperature, perm, &mut out.temperature);
+        gather_opt(&self.heat_source, perm, &mut out.heat_source);
     }
 }

@@ -67,6 +67,7 @@ pub mod boundary;
 pub mod contact;
 pub mod dof;
 pub mod health;
+pub mod heat;
 pub mod insert;
 pub mod lost;
 pub mod math;

@@ -56,6 +56,10 @@ pub struct WorldState {
     /// Step of the last neighbour build.
     #[serde(default)]
     pub built_step: u64,
+    /// Per wall: the heat it has given the bodies since the start, J
+    /// (empty without heat).
+    #[serde(default)]
+    pub wall_heat: Vec<f64>,
 }
 
 impl World {
@@ -100,6 +104,10 @@ impl World {
             wall_hist,
             adapted_skin: self.neighbors.adapted_skin,
             built_step: self.neighbors.built_step,
+            wall_heat: self
+                .heat
+                .as_ref()
+                .map_or(Vec::new(), |h| h.wall_heat.clone()),
         })
     }
 
@@ -146,6 +154,23 @@ impl World {
                 "checkpoint body arrays have inconsistent lengths ({nb} ids, {lens:?})"
             ));
         }
+        let heat_len = if self.heat.is_some() { nb } else { 0 };
+        if b.temperature.len() != heat_len || b.heat_source.len() != heat_len {
+            return Err(format!(
+                "checkpoint has {} body temperatures for {nb} bodies; the scenario {}",
+                b.temperature.len(),
+                if self.heat.is_some() {
+                    "has heat transfer"
+                } else {
+                    "has none"
+                }
+            ));
+        }
+        if let Some(h) = self.heat.as_deref() {
+            if s.wall_heat.len() != h.wall_heat.len() {
+                return Err("checkpoint wall heat does not match its walls".into());
+            }
+        }
         if s.wall_loads.len() != s.walls.len() {
             return Err("checkpoint wall loads do not match its walls".into());
         }
@@ -183,6 +208,9 @@ impl World {
                 "checkpoint skin {} m (must be finite and >= 0) or last build step {} (at most the step {}) is invalid",
                 s.adapted_skin, s.built_step, s.step
             ));
+        }
+        if let Some(h) = self.heat.as_deref_mut() {
+            h.wall_heat = s.wall_heat;
         }
         self.config = s.config;
         self.neighbors.adapted_skin = s.adapted_skin;

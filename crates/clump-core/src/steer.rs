@@ -48,6 +48,61 @@ impl World {
         self.set_body_pose_at(i, position, orientation)
     }
 
+    /// Sets body `id`'s temperature, K (`> 0`); an error when the world
+    /// has no heat.
+    pub fn set_body_temperature(&mut self, id: u64, temperature: f64) -> Result<(), WorldError> {
+        let i = self.steer_index(id)?;
+        self.set_body_temperature_at(i, temperature)
+    }
+
+    /// [`Self::set_body_temperature`] for the body at storage index `i`.
+    pub fn set_body_temperature_at(
+        &mut self,
+        i: usize,
+        temperature: f64,
+    ) -> Result<(), WorldError> {
+        self.check_heat_value(
+            i,
+            "temperature",
+            temperature > 0.0 && temperature.is_finite(),
+            "> 0 K and finite",
+            temperature,
+        )?;
+        self.bodies.temperature[i] = temperature;
+        Ok(())
+    }
+
+    /// Sets the heat source of the body at storage index `i`, W (finite);
+    /// an error when the world has no heat.
+    pub fn set_body_heat_source_at(&mut self, i: usize, power: f64) -> Result<(), WorldError> {
+        self.check_heat_value(i, "heat source (W)", power.is_finite(), "finite", power)?;
+        self.bodies.heat_source[i] = power;
+        Ok(())
+    }
+
+    /// Refuses a thermal value for body `i` when the world has no heat,
+    /// the index is out of range or the value is not `allowed`.
+    fn check_heat_value(
+        &self,
+        i: usize,
+        what: &str,
+        ok: bool,
+        allowed: &str,
+        v: f64,
+    ) -> Result<(), WorldError> {
+        if self.heat.is_none() {
+            return Err(WorldError::BadValue(format!(
+                "the world has no heat transfer (no [heat] in the scenario): no {what} to set"
+            )));
+        }
+        if !ok {
+            return Err(WorldError::BadValue(format!(
+                "{what} must be {allowed}, got {v}"
+            )));
+        }
+        self.check_index(i)
+    }
+
     /// [`Self::set_body_velocity`] for the body at storage index `i` (the
     /// index into `bodies`' arrays at this boundary): for drivers that set
     /// many bodies at once.

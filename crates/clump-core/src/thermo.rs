@@ -31,6 +31,27 @@ pub struct Thermo {
     pub lost_bodies: u64,
     /// Load on each wall (force and torque exerted by the particles), world frame.
     pub wall_loads: Vec<WallLoad>,
+    /// The bodies' temperatures and heat, when the world has heat.
+    pub heat: Option<HeatThermo>,
+}
+
+/// Whole-system thermal quantities (SI units).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HeatThermo {
+    /// Mean body temperature, K (NaN without bodies).
+    pub mean_temperature: f64,
+    /// Lowest body temperature, K (NaN without bodies).
+    pub min_temperature: f64,
+    /// Highest body temperature, K (NaN without bodies).
+    pub max_temperature: f64,
+    /// Heat content Σ m c_p T of the bodies (from 0 K), J.
+    pub heat_content: f64,
+    /// Per wall: heat flow from the wall into the bodies in the last step, W.
+    pub wall_flow: Vec<f64>,
+    /// Per wall: heat given to the bodies since the start, J.
+    pub wall_heat: Vec<f64>,
+    /// The last step's largest `dt Σ H / (m c_p)` (stable at most 1).
+    pub stability: f64,
 }
 
 impl World {
@@ -59,6 +80,31 @@ impl World {
             max_overlap_ratio: self.stats.max_overlap_ratio,
             lost_bodies: self.lost.total(),
             wall_loads: self.walls.loads.clone(),
+            heat: self.heat_thermo(),
         }
+    }
+
+    /// The thermal part of [`World::thermo`]; sums in storage order.
+    fn heat_thermo(&self) -> Option<HeatThermo> {
+        let h = self.heat.as_deref()?;
+        let t = &self.bodies.temperature;
+        let n = t.len();
+        let (mut sum, mut lo, mut hi, mut content) = (0.0, f64::INFINITY, f64::NEG_INFINITY, 0.0);
+        for (b, &tb) in t.iter().enumerate() {
+            sum += tb;
+            lo = lo.min(tb);
+            hi = hi.max(tb);
+            content += self.heat_capacity(b) * tb;
+        }
+        let none = n == 0;
+        Some(HeatThermo {
+            mean_temperature: if none { f64::NAN } else { sum / n as f64 },
+            min_temperature: if none { f64::NAN } else { lo },
+            max_temperature: if none { f64::NAN } else { hi },
+            heat_content: content,
+            wall_flow: h.wall_flow.clone(),
+            wall_heat: h.wall_heat.clone(),
+            stability: h.stability,
+        })
     }
 }

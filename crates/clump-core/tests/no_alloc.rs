@@ -169,3 +169,39 @@ fn memory_is_linear_in_the_number_of_bodies() {
     let (r1, r2) = (p1 as f64 / n1 as f64, p2 as f64 / n2 as f64);
     assert!(r2 < 1.5 * r1, "pairs per body grew from {r1} to {r2}");
 }
+
+/// The heat stage (`step::heat`) allocates nothing per step either: the
+/// same bed with conduction through every contact and a hot floor.
+#[test]
+fn no_heap_allocation_per_step_with_heat() {
+    use clump_core::heat::{Conductance, HeatModel, ThermalMaterial};
+    let _serial = serial();
+    let mut w = bed(10);
+    let thermal = Some(ThermalMaterial {
+        conductivity: 1.0,
+        specific_heat: 800.0,
+    });
+    w.enable_heat(HeatModel {
+        conductance: Conductance::BatchelorObrien,
+        materials: vec![thermal; w.materials.len()],
+        wall_temperature: vec![Some(400.0); w.walls.len()],
+        template_temperature: vec![300.0; w.templates.len()],
+        template_source: vec![1e3; w.templates.len()],
+    })
+    .unwrap();
+    w.run(3000).unwrap();
+    let (mut steps, mut allocs) = (0u64, 0u64);
+    for _ in 0..1000 {
+        let r0 = w.rebuilds;
+        let a0 = ALLOCS.load(Ordering::Relaxed);
+        w.step().unwrap();
+        if w.rebuilds == r0 {
+            steps += 1;
+            allocs += ALLOCS.load(Ordering::Relaxed) - a0;
+        }
+    }
+    eprintln!("with heat: {allocs} allocations in {steps} steps without rebuild");
+    assert!(steps > 100);
+    assert_eq!(allocs, 0, "a step with heat allocated");
+    assert!(w.thermo().heat.unwrap().max_temperature > 300.0);
+}

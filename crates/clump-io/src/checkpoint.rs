@@ -23,8 +23,9 @@ use thiserror::Error;
 /// The magic bytes at the start of every checkpoint.
 pub const CHECKPOINT_MAGIC: [u8; 8] = *b"CLUMPCKP";
 
-/// The format version this build writes and reads.
-pub const CHECKPOINT_VERSION: u32 = 1;
+/// The format version this build writes and reads (2: the bodies carry
+/// their temperatures and heat sources, the state the walls' heat).
+pub const CHECKPOINT_VERSION: u32 = 2;
 
 /// Size of the fixed header, bytes.
 pub const HEADER_LEN: usize = 32;

@@ -13,7 +13,12 @@
 //! particles, `−(F·v + T_c·ω)` with the load `F` and the torque `T_c` about
 //! the centre of rotation exerted on the wall by the particles, and the wall's
 //! velocity `v` and angular velocity `ω` (a conveyor's `surface_velocity` is
-//! not included).
+//! not included). With `[heat]`, last: `mean_temperature[K]`,
+//! `min_temperature[K]`, `max_temperature[K]`, `heat_content[J]` (Σ m c_p T
+//! of the bodies), `heat_stability` (the last step's largest dt Σ H /
+//! (m c_p), stable up to 1), then per wall `<name>_heat_flow[W]` (from the
+//! wall into the bodies in the last step) and `<name>_heat[J]` (since the
+//! start).
 //!
 //! The file is an append-only log: each row is written to the file at once,
 //! so an interrupted run keeps every row written so far (a row cut by a
@@ -34,6 +39,8 @@ pub struct ThermoWriter {
     path: PathBuf,
     header: String,
     power: Vec<bool>,
+    /// The heat columns are written.
+    heat: bool,
     out: AppendLog,
 }
 
@@ -111,19 +118,42 @@ impl ThermoWriter {
         Self::header_walls(&WallColumns::plain(wall_names))
     }
 
+    /// The header line (without newline) for the given walls, with the
+    /// heat columns when `heat`.
+    pub fn header_heat(walls: &[WallColumns], heat: bool) -> String {
+        let mut h = Self::header_walls(walls);
+        if heat {
+            h.push_str(",mean_temperature[K],min_temperature[K],max_temperature[K],heat_content[J],heat_stability");
+            for c in unique_columns(walls) {
+                h.push_str(&format!(",{c}_heat_flow[W],{c}_heat[J]"));
+            }
+        }
+        h
+    }
+
+    /// The values of the heat columns of [`Self::header_heat`], in order.
+    pub fn heat_values(h: &clump_core::thermo::HeatThermo) -> Vec<f64> {
+        let mut v = vec![
+            h.mean_temperature,
+            h.min_temperature,
+            h.max_temperature,
+            h.heat_content,
+            h.stability,
+        ];
+        for (q, e) in h.wall_flow.iter().zip(&h.wall_heat) {
+            v.push(*q);
+            v.push(*e);
+        }
+        v
+    }
+
     /// The header line (without newline) for the given walls.
     pub fn header_walls(walls: &[WallColumns]) -> String {
         let mut h = String::from(
             "time[s],step,bodies,contacts,pair_contacts,wall_contacts,ke_translational[J],\
              ke_rotational[J],elastic_energy[J],potential_energy[J],max_overlap_ratio,lost_bodies",
         );
-        let mut used: Vec<String> = Vec::new();
-        for (i, w) in walls.iter().enumerate() {
-            let mut c = column_name(&w.name);
-            if used.contains(&c) {
-                c = format!("{c}_{i}");
-            }
-            used.push(c.clone());
+        for (w, c) in walls.iter().zip(unique_columns(walls)) {
             for s in ["fx[N]", "fy[N]", "fz[N]", "tx[N*m]", "ty[N*m]", "tz[N*m]"] {
                 h.push_str(&format!(",{c}_{s}"));
             }
@@ -137,15 +167,20 @@ impl ThermoWriter {
     /// Creates (truncates) `path` and writes the header (force and torque
     /// columns per wall).
     pub fn create(path: impl AsRef<Path>, wall_names: &[String]) -> io::Result<Self> {
-        Self::create_walls(path, &WallColumns::plain(wall_names))
+        Self::create_walls(path, &WallColumns::plain(wall_names), false)
     }
 
-    /// Creates (truncates) `path` and writes the header for `walls`.
-    pub fn create_walls(path: impl AsRef<Path>, walls: &[WallColumns]) -> io::Result<Self> {
+    /// Creates (truncates) `path` and writes the header for `walls` (and
+    /// the heat columns when `heat`).
+    pub fn create_walls(
+        path: impl AsRef<Path>,
+        walls: &[WallColumns],
+        heat: bool,
+    ) -> io::Result<Self> {
         let path = path.as_ref().to_path_buf();
-        let header = Self::header_walls(walls);
+        let header = Self::header_heat(walls, heat);
         write_atomic(&path, format!("{header}\n").as_bytes())?;
-        Self::open_append(path, header, walls)
+        Self::open_append(path, header, walls, heat)
     }
 
     /// Reopens `path` for a resumed run: keeps the header and the complete
@@ -157,21 +192,23 @@ impl ThermoWriter {
         wall_names: &[String],
         resume_step: u64,
     ) -> io::Result<Self> {
-        Self::resume_walls(path, &WallColumns::plain(wall_names), resume_step)
+        Self::resume_walls(path, &WallColumns::plain(wall_names), resume_step, false)
     }
 
-    /// [`ThermoWriter::resume`] for `walls`.
+    /// [`ThermoWriter::resume`] for `walls` (and the heat columns when
+    /// `heat`).
     pub fn resume_walls(
         path: impl AsRef<Path>,
         walls: &[WallColumns],
         resume_step: u64,
+        heat: bool,
     ) -> io::Result<Self> {
         let path = path.as_ref().to_path_buf();
-        let header = Self::header_walls(walls);
+        let header = Self::header_heat(walls, heat);
         let text = match std::fs::read(&path) {
             Ok(b) => String::from_utf8_lossy(&b).into_owned(),
             Err(e) if e.kind() == io::ErrorKind::NotFound => {
-                return Self::create_walls(path, walls)
+                return Self::create_walls(path, walls, heat)
             }
             Err(e) => {
                 return Err(io::Error::new(
@@ -207,15 +244,21 @@ impl ThermoWriter {
             }
         }
         write_atomic(&path, keep.as_bytes())?;
-        Self::open_append(path, header, walls)
+        Self::open_append(path, header, walls, heat)
     }
 
-    fn open_append(path: PathBuf, header: String, walls: &[WallColumns]) -> io::Result<Self> {
+    fn open_append(
+        path: PathBuf,
+        header: String,
+        walls: &[WallColumns],
+        heat: bool,
+    ) -> io::Result<Self> {
         Ok(ThermoWriter {
             out: AppendLog::open(&path)?,
             path,
             header,
             power: walls.iter().map(|w| w.power).collect(),
+            heat,
         })
     }
 
@@ -265,7 +308,27 @@ impl ThermoWriter {
                 row.push_str(&fmt_f64(power.get(i).copied().unwrap_or(0.0)));
             }
         }
+        if let (true, Some(h)) = (self.heat, &t.heat) {
+            for v in Self::heat_values(h) {
+                row.push(',');
+                row.push_str(&fmt_f64(v));
+            }
+        }
         row.push('\n');
         self.out.append(row.as_bytes())
     }
+}
+
+/// The column name of each wall, made unique by its index where two names
+/// read the same.
+fn unique_columns(walls: &[WallColumns]) -> Vec<String> {
+    let mut used: Vec<String> = Vec::new();
+    for (i, w) in walls.iter().enumerate() {
+        let mut c = column_name(&w.name);
+        if used.contains(&c) {
+            c = format!("{c}_{i}");
+        }
+        used.push(c);
+    }
+    used
 }

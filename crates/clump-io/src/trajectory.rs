@@ -8,7 +8,8 @@
 //! rows of the matrix A (docs/theory.md T-2) (world → body), i.e. the body axes in world
 //! coordinates, LIGGGHTS' `ex_space, ey_space, ez_space`. With
 //! `loads = true` also `fx,fy,fz,mx,my,mz` (see [`Extras::loads`]); in the
-//! 2D mode last `theta_2d` (see [`PLANAR_COLUMNS`]).
+//! 2D mode `theta_2d` (see [`PLANAR_COLUMNS`]); with `[heat]` last
+//! `temperature` (K).
 //!
 //! Like `thermo.csv` these are append-only logs flushed at each row; a body
 //! absent at a write (not yet inserted, or lost) gets no row.
@@ -42,7 +43,12 @@ pub struct Extras {
     pub loads: bool,
     /// [`PLANAR_COLUMNS`] (the 2D mode).
     pub planar: bool,
+    /// [`TEMPERATURE_COLUMNS`] (with heat).
+    pub temperature: bool,
 }
+
+/// The column heat appends (last): the body's temperature, K.
+pub const TEMPERATURE_COLUMNS: &str = "temperature";
 
 /// The column the 2D mode appends (last): the rotation angle θ about z
 /// (rad, in (−π, π]) of the planar matrix `A_θ`, `2 atan2(q_z, q_w)`.
@@ -107,6 +113,7 @@ impl TrajectoryWriter {
                 (extras.euler, EULER_COLUMNS),
                 (extras.loads, LOAD_COLUMNS),
                 (extras.planar, PLANAR_COLUMNS),
+                (extras.temperature, TEMPERATURE_COLUMNS),
             ] {
                 if on {
                     keep = format!("{keep},{cols}");
@@ -187,6 +194,9 @@ impl TrajectoryWriter {
                     theta += std::f64::consts::TAU;
                 }
                 row.push(fmt_f64(theta));
+            }
+            if self.extras.temperature {
+                row.push(fmt_f64(b.temperature.get(i).copied().unwrap_or(f64::NAN)));
             }
             f.append(format!("{}\n", row.join(",")).as_bytes())?;
         }

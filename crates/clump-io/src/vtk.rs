@@ -20,7 +20,8 @@
 //!   `coordination` (other bodies touched), `contacts` (sphere–sphere
 //!   contacts of its spheres), `wall_contacts` (sphere–wall contacts); the
 //!   three counts are −1 where the frame has no force evaluation recorded
-//!   (the first frame, bodies inserted at that step). Field data
+//!   (the first frame, bodies inserted at that step); with `[heat]` also
+//!   `temperature` (K) and `heat_source` (W). Field data
 //!   `template_names`: the names that `template` indexes, so a frame
 //!   colours by shape with the names in the legend.
 //! - **walls**: one polygon per face: planes clipped to the domain box,
@@ -159,6 +160,10 @@ pub fn bodies_vtp_counted(world: &World, counts: Option<&BodyCounts>) -> Vec<u8>
             b.id.iter()
                 .map(|id| counts.and_then(|c| c.get(id)).map_or(-1, |n| n[k] as i32)),
         );
+    }
+    if world.heat.is_some() {
+        f.point_f64("temperature", 1, b.temperature.iter().copied());
+        f.point_f64("heat_source", 1, b.heat_source.iter().copied());
     }
     f.vertex_cells();
     f.finish()

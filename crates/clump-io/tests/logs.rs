@@ -30,6 +30,7 @@ fn thermo(step: u64) -> Thermo {
             force: DVec3::new(1.0, 2.0, 3.0),
             torque: DVec3::new(-1.0, 0.0, 1e-20),
         }],
+        heat: None,
     }
 }
 

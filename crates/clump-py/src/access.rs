@@ -46,6 +46,29 @@ fn set_rows(
     Ok(())
 }
 
+/// Reads `value` as one number per body (a length-N sequence or array)
+/// and applies `set(world, index, value)` to every body, after checking
+/// them all (length, finiteness).
+fn set_column(
+    py: Python<'_>,
+    sim: &Py<Simulation>,
+    value: &Bound<'_, PyAny>,
+    what: &str,
+    check: impl Fn(usize, &[f64]) -> PyResult<()>,
+    set: impl Fn(&mut clump_core::world::World, usize, f64) -> Result<(), clump_core::world::WorldError>,
+) -> PyResult<()> {
+    let np = py.import("numpy")?;
+    let column = np
+        .call_method1("asarray", (value, "float64"))
+        .map_err(|_| {
+            value_error(format!(
+                "{what} must be a sequence of numbers, one per body"
+            ))
+        })?;
+    let rows = column.call_method1("reshape", ((-1i64, 1i64),))?;
+    set_rows(py, sim, &rows, 1, what, check, |w, i, r| set(w, i, r[0]))
+}
+
 fn v3(r: &[f64]) -> DVec3 {
     DVec3::new(r[0], r[1], r[2])
 }
@@ -103,6 +126,47 @@ impl Bodies {
         let order = s.bodies_sorted().to_vec();
         let b = &s.runner.world().bodies();
         column(py, &order, |i| b.mass[i])
+    }
+
+    /// Temperature (N,), K. Settable (each > 0). Only with `[heat]`.
+    #[getter]
+    fn temperature<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        self.thermal(py, "temperature", |b| &b.temperature)
+    }
+
+    #[setter]
+    fn set_temperature(&self, py: Python<'_>, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let above_zero = |r: usize, t: &[f64]| {
+            if t[0] > 0.0 {
+                Ok(())
+            } else {
+                Err(value_error(format!(
+                    "temperature: row {r} is {} K; temperatures must be > 0 K",
+                    t[0]
+                )))
+            }
+        };
+        set_column(
+            py,
+            &self.sim,
+            value,
+            "temperature",
+            above_zero,
+            |w, i, t| w.set_body_temperature_at(i, t),
+        )
+    }
+
+    /// Heat source (N,), W. Settable. Only with `[heat]`.
+    #[getter]
+    fn heat_source<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        self.thermal(py, "heat_source", |b| &b.heat_source)
+    }
+
+    #[setter]
+    fn set_heat_source(&self, py: Python<'_>, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        set_column(py, &self.sim, value, "heat_source", no_check, |w, i, q| {
+            w.set_body_heat_source_at(i, q)
+        })
     }
 
     /// Principal moments of inertia (N×3), body frame, kg m².
@@ -263,6 +327,24 @@ fn flags(r: &[f64]) -> [bool; 3] {
 }
 
 impl Bodies {
+    /// A heat array `f(bodies)` in id order; an error without `[heat]`.
+    fn thermal<'py>(
+        &self,
+        py: Python<'py>,
+        what: &str,
+        f: impl Fn(&clump_core::body::Bodies) -> &Vec<f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let mut s = self.sim.borrow_mut(py);
+        if s.runner.world().heat.is_none() {
+            return Err(value_error(format!(
+                "{what}: the scenario has no [heat], so the bodies have no {what}"
+            )));
+        }
+        let order = s.bodies_sorted().to_vec();
+        let v = f(s.runner.world().bodies());
+        Ok(column(py, &order, |i| v[i]))
+    }
+
     /// An N×3 array of `f(bodies, storage index)`, in id order.
     fn vectors<'py>(
         &self,

@@ -288,6 +288,11 @@ impl Simulation {
                 values.push(f(power.next().unwrap_or(0.0))?);
             }
         }
+        if let Some(h) = &t.heat {
+            for v in clump_io::thermo_csv::ThermoWriter::heat_values(h) {
+                values.push(f(v)?);
+            }
+        }
         let d = PyDict::new(py);
         for (k, v) in names.into_iter().zip(values) {
             d.set_item(k, v)?;

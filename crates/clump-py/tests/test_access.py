@@ -87,3 +87,54 @@ def test_setting_what_was_read_changes_no_bit(dimers):
 
     b.run(steps=5500, callback=rewrite, every=250)
     assert a.final_state_json() == b.final_state_json()
+
+
+def heated(dimers, name):
+    """The dimer scenario with heat: the grain conducts, the floor is
+    adiabatic (its material has no heat keys)."""
+    p = dimers(name)
+    text = p.read_text().replace(
+        'density = 2500\n',
+        'density = 2500\nthermal_conductivity = 2.0\nspecific_heat = 800.0\n', 1)
+    text = text.replace('spheres = [[-0.002, 0.0, 0.0, 0.003], [0.002, 0.0, 0.0, 0.003]]\n',
+                        'spheres = [[-0.002, 0.0, 0.0, 0.003], [0.002, 0.0, 0.0, 0.003]]\n'
+                        'temperature = 300.0\n')
+    p.write_text(text + "\n[heat]\n")
+    return p
+
+
+def test_temperatures_read_set_and_conserve_heat(dimers):
+    sim = clump.Simulation.from_file(heated(dimers, "hot"))
+    t = sim.bodies.temperature
+    assert t.shape == (3,) and (t == 300.0).all()
+    sim.bodies.temperature = [400.0, 300.0, 350.0]
+    assert list(sim.bodies.temperature) == [400.0, 300.0, 350.0]
+    c = sim.bodies.mass * 800.0
+    content = (c * sim.bodies.temperature).sum()
+    assert np.isclose(sim.thermo()["heat_content[J]"], content, rtol=1e-14)
+    sim.run(steps=6999)  # the dimers land and touch the floor and each other
+    t = sim.bodies.temperature
+    # the floor is adiabatic: the bodies' heat stays, and it flowed
+    assert np.isclose((c * t).sum(), content, rtol=1e-12)
+    assert sim.thermo()["max_temperature[K]"] == t.max()
+    # bad values change nothing
+    for bad in ([0.0, 300.0, 300.0], [300.0, 300.0], [float("nan")] * 3):
+        try:
+            sim.bodies.temperature = bad
+        except ValueError:
+            pass
+        else:
+            raise AssertionError(f"accepted {bad}")
+    assert np.array_equal(sim.bodies.temperature, t)
+    sim.bodies.heat_source = [0.0, 0.0, 1e-3]
+    assert list(sim.bodies.heat_source) == [0.0, 0.0, 1e-3]
+
+
+def test_temperature_without_heat_is_an_error(dimers):
+    sim = clump.Simulation.from_file(dimers())
+    try:
+        sim.bodies.temperature
+    except ValueError as e:
+        assert "[heat]" in str(e)
+    else:
+        raise AssertionError("a temperature without [heat]")

@@ -374,11 +374,14 @@ impl TemplateCache {
             self.index = self.entries.iter().map(|e| ((e.0, e.1), e.2)).collect();
         }
         if let Some(&idx) = self.index.get(&(base, bits)) {
+            // also after a restart, whose world re-added the scaled copies
+            world.inherit_template_heat(idx, base);
             return Ok(idx);
         }
         let t: ClumpTemplate = world.templates[base as usize].scaled(scale);
         let material = world.templates.material(base as usize);
         let idx = world.add_template(t, material)?;
+        world.inherit_template_heat(idx, base);
         self.entries.push((base, bits, idx));
         self.index.insert((base, bits), idx);
         Ok(idx)

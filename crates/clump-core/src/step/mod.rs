@@ -19,6 +19,10 @@
 //!    step's first half. The pair stage and the gather are one parallel
 //!    call: each thread takes its run of bodies through both.
 //!
+//! With heat on (`World::heat`), stage 3½, **heat** ([`heat`]): the bodies'
+//! temperatures take one explicit step from the conduction through the
+//! contacts at the sphere centres stage 4 reads.
+//!
 //! A world split over ranks takes the same stages; the rank exchanges are
 //! hooks in them (`ranks`): the skin check or-ed over the ranks, the
 //! bodies migrating at a rebuild, the ghosts' state and the statistics
@@ -35,6 +39,7 @@ mod error;
 mod first_half;
 mod first_half_lanes;
 mod gather;
+mod heat;
 mod kick;
 pub mod kinematics;
 mod law_lanes;
@@ -111,6 +116,11 @@ impl World {
         } else if wall_started {
             rebuild::wall_started(self);
             lap(&mut times.neighbor, &mut t);
+        }
+        // --- 3½. heat: conduction at the sphere centres the forces will
+        // see (its time is counted with the gather's)
+        if self.heat.is_some() {
+            heat::conduct(self);
         }
         // --- 4. + 5. pair stage, then the gather (one parallel call)
         let fuse = fuse_next && self.part.is_none() && !self.phase.topology_dirty();

@@ -107,6 +107,9 @@ pub struct World {
     /// This rank's part when the world is split over ranks
     /// ([`World::partition`]); `None` in one process.
     pub(crate) part: Option<Box<crate::partition::Part>>,
+    /// Heat transfer ([`World::enable_heat`]); `None`: the world has no
+    /// temperatures and the step no heat stage.
+    pub heat: Option<Box<crate::heat::Heat>>,
 }
 
 impl World {
@@ -139,6 +142,7 @@ impl World {
             phase: StepPhase::default(),
             scratch: Scratch::default(),
             part: None,
+            heat: None,
         }
     }
 
@@ -154,7 +158,27 @@ impl World {
                 template.name
             )));
         }
+        if let Some(h) = self.heat.as_deref_mut() {
+            // a template added after the heat was turned on (a scaled copy
+            // of an insert's mix) takes its base's values by
+            // [`World::inherit_template_heat`]
+            h.model.template_temperature.push(f64::NAN);
+            h.model.template_source.push(0.0);
+        }
         Ok(self.templates.push(template, material))
+    }
+
+    /// Gives template `t` the initial temperature and source density of
+    /// template `base` (a scaled copy of it); nothing without heat.
+    pub fn inherit_template_heat(&mut self, t: u32, base: u32) {
+        if let Some(h) = self.heat.as_deref_mut() {
+            let m = &mut h.model;
+            let (t, base) = (t as usize, base as usize);
+            if t < m.template_temperature.len() && base < m.template_temperature.len() {
+                m.template_temperature[t] = m.template_temperature[base];
+                m.template_source[t] = m.template_source[base];
+            }
+        }
     }
 
     /// Adds a wall; returns its index.
@@ -181,6 +205,10 @@ impl World {
         }
         self.walls.list.push(wall);
         self.walls.loads.push(WallLoad::default());
+        if let Some(h) = self.heat.as_deref_mut() {
+            h.wall_flow.push(0.0);
+            h.wall_heat.push(0.0);
+        }
         self.phase.forces_changed();
         Ok(self.walls.len() - 1)
     }
@@ -202,6 +230,16 @@ impl World {
         let id = self.next_id;
         self.next_id += 1;
         self.bodies.push(id, init, t.mass, t.principal_inertia);
+        if let Some(h) = self.heat.as_deref() {
+            let (temperature, source) = heat_of_new_body(
+                &h.model,
+                &self.materials,
+                &self.templates,
+                init.template as usize,
+            );
+            self.bodies.temperature.push(temperature);
+            self.bodies.heat_source.push(source);
+        }
         self.phase.topology_changed();
         Ok(id)
     }
@@ -310,5 +348,124 @@ impl World {
     /// Storage index of the body with global id `id`, if present (linear search).
     pub fn body_index(&self, id: u64) -> Option<usize> {
         self.bodies.id.iter().position(|&x| x == id)
+    }
+}
+
+/// The initial temperature (K) and source power (W) of a new body of
+/// template `t`: the template's, its source density times the body's
+/// volume, `m / ρ`.
+fn heat_of_new_body(
+    model: &crate::heat::HeatModel,
+    materials: &[Material],
+    templates: &TemplateSet,
+    t: usize,
+) -> (f64, f64) {
+    let rho = materials[templates.material(t) as usize].density;
+    let q = model.template_source.get(t).copied().unwrap_or(0.0);
+    let power = if q == 0.0 {
+        0.0
+    } else {
+        q * templates[t].mass / rho
+    };
+    let temperature = model
+        .template_temperature
+        .get(t)
+        .copied()
+        .unwrap_or(f64::NAN);
+    (temperature, power)
+}
+
+impl World {
+    /// Turns heat transfer on (docs/theory.md T-50 … T-54): every body,
+    /// present or added later, gets its template's temperature and source.
+    /// Call after the templates and walls are added. Fails when a
+    /// template's material has no thermal properties or a positive
+    /// specific heat, a template has no temperature above 0 K, or a wall
+    /// temperature is not above 0 K.
+    pub fn enable_heat(&mut self, model: crate::heat::HeatModel) -> Result<(), WorldError> {
+        if self.part.is_some() {
+            return Err(WorldError::BadValue(
+                "heat transfer is not available in a world split over ranks".into(),
+            ));
+        }
+        if model.materials.len() != self.materials.len() {
+            return Err(WorldError::BadValue(format!(
+                "the heat model lists {} materials, the world has {}",
+                model.materials.len(),
+                self.materials.len()
+            )));
+        }
+        for (m, t) in model.materials.iter().enumerate() {
+            if let Some(t) = t {
+                if !(t.conductivity >= 0.0 && t.conductivity.is_finite()) {
+                    return Err(WorldError::BadValue(format!(
+                        "material {m}: thermal conductivity must be >= 0 W/(m K), got {}",
+                        t.conductivity
+                    )));
+                }
+            }
+        }
+        for t in 0..self.templates.len() {
+            let m = self.templates.material(t);
+            let cp = model.materials[m as usize].map(|x| x.specific_heat);
+            if !cp.is_some_and(|c| c > 0.0 && c.is_finite()) {
+                return Err(WorldError::BadValue(format!(
+                    "template '{}': its material {m} needs a specific heat > 0 J/(kg K)",
+                    self.templates[t].name
+                )));
+            }
+            let temp = model
+                .template_temperature
+                .get(t)
+                .copied()
+                .unwrap_or(f64::NAN);
+            if !(temp > 0.0 && temp.is_finite()) {
+                return Err(WorldError::BadValue(format!(
+                    "template '{}': temperature must be > 0 K, got {temp}",
+                    self.templates[t].name
+                )));
+            }
+            let q = model.template_source.get(t).copied().unwrap_or(0.0);
+            if !q.is_finite() {
+                return Err(WorldError::BadValue(format!(
+                    "template '{}': heat source must be finite, got {q}",
+                    self.templates[t].name
+                )));
+            }
+        }
+        for (w, t) in model.wall_temperature.iter().enumerate() {
+            if let Some(t) = t {
+                if !(*t > 0.0 && t.is_finite()) {
+                    return Err(WorldError::BadValue(format!(
+                        "wall {w}: temperature must be > 0 K, got {t}"
+                    )));
+                }
+            }
+        }
+        let n = self.bodies.len();
+        self.bodies.temperature.clear();
+        self.bodies.heat_source.clear();
+        for b in 0..n {
+            let (t, q) = heat_of_new_body(
+                &model,
+                &self.materials,
+                &self.templates,
+                self.bodies.template[b] as usize,
+            );
+            self.bodies.temperature.push(t);
+            self.bodies.heat_source.push(q);
+        }
+        self.heat = Some(Box::new(crate::heat::Heat::new(model, self.walls.len())));
+        Ok(())
+    }
+
+    /// The heat capacity `m c_p` of body `b`, J/K (0 without heat).
+    pub fn heat_capacity(&self, b: usize) -> f64 {
+        let Some(h) = self.heat.as_deref() else {
+            return 0.0;
+        };
+        let m = self.templates.material(self.bodies.template[b] as usize);
+        let cp = h.model.materials[m as usize].map_or(0.0, |t| t.specific_heat);
+        self.bodies.mass[b] * cp
     }
 }

@@ -155,12 +155,21 @@ impl Outputs {
             thermo: match (o.thermo, start) {
                 (None, _) => None,
                 (Some(_), Start::Fresh { .. }) => Some(
-                    ThermoWriter::create_walls(outdir.join("thermo.csv"), &wall_columns)
-                        .map_err(rt("cannot create thermo.csv"))?,
+                    ThermoWriter::create_walls(
+                        outdir.join("thermo.csv"),
+                        &wall_columns,
+                        scenario.heat.is_some(),
+                    )
+                    .map_err(rt("cannot create thermo.csv"))?,
                 ),
                 (Some(_), Start::Resume { step, .. }) => Some(
-                    ThermoWriter::resume_walls(outdir.join("thermo.csv"), &wall_columns, step)
-                        .map_err(rt("cannot resume thermo.csv"))?,
+                    ThermoWriter::resume_walls(
+                        outdir.join("thermo.csv"),
+                        &wall_columns,
+                        step,
+                        scenario.heat.is_some(),
+                    )
+                    .map_err(rt("cannot resume thermo.csv"))?,
                 ),
             },
             trajectory: match (&o.trajectory, start) {

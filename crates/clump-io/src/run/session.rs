@@ -98,7 +98,8 @@ impl Runner {
     /// (with units) and the values.
     pub fn thermo_row(&self) -> (Vec<String>, Thermo, Vec<f64>) {
         let cols: Vec<WallColumns> = wall_columns(&self.scenario);
-        let header = crate::thermo_csv::ThermoWriter::header_walls(&cols);
+        let header =
+            crate::thermo_csv::ThermoWriter::header_heat(&cols, self.scenario.heat.is_some());
         let (t, power) = wall_thermo(&self.world, &self.scenario.torque_points);
         let power = cols
             .iter()

@@ -29,9 +29,11 @@ impl Runner {
             }
             for (k, s) in self.st.streams.iter_mut().enumerate() {
                 if let Some(s) = s {
+                    let from = self.world.bodies().len();
                     let n = s.insert_due(&mut self.world).map_err(|e| {
                         RunError::Input(self.scenario.insert_error(k, e.to_string()))
                     })?;
+                    insert_temperature(&self.scenario, &mut self.world, k, from);
                     self.st.inserted[k] += n as u64;
                     if n > 0 {
                         self.st.last_insert_step = Some(self.world.step);
@@ -84,6 +86,7 @@ impl Runner {
             if ins.stage != si {
                 continue;
             }
+            let from = self.world.bodies().len();
             match &ins.kind {
                 InsertSpec::File { bodies } => {
                     for b in bodies {
@@ -114,7 +117,38 @@ impl Runner {
                     self.st.streams[k] = Some(s);
                 }
             }
+            insert_temperature(&self.scenario, &mut self.world, k, from);
         }
         Ok(())
+    }
+}
+
+/// Gives the bodies insert `k` just appended (storage indices from `from`
+/// on) the insert's `temperature`, and then its body file's `temperature`
+/// column, where it has them.
+fn insert_temperature(
+    scenario: &crate::scenario::Scenario,
+    world: &mut clump_core::world::World,
+    k: usize,
+    from: usize,
+) {
+    let Some(h) = scenario.heat.as_ref() else {
+        return;
+    };
+    if let Some(t) = h.insert_temperature[k] {
+        for b in from..world.bodies().len() {
+            // the temperature was checked at its key (> 0 K, finite)
+            world
+                .set_body_temperature_at(b, t)
+                .expect("a temperature checked at its key");
+        }
+    }
+    if let Some(ts) = &h.file_temperature[k] {
+        for (b, &t) in (from..world.bodies().len()).zip(ts) {
+            // the body file's column was checked as it was read (> 0 K, finite)
+            world
+                .set_body_temperature_at(b, t)
+                .expect("a temperature checked in its body file");
+        }
     }
 }

@@ -15,7 +15,8 @@
 //!   `tfx, tfy, tfz` (force and torque flags, 1 or 0; default the template's
 //!   and the insert's), `driven` (1: velocity and angular velocity held,
 //!   see `clump_core::dof`); `start_step` or `start_time` (s): before it the
-//!   body moves ballistically, ignoring forces (LIGGGHTS' `start_step`, docs/theory.md T-16).
+//!   body moves ballistically, ignoring forces (LIGGGHTS' `start_step`, docs/theory.md T-16);
+//!   `temperature` (K, with `[heat]`; read by [`temperature_column`]).
 //! - **`xyzq`**: whitespace-separated `id x y z qw qx qy qz` rows without a
 //!   header (the format of the shared tetra-bed initial conditions and of
 //!   many LIGGGHTS/Yade scripts); every body uses the insert's template and
@@ -30,7 +31,7 @@
 use clump_core::body::BodyInit;
 use glam::{DQuat, DVec3};
 
-const COLUMNS: [&str; 29] = [
+const COLUMNS: [&str; 30] = [
     "template",
     "x",
     "y",
@@ -60,6 +61,7 @@ const COLUMNS: [&str; 29] = [
     "driven",
     "start_step",
     "start_time",
+    "temperature",
 ];
 /// Index of the first column after `wz`.
 const WB: usize = 14;
@@ -417,4 +419,37 @@ fn row_body(
         b.start_step = s;
     }
     Ok(b)
+}
+
+/// The `temperature` column of a CSV body file (K, one per body in file
+/// order), `None` when the file has none. Call on a file [`parse`]
+/// accepted (the values are then finite); errors are `(1-based line,
+/// message)` for a temperature not above 0 K.
+pub fn temperature_column(bytes: &[u8]) -> Result<Option<Vec<f64>>, (usize, String)> {
+    let text = String::from_utf8_lossy(bytes);
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let mut col: Option<Option<usize>> = None;
+    let mut out = Vec::new();
+    for (ln, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let mut fields = line.split(',').map(str::trim);
+        match col {
+            None => col = Some(fields.position(|f| f == "temperature")),
+            Some(None) => return Ok(None),
+            Some(Some(k)) => {
+                let t = fields
+                    .nth(k)
+                    .and_then(|f| f.parse::<f64>().ok())
+                    .unwrap_or(f64::NAN);
+                if !(t > 0.0 && t.is_finite()) {
+                    return Err((ln + 1, format!("temperature must be > 0 K, found {t}")));
+                }
+                out.push(t);
+            }
+        }
+    }
+    Ok(col.flatten().map(|_| out))
 }

@@ -151,12 +151,8 @@ pub fn expected_overlap(c: &Contacts, speed: f64) -> Option<OverlapEstimate> {
         .iter()
         .enumerate()
         .map(|(ti, t)| {
-            let s = c
-                .mixes
-                .iter()
-                .flat_map(|m| &m.mix.entries)
-                .filter(|e| e.template as usize == ti)
-                .map(|e| e.size.max_scale())
+            let s = super::model::template_sizes(c.mixes, ti)
+                .map(|z| z.max_scale())
                 .fold(1.0, f64::max);
             let r_eq = (0.75 * t.template.volume / std::f64::consts::PI).cbrt();
             (

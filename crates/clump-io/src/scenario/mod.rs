@@ -164,6 +164,9 @@ impl Scenario {
         for w in &self.walls {
             world.add_wall(w.clone())?;
         }
+        if let Some(h) = &self.heat {
+            world.enable_heat(h.model.clone())?;
+        }
         Ok(world)
     }
 

@@ -62,6 +62,26 @@ pub struct Scenario {
     pub output: OutputDef,
     /// Warnings (the scenario still runs).
     pub warnings: Vec<Diagnostic>,
+    /// Heat transfer (`[heat]`); `None`: off.
+    pub heat: Option<HeatDef>,
+}
+
+/// The heat of a scenario (`[heat]` and the heat keys of the other tables).
+#[derive(Debug, Clone)]
+pub struct HeatDef {
+    /// The engine's heat model (indices as in the scenario's materials,
+    /// templates and walls).
+    pub model: clump_core::heat::HeatModel,
+    /// Per `[[insert]]`: the initial temperature of its bodies, K (`None`:
+    /// their templates').
+    pub insert_temperature: Vec<Option<f64>>,
+    /// Per `[[insert]]`: the `temperature` column of its body file, one per
+    /// body (K; over the insert's and the template's), if it has one.
+    pub file_temperature: Vec<Option<Vec<f64>>>,
+    /// The thermal stability limit of the time step, s (T-54).
+    pub stability_limit: f64,
+    /// The template that sets it.
+    pub limiting_template: String,
 }
 
 /// A template with its name and material.
@@ -86,6 +106,18 @@ pub struct MixDef {
     pub name: String,
     /// The mix.
     pub mix: Mix,
+}
+
+/// The size distributions that `mixes` give template `t`.
+pub fn template_sizes(
+    mixes: &[MixDef],
+    t: usize,
+) -> impl Iterator<Item = &clump_core::insert::SizeDistribution> {
+    mixes
+        .iter()
+        .flat_map(|m| &m.mix.entries)
+        .filter(move |e| e.template as usize == t)
+        .map(|e| &e.size)
 }
 
 /// How the time step was chosen.

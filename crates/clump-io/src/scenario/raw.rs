@@ -52,6 +52,20 @@ table! {
         /// `[output]`.
         #[serde(default)]
         pub output: RawOutput,
+        /// `[heat]`: heat transfer (off without it).
+        pub heat: Option<RawHeat>,
+    }
+}
+
+table! {
+    /// `[heat]`: turns heat transfer on.
+    pub struct RawHeat {
+        /// Contact conductance: `"batchelor_obrien"` (default, H = 2 k* a) or `"geometric"` (LIGGGHTS' overlap area).
+        pub conductance: Option<clump_core::heat::Conductance>,
+        /// Initial temperature of bodies whose template gives none, K.
+        pub temperature: Option<f64>,
+        /// Convection from a fluid: not available yet (needs a `[fluid]`).
+        pub convection: Option<toml::Value>,
     }
 }
 
@@ -178,6 +192,10 @@ table! {
         pub poisson_ratio: Option<f64>,
         /// Density, kg/m³.
         pub density: Option<f64>,
+        /// Thermal conductivity, W/(m K) (with `[heat]`).
+        pub thermal_conductivity: Option<f64>,
+        /// Specific heat capacity, J/(kg K) (with `[heat]`).
+        pub specific_heat: Option<f64>,
     }
 }
 
@@ -322,6 +340,10 @@ table! {
         pub force_flags: Option<[bool; 3]>,
         /// Torque flags per world axis of this template's bodies (LIGGGHTS `tflag`).
         pub torque_flags: Option<[bool; 3]>,
+        /// Initial temperature of its bodies, K (with `[heat]`).
+        pub temperature: Option<f64>,
+        /// Volumetric heat source of its bodies, W/m³ (with `[heat]`, default 0).
+        pub heat_source: Option<f64>,
     }
 }
 
@@ -489,6 +511,8 @@ table! {
         pub driven: Option<bool>,
         /// Stream: seconds each body moves ballistically after insertion.
         pub start_after: Option<f64>,
+        /// Initial temperature of the inserted bodies, K (with `[heat]`; default the template's).
+        pub temperature: Option<f64>,
     }
 }
 
@@ -566,6 +590,8 @@ table! {
         pub multi_contact: Option<MultiContact>,
         /// Whether the wall is active at the start (default true).
         pub active: Option<bool>,
+        /// Fixed temperature, K (with `[heat]`; default adiabatic).
+        pub temperature: Option<f64>,
     }
 }
 

@@ -205,6 +205,18 @@ class Bodies:
     def mass(self) -> _F64:
         """Mass (N,), kg."""
     @property
+    def temperature(self) -> _F64:
+        """Temperature (N,), K (one per body). Settable (each > 0). Only
+        with ``[heat]`` in the scenario, else ValueError."""
+    @temperature.setter
+    def temperature(self, value: npt.ArrayLike) -> None: ...
+    @property
+    def heat_source(self) -> _F64:
+        """Heat source (N,), W (a template's ``heat_source`` times the
+        body's volume). Settable. Only with ``[heat]``, else ValueError."""
+    @heat_source.setter
+    def heat_source(self, value: npt.ArrayLike) -> None: ...
+    @property
     def inertia(self) -> _F64:
         """Principal moments of inertia (N×3), body frame, kg m²."""
     @property

@@ -10,6 +10,7 @@
 mod contact;
 mod dof;
 mod domain;
+mod heat;
 mod inserts;
 mod materials;
 mod output;
@@ -399,6 +400,20 @@ fn resolve_sections(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         kinetic_jump: setting.kinetic_jump,
         specific_energy_floor: floor,
     };
+    let heat = heat::heat(
+        cx,
+        &raw,
+        &heat::HeatInput {
+            templates: &templates,
+            mixes: &mixes,
+            materials: &materials,
+            material_names: &material_names,
+            walls: &walls,
+            max_overlap_ratio: stability.max_overlap_ratio,
+            dt,
+            dt_auto: time_step.auto,
+        },
+    )?;
     Ok(Scenario {
         path: cx.src.path.clone(),
         text: cx.src.text.clone(),
@@ -419,5 +434,6 @@ fn resolve_sections(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         stages,
         output,
         warnings: Vec::new(),
+        heat,
     })
 }

@@ -79,6 +79,7 @@ pub(super) fn output(
                     euler: t.euler.unwrap_or(false),
                     loads: t.loads.unwrap_or(false),
                     planar: two_d,
+                    temperature: raw.heat.is_some(),
                 },
             })
         }

@@ -1,0 +1,199 @@
+//! Heat: one temperature per body (lumped: the Biot number of a grain is
+//! small), conduction through every sphere–sphere and sphere–wall contact,
+//! and volumetric sources (docs/theory.md T-50 … T-54).
+//!
+//! This module holds the settings and the conductance formulas; the stage
+//! that applies them each step is `step::heat`. The body temperatures
+//! (`Bodies::temperature`, K) and source powers (`Bodies::heat_source`, W)
+//! live with the rest of the body state, so that every reorder, checkpoint
+//! and copy of the bodies carries them; they are empty while the world has
+//! no heat.
+
+use serde::{Deserialize, Serialize};
+
+/// Thermal properties of one material.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ThermalMaterial {
+    /// Thermal conductivity `k`, W/(m K) (`≥ 0`; 0 conducts nothing).
+    pub conductivity: f64,
+    /// Specific heat capacity `c_p`, J/(kg K) (`> 0` for a particle
+    /// material; unused for a wall's).
+    pub specific_heat: f64,
+}
+
+/// How the conductance of a contact follows from its geometry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Conductance {
+    /// Batchelor & O'Brien (1977): `H = 2 k* a`, with `a = √(R* δ)` the
+    /// Hertzian contact radius (T-50).
+    #[default]
+    BatchelorObrien,
+    /// LIGGGHTS `fix heat/gran/conduction` (without `areaCorrection`):
+    /// `H = 2 k* √A` with `A` the area of the circle in which the two
+    /// undeformed spheres intersect (T-51).
+    Geometric,
+}
+
+/// The heat settings of a world, fixed at set-up.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HeatModel {
+    /// The conductance of a contact.
+    pub conductance: Conductance,
+    /// Per material (index as in `World::materials`): its thermal
+    /// properties; `None` for a material without them (a wall of it
+    /// conducts nothing; no template may use it).
+    pub materials: Vec<Option<ThermalMaterial>>,
+    /// Per wall (index as in `World::walls`): its fixed temperature, K;
+    /// `None` (or a wall beyond the list): adiabatic.
+    pub wall_temperature: Vec<Option<f64>>,
+    /// Per template: the initial temperature of its bodies, K.
+    pub template_temperature: Vec<f64>,
+    /// Per template: the volumetric heat source of its bodies, W/m³.
+    pub template_source: Vec<f64>,
+}
+
+impl HeatModel {
+    /// The conductivity of material `m`, W/(m K) (0 without thermal
+    /// properties).
+    #[inline]
+    pub fn conductivity(&self, m: u16) -> f64 {
+        self.materials
+            .get(m as usize)
+            .copied()
+            .flatten()
+            .map_or(0.0, |t| t.conductivity)
+    }
+
+    /// The fixed temperature of wall `w`, K, or `None` when adiabatic.
+    #[inline]
+    pub fn wall_temperature(&self, w: usize) -> Option<f64> {
+        self.wall_temperature.get(w).copied().flatten()
+    }
+}
+
+/// The heat of a world: its settings and what the stage measures.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Heat {
+    /// The settings.
+    pub model: HeatModel,
+    /// Per wall: the heat flow from the wall into the bodies in the last
+    /// step, W.
+    pub wall_flow: Vec<f64>,
+    /// Per wall: the heat that has flowed from the wall into the bodies
+    /// since the start of the run, J.
+    pub wall_heat: Vec<f64>,
+    /// The largest `dt Σ H / C` of any body in the last step: the step is
+    /// stable and keeps temperatures within their neighbours' while it is
+    /// at most 1 (T-54).
+    pub stability: f64,
+    /// Per body: the heat flow into it in this step, W (stage scratch).
+    pub(crate) flow: Vec<f64>,
+    /// Per body: the sum of its contacts' conductances, W/K (stage
+    /// scratch).
+    pub(crate) conductance_sum: Vec<f64>,
+}
+
+impl Heat {
+    /// The heat of a world with `walls` walls under `model`.
+    pub fn new(model: HeatModel, walls: usize) -> Self {
+        Heat {
+            model,
+            wall_flow: vec![0.0; walls],
+            wall_heat: vec![0.0; walls],
+            stability: 0.0,
+            flow: Vec::new(),
+            conductance_sum: Vec::new(),
+        }
+    }
+}
+
+/// The harmonic combination `k* = 2 k₁ k₂ / (k₁ + k₂)` of two
+/// conductivities, W/(m K) (0 when either is 0; `k` for two equal ones).
+#[inline]
+pub fn harmonic_conductivity(k1: f64, k2: f64) -> f64 {
+    if k1 > 0.0 && k2 > 0.0 {
+        2.0 * k1 * k2 / (k1 + k2)
+    } else {
+        0.0
+    }
+}
+
+/// The conductance (W/K) of a contact between spheres of radii `r1`, `r2`
+/// (m) whose centres are `dist` apart (m), with combined conductivity
+/// `k_star` (W/(m K)); zero unless they overlap.
+#[inline]
+pub fn pair_conductance(model: Conductance, k_star: f64, r1: f64, r2: f64, dist: f64) -> f64 {
+    let overlap = r1 + r2 - dist;
+    if !(overlap > 0.0) || k_star == 0.0 {
+        return 0.0;
+    }
+    match model {
+        Conductance::BatchelorObrien => {
+            // T-50: a = √(R* δ)
+            let r_star = r1 * r2 / (r1 + r2);
+            2.0 * k_star * (r_star * overlap).sqrt()
+        }
+        Conductance::Geometric => {
+            // T-51: the area of the intersection circle, as LIGGGHTS writes it
+            let r = dist;
+            let area = -std::f64::consts::FRAC_PI_4
+                * ((r - r1 - r2) * (r + r1 - r2) * (r - r1 + r2) * (r + r1 + r2))
+                / (r * r);
+            2.0 * k_star * area.max(0.0).sqrt()
+        }
+    }
+}
+
+/// The conductance (W/K) of a contact between a sphere of radius `r` (m)
+/// and a flat wall it overlaps by `overlap` (m), with combined conductivity
+/// `k_star` (W/(m K)).
+#[inline]
+pub fn wall_conductance(model: Conductance, k_star: f64, r: f64, overlap: f64) -> f64 {
+    if !(overlap > 0.0) || k_star == 0.0 {
+        return 0.0;
+    }
+    match model {
+        // T-50 with R* = r (the wall's radius is infinite)
+        Conductance::BatchelorObrien => 2.0 * k_star * (r * overlap).sqrt(),
+        Conductance::Geometric => {
+            // T-51: the circle in which the wall plane cuts the sphere
+            let d = r - overlap;
+            let area = (r * r - d * d) * std::f64::consts::PI;
+            2.0 * k_star * area.max(0.0).sqrt()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn harmonic_mean_of_equal_conductivities_is_the_conductivity() {
+        assert_eq!(harmonic_conductivity(3.0, 3.0), 3.0);
+        assert_eq!(harmonic_conductivity(3.0, 0.0), 0.0);
+        // 2·1·3/4
+        assert_eq!(harmonic_conductivity(1.0, 3.0), 1.5);
+    }
+
+    #[test]
+    fn geometric_area_of_equal_spheres_is_the_lens_circle() {
+        // two unit spheres 1.8 apart cut in a circle of radius √(1 − 0.9²)
+        let a2 = 1.0 - 0.81;
+        let h = pair_conductance(Conductance::Geometric, 1.0, 1.0, 1.0, 1.8);
+        let expect = 2.0 * (std::f64::consts::PI * a2).sqrt();
+        assert!((h - expect).abs() < 1e-12 * expect, "{h} {expect}");
+        // the wall: a plane 0.9 from the centre cuts the same circle
+        let hw = wall_conductance(Conductance::Geometric, 1.0, 1.0, 0.1);
+        assert!((hw - expect).abs() < 1e-12 * expect, "{hw} {expect}");
+    }
+
+    #[test]
+    fn apart_spheres_conduct_nothing() {
+        for m in [Conductance::BatchelorObrien, Conductance::Geometric] {
+            assert_eq!(pair_conductance(m, 1.0, 1.0, 1.0, 2.0), 0.0);
+            assert_eq!(wall_conductance(m, 1.0, 1.0, -1e-9), 0.0);
+        }
+    }
+}

@@ -1,0 +1,118 @@
+//! The heat stage (docs/theory.md T-50 … T-54): after the neighbours and
+//! before the forces, at the sphere centres the force stage reads, each
+//! body's heat flow is summed over its sphere–sphere contacts (in pair-list
+//! order), its sphere–wall contacts with walls of fixed temperature (in
+//! wall-list order) and its source, and its temperature takes one explicit
+//! Euler step, `T ← T + dt Q / (m c_p)`.
+//!
+//! One pass on the calling thread: the sums have one order whatever the
+//! thread count, and the stage allocates nothing once its arrays have
+//! grown to the bodies. Without heat (`World::heat` is `None`) it is one
+//! branch.
+
+use crate::heat::{harmonic_conductivity, pair_conductance, wall_conductance, Heat};
+use crate::wall::{WallTouch, MAX_TOUCHES_PER_WALL};
+use crate::world::World;
+
+/// Conducts one step of heat, when the world has heat.
+pub(crate) fn conduct(w: &mut World) {
+    let Some(mut heat) = w.heat.take() else {
+        return;
+    };
+    flows(w, &mut heat);
+    integrate(w, &mut heat);
+    w.heat = Some(heat);
+}
+
+/// Each body's heat flow (W) and conductance sum (W/K) into `heat`'s
+/// scratch, and each wall's flow.
+fn flows(w: &World, heat: &mut Heat) {
+    let nb = w.bodies.len();
+    let Heat {
+        model,
+        wall_flow,
+        flow,
+        conductance_sum,
+        ..
+    } = heat;
+    flow.clear();
+    flow.extend_from_slice(&w.bodies.heat_source);
+    conductance_sum.clear();
+    conductance_sum.resize(nb, 0.0);
+    wall_flow.iter_mut().for_each(|q| *q = 0.0);
+    let temp = &w.bodies.temperature;
+    let sp = &w.spheres;
+    let pairs = &w.neighbors.pairs;
+    let domain = &w.config.domain;
+    // sphere–sphere contacts, row by row (T-50, T-51, T-52)
+    for i in 0..sp.len() {
+        let (p0, p1) = (pairs.row_start[i] as usize, pairs.row_start[i + 1] as usize);
+        let (xi, ri) = (sp.position(i), sp.state[i].radius);
+        let bi = sp.body[i] as usize;
+        let ki = model.conductivity(sp.material[i]);
+        for t in &pairs.topo[p0..p1] {
+            let j = t.j as usize;
+            let mut xj = sp.position(j);
+            if t.shift != [0; 3] {
+                xj -= domain.shift_vector(t.shift);
+            }
+            let rj = sp.state[j].radius;
+            let dist = (xi - xj).length();
+            if dist >= ri + rj {
+                continue;
+            }
+            let k = harmonic_conductivity(ki, model.conductivity(sp.material[j]));
+            let h = pair_conductance(model.conductance, k, ri, rj, dist);
+            let bj = sp.body[j] as usize;
+            let q = h * (temp[bj] - temp[bi]);
+            flow[bi] += q;
+            flow[bj] -= q;
+            conductance_sum[bi] += h;
+            conductance_sum[bj] += h;
+        }
+    }
+    // sphere–wall contacts with the walls of fixed temperature
+    let list = &w.neighbors.wall_list;
+    let walls = &w.walls.list;
+    let mut buf = [WallTouch::default(); MAX_TOUCHES_PER_WALL];
+    for (e, &s) in list.sphere.iter().enumerate() {
+        let s = s as usize;
+        let (x, r) = (sp.position(s), sp.state[s].radius);
+        let b = sp.body[s] as usize;
+        let ks = model.conductivity(sp.material[s]);
+        let near = (0..walls.len().min(64)).filter(|&wi| list.mask[e] >> wi & 1 == 1);
+        for wi in near.chain(64..walls.len()) {
+            let wall = &walls[wi];
+            let Some(tw) = model.wall_temperature(wi).filter(|_| wall.active) else {
+                continue;
+            };
+            let k = harmonic_conductivity(ks, model.conductivity(wall.material));
+            let n = wall.shape.contacts(&w.walls.meshes, x, r, 0.0, &mut buf);
+            for touch in &buf[..n] {
+                let h = wall_conductance(model.conductance, k, r, touch.overlap);
+                let q = h * (tw - temp[b]);
+                flow[b] += q;
+                wall_flow[wi] += q;
+                conductance_sum[b] += h;
+            }
+        }
+    }
+}
+
+/// The explicit Euler step of every temperature (T-53), the walls' heat
+/// and the step's stability ratio (T-54).
+fn integrate(w: &mut World, heat: &mut Heat) {
+    let dt = w.config.dt;
+    let mut worst = 0.0f64;
+    for b in 0..w.bodies.len() {
+        let m = w.templates.material(w.bodies.template[b] as usize);
+        let cp = heat.model.materials[m as usize].map_or(f64::NAN, |t| t.specific_heat);
+        let c = w.bodies.mass[b] * cp;
+        w.bodies.temperature[b] += dt * heat.flow[b] / c;
+        worst = worst.max(dt * heat.conductance_sum[b] / c);
+    }
+    heat.stability = worst;
+    for (e, q) in heat.wall_heat.iter_mut().zip(&heat.wall_flow) {
+        *e += dt * q;
+    }
+}
