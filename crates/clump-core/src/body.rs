@@ -83,6 +83,10 @@ pub struct Bodies {
     pub torque_flag: Vec<AxisFlags>,
     /// Step from which forces act (ballistic before it).
     pub start_step: Vec<u64>,
+    /// External forces and fluid data of a coupling (each array empty
+    /// while unused); set through the world's methods, not checkpointed.
+    #[serde(skip)]
+    pub coupling: crate::fluid::BodyCoupling,
 }
 
 impl Bodies {
@@ -117,10 +121,13 @@ impl Bodies {
         self.force_flag.push(init.force_flag);
         self.torque_flag.push(init.torque_flag);
         self.start_step.push(init.start_step);
+        self.coupling.push();
     }
 
     /// Appends every body of `other`, in its order.
     pub fn append(&mut self, other: &Bodies) {
+        self.coupling
+            .append(&other.coupling, self.len(), other.len());
         self.id.extend_from_slice(&other.id);
         self.template.extend_from_slice(&other.template);
         self.position.extend_from_slice(&other.position);
@@ -169,5 +176,6 @@ impl Bodies {
         gather(&self.force_flag, perm, &mut out.force_flag);
         gather(&self.torque_flag, perm, &mut out.torque_flag);
         gather(&self.start_step, perm, &mut out.start_step);
+        self.coupling.permute_into(perm, &mut out.coupling);
     }
 }

@@ -31,6 +31,7 @@
 //! change the results.
 
 mod body_props;
+mod coupling;
 mod error;
 mod first_half;
 mod first_half_lanes;

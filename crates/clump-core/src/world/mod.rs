@@ -106,6 +106,9 @@ pub struct World {
     /// This rank's part when the world is split over ranks
     /// ([`World::partition`]); `None` in one process.
     pub(crate) part: Option<Box<crate::partition::Part>>,
+    /// The fluid the bodies are in, with its per-template data
+    /// ([`World::set_fluid`]); `None`: no fluid force.
+    pub(crate) fluid: Option<crate::fluid::FluidState>,
 }
 
 impl World {
@@ -130,6 +133,7 @@ impl World {
             phase: StepPhase::default(),
             scratch: Scratch::default(),
             part: None,
+            fluid: None,
         }
     }
 
@@ -144,6 +148,9 @@ impl World {
                 "template '{}' uses material {material}, which does not exist",
                 template.name
             )));
+        }
+        if let Some(f) = &mut self.fluid {
+            f.templates.push(crate::fluid::TemplateFluid::of(&template));
         }
         Ok(self.templates.push(template, material))
     }
