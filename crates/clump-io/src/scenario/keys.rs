@@ -282,7 +282,8 @@ mod tests {
             RawTrajectory,
             RawOutput,
             RawFields,
-            RawFlow
+            RawFlow,
+            RawFluid
         )
     }
 

@@ -164,6 +164,7 @@ impl Scenario {
         for w in &self.walls {
             world.add_wall(w.clone())?;
         }
+        world.set_fluid(self.fluid)?;
         Ok(world)
     }
 
