@@ -88,6 +88,10 @@ pub struct Bodies {
     pub temperature: Vec<f64>,
     /// Heat source, W. Empty while the world has no heat, else one per body.
     pub heat_source: Vec<f64>,
+    /// External forces and fluid data of a coupling (each array empty
+    /// while unused); set through the world's methods, not checkpointed.
+    #[serde(skip)]
+    pub coupling: crate::fluid::BodyCoupling,
 }
 
 impl Bodies {
@@ -122,10 +126,13 @@ impl Bodies {
         self.force_flag.push(init.force_flag);
         self.torque_flag.push(init.torque_flag);
         self.start_step.push(init.start_step);
+        self.coupling.push();
     }
 
     /// Appends every body of `other`, in its order.
     pub fn append(&mut self, other: &Bodies) {
+        self.coupling
+            .append(&other.coupling, self.len(), other.len());
         self.id.extend_from_slice(&other.id);
         self.template.extend_from_slice(&other.template);
         self.position.extend_from_slice(&other.position);
@@ -185,5 +192,6 @@ impl Bodies {
         gather(&self.start_step, perm, &mut out.start_step);
         gather_opt(&self.temperature, perm, &mut out.temperature);
         gather_opt(&self.heat_source, perm, &mut out.heat_source);
+        self.coupling.permute_into(perm, &mut out.coupling);
     }
 }

@@ -65,7 +65,9 @@
 pub mod body;
 pub mod boundary;
 pub mod contact;
+pub mod couple;
 pub mod dof;
+pub mod fluid;
 pub mod health;
 pub mod heat;
 pub mod insert;

@@ -197,7 +197,7 @@ impl World {
         Ok(())
     }
 
-    fn check_index(&self, i: usize) -> Result<(), WorldError> {
+    pub(crate) fn check_index(&self, i: usize) -> Result<(), WorldError> {
         if i < self.bodies.len() {
             Ok(())
         } else {

@@ -125,6 +125,11 @@ pub fn bodies_vtp_counted(world: &World, counts: Option<&BodyCounts>) -> Vec<u8>
     );
     f.point_vec3("velocity", &b.velocity);
     f.point_vec3("angular_velocity", &b.angular_velocity);
+    // with a fluid: its force on each body at the last step (drag,
+    // buoyancy, pressure gradient), N, world frame
+    if world.fluid().is_some() && world.fluid_forces().len() == b.len() {
+        f.point_vec3("fluid_force", world.fluid_forces());
+    }
     f.point_i32(
         "template",
         b.template.iter().map(|&t| base[t as usize] as i32),

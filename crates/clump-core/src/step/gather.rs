@@ -9,6 +9,9 @@
 //! 3. **walls**: its sphere–wall contacts (`super::wall_contacts`, their
 //!    law run as vector lanes), for the bodies with wall-list entries,
 //!    whose loads are therefore made first, in the order of the list;
+//! 3b. **coupling**: external loads and the fluid force
+//!    ([`super::coupling`]), only in a world with a fluid or external
+//!    loads set;
 //! 4. **final kick**: the second half kick ([`super::kick::FinalKick`]);
 //! 5. **tally**: kinetic energy, mass and the health checks, per chunk;
 //! 6. **next first half**: inside a fused stretch of steps, the next step's
@@ -25,6 +28,7 @@
 //! order (the pair stage's chunks first): the same bits for any thread count.
 
 use super::body_props::BodyProps;
+use super::coupling::{CouplingPass, CouplingWrites};
 use super::first_half::FirstHalf;
 use super::first_half_lanes::{BodyLanes, LANES};
 use super::kick::{FinalKick, Held};
@@ -126,6 +130,7 @@ fn gather_after(
         stats,
         part,
         phase,
+        fluid,
         ..
     } = w;
     let crate::neighbor::NeighborState {
@@ -183,6 +188,8 @@ fn gather_after(
     };
     let loads = SharedMut::new(chunk_wall_loads);
     let stats_out = SharedMut::new(chunk_stats);
+    let ends_step = kick;
+    let coupling_writes = CouplingWrites::new(fluid.is_some(), &mut bodies.coupling, nb);
     // SAFETY: the gather resizes nothing, and writes no orientation (the
     // first half of the next step writes its body's, after its kick).
     let kick =
@@ -211,6 +218,15 @@ fn gather_after(
         stats_out,
         loads,
         ids: &bodies.id,
+        coupling: CouplingPass::new(
+            fluid.as_ref(),
+            &bodies.coupling,
+            coupling_writes,
+            &bodies.template,
+            config.gravity,
+            config.dt,
+            ends_step,
+        ),
         wall_pass: WallPass::new(
             sp,
             bodies,
@@ -380,6 +396,8 @@ struct Gather<'a> {
     /// Per chunk and wall: the chunk's load on the wall.
     loads: SharedMut<WallLoad>,
     ids: &'a [u64],
+    /// The coupling stage, where a fluid or external loads are set.
+    coupling: Option<CouplingPass<'a>>,
     wall_pass: WallPass<'a>,
 }
 
@@ -410,6 +428,7 @@ impl Gather<'_> {
                 } else {
                     self.body_forces(bi, self.pair_load(bi))
                 };
+                let load = self.couple(bi, load);
                 let com = self.centre(bi);
                 let kicked = self.final_kick(bi, load);
                 self.tally(&mut tally, bi, com, &kicked);
@@ -474,6 +493,26 @@ impl Gather<'_> {
     #[inline(always)]
     unsafe fn body_forces(&self, bi: usize, pair: crate::neighbor::BodyLoad) -> Load {
         (self.mass.mass(bi) * self.gravity + pair.force, pair.torque)
+    }
+
+    /// Stage 3b, coupling: body `bi`'s external and fluid loads added to
+    /// its `load`, where the world has them ([`CouplingPass`]).
+    ///
+    /// # Safety
+    /// Body `bi` is the calling chunk's.
+    #[inline(always)]
+    unsafe fn couple(&self, bi: usize, load: Load) -> Load {
+        match &self.coupling {
+            None => load,
+            Some(c) => {
+                let v = if self.lag {
+                    (*self.pair_body.ptr(bi)).velocity
+                } else {
+                    self.vel.read(bi)
+                };
+                c.apply(bi, load, v, self.mass.mass(bi) * self.mass.factor(bi))
+            }
+        }
     }
 
     /// Prefetches body `bi`'s pair load (the pair stage wrote it; 7 % of

@@ -35,6 +35,7 @@
 //! change the results.
 
 mod body_props;
+mod coupling;
 mod error;
 mod first_half;
 mod first_half_lanes;

@@ -110,6 +110,9 @@ pub struct World {
     /// Heat transfer ([`World::enable_heat`]); `None`: the world has no
     /// temperatures and the step no heat stage.
     pub heat: Option<Box<crate::heat::Heat>>,
+    /// The fluid the bodies are in, with its per-template data
+    /// ([`World::set_fluid`]); `None`: no fluid force.
+    pub(crate) fluid: Option<crate::fluid::FluidState>,
 }
 
 impl World {
@@ -143,6 +146,7 @@ impl World {
             scratch: Scratch::default(),
             part: None,
             heat: None,
+            fluid: None,
         }
     }
 
@@ -164,6 +168,9 @@ impl World {
             // [`World::inherit_template_heat`]
             h.model.template_temperature.push(f64::NAN);
             h.model.template_source.push(0.0);
+        }
+        if let Some(f) = &mut self.fluid {
+            f.templates.push(crate::fluid::TemplateFluid::of(&template));
         }
         Ok(self.templates.push(template, material))
     }

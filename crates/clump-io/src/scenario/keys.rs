@@ -280,7 +280,8 @@ mod tests {
             RawTrajectory,
             RawOutput,
             RawFields,
-            RawFlow
+            RawFlow,
+            RawFluid
         )
     }
 

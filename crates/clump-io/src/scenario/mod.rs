@@ -167,6 +167,7 @@ impl Scenario {
         if let Some(h) = &self.heat {
             world.enable_heat(h.model.clone())?;
         }
+        world.set_fluid(self.fluid)?;
         Ok(world)
     }
 

@@ -16,6 +16,8 @@ use std::path::PathBuf;
 /// A resolved, validated scenario.
 #[derive(Debug, Clone)]
 pub struct Scenario {
+    /// The fluid the particles are in (`[fluid]`), if any.
+    pub fluid: Option<clump_core::fluid::Fluid>,
     /// The scenario file as given.
     pub path: PathBuf,
     /// Its text.

@@ -54,6 +54,9 @@ table! {
         pub output: RawOutput,
         /// `[heat]`: heat transfer (off without it).
         pub heat: Option<RawHeat>,
+        /// `[fluid]`: the fluid the particles are in (drag, buoyancy,
+        /// pressure gradient).
+        pub fluid: Option<RawFluid>,
     }
 }
 
@@ -66,6 +69,26 @@ table! {
         pub temperature: Option<f64>,
         /// Convection from a fluid: not available yet (needs a `[fluid]`).
         pub convection: Option<toml::Value>,
+    }
+}
+
+table! {
+    /// `[fluid]`.
+    pub struct RawFluid {
+        /// Density, kg/m³.
+        pub density: Option<f64>,
+        /// Dynamic viscosity, Pa s.
+        pub viscosity: Option<f64>,
+        /// Uniform interstitial velocity, world frame, m/s (default 0; a
+        /// driver may set it per body).
+        pub velocity: Option<[f64; 3]>,
+        /// Pressure gradient beyond the hydrostatic one, world frame, Pa/m (default 0).
+        pub pressure_gradient: Option<[f64; 3]>,
+        /// Drag law: "stokes", "schiller_naumann", "di_felice", "beetstra"
+        /// or "gidaspow" (default "schiller_naumann").
+        pub drag: Option<String>,
+        /// Buoyancy in the hydrostatic pressure field (default true).
+        pub buoyancy: Option<bool>,
     }
 }
 

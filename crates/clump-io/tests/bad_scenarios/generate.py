@@ -228,6 +228,12 @@ CASES = [
      ["cohesion = \"jkr\" needs the Hertz normal law (this [[pair]] uses law = \"linear\")"]),
     ("micro_slip_twisting", rep("friction = 0.3", 'friction = 0.3\ntangential = "mindlin_deresiewicz"\ntwisting = "marshall"'), 'tangential = "mindlin_deresiewicz"',
      ["tangential = \"mindlin_deresiewicz\" cannot be combined with twisting resistance (this [[pair]])", "help: remove 'twisting'"]),
+    ("fluid_negative_viscosity", append('\n[fluid]\ndensity = 1000\nviscosity = -1e-3\n'), "viscosity = -1e-3",
+     ["'viscosity' must be > 0 Pa s, found -0.001"]),
+    ("fluid_unknown_drag", append('\n[fluid]\ndensity = 1000\nviscosity = 1e-3\ndrag = "difelice"\n'), 'drag = "difelice"',
+     ["unknown drag law 'difelice'", "did you mean 'di_felice'?", "'stokes', 'schiller_naumann'"]),
+    ("fluid_missing_density", append('\n[fluid]\nviscosity = 1e-3\n'), "[fluid]",
+     ["missing key 'density' in [fluid]"]),
 ]
 
 # the invalid-UTF-8 case is written as bytes

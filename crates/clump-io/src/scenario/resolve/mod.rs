@@ -10,6 +10,7 @@
 mod contact;
 mod dof;
 mod domain;
+mod fluid;
 mod heat;
 mod inserts;
 mod materials;
@@ -343,6 +344,7 @@ fn resolve_sections(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             inserts = None;
         }
     }
+    let fluid = cx.section(|cx| fluid::fluid(cx, &raw));
     let output = match (&stages, dt, two_d, &setting) {
         (Some(stages), Some(dt), Some(two_d), Some(setting)) => {
             cx.section(|cx| output::output(cx, &raw, stages, dt, two_d, &setting.domain))
@@ -360,8 +362,9 @@ fn resolve_sections(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         Some(stages),
         Some(inserts),
         Some(output),
+        Some(fluid),
     ) = (
-        mats, pair_table, tpls, mixes, setting, time_step, walls, stages, inserts, output,
+        mats, pair_table, tpls, mixes, setting, time_step, walls, stages, inserts, output, fluid,
     )
     else {
         // a section that is `None` reported its error
@@ -433,6 +436,7 @@ fn resolve_sections(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         overlap_estimate,
         stages,
         output,
+        fluid,
         warnings: Vec::new(),
         heat,
     })

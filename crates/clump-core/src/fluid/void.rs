@@ -1,0 +1,110 @@
+//! The void fraction on a grid of cells (T-69): each body's solid volume
+//! divided among the cells by a fixed lattice of sample points inside its
+//! spheres, a point that lies inside an earlier sphere of the same body
+//! skipped (the union counts once), each point carrying `V_s / n_s` of its
+//! sphere's `n_s` points. The cell volume fraction converges to the exact
+//! sphere–cell intersection as the lattice refines (`SUB` points across a
+//! sphere diameter: a relative error of about 1/SUB in the cut cells).
+
+use glam::DVec3;
+
+/// Lattice points across a sphere's diameter.
+const SUB: usize = 12;
+
+/// A box of `n` cells of size `cell` (m) from the corner `lo` (m, world
+/// frame); cell `(i, j, k)` is entry `i + n₀ (j + n₁ k)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VoidGrid {
+    /// Lower corner, m.
+    pub lo: DVec3,
+    /// Cell edges, m.
+    pub cell: DVec3,
+    /// Cells per axis.
+    pub n: [usize; 3],
+    /// Per axis: points beyond the box wrap into it (a periodic axis).
+    pub periodic: [bool; 3],
+}
+
+impl VoidGrid {
+    /// Number of cells.
+    pub fn len(&self) -> usize {
+        self.n[0] * self.n[1] * self.n[2]
+    }
+
+    /// True when the grid has no cell.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The cell holding `p`, if any.
+    pub fn cell_of(&self, p: DVec3) -> Option<usize> {
+        let mut idx = [0usize; 3];
+        for a in 0..3 {
+            let n = self.n[a] as i64;
+            let mut i = ((p[a] - self.lo[a]) / self.cell[a]).floor() as i64;
+            if self.periodic[a] {
+                i = i.rem_euclid(n);
+            }
+            if !(0..n).contains(&i) {
+                return None;
+            }
+            idx[a] = i as usize;
+        }
+        Some(idx[0] + self.n[0] * (idx[1] + self.n[1] * idx[2]))
+    }
+
+    /// The void fraction of every cell, into `out` (resized to the cells):
+    /// `1 − solid volume / cell volume`, not clamped (an overfull cell,
+    /// which overlapping bodies can make, goes below 0). `bodies` yields,
+    /// per body, its spheres as (centre m, radius m), world frame.
+    pub fn void_fraction<B, S>(&self, bodies: B, out: &mut Vec<f64>)
+    where
+        B: IntoIterator<Item = S>,
+        S: IntoIterator<Item = (DVec3, f64)> + Clone,
+    {
+        out.clear();
+        out.resize(self.len(), 0.0);
+        let lattice = unit_lattice();
+        let cell_volume = self.cell.x * self.cell.y * self.cell.z;
+        for spheres in bodies {
+            for (k, (c, r)) in spheres.clone().into_iter().enumerate() {
+                let share = 4.0 / 3.0 * std::f64::consts::PI * r * r * r / lattice.len() as f64;
+                for &q in &lattice {
+                    let p = c + r * q;
+                    let earlier = spheres
+                        .clone()
+                        .into_iter()
+                        .take(k)
+                        .any(|(c2, r2)| (p - c2).length_squared() < r2 * r2);
+                    if earlier {
+                        continue;
+                    }
+                    if let Some(i) = self.cell_of(p) {
+                        out[i] += share;
+                    }
+                }
+            }
+        }
+        for v in out.iter_mut() {
+            *v = 1.0 - *v / cell_volume;
+        }
+    }
+}
+
+/// The lattice points inside the unit ball: cell centres of a `SUB`³ grid
+/// on [−1, 1]³.
+fn unit_lattice() -> Vec<DVec3> {
+    let h = 2.0 / SUB as f64;
+    let mut pts = Vec::new();
+    for i in 0..SUB {
+        for j in 0..SUB {
+            for k in 0..SUB {
+                let p = DVec3::new(i as f64, j as f64, k as f64) * h - DVec3::splat(1.0 - h / 2.0);
+                if p.length_squared() < 1.0 {
+                    pts.push(p);
+                }
+            }
+        }
+    }
+    pts
+}
