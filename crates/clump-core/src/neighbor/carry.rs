@@ -20,6 +20,7 @@
 //! negation, so twice reversed is the same bits).
 
 use super::pairs::{reversed, PairList};
+use crate::contact::mdr::SlipProfile;
 use crate::contact::ContactHistory;
 use crate::sphere::{Spheres, SPHERE_ID_BITS};
 use glam::DVec3;
@@ -43,6 +44,9 @@ pub(crate) struct HistoryCarry {
     /// Rolling spring of each entry, world frame, N m, oriented `i → j`
     /// (empty when the list keeps none).
     rolling: Vec<DVec3>,
+    /// MDR profile of each entry, oriented `i → j` (empty when the list
+    /// keeps none).
+    slip: Vec<SlipProfile>,
     /// Per old body, its first old sphere (old body count + 1).
     old_first: Vec<u32>,
     /// Per new sphere, its old storage index or [`NONE`].
@@ -57,12 +61,14 @@ impl HistoryCarry {
         self.j.clear();
         self.tangential.clear();
         self.rolling.clear();
+        self.slip.clear();
         self.old_first.clear();
         self.old_first.extend_from_slice(&sp.body_first);
         // a list not built on these spheres (none built yet) carries nothing
         let n = sp.body_first.last().map_or(0, |&s| s as usize);
         let rows = if pairs.row_start.len() == n + 1 { n } else { 0 };
         let with_rolling = !pairs.rolling.is_empty();
+        let with_slip = !pairs.slip.is_empty();
         self.row_start.reserve(n + 1);
         self.row_start.push(0);
         for i in 0..rows {
@@ -72,6 +78,9 @@ impl HistoryCarry {
                     self.tangential.push(h.tangential);
                     if with_rolling {
                         self.rolling.push(h.rolling);
+                    }
+                    if with_slip {
+                        self.slip.push(pairs.slip[p]);
                     }
                 }
             }
@@ -104,6 +113,18 @@ impl HistoryCarry {
     /// indices), oriented from `a` to `b`; None for a pair without state.
     #[inline]
     pub(crate) fn get(&self, a: usize, b: usize) -> Option<ContactHistory> {
+        let (e, forward) = self.entry(a, b)?;
+        let h = ContactHistory {
+            tangential: self.tangential[e],
+            rolling: self.rolling.get(e).copied().unwrap_or_default(),
+        };
+        Some(if forward { h } else { reversed(h) })
+    }
+
+    /// The entry of the new pair `a → b` and whether it runs the same way
+    /// as the old pair.
+    #[inline]
+    fn entry(&self, a: usize, b: usize) -> Option<(usize, bool)> {
         let (oa, ob) = (self.old_index[a], self.old_index[b]);
         if oa == NONE || ob == NONE {
             return None;
@@ -114,11 +135,16 @@ impl HistoryCarry {
             self.row_start[lo as usize + 1] as usize,
         );
         let e = e0 + self.j[e0..e1].iter().position(|&j| j == hi)?;
-        let h = ContactHistory {
-            tangential: self.tangential[e],
-            rolling: self.rolling.get(e).copied().unwrap_or_default(),
-        };
-        Some(if oa < ob { h } else { reversed(h) })
+        Some((e, oa < ob))
+    }
+
+    /// The carried MDR profile of the new pair `a → b`, oriented from `a`
+    /// to `b`; None for a pair without state or a list without profiles.
+    #[inline]
+    pub(crate) fn get_slip(&self, a: usize, b: usize) -> Option<SlipProfile> {
+        let (e, forward) = self.entry(a, b)?;
+        let sp = *self.slip.get(e)?;
+        Some(if forward { sp } else { sp.reversed() })
     }
 
     /// Whether some pair carries state.
@@ -215,6 +241,7 @@ mod tests {
                 gid: &sp.gid,
                 skin: 2e-4,
                 rolling: true,
+                slip: None,
             };
             let grid = CellGrid::new(&domain, &position, 8e-4).unwrap();
             match carried {
