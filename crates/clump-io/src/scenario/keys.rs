@@ -131,7 +131,7 @@ pub const CONTACT_KEYS: &[Key] = &[
     ),
     key(
         "tangential",
-        "Tangential rule: `\"clump\"` (default), `\"liggghts\"` or `\"mindlin_deresiewicz\"` (micro-slip).",
+        "Tangential rule: `\"clump\"` (default), `\"liggghts\"`, `\"mindlin_deresiewicz\"` (micro-slip, Thornton–Yin) or `\"mdr\"` (micro-slip, exact for any load history).",
     ),
     key(
         "cohesion",
@@ -168,7 +168,7 @@ pub const PAIR_KEYS: &[Key] = &[
     ),
     key(
         "tangential",
-        "Tangential rule: `\"clump\"` (default), `\"liggghts\"` or `\"mindlin_deresiewicz\"` (micro-slip).",
+        "Tangential rule: `\"clump\"` (default), `\"liggghts\"`, `\"mindlin_deresiewicz\"` (micro-slip, Thornton–Yin) or `\"mdr\"` (micro-slip, exact for any load history).",
     ),
     key(
         "cohesion",
