@@ -105,7 +105,10 @@ impl World {
             v
         };
         pair_slip.sort_by_key(|e| e.0);
-        let wall_slip = self.neighbors.wall_list.slip_per_sphere(self.spheres.len());
+        let wall_slip = self
+            .neighbors
+            .wall_list
+            .slip_per_sphere(self.spheres.len(), self.contact_table.keeps_slip_profile());
         let (wall_key, wall_hist) = self.neighbors.wall_list.per_sphere(self.spheres.len());
         Ok(WorldState {
             config: self.config,

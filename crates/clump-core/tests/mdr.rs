@@ -100,6 +100,11 @@ fn profiles_survive_rebuilds() {
     let mut b = impacts();
     b.config.skin = Some(2e-8);
     b.run(total).unwrap();
-    assert!(b.rebuilds > a.rebuilds + 100, "{} {}", a.rebuilds, b.rebuilds);
+    assert!(
+        b.rebuilds > a.rebuilds + 100,
+        "{} {}",
+        a.rebuilds,
+        b.rebuilds
+    );
     assert!(bits(&a) == bits(&b), "the rebuilt run differs");
 }

@@ -136,7 +136,6 @@ fn mdr_bed() -> World {
 }
 
 #[test]
-#[ignore = "known failure: with tangential = \"mdr\" 2 ranks differ from one process (the same bed with \"mindlin_deresiewicz\" passes); not yet found which path loses or overrides a profile"]
 fn mdr_profiles_have_the_same_bits_on_2_and_3_ranks() {
     let (steps, rounds) = (2500, 2);
     let mut serial = mdr_bed();
@@ -154,7 +153,10 @@ fn mdr_profiles_have_the_same_bits_on_2_and_3_ranks() {
             .enumerate()
         {
             assert_eq!(step, serial.step);
-            assert!(got == want, "{ranks} ranks, rank {rank}: body states differ from one process");
+            assert!(
+                got == want,
+                "{ranks} ranks, rank {rank}: body states differ from one process"
+            );
         }
     }
 }

@@ -349,7 +349,8 @@ mod tests {
     fn drive(p: &mut SlipProfile, g: f64, a2: f64, mu_n: f64, dx: f64, steps: usize) -> f64 {
         let mut t = 0.0;
         for _ in 0..steps {
-            let (f, _) = mdr_tangential(p, DVec3::Z, DVec3::new(dx, 0.0, 0.0), 1.0, a2, g, 1.0, mu_n);
+            let (f, _) =
+                mdr_tangential(p, DVec3::Z, DVec3::new(dx, 0.0, 0.0), 1.0, a2, g, 1.0, mu_n);
             t = -f.x;
         }
         t
@@ -385,7 +386,10 @@ mod tests {
             let r = t1 - 2.0 * lim * (1.0 - (1.0 - (x1 - x) / (2.0 * dm)).powf(1.5));
             worst = worst.max((t - r).abs());
         }
-        let (x2, t2) = (x, t1 - 2.0 * lim * (1.0 - (1.0 - (x1 - x) / (2.0 * dm)).powf(1.5)));
+        let (x2, t2) = (
+            x,
+            t1 - 2.0 * lim * (1.0 - (1.0 - (x1 - x) / (2.0 * dm)).powf(1.5)),
+        );
         for _ in 0..800 {
             let t = drive(&mut p, g, a2, lim, dx, 1);
             x += dx;
@@ -435,7 +439,16 @@ mod tests {
     #[test]
     fn gross_sliding_and_release() {
         let mut p = SlipProfile::default();
-        let (f, _) = mdr_tangential(&mut p, DVec3::Z, DVec3::new(1.0, 1.0, 0.0), 1.0, 1e-8, 1e9, 0.5, 2.0);
+        let (f, _) = mdr_tangential(
+            &mut p,
+            DVec3::Z,
+            DVec3::new(1.0, 1.0, 0.0),
+            1.0,
+            1e-8,
+            1e9,
+            0.5,
+            2.0,
+        );
         let e = DVec3::new(1.0, 1.0, 0.0).normalize();
         assert!((f + e).length() < 1e-14, "{f}");
         let (f, _) = mdr_tangential(&mut p, DVec3::Z, DVec3::ZERO, 1.0, 1e-8, 1e9, 0.5, 0.0);
@@ -453,8 +466,26 @@ mod tests {
         for k in 0..300 {
             let a2 = 1e-8 * (1.0 + (k as f64 * 0.03).sin().abs());
             let v = DVec3::new((k as f64 * 0.05).cos() * 1e-9, 0.3e-9, 0.0);
-            let (fa, _) = mdr_tangential(&mut a, DVec3::Z, v, 1.0, a2, 1e9, 0.3, 1e3 * a2.powf(1.5) * 1e6);
-            let (fb, _) = mdr_tangential(&mut b, -DVec3::Z, -v, 1.0, a2, 1e9, 0.3, 1e3 * a2.powf(1.5) * 1e6);
+            let (fa, _) = mdr_tangential(
+                &mut a,
+                DVec3::Z,
+                v,
+                1.0,
+                a2,
+                1e9,
+                0.3,
+                1e3 * a2.powf(1.5) * 1e6,
+            );
+            let (fb, _) = mdr_tangential(
+                &mut b,
+                -DVec3::Z,
+                -v,
+                1.0,
+                a2,
+                1e9,
+                0.3,
+                1e3 * a2.powf(1.5) * 1e6,
+            );
             assert!((fa + fb).length() <= 1e-12 * fa.length(), "{fa} {fb}");
             assert_eq!(a.reversed().u, b.u);
         }

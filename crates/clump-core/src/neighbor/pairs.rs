@@ -312,15 +312,19 @@ impl PairList {
     }
 
     /// The history of pair `p` (oriented from its `i` to its `j`) when a
-    /// rebuild carries it over: it has a spring, or with `keep_live` it is
-    /// live (a JKR contact lives on while apart, with or without a spring).
+    /// rebuild carries it over: it has a spring, or an MDR profile (a
+    /// touching contact whose tangential force is exactly zero), or with
+    /// `keep_live` it is live (a JKR contact lives on while apart, with or
+    /// without a spring).
     #[inline]
     pub(crate) fn kept_history(&self, p: usize, keep_live: bool) -> Option<ContactHistory> {
         let h = ContactHistory {
             tangential: self.tangential[p],
             rolling: self.rolling.get(p).copied().unwrap_or_default(),
         };
-        (h != ContactHistory::default() || (keep_live && self.topo[p].live())).then_some(h)
+        let profile = self.slip.get(p).is_some_and(|s| !s.is_empty());
+        (h != ContactHistory::default() || profile || (keep_live && self.topo[p].live()))
+            .then_some(h)
     }
 
     /// Collects the history of touching pairs keyed by (lower, higher) global

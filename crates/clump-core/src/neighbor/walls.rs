@@ -107,15 +107,19 @@ impl WallList {
     }
 
     /// The MDR profiles of every sphere's slots (storage order, `n`
-    /// spheres; the checkpoint form of [`Self::slip`]): empty when the list
-    /// keeps none.
-    pub fn slip_per_sphere(&self, n: usize) -> Vec<[SlipProfile; WALL_SLOTS]> {
-        if self.slip.is_empty() {
+    /// spheres; the checkpoint form of [`Self::slip`]): with `keep` (some
+    /// law keeps profiles) one per sphere, empty profiles where the list
+    /// holds none (a list without entries has no profiles yet, and a part
+    /// joined with others must still give one per sphere); else empty.
+    pub fn slip_per_sphere(&self, n: usize, keep: bool) -> Vec<[SlipProfile; WALL_SLOTS]> {
+        if !keep {
             return Vec::new();
         }
         let mut out = vec![[SlipProfile::default(); WALL_SLOTS]; n];
-        for (e, &s) in self.sphere.iter().enumerate() {
-            out[s as usize] = self.slip[e];
+        if self.slip.len() == self.sphere.len() {
+            for (e, &s) in self.sphere.iter().enumerate() {
+                out[s as usize] = self.slip[e];
+            }
         }
         out
     }
@@ -129,7 +133,8 @@ impl WallList {
             return;
         }
         for &s in &self.sphere {
-            self.slip.push(slip.get(s as usize).copied().unwrap_or_default());
+            self.slip
+                .push(slip.get(s as usize).copied().unwrap_or_default());
         }
     }
 

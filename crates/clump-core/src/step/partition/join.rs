@@ -43,7 +43,10 @@ fn owned(w: &World) -> Owned {
     w.bodies.permute_into(&keep, &mut out.bodies);
     let owned_ids: rustc_hash::FxHashSet<u64> = out.bodies.id.iter().copied().collect();
     let (key, hist) = w.neighbors.wall_list.per_sphere(w.spheres.len());
-    let wslip = w.neighbors.wall_list.slip_per_sphere(w.spheres.len());
+    let wslip = w
+        .neighbors
+        .wall_list
+        .slip_per_sphere(w.spheres.len(), w.contact_table.keeps_slip_profile());
     for &b in &keep {
         let b = b as usize;
         out.order.push(part.order[b]);

@@ -179,7 +179,10 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         }
     }
     let (wall_key, wall_hist) = w.neighbors.wall_list.per_sphere(w.spheres.len());
-    let wall_slip = w.neighbors.wall_list.slip_per_sphere(w.spheres.len());
+    let wall_slip = w
+        .neighbors
+        .wall_list
+        .slip_per_sphere(w.spheres.len(), w.contact_table.keeps_slip_profile());
     let mut out: Vec<Moving> = (0..size).map(|_| Moving::default()).collect();
     let mut near = Vec::new();
     let mut one = Bodies::default();
