@@ -111,8 +111,7 @@ fn whole_and_resumed(
         .unwrap();
     drop(r);
     let ck = s.checkpoint.unwrap();
-    let (json, fp): (String, u64) =
-        decode_checkpoint(&std::fs::read(&ck).unwrap(), &ck).unwrap();
+    let (json, fp): (String, u64) = decode_checkpoint(&std::fs::read(&ck).unwrap(), &ck).unwrap();
     let mut v: serde_json::Value = serde_json::from_str(&json).unwrap();
     edit(&mut v["world"]);
     let edited = d.join("edited.ckpt");
@@ -139,7 +138,10 @@ fn a_checkpoint_without_slip_profiles_resumes_bit_for_bit() {
             assert_eq!(v, serde_json::json!([]), "{key}: no law keeps profiles");
         }
     });
-    assert!(whole == resumed, "the old-format checkpoint resumed differently");
+    assert!(
+        whole == resumed,
+        "the old-format checkpoint resumed differently"
+    );
 }
 
 /// With `tangential = "mdr"` the checkpoint file holds the profiles of

@@ -276,15 +276,36 @@ fn contact_props(
         // the exact micro-slip model (contact::mdr) runs on the Hertz
         // contact radius and normal force
         let clash = [
-            ("law", out.normal != NormalLaw::Hertz, "law = \"linear\"", "it needs the Hertz contact radius"),
-            ("cohesion", out.cohesion != CohesionLaw::None, "cohesion", "its slip limit follows Hertz's pressure"),
+            (
+                "law",
+                out.normal != NormalLaw::Hertz,
+                "law = \"linear\"",
+                "it needs the Hertz contact radius",
+            ),
+            (
+                "cohesion",
+                out.cohesion != CohesionLaw::None,
+                "cohesion",
+                "its slip limit follows Hertz's pressure",
+            ),
         ];
         if let Some(&(other, _, name, why)) = clash.iter().find(|c| c.1) {
-            let key = if f.tangential.is_some() { "tangential" } else { other };
+            let key = if f.tangential.is_some() {
+                "tangential"
+            } else {
+                other
+            };
             return Err(cx
                 .src
-                .error_at_key(&p(key), format!("tangential = \"mdr\" cannot be combined with {name} (this {what}): {why}"))
-                .note(format!("help: remove '{other}', or use tangential = \"clump\" or \"liggghts\"")));
+                .error_at_key(
+                    &p(key),
+                    format!(
+                        "tangential = \"mdr\" cannot be combined with {name} (this {what}): {why}"
+                    ),
+                )
+                .note(format!(
+                    "help: remove '{other}', or use tangential = \"clump\" or \"liggghts\""
+                )));
         }
     }
     if out.rolling != RollingLaw::None && out.rolling_friction == 0.0 && f.rolling.is_some() {
