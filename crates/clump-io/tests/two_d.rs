@@ -503,7 +503,10 @@ fn heaps_from_pack_and_stream_stand_at_the_angle_of_repose() {
         let surface = deg(surface_angles(w));
         let (halves, on) = centroid_angles(w);
         let halves = deg(halves);
-        let c = (0.5 * (halves[0] + halves[1]), 0.5 * (halves[0] - halves[1]).abs());
+        let c = (
+            0.5 * (halves[0] + halves[1]),
+            0.5 * (halves[0] - halves[1]).abs(),
+        );
         let s = 0.5 * (surface[0] + surface[1]);
         eprintln!(
             "2D heap ({name}, mu {mu}): {on} bodies on the pedestal; free surface {:.1}° and {:.1}° (mean {s:.1}°); fixed-base {:.1}° ± {:.1}°",

@@ -78,7 +78,10 @@ fn micro_slip(g: &mut Group, sel: Selection, dir: &Path) -> Result<(), String> {
     }
     // the exact micro-slip model (tangential = "mdr") at every angle
     for r in &elastic {
-        for (what, mbf, mdr) in [("v_t'/v_t", r.mbf.0, r.mdr.0), ("rebound spin ω'", r.mbf.1, r.mdr.1)] {
+        for (what, mbf, mdr) in [
+            ("v_t'/v_t", r.mbf.0, r.mdr.0),
+            ("rebound spin ω'", r.mbf.1, r.mdr.1),
+        ] {
             g.cases.push(Case::relative(
                 format!(
                     "Exact micro-slip (mdr), Chung & Ooi test 4 (e = 1), θ = {}°: {what}",
@@ -145,7 +148,11 @@ fn micro_slip(g: &mut Group, sel: Selection, dir: &Path) -> Result<(), String> {
         y_label: "v_t' / v_t".into(),
         series: vec![
             Series::new("MBF (1976), elastic", pts(|r| r.mbf.0), Style::Dashed),
-            Series::new("exact micro-slip (mdr)", pts(|r| r.mdr.0), Style::LinePoints),
+            Series::new(
+                "exact micro-slip (mdr)",
+                pts(|r| r.mdr.0),
+                Style::LinePoints,
+            ),
             Series::new(
                 "micro-slip (mindlin_deresiewicz)",
                 pts(|r| r.new.0),

@@ -135,6 +135,27 @@ mod tests {
     }
 }
 
+/// One step of the exact 1-D spring row (MDR, Popov & Heß 2015) of a Hertz
+/// contact at overlap `d` (m): springs of width `dx` (m) at `x = (i + ½)dx`
+/// in contact where `d − x²/R > 0`, each moved by `du` (m) and held within
+/// its Coulomb limit `μE*(d − x²/R)/G̃`; the others released. Returns
+/// `Σu` (m), the half row's force over `G̃ dx`.
+fn spring_row_step(u: &mut [f64], dx: f64, d: f64, du: f64, e_star: f64, g_t: f64) -> f64 {
+    let mut sum = 0.0;
+    for (i, ui) in u.iter_mut().enumerate() {
+        let x = (i as f64 + 0.5) * dx;
+        let uz = d - x * x / R;
+        if uz <= 0.0 {
+            *ui = 0.0;
+            continue;
+        }
+        let lim = MU * e_star * uz / g_t;
+        *ui = (*ui + du).clamp(-lim, lim);
+        sum += *ui;
+    }
+    sum
+}
+
 /// The finding of docs/theory.md T-49 at small angles: the micro-slip
 /// increment and the exact (MDR) solution driven by the same prescribed
 /// history, a Hertz normal loading–unloading `δ = δ_max sin(πt/t_c)`
@@ -160,18 +181,7 @@ pub fn prescribed_history(v_t: f64, samples: usize) -> Vec<(f64, f64, f64, f64)>
         let t = k as f64 * dt;
         let d = d_max * (std::f64::consts::PI * t / tc).sin();
         let f_n = 4.0 / 3.0 * e_star * R.sqrt() * d.powf(1.5);
-        let mut sum = 0.0;
-        for (i, ui) in u.iter_mut().enumerate() {
-            let x = (i as f64 + 0.5) * dx;
-            let uz = d - x * x / R;
-            if uz <= 0.0 {
-                *ui = 0.0;
-                continue;
-            }
-            let lim = MU * e_star * uz / g_t;
-            *ui = (*ui + v_t * dt).clamp(-lim, lim);
-            sum += *ui;
-        }
+        let sum = spring_row_step(&mut u, dx, d, v_t * dt, e_star, g_t);
         let k0 = 8.0 * g / (2.0 - nu) * (R * d).sqrt();
         let v = DVec3::new(v_t, 0.0, 0.0);
         let (f, _) = micro_slip(&mut h, DVec3::Z, v, dt, k0, MU, f_n, fn_old);
@@ -249,18 +259,7 @@ pub fn varying_normal_cycle(
         let d = overlap(t);
         let du = disp(t) - disp((k - 1) as f64 / steps as f64);
         let f_n = 4.0 / 3.0 * e_star * R.sqrt() * d.powf(1.5);
-        let mut sum = 0.0;
-        for (i, ui) in u.iter_mut().enumerate() {
-            let x = (i as f64 + 0.5) * dx;
-            let uz = d - x * x / R;
-            if uz <= 0.0 {
-                *ui = 0.0;
-                continue;
-            }
-            let lim = MU * e_star * uz / g_t;
-            *ui = (*ui + du).clamp(-lim, lim);
-            sum += *ui;
-        }
+        let sum = spring_row_step(&mut u, dx, d, du, e_star, g_t);
         let v = DVec3::new(du, 0.0, 0.0);
         let (f, _) = mdr_tangential(&mut p, DVec3::Z, v, 1.0, R * d, g_t, MU, f_n);
         let k0 = 2.0 * g_t * (R * d).sqrt();
@@ -303,7 +302,10 @@ mod cycle {
             e_ref / scale
         );
         for r in fine.iter().step_by(25) {
-            println!("t/T {:.3} muN {:8.3} exact {:8.4} mdr {:8.4} ty {:8.4}", r.0, r.1, r.2, r.3, r.4);
+            println!(
+                "t/T {:.3} muN {:8.3} exact {:8.4} mdr {:8.4} ty {:8.4}",
+                r.0, r.1, r.2, r.3, r.4
+            );
         }
         assert!(e_mdr < 2e-3 * scale, "{e_mdr} {scale}");
         assert!(e_ref < 1e-5 * scale, "{e_ref} {scale}");

@@ -43,7 +43,7 @@
 //! removed (its hat function's weight times its distance from the chord of
 //! its neighbours; the change is exactly that product, so each removal's
 //! error in `T` is known and is the smallest available). The unit tests
-//! and `crates/clump-core/tests/mdr.rs` measure the effect.
+//! and `crates/clump-core/tests/micro_slip.rs` measure the effect.
 //!
 //! # Clump's choices (not in the source)
 //! - `λ = 3μN/(4G̃a³)`, with `N = |F_n|` the pair's clamped normal force:
