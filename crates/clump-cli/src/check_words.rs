@@ -145,6 +145,7 @@ pub fn contacts(sc: &Scenario, world: &World) {
                     clump_core::contact::TangentialLaw::Clump => "",
                     clump_core::contact::TangentialLaw::Liggghts => " (LIGGGHTS' tangential rule)",
                     clump_core::contact::TangentialLaw::MindlinDeresiewicz => " (micro-slip tangential model, Mindlin–Deresiewicz after Thornton & Yin)",
+                    clump_core::contact::TangentialLaw::Mdr => " (micro-slip tangential model, exact for any load history by the method of dimensionality reduction)",
                 },
                 match p.cohesion {
                     clump_core::contact::CohesionLaw::None => String::new(),

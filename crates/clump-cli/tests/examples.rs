@@ -39,6 +39,8 @@ fn the_four_examples_exist() {
         "hopper_mesh",
         "drum_mesh",
         "rock_pour",
+        "heap_2d",
+        "hopper_2d",
     ] {
         assert!(
             names.iter().any(|n| n == want),

@@ -8,6 +8,7 @@
 //! resumed run repeats the uninterrupted one bit for bit.
 
 use crate::body::Bodies;
+use crate::contact::mdr::SlipProfile;
 use crate::contact::ContactHistory;
 use crate::neighbor::walls::WallList;
 use crate::neighbor::walls::WALL_SLOTS;
@@ -60,6 +61,14 @@ pub struct WorldState {
     /// (empty without heat).
     #[serde(default)]
     pub wall_heat: Vec<f64>,
+    /// MDR profiles of the sphere pairs (`tangential = "mdr"`), keyed as
+    /// `pair_history`; empty when no law keeps them.
+    #[serde(default)]
+    pub pair_slip: Vec<((u64, u64), SlipProfile)>,
+    /// MDR profiles of the sphere–wall slots, per sphere in storage order;
+    /// empty when no law keeps them.
+    #[serde(default)]
+    pub wall_slip: Vec<[SlipProfile; WALL_SLOTS]>,
 }
 
 impl World {
@@ -86,6 +95,24 @@ impl World {
             v
         };
         pair_history.sort_by_key(|e| e.0);
+        let mut pair_slip: Vec<_> = if self.neighbors.history_pending {
+            self.neighbors
+                .slip_map
+                .iter()
+                .map(|(k, p)| (*k, *p))
+                .collect()
+        } else {
+            let mut map = std::mem::take(&mut self.neighbors.slip_map);
+            self.neighbors.pairs.save_slip(&self.spheres.gid, &mut map);
+            let v = map.drain().collect();
+            self.neighbors.slip_map = map;
+            v
+        };
+        pair_slip.sort_by_key(|e| e.0);
+        let wall_slip = self
+            .neighbors
+            .wall_list
+            .slip_per_sphere(self.spheres.len(), self.contact_table.keeps_slip_profile());
         let (wall_key, wall_hist) = self.neighbors.wall_list.per_sphere(self.spheres.len());
         Ok(WorldState {
             config: self.config,
@@ -108,6 +135,8 @@ impl World {
                 .heat
                 .as_ref()
                 .map_or(Vec::new(), |h| h.wall_heat.clone()),
+            pair_slip,
+            wall_slip,
         })
     }
 
@@ -226,7 +255,9 @@ impl World {
         self.stats = s.stats;
         self.neighbors.reference_pose = s.reference_pose;
         self.neighbors.history_map = s.pair_history.into_iter().collect();
+        self.neighbors.slip_map = s.pair_slip.into_iter().collect();
         self.neighbors.wall_list = WallList::from_per_sphere(&s.wall_key, &s.wall_hist);
+        self.neighbors.wall_list.set_slip_per_sphere(&s.wall_slip);
         rebuild::rebuild(self, false).map_err(|e| e.to_string())?;
         self.rebuilds = self.rebuilds.saturating_sub(1);
         self.phase.forces_evaluated();

@@ -67,6 +67,7 @@ fn count_spec(region: Region, n: usize, template: u32) -> PackSpec {
         max_attempts_per_body: 1000,
         angular_velocity: Default::default(),
         dof: Vec::new(),
+        plane: None,
     }
 }
 
@@ -327,6 +328,7 @@ fn mix_by_mass_with_sizes() {
         max_attempts_per_body: 1000,
         angular_velocity: Default::default(),
         dof: Vec::new(),
+        plane: None,
     };
     let rep = pack(&mut w, &spec, 3).unwrap();
     assert!(rep.volume_fraction >= 0.1);
@@ -379,6 +381,7 @@ fn stream_spec(template: u32, rate: StreamRate) -> StreamSpec {
         angular_velocity: Default::default(),
         dof: Vec::new(),
         start_after: None,
+        plane: None,
     }
 }
 
@@ -546,4 +549,88 @@ fn stream_start_after_and_flags() {
     // is already counted: every step from the start step on adds g dt)
     let dv = w.bodies().velocity[0].z - v0.z;
     assert!((dv + 9.81 * 100.0 * 1e-4).abs() < 1e-12, "{dv}");
+}
+
+/// 2D packing (`plane = Some(z)`): every centre of mass on the plane, every
+/// orientation about z only (x, y parts exactly zero), no overlaps, the
+/// angles spread over the circle, the same bodies for the same seed; a
+/// plane outside the region by less than a sphere radius, a z velocity and
+/// a fixed orientation about x are refused.
+#[test]
+fn packing_in_a_plane() {
+    let disc = || {
+        ClumpTemplate::from_spheres("disc", &[shape::Sphere::new(DVec3::ZERO, 1e-3)], 2500.0)
+            .unwrap()
+    };
+    let region = Region::Box {
+        lo: DVec3::new(0.0, 0.0, -0.002),
+        hi: DVec3::new(0.05, 0.05, 0.002),
+    };
+    let spec = PackSpec {
+        plane: Some(0.0),
+        ..count_spec(region, 200, 0)
+    };
+    let run = || {
+        let mut w = open_world();
+        w.add_template(disc(), 0).unwrap();
+        pack(&mut w, &spec, 7).unwrap();
+        w
+    };
+    let w = run();
+    let b = &w.bodies();
+    assert_eq!(b.len(), 200);
+    let mut quadrants = [0; 4];
+    for i in 0..b.len() {
+        let q = b.orientation[i];
+        assert_eq!((b.position[i].z, q.x, q.y), (0.0, 0.0, 0.0), "body {i}");
+        let angle = 2.0 * q.z.atan2(q.w);
+        quadrants[(angle.rem_euclid(std::f64::consts::TAU) / std::f64::consts::FRAC_PI_2)
+            as usize
+            % 4] += 1;
+    }
+    assert!(
+        quadrants.iter().all(|&n| n > 30),
+        "angles about z: {quadrants:?}"
+    );
+    let s = spheres_of(&w);
+    for (a, &(ca, ra, _)) in s.iter().enumerate() {
+        for &(cb, rb, _) in &s[a + 1..] {
+            assert!((ca - cb).length() >= ra + rb, "overlap");
+        }
+    }
+    let again = run();
+    assert!(
+        again.bodies().position == w.bodies().position
+            && again.bodies().orientation == w.bodies().orientation
+    );
+    for (bad, what) in [
+        (
+            PackSpec {
+                plane: Some(0.0015),
+                ..spec.clone()
+            },
+            "plane",
+        ),
+        (
+            PackSpec {
+                velocity: DVec3::new(0.0, 0.0, 0.1),
+                ..spec.clone()
+            },
+            "velocity",
+        ),
+        (
+            PackSpec {
+                orientation: Orientation::Fixed {
+                    quaternion: DQuat::from_rotation_x(0.3),
+                },
+                ..spec.clone()
+            },
+            "orientation",
+        ),
+    ] {
+        let mut w = open_world();
+        w.add_template(disc(), 0).unwrap();
+        let e = pack(&mut w, &bad, 7).unwrap_err().to_string();
+        assert!(e.contains("2D insertion") && e.contains(what), "{e}");
+    }
 }

@@ -67,7 +67,9 @@ fn liggghts_tutorial_two_stones() {
                     )
                 }
                 TangentialLaw::Clump => assert!(spin > 1e-2, "stone {b}: {spin:e}"),
-                TangentialLaw::MindlinDeresiewicz => unreachable!("not run here"),
+                TangentialLaw::MindlinDeresiewicz | TangentialLaw::Mdr => {
+                    unreachable!("not run here")
+                }
             }
         }
     }

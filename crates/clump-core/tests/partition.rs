@@ -124,3 +124,43 @@ fn restricted_bodies_have_the_same_bits_on_2_and_3_ranks() {
         }
     }
 }
+
+/// The bed with the exact micro-slip law (`tangential = "mdr"`): its
+/// contact profiles travel with the bodies between ranks and through
+/// the events, so the ranks repeat one process's bits.
+fn mdr_bed() -> World {
+    use clump_core::contact::{ContactTable, PairProperties, TangentialLaw};
+    let mut w = bed();
+    w.contact_table = ContactTable::new(&w.materials, |_, _| PairProperties {
+        tangential: TangentialLaw::Mdr,
+        ..clump_core::testbed::tetra_contact()
+    })
+    .unwrap();
+    w
+}
+
+#[test]
+fn mdr_profiles_have_the_same_bits_on_2_and_3_ranks() {
+    let (steps, rounds) = (2500, 2);
+    let mut serial = mdr_bed();
+    serial.run(steps * rounds as u64).unwrap();
+    let want = state_bits(&serial);
+    assert!(
+        serial.rebuilds > 3 && serial.stats.pair_contacts > 20,
+        "{} rebuilds, {} contacts",
+        serial.rebuilds,
+        serial.stats.pair_contacts
+    );
+    for ranks in [2, 3] {
+        for (rank, (got, step, _, _)) in run_ranks(ranks, mdr_bed, steps, rounds)
+            .into_iter()
+            .enumerate()
+        {
+            assert_eq!(step, serial.step);
+            assert!(
+                got == want,
+                "{ranks} ranks, rank {rank}: body states differ from one process"
+            );
+        }
+    }
+}

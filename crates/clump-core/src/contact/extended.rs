@@ -1,7 +1,7 @@
 //! The scalar composition of the contact law for pairs that select a
 //! sub-model the vectorised [`SlidingLaw`](super::SlidingLaw) does not have:
 //! LIGGGHTS' tangential rule ([`super::tangential::liggghts_spring`]), the
-//! micro-slip rule ([`super::micro_slip`]),
+//! micro-slip rules ([`super::micro_slip`], [`super::mdr`]),
 //! cohesion ([`super::cohesion`]: SJKR, JKR) and twisting resistance
 //! ([`super::twisting`]).
 //!
@@ -18,6 +18,7 @@
 use super::cohesion::{
     jkr_contact_radius, jkr_force_parts, jkr_pull_off_force, sjkr_force, CohesionLaw,
 };
+use super::mdr::{mdr_tangential, SlipProfile};
 use super::micro_slip::micro_slip;
 use super::tangential::{self, history_spring, liggghts_spring, TangentialLaw};
 use super::twisting::{self, TwistingLaw};
@@ -40,7 +41,12 @@ use glam::DVec3;
 /// radius). The Coulomb limit is `μ|F_n|` (LIGGGHTS, SJKR included); for
 /// JKR `μ·max(F_n + 2F_c, 0)`, `F_c = (3/2)πΓR*` (Thornton & Yin 1991: the
 /// friction of an adhesive contact vanishes at pull-off).
-pub fn evaluate(model: &ContactModel, c: &ContactInput, h: &mut ContactHistory) -> ContactOutput {
+pub fn evaluate(
+    model: &ContactModel,
+    c: &ContactInput,
+    h: &mut ContactHistory,
+    slip: Option<&mut SlipProfile>,
+) -> ContactOutput {
     let law = model.sliding_law();
     let n = c.normal;
     let d = c.overlap;
@@ -110,6 +116,25 @@ pub fn evaluate(model: &ContactModel, c: &ContactInput, h: &mut ContactHistory) 
                 0.0
             };
             let (f, e_t) = micro_slip(h, n, vt, c.dt, kt, law.friction, f_n.abs(), f_n_old);
+            (f, e_n + e_t)
+        }
+        TangentialLaw::Mdr => {
+            // Hertz without cohesion (ContactModel::new): s = a, G̃ = k_t/(2a)
+            let mut fresh = SlipProfile::default();
+            let p = slip.unwrap_or(&mut fresh);
+            let (f, e_t) = mdr_tangential(
+                p,
+                n,
+                vt,
+                c.dt,
+                s * s,
+                0.5 * law.kt_coef,
+                law.friction,
+                f_n.abs(),
+            );
+            // the spring slot holds the equivalent Mindlin spring
+            // `ξ = −F_t/k_t` (records; a contact with a force is carried)
+            *xi = if kt > 0.0 { -f / kt } else { DVec3::ZERO };
             (f, e_n + e_t)
         }
     };

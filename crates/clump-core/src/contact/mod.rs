@@ -46,6 +46,10 @@
 //!   Mindlin–Deresiewicz micro-slip with loading/unloading/reloading
 //!   history (Thornton & Yin 1991; Thornton, Cummins & Cleary 2011), on the
 //!   scalar path [`extended`].
+//! - [`mdr`] ([`tangential::TangentialLaw::Mdr`]): micro-slip exact for
+//!   arbitrary load histories (method of dimensionality reduction), its
+//!   profile kept per contact beside the history ([`mdr::SlipProfile`]),
+//!   on the scalar path [`extended`].
 //! - [`cohesion`]: SJKR and JKR; [`twisting`]: twisting resistance
 //!   (both on the scalar path [`extended`]).
 //! - [`rolling`]: rolling resistance, none, CDT or EPSD.
@@ -69,6 +73,7 @@ pub mod damping;
 pub mod extended;
 pub mod geometry;
 pub mod material;
+pub mod mdr;
 pub mod micro_slip;
 pub mod model;
 pub mod normal;

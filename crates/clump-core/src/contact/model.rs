@@ -321,6 +321,14 @@ impl ContactModel {
                 }
             }
         }
+        if p.tangential == TangentialLaw::Mdr {
+            if p.normal != NormalLaw::Hertz {
+                return perr("tangential = mdr needs the Hertz normal law".into());
+            }
+            if p.cohesion != CohesionLaw::None {
+                return perr("tangential = mdr cannot be combined with cohesion".into());
+            }
+        }
         if p.tangential == TangentialLaw::MindlinDeresiewicz {
             if p.normal != NormalLaw::Hertz {
                 return perr("tangential = mindlin_deresiewicz needs the Hertz normal law".into());
@@ -384,7 +392,7 @@ impl ContactModel {
     #[inline(always)]
     pub fn evaluate(&self, c: &ContactInput, h: &mut ContactHistory) -> ContactOutput {
         if self.extended {
-            return super::extended::evaluate(self, c, h);
+            return super::extended::evaluate(self, c, h, None);
         }
         let out = self.law.evaluate(
             c.normal,
@@ -402,6 +410,28 @@ impl ContactModel {
             elastic_energy: e_r.map_or(out.energy, |e| out.energy + e),
             normal_force: out.normal_force,
         }
+    }
+
+    /// [`Self::evaluate`] with the contact's MDR profile, which a pair of
+    /// `tangential = "mdr"` ([`super::mdr`]) reads and updates (the other
+    /// laws leave it alone). [`Self::evaluate`] runs such a pair as a new
+    /// contact every call (no profile); the engine calls this.
+    #[inline]
+    pub fn evaluate_slip(
+        &self,
+        c: &ContactInput,
+        h: &mut ContactHistory,
+        slip: &mut super::mdr::SlipProfile,
+    ) -> ContactOutput {
+        if self.extended {
+            return super::extended::evaluate(self, c, h, Some(slip));
+        }
+        self.evaluate(c, h)
+    }
+
+    /// Whether the pair keeps an MDR profile (`tangential = "mdr"`).
+    pub fn keeps_slip_profile(&self) -> bool {
+        self.props.tangential == TangentialLaw::Mdr
     }
 
     /// The normal and tangential part of the law.

@@ -11,6 +11,8 @@ pub struct ContactTable {
     rolling: bool,
     /// Some model runs the scalar composition ([`ContactModel::is_extended`]).
     extended: bool,
+    /// Some model keeps an MDR profile ([`ContactModel::keeps_slip_profile`]).
+    slip: bool,
     /// Largest [`ContactModel::reach`] at `R* = 1 m` of the entries that
     /// can touch (not two rigid materials); the reach scales as `R*^{1/3}`
     /// (JKR's critical separation), 0 without JKR.
@@ -55,11 +57,13 @@ impl ContactTable {
         }
         let rolling = models.iter().any(|m| m.has_rolling());
         let extended = models.iter().any(|m| m.is_extended());
+        let slip = models.iter().any(|m| m.keeps_slip_profile());
         Ok(Self {
             n,
             models,
             rolling,
             extended,
+            slip,
             reach_coef,
         })
     }
@@ -114,6 +118,12 @@ impl ContactTable {
     /// carries the rolling and twisting springs.
     pub fn keeps_rolling_spring(&self) -> bool {
         self.rolling || self.extended
+    }
+
+    /// Whether the contacts keep MDR profiles beside their histories: some
+    /// model is `tangential = "mdr"` ([`super::mdr`]).
+    pub fn keeps_slip_profile(&self) -> bool {
+        self.slip
     }
 }
 

@@ -71,6 +71,10 @@ pub enum TangentialLaw {
     /// Cleary (2011) ([`super::micro_slip`]; Hertz law only, uses both
     /// history slots).
     MindlinDeresiewicz,
+    /// Micro-slip exact for Hertz contact under arbitrary load histories:
+    /// the method of dimensionality reduction with the profile kept per
+    /// contact ([`super::mdr`]; Hertz law only, without cohesion).
+    Mdr,
 }
 
 /// Rotates `v` (world) into the plane normal to the unit vector `n`: removes

@@ -3,7 +3,7 @@
 use super::mix::{Mix, TemplateCache};
 use super::region::Region;
 use super::space::{body_spheres, fits, Occupancy};
-use super::{random_orientation, InsertError};
+use super::{random_orientation, random_planar_orientation, InsertError, Placement};
 use crate::body::BodyInit;
 use crate::world::World;
 use glam::{DQuat, DVec3};
@@ -53,6 +53,16 @@ impl Orientation {
         }
     }
 
+    /// Draws an orientation turned about z only (2D insertion): a uniform
+    /// angle for `Random`, the fixed rotation (checked to be about z) for
+    /// `Fixed`.
+    pub fn sample_planar<R: Rng + ?Sized>(&self, rng: &mut R) -> DQuat {
+        match *self {
+            Orientation::Random => random_planar_orientation(rng),
+            Orientation::Fixed { quaternion } => quaternion.normalize(),
+        }
+    }
+
     fn validate(&self) -> Result<(), InsertError> {
         if let Orientation::Fixed { quaternion } = *self {
             if !quaternion.is_finite() || quaternion.length() < 1e-12 {
@@ -94,6 +104,11 @@ pub struct PackSpec {
     /// template in the mix; a template past the end is free.
     #[serde(default)]
     pub dof: Vec<crate::dof::Dof>,
+    /// 2D insertion (`[domain] dimension = 2`): every centre of mass on the
+    /// plane z = this (world frame, m), every body turned about z only
+    /// (see the [module docs](super)); `None`: 3D.
+    #[serde(default)]
+    pub plane: Option<f64>,
 }
 
 /// What [`pack()`] did.
@@ -136,6 +151,8 @@ pub fn pack(world: &mut World, spec: &PackSpec, seed: u64) -> Result<PackReport,
         ));
     }
     let mix = spec.mix.resolve(world)?;
+    let place = Placement::of(&spec.region, &spec.orientation, spec.plane);
+    place.check_plane(spec.velocity, spec.angular_velocity, mix.max_radius)?;
     let region_volume = spec.region.volume();
     let (requested_volume, target_desc) = match spec.target {
         PackTarget::Count(n) => (n as f64 * mix.mean_volume, format!("{n} bodies")),
@@ -175,10 +192,9 @@ pub fn pack(world: &mut World, spec: &PackSpec, seed: u64) -> Result<PackReport,
         let mut ok = false;
         for _ in 0..spec.max_attempts_per_body {
             attempts_total += 1;
-            let Some(x) = spec.region.sample_eroded(&mut rng, margin) else {
+            let Some((x, q)) = place.sample(&mut rng, margin) else {
                 continue;
             };
-            let q = spec.orientation.sample(&mut rng);
             body_spheres(t, scale, x, q, &mut buf);
             if fits(&buf, &spec.region, world, &occ) {
                 for &(c, r) in &buf {

@@ -5,6 +5,9 @@ use glam::DVec3;
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
+/// Draws of [`Region::sample_in_plane`] before it gives up (one pose try).
+pub const PLANE_TRIES: usize = 64;
+
 /// A region of space into which bodies are inserted, world frame, m.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case")]
@@ -162,6 +165,32 @@ impl Region {
     pub fn sample<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
         self.sample_eroded(rng, 0.0)
             .expect("a valid region is never empty")
+    }
+
+    /// A point drawn uniformly from the cross-section of the region shrunk
+    /// by `margin` ≥ 0 (m) with the plane at height `z` (m, world frame;
+    /// 2D insertion): drawn from the cross-section's bounding rectangle
+    /// until inside (at most [`PLANE_TRIES`] draws of two numbers); `None`
+    /// when no draw was inside (the cross-section is empty or thin).
+    pub fn sample_in_plane<R: Rng + ?Sized>(
+        &self,
+        rng: &mut R,
+        margin: f64,
+        z: f64,
+    ) -> Option<DVec3> {
+        let (lo, hi) = self.bounds();
+        let (lo, hi) = (lo + margin, hi - margin);
+        if hi.x < lo.x || hi.y < lo.y {
+            return None;
+        }
+        for _ in 0..PLANE_TRIES {
+            let (u, v): (f64, f64) = (rng.gen(), rng.gen());
+            let x = DVec3::new(lo.x + (hi.x - lo.x) * u, lo.y + (hi.y - lo.y) * v, z);
+            if self.contains_sphere(x, margin) {
+                return Some(x);
+            }
+        }
+        None
     }
 
     /// A point drawn uniformly from the region shrunk by `margin` ≥ 0 (m) on

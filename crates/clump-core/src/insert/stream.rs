@@ -4,7 +4,7 @@ use super::mix::{Mix, ResolvedMix, TemplateCache};
 use super::pack::Orientation;
 use super::region::Region;
 use super::space::{body_spheres, fits, Occupancy};
-use super::InsertError;
+use super::{InsertError, Placement};
 use crate::body::BodyInit;
 use crate::world::World;
 use glam::DVec3;
@@ -70,6 +70,11 @@ pub struct StreamSpec {
     /// exit-face rule of `exit_normal`.
     #[serde(default)]
     pub start_after: Option<f64>,
+    /// 2D insertion (`[domain] dimension = 2`): every centre of mass on the
+    /// plane z = this (world frame, m), every body turned about z only
+    /// (see the [module docs](super)); `None`: 3D.
+    #[serde(default)]
+    pub plane: Option<f64>,
 }
 
 /// Inserts bodies at a rate during a run. Serializable, RNG state included,
@@ -141,6 +146,8 @@ impl StreamInserter {
             spec.exit_normal = Some(n);
         }
         let mix = spec.mix.resolve(world)?;
+        let place = Placement::of(&spec.region, &spec.orientation, spec.plane);
+        place.check_plane(spec.velocity, spec.angular_velocity, mix.max_radius)?;
         let body_rate = match spec.rate {
             StreamRate::BodiesPerSecond(r) => r,
             StreamRate::MassPerSecond(m) => m / mix.mean_mass,
@@ -233,10 +240,11 @@ impl StreamInserter {
             let margin = t.min_radius * scale;
             let mut pose = None;
             for _ in 0..self.spec.max_attempts_per_body {
-                let Some(x) = self.spec.region.sample_eroded(&mut self.rng, margin) else {
+                let place =
+                    Placement::of(&self.spec.region, &self.spec.orientation, self.spec.plane);
+                let Some((x, q)) = place.sample(&mut self.rng, margin) else {
                     continue;
                 };
-                let q = self.spec.orientation.sample(&mut self.rng);
                 body_spheres(t, scale, x, q, &mut buf);
                 if fits(&buf, &self.spec.region, world, &occ) {
                     pose = Some((x, q));

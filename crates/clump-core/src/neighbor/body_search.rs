@@ -312,6 +312,7 @@ mod tests {
             gid: &gid,
             skin,
             rolling: false,
+            slip: None,
         };
         let expected = brute_force(&domain, &position, &radius, &body, skin);
         let pool = rayon::ThreadPoolBuilder::new()

@@ -20,6 +20,7 @@
 //! negation, so twice reversed is the same bits).
 
 use super::pairs::{reversed, PairList};
+use crate::contact::mdr::SlipProfile;
 use crate::contact::ContactHistory;
 use crate::sphere::{Spheres, SPHERE_ID_BITS};
 use glam::DVec3;
@@ -43,6 +44,9 @@ pub(crate) struct HistoryCarry {
     /// Rolling spring of each entry, world frame, N m, oriented `i → j`
     /// (empty when the list keeps none).
     rolling: Vec<DVec3>,
+    /// MDR profile of each entry, oriented `i → j` (empty when the list
+    /// keeps none).
+    slip: Vec<SlipProfile>,
     /// Per old body, its first old sphere (old body count + 1).
     old_first: Vec<u32>,
     /// Per new sphere, its old storage index or [`NONE`].
@@ -57,12 +61,14 @@ impl HistoryCarry {
         self.j.clear();
         self.tangential.clear();
         self.rolling.clear();
+        self.slip.clear();
         self.old_first.clear();
         self.old_first.extend_from_slice(&sp.body_first);
         // a list not built on these spheres (none built yet) carries nothing
         let n = sp.body_first.last().map_or(0, |&s| s as usize);
         let rows = if pairs.row_start.len() == n + 1 { n } else { 0 };
         let with_rolling = !pairs.rolling.is_empty();
+        let with_slip = !pairs.slip.is_empty();
         self.row_start.reserve(n + 1);
         self.row_start.push(0);
         for i in 0..rows {
@@ -72,6 +78,9 @@ impl HistoryCarry {
                     self.tangential.push(h.tangential);
                     if with_rolling {
                         self.rolling.push(h.rolling);
+                    }
+                    if with_slip {
+                        self.slip.push(pairs.slip[p]);
                     }
                 }
             }
@@ -104,6 +113,18 @@ impl HistoryCarry {
     /// indices), oriented from `a` to `b`; None for a pair without state.
     #[inline]
     pub(crate) fn get(&self, a: usize, b: usize) -> Option<ContactHistory> {
+        let (e, forward) = self.entry(a, b)?;
+        let h = ContactHistory {
+            tangential: self.tangential[e],
+            rolling: self.rolling.get(e).copied().unwrap_or_default(),
+        };
+        Some(if forward { h } else { reversed(h) })
+    }
+
+    /// The entry of the new pair `a → b` and whether it runs the same way
+    /// as the old pair.
+    #[inline]
+    fn entry(&self, a: usize, b: usize) -> Option<(usize, bool)> {
         let (oa, ob) = (self.old_index[a], self.old_index[b]);
         if oa == NONE || ob == NONE {
             return None;
@@ -114,11 +135,16 @@ impl HistoryCarry {
             self.row_start[lo as usize + 1] as usize,
         );
         let e = e0 + self.j[e0..e1].iter().position(|&j| j == hi)?;
-        let h = ContactHistory {
-            tangential: self.tangential[e],
-            rolling: self.rolling.get(e).copied().unwrap_or_default(),
-        };
-        Some(if oa < ob { h } else { reversed(h) })
+        Some((e, oa < ob))
+    }
+
+    /// The carried MDR profile of the new pair `a → b`, oriented from `a`
+    /// to `b`; None for a pair without state or a list without profiles.
+    #[inline]
+    pub(crate) fn get_slip(&self, a: usize, b: usize) -> Option<SlipProfile> {
+        let (e, forward) = self.entry(a, b)?;
+        let sp = *self.slip.get(e)?;
+        Some(if forward { sp } else { sp.reversed() })
     }
 
     /// Whether some pair carries state.
@@ -160,7 +186,7 @@ pub(crate) fn old_body_index(sp: &Spheres, id: &[u64], perm: &[u32], out: &mut V
 mod tests {
     use super::*;
     use crate::boundary::Domain;
-    use crate::neighbor::pairs::{BuildInput, HistoryMap};
+    use crate::neighbor::pairs::{BuildInput, HistoryMap, SlipMap};
     use crate::neighbor::CellGrid;
     use crate::sphere::sphere_gid;
     use rand::{Rng, SeedableRng};
@@ -187,7 +213,9 @@ mod tests {
     /// Bodies re-sorted, one removed by a driver (the bodies after it
     /// shift down) and one added: the histories carried by storage index
     /// are, pair by pair and bit by bit, those carried by global sphere id
-    /// (with springs, rolling springs, live flags, and both orientations).
+    /// (with springs, rolling springs, MDR profiles, live flags, and both
+    /// orientations), and a pair with a profile and no spring (a contact
+    /// whose tangential force is exactly zero) keeps its profile.
     #[test]
     fn carried_by_index_as_by_global_id() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
@@ -203,7 +231,8 @@ mod tests {
         let build = |ids: &[u64],
                      pairs: &mut PairList,
                      carried: Option<&HistoryCarry>,
-                     map: &HistoryMap| {
+                     map: &HistoryMap,
+                     slips: &SlipMap| {
             let (position, body, sp) = topology(ids, &centre);
             let radius = vec![3e-4; position.len()];
             let state = crate::sphere::SphereState::of(&position, &radius);
@@ -215,6 +244,7 @@ mod tests {
                 gid: &sp.gid,
                 skin: 2e-4,
                 rolling: true,
+                slip: Some(slips),
             };
             let grid = CellGrid::new(&domain, &position, 8e-4).unwrap();
             match carried {
@@ -226,17 +256,41 @@ mod tests {
         // the old list, with state on about two pairs in three
         let old_ids: Vec<u64> = (0..nb as u64).collect();
         let mut old = PairList::default();
-        let old_sp = build(&old_ids, &mut old, None, &HistoryMap::default());
+        let no_slip = SlipMap::default();
+        let old_sp = build(&old_ids, &mut old, None, &HistoryMap::default(), &no_slip);
+        let profile = |rng: &mut rand_chacha::ChaCha8Rng| {
+            let mut sp = SlipProfile {
+                edge: 1e-8,
+                len: 3,
+                ..Default::default()
+            };
+            for k in 0..3 {
+                sp.xi[k] = k as f64 * 3e-9;
+                sp.u[k] = DVec3::new(rng.gen(), rng.gen(), rng.gen()) - 0.5;
+            }
+            sp
+        };
+        let mut profile_only = 0;
         for p in 0..old.len() {
-            match rng.gen_range(0..3) {
+            match rng.gen_range(0..4) {
                 0 => {}
                 1 => old.topo[p].set_live(true),
+                2 => {
+                    old.topo[p].set_live(true);
+                    old.slip[p] = profile(&mut rng);
+                    profile_only += 1;
+                }
                 _ => {
                     old.tangential[p] = DVec3::new(rng.gen(), rng.gen(), rng.gen()) - 0.5;
                     old.rolling[p] = DVec3::new(rng.gen(), rng.gen(), rng.gen()) - 0.5;
+                    old.slip[p] = profile(&mut rng);
                 }
             }
         }
+        assert!(
+            profile_only > 100,
+            "too few profiles without spring: {profile_only}"
+        );
         assert!(old.len() > 500, "too few pairs to test: {}", old.len());
         // the driver removes body 17: the current bodies are the old ones
         // without it, then body nb is added; the rebuild re-sorts them
@@ -252,8 +306,10 @@ mod tests {
         for keep_live in [false, true] {
             let mut map = HistoryMap::default();
             old.save_history(&old_sp.gid, keep_live, &mut map);
+            let mut slips = SlipMap::default();
+            old.save_slip(&old_sp.gid, &mut slips);
             let mut by_id = PairList::default();
-            build(&new_ids, &mut by_id, None, &map);
+            build(&new_ids, &mut by_id, None, &map, &slips);
             let mut carry = HistoryCarry::default();
             carry.save(&old, &old_sp, keep_live);
             let mut old_body = Vec::new();
@@ -267,6 +323,7 @@ mod tests {
                 &mut by_index,
                 Some(&carry),
                 &HistoryMap::default(),
+                &no_slip,
             );
             assert!(
                 by_index.topo == by_id.topo,
@@ -286,8 +343,18 @@ mod tests {
                 same(&by_index.rolling, &by_id.rolling),
                 "rolling springs differ"
             );
+            assert!(by_index.slip == by_id.slip, "profiles differ");
             let carried = by_id.topo.iter().filter(|t| t.live()).count();
             assert!(carried > 100, "too few histories carried: {carried}");
+            // the pairs that kept a profile without a spring: about those
+            // of the old list (less the removed body's pairs)
+            let kept_profile_only = (0..by_index.len())
+                .filter(|&p| by_index.tangential[p] == DVec3::ZERO && !by_index.slip[p].is_empty())
+                .count();
+            assert!(
+                kept_profile_only > profile_only * 9 / 10 && kept_profile_only <= profile_only,
+                "profiles without spring: {kept_profile_only} of {profile_only} kept"
+            );
         }
     }
 }

@@ -5,6 +5,7 @@ use super::carry::HistoryCarry;
 use super::grid::CellGrid;
 use super::topo::{set_row_steps, PairTopo};
 use crate::boundary::Domain;
+use crate::contact::mdr::SlipProfile;
 use crate::contact::ContactHistory;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -12,6 +13,10 @@ use std::collections::HashMap;
 
 /// Contact histories keyed by (lower, higher) global sphere id.
 pub type HistoryMap = HashMap<(u64, u64), ContactHistory, rustc_hash::FxBuildHasher>;
+
+/// MDR profiles ([`crate::contact::mdr`]) carried by global sphere ids,
+/// as [`HistoryMap`] (lower id first, oriented from the lower to the higher).
+pub type SlipMap = HashMap<(u64, u64), SlipProfile, rustc_hash::FxBuildHasher>;
 
 /// Spheres per parallel work block while building the list.
 const BLOCK: usize = 512;
@@ -90,6 +95,10 @@ pub struct PairList {
     /// ([`BuildInput::rolling`], [`PairList::keep_rolling`]): the others
     /// never touch it, so a candidate pair costs 24 bytes less.
     pub rolling: Vec<DVec3>,
+    /// MDR profile of each pair (parallel to `topo`, oriented from `i` to
+    /// `j`; [`crate::contact::mdr`]), empty unless some law keeps one
+    /// ([`BuildInput::slip`], [`PairList::keep_slip`]).
+    pub slip: Vec<SlipProfile>,
     /// What each pair contributes to the body of its sphere `j` (parallel
     /// to `topo`; torque about that body's centre of mass), recorded only
     /// when that body is on a seam between two threads' runs (see
@@ -188,6 +197,9 @@ pub struct BuildInput<'a> {
     /// Keep rolling springs: some law of the contact table has rolling
     /// resistance or is composed by the scalar path.
     pub rolling: bool,
+    /// Keep MDR profiles (some law is `tangential = "mdr"`), with the
+    /// profiles carried by global id (may be empty); `None`: keep none.
+    pub slip: Option<&'a SlipMap>,
 }
 
 impl PairList {
@@ -209,6 +221,38 @@ impl PairList {
         if self.rolling.len() != self.topo.len() {
             self.rolling.clear();
             self.rolling.resize(self.topo.len(), DVec3::ZERO);
+        }
+    }
+
+    /// Gives every pair an MDR profile (empty) if the list has none: the
+    /// contact table now has a law that keeps one.
+    pub fn keep_slip(&mut self) {
+        if self.slip.len() != self.topo.len() {
+            self.slip.clear();
+            self.slip.resize(self.topo.len(), SlipProfile::default());
+        }
+    }
+
+    /// Collects the MDR profiles of the pairs that hold one, keyed and
+    /// oriented as [`Self::save_history`] (nothing when the list keeps no
+    /// profiles).
+    pub fn save_slip(&self, gid: &[u64], out: &mut SlipMap) {
+        out.clear();
+        if self.slip.len() != self.topo.len() {
+            return;
+        }
+        for i in 0..self.row_start.len().saturating_sub(1) {
+            for p in self.row(i) {
+                let sp = &self.slip[p];
+                if !sp.is_empty() {
+                    let (gi, gj) = (gid[i], gid[self.topo[p].j as usize]);
+                    if gi < gj {
+                        out.insert((gi, gj), *sp);
+                    } else {
+                        out.insert((gj, gi), sp.reversed());
+                    }
+                }
+            }
         }
     }
 
@@ -268,15 +312,19 @@ impl PairList {
     }
 
     /// The history of pair `p` (oriented from its `i` to its `j`) when a
-    /// rebuild carries it over: it has a spring, or with `keep_live` it is
-    /// live (a JKR contact lives on while apart, with or without a spring).
+    /// rebuild carries it over: it has a spring, or an MDR profile (a
+    /// touching contact whose tangential force is exactly zero), or with
+    /// `keep_live` it is live (a JKR contact lives on while apart, with or
+    /// without a spring).
     #[inline]
     pub(crate) fn kept_history(&self, p: usize, keep_live: bool) -> Option<ContactHistory> {
         let h = ContactHistory {
             tangential: self.tangential[p],
             rolling: self.rolling.get(p).copied().unwrap_or_default(),
         };
-        (h != ContactHistory::default() || (keep_live && self.topo[p].live())).then_some(h)
+        let profile = self.slip.get(p).is_some_and(|s| !s.is_empty());
+        (h != ContactHistory::default() || profile || (keep_live && self.topo[p].live()))
+            .then_some(h)
     }
 
     /// Collects the history of touching pairs keyed by (lower, higher) global
@@ -486,6 +534,10 @@ impl PairList {
         if inp.rolling {
             self.rolling.resize(acc, DVec3::ZERO);
         }
+        self.slip.clear();
+        if inp.slip.is_some() {
+            self.slip.resize(acc, SlipProfile::default());
+        }
         self.load_j.clear();
         self.col_pair.clear();
         self.seams_ready = false;
@@ -497,15 +549,17 @@ impl PairList {
         if any {
             let tan = crate::par::shared::SharedMut::new(&mut self.tangential);
             let rol = crate::par::shared::SharedMut::new(&mut self.rolling);
+            let slp = crate::par::shared::SharedMut::new(&mut self.slip);
+            let slip_map = inp.slip;
             let topo = crate::par::shared::SharedMut::new(&mut self.topo);
             let rows = &self.row_start;
             (0..n).into_par_iter().with_min_len(BLOCK).for_each(|i| {
                 for p in rows[i] as usize..rows[i + 1] as usize {
                     // SAFETY: pair p belongs to row i only.
                     let t = unsafe { topo.get(p) };
+                    let (gi, gj) = (gid[i], gid[t.j as usize]);
                     let old = match history {
                         Carried::ById(map) => {
-                            let (gi, gj) = (gid[i], gid[t.j as usize]);
                             if gi < gj {
                                 map.get(&(gi, gj)).copied()
                             } else {
@@ -522,6 +576,18 @@ impl PairList {
                             if rol.len() > p {
                                 *rol.get(p) = h.rolling;
                             }
+                        }
+                    }
+                    if slp.len() > p {
+                        let sp = match (history, slip_map) {
+                            (Carried::ByIndex(carry), _) => carry.get_slip(i, t.j as usize),
+                            (Carried::ById(_), Some(m)) if gi < gj => m.get(&(gi, gj)).copied(),
+                            (Carried::ById(_), Some(m)) => m.get(&(gj, gi)).map(|x| x.reversed()),
+                            _ => None,
+                        };
+                        if let Some(sp) = sp {
+                            // SAFETY: pair p belongs to row i only.
+                            unsafe { *slp.get(p) = sp };
                         }
                     }
                 }

@@ -3,7 +3,7 @@
 //! contact slots, the cell grid, and what decides the next rebuild.
 
 use super::grid::CellGrid;
-use super::pairs::{HistoryMap, PairList};
+use super::pairs::{HistoryMap, PairList, SlipMap};
 use super::walls::WallList;
 use crate::contact::record::ContactRecords;
 use glam::{DQuat, DVec3};
@@ -32,6 +32,8 @@ pub(crate) struct NeighborState {
     pub reference_pose: Vec<(DVec3, DQuat)>,
     /// Contact histories carried across a rebuild, keyed by sphere ids.
     pub history_map: HistoryMap,
+    /// MDR profiles carried with `history_map` ([`crate::contact::mdr`]).
+    pub slip_map: SlipMap,
     /// The histories are in `history_map` and the pair list is not built
     /// (a world joined from its ranks, between an event and its next step).
     pub history_pending: bool,

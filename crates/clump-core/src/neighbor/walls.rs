@@ -14,6 +14,7 @@
 //! visiting the slots of every sphere: in a settled bed about one sphere in
 //! ten is near a wall.
 
+use crate::contact::mdr::SlipProfile;
 use crate::contact::ContactHistory;
 use crate::wall::{Wall, WallTouch, MAX_TOUCHES_PER_WALL};
 use rayon::prelude::*;
@@ -39,6 +40,10 @@ pub struct WallList {
     pub key: Vec<[u32; WALL_SLOTS]>,
     /// Contact histories of the slots (world frame).
     pub hist: Vec<[ContactHistory; WALL_SLOTS]>,
+    /// MDR profiles of the slots (`tangential = "mdr"`,
+    /// [`crate::contact::mdr`]): one per slot of `hist` while some law
+    /// keeps them ([`WallList::keep_slip`]), else empty.
+    pub slip: Vec<[SlipProfile; WALL_SLOTS]>,
     /// First entry of each chunk of `chunk` bodies, `len = chunks + 1`.
     pub chunk_start: Vec<u32>,
     /// Per sphere of one block of the build: the walls (< 64) near it
@@ -53,7 +58,18 @@ impl WallList {
         self.mask.clear();
         self.key.clear();
         self.hist.clear();
+        self.slip.clear();
         self.chunk_start.clear();
+    }
+
+    /// Gives every entry's slots an MDR profile (empty) if the list has
+    /// none.
+    pub fn keep_slip(&mut self) {
+        if self.slip.len() != self.hist.len() {
+            self.slip.clear();
+            self.slip
+                .resize(self.hist.len(), [SlipProfile::default(); WALL_SLOTS]);
+        }
     }
 
     /// The entry of each sphere (storage index) whose slots hold a contact,
@@ -87,6 +103,38 @@ impl WallList {
             } else {
                 out.push(NO_ENTRY);
             }
+        }
+    }
+
+    /// The MDR profiles of every sphere's slots (storage order, `n`
+    /// spheres; the checkpoint form of [`Self::slip`]): with `keep` (some
+    /// law keeps profiles) one per sphere, empty profiles where the list
+    /// holds none (a list without entries has no profiles yet, and a part
+    /// joined with others must still give one per sphere); else empty.
+    pub fn slip_per_sphere(&self, n: usize, keep: bool) -> Vec<[SlipProfile; WALL_SLOTS]> {
+        if !keep {
+            return Vec::new();
+        }
+        let mut out = vec![[SlipProfile::default(); WALL_SLOTS]; n];
+        if self.slip.len() == self.sphere.len() {
+            for (e, &s) in self.sphere.iter().enumerate() {
+                out[s as usize] = self.slip[e];
+            }
+        }
+        out
+    }
+
+    /// Restores [`Self::slip`] from its per-sphere form (after
+    /// [`Self::from_per_sphere`] with the same slots); an empty `slip`
+    /// leaves the list without profiles.
+    pub fn set_slip_per_sphere(&mut self, slip: &[[SlipProfile; WALL_SLOTS]]) {
+        self.slip.clear();
+        if slip.is_empty() {
+            return;
+        }
+        for &s in &self.sphere {
+            self.slip
+                .push(slip.get(s as usize).copied().unwrap_or_default());
         }
     }
 
@@ -147,6 +195,7 @@ impl WallList {
         let n = state.len();
         self.clear();
         let all = walls.len() > 64;
+        let slip = !old.slip.is_empty() && old.slip.len() == old.hist.len();
         // the near walls of a block of spheres at a time (in parallel), then
         // the block's entries in sphere order: the scratch is one block,
         // not 8 bytes for every sphere
@@ -185,10 +234,16 @@ impl WallList {
                     Some(k) => {
                         self.key.push(*k);
                         self.hist.push(old.hist[from as usize]);
+                        if slip {
+                            self.slip.push(old.slip[from as usize]);
+                        }
                     }
                     None => {
                         self.key.push([0; WALL_SLOTS]);
                         self.hist.push([ContactHistory::default(); WALL_SLOTS]);
+                        if slip {
+                            self.slip.push([SlipProfile::default(); WALL_SLOTS]);
+                        }
                     }
                 }
             }

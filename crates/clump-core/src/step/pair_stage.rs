@@ -76,6 +76,10 @@ pub(super) fn prepare_pairs(w: &mut World) -> usize {
     if w.contact_table.keeps_rolling_spring() {
         pairs.keep_rolling();
     }
+    if w.contact_table.keeps_slip_profile() {
+        pairs.keep_slip();
+        w.neighbors.wall_list.keep_slip();
+    }
     let records = &mut w.neighbors.records;
     if records.recording {
         records.pair.resize(pairs.topo.len(), Default::default());
@@ -100,6 +104,7 @@ pub(super) fn row_ctx<'a>(
     let topo = SharedMut::new(&mut pairs.topo);
     let tangential = SharedMut::new(&mut pairs.tangential);
     let rolling = SharedMut::new(&mut pairs.rolling);
+    let slip = SharedMut::new(&mut pairs.slip);
     let load_j = SharedMut::new(&mut pairs.load_j);
     let body = SharedMut::new(&mut pairs.body);
     let pairs = &*pairs;
@@ -114,6 +119,7 @@ pub(super) fn row_ctx<'a>(
         scale: &pairs.scale,
         tangential,
         rolling,
+        slip,
         load_j,
         body,
         first_feed: &pairs.first_feed,

@@ -22,6 +22,9 @@ impl World {
                 self.contact_table.any_reach(),
                 &mut self.neighbors.history_map,
             );
+            self.neighbors
+                .pairs
+                .save_slip(&self.spheres.gid, &mut self.neighbors.slip_map);
         }
         rebuild::rebuild(self, false)?;
         self.rebuilds = self.rebuilds.saturating_sub(1);

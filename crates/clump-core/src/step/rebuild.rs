@@ -35,6 +35,9 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
                     keep_live,
                     &mut w.neighbors.history_map,
                 );
+                w.neighbors
+                    .pairs
+                    .save_slip(&w.spheres.gid, &mut w.neighbors.slip_map);
             } else {
                 w.scratch
                     .carry
@@ -163,6 +166,10 @@ pub(crate) fn build_pair_list(w: &mut World) {
         gid: &sp.gid,
         skin: w.skin(),
         rolling: w.contact_table.keeps_rolling_spring(),
+        slip: w
+            .contact_table
+            .keeps_slip_profile()
+            .then_some(&w.neighbors.slip_map),
     };
     if w.scratch.carry.active {
         w.neighbors.pairs.build_carried(
@@ -181,6 +188,7 @@ pub(crate) fn build_pair_list(w: &mut World) {
         );
     }
     w.neighbors.history_map.clear();
+    w.neighbors.slip_map.clear();
     w.neighbors.history_pending = false;
     w.neighbors.pairs.refresh_bodies(&w.bodies);
 }

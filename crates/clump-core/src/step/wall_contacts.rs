@@ -19,6 +19,7 @@ use super::law_lanes::{finish_sliding, run_law};
 use super::wall_lanes::{WallLanes, WALL_BATCH};
 use crate::body::Bodies;
 use crate::contact::geometry::contact_point;
+use crate::contact::mdr::SlipProfile;
 use crate::contact::record::WallRecord;
 use crate::contact::{ContactHistory, ContactInput, ContactOutput, ContactTable};
 use crate::multi_contact::{MultiContact, PartnerCounts};
@@ -54,6 +55,9 @@ pub(super) struct WallPass<'a> {
     active_lo: u64,
     keys: SharedMut<[u32; WALL_SLOTS]>,
     hists: SharedMut<[ContactHistory; WALL_SLOTS]>,
+    /// The slots' MDR profiles (empty unless some law keeps them): a
+    /// touch's new profile is written as its law runs, in collect.
+    slips: SharedMut<[SlipProfile; WALL_SLOTS]>,
     /// Per chunk and wall: the load of the chunk's contacts.
     loads: SharedMut<WallLoad>,
     walls_average: bool,
@@ -170,6 +174,7 @@ impl<'a> WallPass<'a> {
             mask,
             key,
             hist,
+            slip,
             chunk_start,
             ..
         } = wall_list;
@@ -188,6 +193,7 @@ impl<'a> WallPass<'a> {
             active_lo,
             keys: SharedMut::new(key),
             hists: SharedMut::new(hist),
+            slips: SharedMut::new(slip),
             loads,
             walls_average: walls
                 .iter()
@@ -260,6 +266,7 @@ impl<'a> WallPass<'a> {
             }
         }
         let (v, wb) = self.body_velocity(bi);
+        let keep_slip = self.slips.len() != 0;
         let mass = self.b.mass[bi];
         for q in entries {
             // SAFETY: entry q is of body bi, handled by this chunk only;
@@ -273,6 +280,9 @@ impl<'a> WallPass<'a> {
                     unsafe {
                         *self.keys.get(q) = [0; WALL_SLOTS];
                         *self.hists.get(q) = [ContactHistory::default(); WALL_SLOTS];
+                        if keep_slip {
+                            *self.slips.get(q) = [SlipProfile::default(); WALL_SLOTS];
+                        }
                     }
                 }
                 continue;
@@ -283,6 +293,12 @@ impl<'a> WallPass<'a> {
                 unsafe { *self.hists.get(q) }
             } else {
                 [ContactHistory::default(); WALL_SLOTS]
+            };
+            // the profiles before this step, likewise (written in collect)
+            let old_slip = if keep_slip && old_key[0] != 0 {
+                unsafe { *self.slips.get(q) }
+            } else {
+                [SlipProfile::default(); WALL_SLOTS]
             };
             let mut new_key = [0u32; WALL_SLOTS];
             let mut n_new = 0;
@@ -313,12 +329,12 @@ impl<'a> WallPass<'a> {
                         // a near miss within the reach, not a live contact
                         continue;
                     }
-                    let history = match old {
+                    let (history, mut slip) = match old {
                         Some(o) => {
                             used[o] = true;
-                            old_hist[o]
+                            (old_hist[o], old_slip[o])
                         }
-                        None => ContactHistory::default(),
+                        None => (ContactHistory::default(), SlipProfile::default()),
                     };
                     let slot = if n_new < WALL_SLOTS {
                         new_key[n_new] = slot_key(wi, patch);
@@ -358,7 +374,12 @@ impl<'a> WallPass<'a> {
                             mass,
                             dt: self.dt,
                         };
-                        ws.scalar[t] = (law.evaluate(&input, &mut h), h);
+                        ws.scalar[t] = (law.evaluate_slip(&input, &mut h, &mut slip), h);
+                        if keep_slip && slot < WALL_SLOTS {
+                            // SAFETY: entry q is of this chunk; its old
+                            // profiles were copied above
+                            unsafe { self.slips.get(q)[slot] = slip };
+                        }
                     }
                     ws.pending[t] = Pending {
                         body: bi as u32,
@@ -390,6 +411,11 @@ impl<'a> WallPass<'a> {
                     *self.keys.get(q) = new_key;
                     for h in &mut self.hists.get(q)[n_new..] {
                         *h = ContactHistory::default();
+                    }
+                    if keep_slip {
+                        for p in &mut self.slips.get(q)[n_new..] {
+                            *p = SlipProfile::default();
+                        }
                     }
                 }
             }

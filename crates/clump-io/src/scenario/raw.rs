@@ -270,8 +270,9 @@ macro_rules! contact_law_keys {
             pub rolling: Option<RollingLaw>,
             /// Whether the normal force may be tensile (no clamp at zero).
             pub tensile: Option<bool>,
-            /// Tangential rule: `"clump"` (default), `"liggghts"` or
-            /// `"mindlin_deresiewicz"` (micro-slip).
+            /// Tangential rule: `"clump"` (default), `"liggghts"`,
+            /// `"mindlin_deresiewicz"` (micro-slip, Thornton–Yin) or `"mdr"`
+            /// (micro-slip, exact for any load history).
             pub tangential: Option<TangentialLaw>,
             /// Cohesion model: `"none"` (default), `"sjkr"` or `"jkr"`.
             pub cohesion: Option<CohesionName>,

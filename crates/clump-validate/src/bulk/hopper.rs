@@ -205,6 +205,7 @@ pub fn discharge(d0: f64) -> Result<Discharge, String> {
                 max_attempts_per_body: 200,
                 angular_velocity: Default::default(),
                 dof: Vec::new(),
+                plane: None,
             };
             calls += 1;
             if pack(&mut w, &spec, 1000 + calls).is_ok() {

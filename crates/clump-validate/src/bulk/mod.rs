@@ -41,6 +41,7 @@ pub fn fill(
         max_attempts_per_body: 2000,
         angular_velocity: Default::default(),
         dof: Vec::new(),
+        plane: None,
     };
     let r = pack(w, &spec, seed).map_err(|e| e.to_string())?;
     Ok(r.placed)

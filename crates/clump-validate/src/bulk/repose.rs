@@ -262,6 +262,7 @@ pub fn heap(spec: &HeapSpec) -> Result<Heap, String> {
             max_attempts_per_body: 2000,
             angular_velocity: Default::default(),
             dof: Vec::new(),
+            plane: None,
         };
         let r = pack(&mut w, &ps, spec.seed * 1000 + batch_no).map_err(|e| e.to_string())?;
         poured += r.placed;

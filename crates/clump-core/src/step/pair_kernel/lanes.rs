@@ -145,6 +145,7 @@ impl Lanes {
         k: usize,
         model: &ContactModel,
         h: &mut ContactHistory,
+        slip: Option<&mut crate::contact::mdr::SlipProfile>,
         dt: f64,
     ) {
         let c = self.kinematics(k);
@@ -158,7 +159,10 @@ impl Lanes {
             mass: c.mass,
             dt,
         };
-        let out = model.evaluate(&input, h);
+        let out = match slip {
+            Some(s) => model.evaluate_slip(&input, h, s),
+            None => model.evaluate(&input, h),
+        };
         set3(&mut self.spring, k, h.tangential);
         // the lane's stiffness is read only by the kernel's rolling loop,
         // which skips these pairs (their couple is in `out.torque`)

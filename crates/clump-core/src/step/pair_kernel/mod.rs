@@ -83,6 +83,9 @@ pub(super) struct RowCtx<'a> {
     /// Rolling spring per pair, N m (written by laws with rolling
     /// resistance only; empty when no law has one).
     pub rolling: SharedMut<DVec3>,
+    /// MDR profile per pair ([`crate::contact::mdr`]; written by
+    /// `tangential = "mdr"` laws only; empty when no law keeps one).
+    pub slip: SharedMut<crate::contact::mdr::SlipProfile>,
     /// `j`-side loads of the pairs whose `j`'s body is on a seam, in pair
     /// order ([`PairList::load_j`]; written; empty on one run).
     ///
@@ -290,12 +293,16 @@ impl RowCtx<'_> {
     #[inline(always)]
     unsafe fn clear_pairs(&self, ps: &[u32]) {
         let (rolling, seams) = (self.rolling.len() != 0, self.load_j.len() != 0);
+        let slip = self.slip.len() != 0;
         for &p in ps {
             let p = p as usize;
             self.topo.get(p).set_live(false);
             *self.tangential.get(p) = DVec3::ZERO;
             if rolling {
                 *self.rolling.get(p) = DVec3::ZERO;
+            }
+            if slip {
+                *self.slip.get(p) = Default::default();
             }
             if seams {
                 *self.load_j.get(p) = BodyLoad::default();
@@ -411,7 +418,8 @@ impl RowCtx<'_> {
                         tangential: self.tangential.read(p),
                         rolling: self.rolling.read(p),
                     };
-                    l.contact_scalar(k, model, &mut h, self.dt);
+                    let slip = (self.slip.len() > p).then(|| self.slip.get(p));
+                    l.contact_scalar(k, model, &mut h, slip, self.dt);
                     *self.rolling.get(p) = h.rolling;
                 }
             }

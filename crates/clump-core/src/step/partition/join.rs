@@ -3,8 +3,9 @@
 //! slots: the world then is what one process would hold at this point.
 
 use crate::body::Bodies;
+use crate::contact::mdr::SlipProfile;
 use crate::contact::ContactHistory;
-use crate::neighbor::pairs::HistoryMap;
+use crate::neighbor::pairs::{HistoryMap, SlipMap};
 use crate::neighbor::walls::{WallList, WALL_SLOTS};
 use crate::sphere::SPHERE_ID_BITS;
 use crate::step::kinematics::rebuild_sphere_topology;
@@ -26,6 +27,10 @@ struct Owned {
     /// Wall slots per sphere of the owned bodies, in their order.
     wall_key: Vec<[u32; WALL_SLOTS]>,
     wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
+    /// MDR profiles, as `pair_history` and `wall_hist` (empty when no law
+    /// keeps them).
+    pair_slip: Vec<((u64, u64), SlipProfile)>,
+    wall_slip: Vec<[SlipProfile; WALL_SLOTS]>,
 }
 
 /// This rank's owned bodies with everything that travels with them.
@@ -38,14 +43,30 @@ fn owned(w: &World) -> Owned {
     w.bodies.permute_into(&keep, &mut out.bodies);
     let owned_ids: rustc_hash::FxHashSet<u64> = out.bodies.id.iter().copied().collect();
     let (key, hist) = w.neighbors.wall_list.per_sphere(w.spheres.len());
+    let wslip = w
+        .neighbors
+        .wall_list
+        .slip_per_sphere(w.spheres.len(), w.contact_table.keeps_slip_profile());
     for &b in &keep {
         let b = b as usize;
         out.order.push(part.order[b]);
         out.reference_pose.push(w.neighbors.reference_pose[b]);
         let s = w.spheres.of_body(b);
         out.wall_key.extend_from_slice(&key[s.clone()]);
-        out.wall_hist.extend_from_slice(&hist[s]);
+        out.wall_hist.extend_from_slice(&hist[s.clone()]);
+        if !wslip.is_empty() {
+            out.wall_slip.extend_from_slice(&wslip[s]);
+        }
     }
+    let mut slips = SlipMap::default();
+    w.neighbors.pairs.save_slip(&w.spheres.gid, &mut slips);
+    out.pair_slip = slips
+        .into_iter()
+        .filter(|((a, b), _)| {
+            owned_ids.contains(&(a >> SPHERE_ID_BITS)) || owned_ids.contains(&(b >> SPHERE_ID_BITS))
+        })
+        .collect();
+    out.pair_slip.sort_by_key(|e| e.0);
     let mut map = HistoryMap::default();
     w.neighbors
         .pairs
@@ -104,21 +125,29 @@ pub(crate) fn join(w: &mut World) -> Result<(), StepError> {
         .collect();
     all_bodies.permute_into(&perm, &mut w.bodies);
     w.neighbors.reference_pose.clear();
-    let (mut key, mut hist) = (Vec::new(), Vec::new());
+    let (mut key, mut hist, mut wslip) = (Vec::new(), Vec::new(), Vec::new());
     for &(_, r, k) in &order {
         let p = &parts[r];
         w.neighbors.reference_pose.push(p.reference_pose[k]);
         let s = sphere_first[r][k]..sphere_first[r][k + 1];
         key.extend_from_slice(&p.wall_key[s.clone()]);
-        hist.extend_from_slice(&p.wall_hist[s]);
+        hist.extend_from_slice(&p.wall_hist[s.clone()]);
+        if p.wall_slip.len() == p.wall_key.len() && !p.wall_slip.is_empty() {
+            wslip.extend_from_slice(&p.wall_slip[s]);
+        }
     }
     let map = &mut w.neighbors.history_map;
     map.clear();
+    w.neighbors.slip_map.clear();
     for p in parts {
         map.extend(p.pair_history);
+        w.neighbors.slip_map.extend(p.pair_slip);
     }
     w.neighbors.history_pending = true;
     w.neighbors.wall_list = WallList::from_per_sphere(&key, &hist);
+    if wslip.len() == key.len() {
+        w.neighbors.wall_list.set_slip_per_sphere(&wslip);
+    }
     w.neighbors.records.step = None;
     rebuild_sphere_topology(w);
     update_spheres(w);

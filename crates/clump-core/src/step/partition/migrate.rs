@@ -14,10 +14,11 @@
 
 use super::restrict::{halo, Roles};
 use crate::body::Bodies;
+use crate::contact::mdr::SlipProfile;
 use crate::contact::ContactHistory;
 use crate::lost::LostBodies;
 use crate::neighbor::grid::Extent;
-use crate::neighbor::pairs::HistoryMap;
+use crate::neighbor::pairs::{HistoryMap, SlipMap};
 use crate::neighbor::sort::CellOrder;
 use crate::neighbor::walls::{WallList, WALL_SLOTS};
 use crate::neighbor::CellGrid;
@@ -37,6 +38,10 @@ struct Moving {
     wall_key: Vec<[u32; WALL_SLOTS]>,
     wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
     pair_history: Vec<((u64, u64), ContactHistory)>,
+    /// MDR profiles, as `wall_hist` and `pair_history` (empty when no law
+    /// keeps them).
+    wall_slip: Vec<[SlipProfile; WALL_SLOTS]>,
+    pair_slip: Vec<((u64, u64), SlipProfile)>,
 }
 
 /// What every rank contributes to the whole world's numbers.
@@ -152,6 +157,17 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
     w.neighbors
         .pairs
         .save_history(&w.spheres.gid, w.contact_table.any_reach(), &mut history);
+    let mut slips = SlipMap::default();
+    w.neighbors.pairs.save_slip(&w.spheres.gid, &mut slips);
+    let mut slip_by_body: rustc_hash::FxHashMap<u64, Vec<((u64, u64), SlipProfile)>> =
+        Default::default();
+    for (&(a, b), &p) in &slips {
+        let (ba, bb) = (a >> SPHERE_ID_BITS, b >> SPHERE_ID_BITS);
+        slip_by_body.entry(ba).or_default().push(((a, b), p));
+        if bb != ba {
+            slip_by_body.entry(bb).or_default().push(((a, b), p));
+        }
+    }
     let mut by_body: rustc_hash::FxHashMap<u64, Vec<((u64, u64), ContactHistory)>> =
         Default::default();
     for (&(a, b), &h) in &history {
@@ -162,6 +178,10 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         }
     }
     let (wall_key, wall_hist) = w.neighbors.wall_list.per_sphere(w.spheres.len());
+    let wall_slip = w
+        .neighbors
+        .wall_list
+        .slip_per_sphere(w.spheres.len(), w.contact_table.keeps_slip_profile());
     let mut out: Vec<Moving> = (0..size).map(|_| Moving::default()).collect();
     let mut near = Vec::new();
     let mut one = Bodies::default();
@@ -174,13 +194,20 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         w.bodies.permute_into(&[b as u32], &mut one);
         let s = w.spheres.of_body(b);
         let hist = by_body.get(&w.bodies.id[b]);
+        let slip = slip_by_body.get(&w.bodies.id[b]);
         for &r in &near {
             let m = &mut out[r];
             m.bodies.append(&one);
             m.wall_key.extend_from_slice(&wall_key[s.clone()]);
             m.wall_hist.extend_from_slice(&wall_hist[s.clone()]);
+            if !wall_slip.is_empty() {
+                m.wall_slip.extend_from_slice(&wall_slip[s.clone()]);
+            }
             if let Some(h) = hist {
                 m.pair_history.extend_from_slice(h);
+            }
+            if let Some(p) = slip {
+                m.pair_slip.extend_from_slice(p);
             }
         }
     }
@@ -221,13 +248,17 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         CellGrid::from_extent(&domain, &whole.spheres, min_cell).map_err(StepError::Neighbor)?;
     let mut all_bodies = Bodies::default();
     let (mut key, mut hist) = (Vec::new(), Vec::new());
+    let mut wslip = Vec::new();
     let map = &mut w.neighbors.history_map;
     map.clear();
+    w.neighbors.slip_map.clear();
     for m in arrived {
         all_bodies.append(&m.bodies);
         key.extend(m.wall_key);
         hist.extend(m.wall_hist);
         map.extend(m.pair_history);
+        wslip.extend(m.wall_slip);
+        w.neighbors.slip_map.extend(m.pair_slip);
     }
     let mut first = vec![0usize];
     for &t in &all_bodies.template {
@@ -249,14 +280,19 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         Vec::with_capacity(key.len()),
         Vec::with_capacity(hist.len()),
     );
+    let mut s2 = Vec::with_capacity(wslip.len());
     for &b in &perm {
         let s = first[b as usize]..first[b as usize + 1];
         k2.extend_from_slice(&key[s.clone()]);
-        h2.extend_from_slice(&hist[s]);
+        h2.extend_from_slice(&hist[s.clone()]);
+        if wslip.len() == key.len() {
+            s2.extend_from_slice(&wslip[s]);
+        }
     }
 
     // 5. the lists, as one process's rebuild makes them
     w.neighbors.wall_list = WallList::from_per_sphere(&k2, &h2);
+    w.neighbors.wall_list.set_slip_per_sphere(&s2);
     rebuild_sphere_topology(w);
     references_at_current_poses(w);
     w.neighbors.grid = sphere_grid;

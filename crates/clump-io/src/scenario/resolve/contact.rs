@@ -168,9 +168,17 @@ fn contact_props(
             .error_at_key(&p(key), format!("cohesion = \"jkr\" needs the Hertz normal law (this {what} uses law = \"linear\")"))
             .note("help: remove law = \"linear\" (JKR's force follows from the materials and the work of adhesion), or use cohesion = \"sjkr\""));
     }
-    if out.tangential == TangentialLaw::MindlinDeresiewicz {
-        // the micro-slip model (contact::micro_slip) needs the Hertz law
-        // and both history slots
+    // the micro-slip models need the Hertz law; Thornton–Yin's
+    // (contact::micro_slip) also keeps its turning points in the rolling
+    // and twisting history slots, the exact one (contact::mdr) its profile
+    // beside the histories
+    let slip_law = match out.tangential {
+        TangentialLaw::MindlinDeresiewicz => Some("mindlin_deresiewicz"),
+        TangentialLaw::Mdr => Some("mdr"),
+        _ => None,
+    };
+    if let Some(law) = slip_law {
+        let ty = out.tangential == TangentialLaw::MindlinDeresiewicz;
         let clash = [
             (
                 "law",
@@ -182,17 +190,21 @@ fn contact_props(
                 "cohesion",
                 out.cohesion != CohesionLaw::None,
                 "cohesion",
-                "its normal force is Hertz's",
+                if ty {
+                    "its normal force is Hertz's"
+                } else {
+                    "its slip limit follows Hertz's pressure"
+                },
             ),
             (
                 "rolling",
-                out.rolling == RollingLaw::Epsd,
+                ty && out.rolling == RollingLaw::Epsd,
                 "rolling = \"epsd\"",
                 "it stores its turning points in the rolling spring's history slot",
             ),
             (
                 "twisting",
-                out.twisting != TwistingLaw::None,
+                ty && out.twisting != TwistingLaw::None,
                 "twisting resistance",
                 "it stores its turning points in the twisting spring's history slot",
             ),
@@ -205,7 +217,7 @@ fn contact_props(
             };
             return Err(cx
                 .src
-                .error_at_key(&p(key), format!("tangential = \"mindlin_deresiewicz\" cannot be combined with {name} (this {what}): {why}"))
+                .error_at_key(&p(key), format!("tangential = \"{law}\" cannot be combined with {name} (this {what}): {why}"))
                 .note(format!("help: remove '{other}', or use tangential = \"clump\" or \"liggghts\"")));
         }
     }

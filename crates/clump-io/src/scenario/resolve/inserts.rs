@@ -346,6 +346,7 @@ fn build_insert(
                 max_attempts_per_body: ins.max_attempts.unwrap_or(1000),
                 angular_velocity: dynamics.angular_velocity,
                 dof: dynamics.by_template.clone(),
+                plane: None,
             };
             Ok(InsertDef {
                 stage,
@@ -463,6 +464,7 @@ fn build_insert(
                 angular_velocity: dynamics.angular_velocity,
                 dof: dynamics.by_template.clone(),
                 start_after: ins.start_after,
+                plane: None,
             };
             let expected = (body_rate * (end - t0 - start)).max(0.0).floor();
             Ok(InsertDef {
