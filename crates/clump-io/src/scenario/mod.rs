@@ -22,7 +22,7 @@ mod source;
 pub mod units;
 
 pub use bodies_file::BodyFileFormat;
-pub use build::{DT_ERROR_FRACTION, DT_WARN_FRACTION, PACK_ERROR_FRACTION};
+pub use build::{DT_ERROR_FRACTION, DT_STABLE_FRACTION, DT_WARN_FRACTION, PACK_ERROR_FRACTION};
 pub use diag::{Diagnostic, Location, ScenarioError, Severity};
 pub use model::*;
 pub use source::{Seg, Source};

@@ -103,6 +103,21 @@ pub struct TimeStep {
     pub smallest_radius: Option<f64>,
     /// Template holding the smallest sphere.
     pub smallest_template: Option<String>,
+    /// The damped-contact stability limit of the templates (None without
+    /// templates or contact models).
+    pub stability: Option<StabilityLimit>,
+}
+
+/// The stability limit `dt_c` of the explicit step for the scenario's most
+/// demanding contact (docs/theory.md T-51).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StabilityLimit {
+    /// `dt_c`, s.
+    pub dt: f64,
+    /// The contact it comes from (templates, spheres, wall material).
+    pub contact: String,
+    /// The larger mobility factor `κ` of the contact (1 for spheres).
+    pub kappa: f64,
 }
 
 /// One insertion.
