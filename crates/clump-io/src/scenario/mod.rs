@@ -13,6 +13,7 @@ mod bodies_file;
 pub mod bounds;
 mod build;
 pub mod diag;
+mod exact;
 pub mod guard;
 pub mod keys;
 mod model;

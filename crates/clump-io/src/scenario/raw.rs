@@ -99,6 +99,7 @@ pub struct RawSimulation {
     /// Fraction of the Rayleigh time used by `dt = "auto"` (default 0.2).
     pub dt_fraction: Option<f64>,
     /// Gravity, world frame, m/s² (default `[0, 0, -9.81]`).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub gravity: Option<[f64; 3]>,
     /// Duration of the single implicit stage when there is no `[[stage]]`, s.
     pub duration: Option<f64>,
@@ -134,8 +135,10 @@ pub enum AxisName {
 #[serde(deny_unknown_fields)]
 pub struct RawDomain {
     /// Lower corner, world frame, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub lo: Option<[f64; 3]>,
     /// Upper corner, world frame, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub hi: Option<[f64; 3]>,
     /// Periodic axes, e.g. `["x", "y"]` (default none).
     #[serde(default)]
@@ -295,6 +298,7 @@ pub struct RawTemplate {
     /// Material name.
     pub material: Option<String>,
     /// Inline spheres `[x, y, z, r]`, m (input frame).
+    #[serde(default, deserialize_with = "super::exact::rows")]
     pub spheres: Option<Vec<[f64; 4]>>,
     /// LIGGGHTS `x y z r` file, relative to the scenario file.
     pub file: Option<String>,
@@ -313,13 +317,17 @@ pub struct RawTemplate {
     /// Mass override, kg (needs `inertia`).
     pub mass: Option<f64>,
     /// Inertia tensor override about the centre of mass, input frame, kg m².
+    #[serde(default, deserialize_with = "super::exact::matrix")]
     pub inertia: Option<[[f64; 3]; 3]>,
     /// Centre of mass override, input frame, m (with `mass` and `inertia`,
     /// which is then taken about this point).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub center_of_mass: Option<[f64; 3]>,
     /// Force flags per world axis of this template's bodies (LIGGGHTS `fflag`).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub force_flags: Option<[bool; 3]>,
     /// Torque flags per world axis of this template's bodies (LIGGGHTS `tflag`).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub torque_flags: Option<[bool; 3]>,
 }
 
@@ -396,12 +404,16 @@ pub struct RawRegion {
     #[serde(rename = "type")]
     pub kind: Option<RegionKind>,
     /// Box lower corner, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub lo: Option<[f64; 3]>,
     /// Box upper corner, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub hi: Option<[f64; 3]>,
     /// Cylinder: centre of the bottom disc, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub base: Option<[f64; 3]>,
     /// Cylinder axis (unit vector, default `[0, 0, 1]`).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub axis: Option<[f64; 3]>,
     /// Cylinder radius, m.
     pub radius: Option<f64>,
@@ -461,8 +473,10 @@ pub struct RawInsert {
     /// Random seed (default 1).
     pub seed: Option<u64>,
     /// Initial velocity, world frame, m/s.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub velocity: Option<[f64; 3]>,
     /// Fixed orientation quaternion `[w, x, y, z]` (default random).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub orientation: Option<[f64; 4]>,
     /// Stream rate, bodies/s.
     pub bodies_per_second: Option<f64>,
@@ -475,12 +489,16 @@ pub struct RawInsert {
     /// Placement attempts per body.
     pub max_attempts: Option<u32>,
     /// Fixed orientation as z-x-z Euler angles `[phi, theta, psi]`, rad.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub euler: Option<[f64; 3]>,
     /// Initial angular velocity, world frame, rad/s.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub angular_velocity: Option<[f64; 3]>,
     /// Force flags per world axis (override the template's).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub force_flags: Option<[bool; 3]>,
     /// Torque flags per world axis (override the template's).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub torque_flags: Option<[bool; 3]>,
     /// The bodies never move (LIGGGHTS `fix freeze`); they still make contacts.
     pub fixed: Option<bool>,
@@ -509,6 +527,7 @@ pub enum WallKind {
 #[serde(deny_unknown_fields)]
 pub struct RawRotation {
     /// Rotation axis, world frame (normalised; need not be unit).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub axis: Option<[f64; 3]>,
     /// Rotation angle, degrees (positive: counter-clockwise looking down the axis).
     pub angle: Option<f64>,
@@ -532,34 +551,45 @@ pub struct RawWall {
     /// Mesh: rotation applied after scaling (file frame → world frame).
     pub rotation: Option<RawRotation>,
     /// Mesh: translation applied last, world frame, m (default 0).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub offset: Option<[f64; 3]>,
     /// Mesh: contacts whose normals are closer than this angle are one
     /// contact patch, degrees (default 15).
     pub merge_angle: Option<f64>,
     /// Point about which the torque on the wall is reported, world frame, m
     /// (default: the centre of rotation, moving with the wall).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub torque_point: Option<[f64; 3]>,
     /// Plane: a point; cylinder: a point on the axis, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub point: Option<[f64; 3]>,
     /// Plane unit normal (towards the particles).
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub normal: Option<[f64; 3]>,
     /// Cylinder unit axis.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub axis: Option<[f64; 3]>,
     /// Cylinder radius, m.
     pub radius: Option<f64>,
     /// Cylinder/box: particles inside (default true).
     pub inside: Option<bool>,
     /// Box lower corner, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub lo: Option<[f64; 3]>,
     /// Box upper corner, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub hi: Option<[f64; 3]>,
     /// Translation velocity, m/s.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub velocity: Option<[f64; 3]>,
     /// Angular velocity about `center`, rad/s.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub angular_velocity: Option<[f64; 3]>,
     /// Centre of rotation, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub center: Option<[f64; 3]>,
     /// Extra tangential surface velocity, m/s.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub surface_velocity: Option<[f64; 3]>,
     /// Several-contact treatment.
     pub multi_contact: Option<MultiContact>,
@@ -576,12 +606,16 @@ pub struct RawWallChange {
     /// Set active/inactive.
     pub active: Option<bool>,
     /// New translation velocity, m/s.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub velocity: Option<[f64; 3]>,
     /// New angular velocity, rad/s.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub angular_velocity: Option<[f64; 3]>,
     /// New centre of rotation, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub center: Option<[f64; 3]>,
     /// New surface velocity, m/s.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub surface_velocity: Option<[f64; 3]>,
 }
 
@@ -592,8 +626,10 @@ pub struct RawBodyChange {
     /// Global body id (1-based, in insertion order).
     pub id: Option<u64>,
     /// New centre-of-mass velocity, m/s.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub velocity: Option<[f64; 3]>,
     /// New angular velocity (world frame), rad/s.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub angular_velocity: Option<[f64; 3]>,
 }
 
@@ -608,6 +644,7 @@ pub struct RawStage {
     /// Duration in steps.
     pub steps: Option<u64>,
     /// New gravity from this stage on, m/s².
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub gravity: Option<[f64; 3]>,
     /// Wall changes.
     #[serde(default)]
@@ -679,12 +716,16 @@ pub struct RawFlow {
     #[serde(rename = "type")]
     pub kind: Option<String>,
     /// Plane point, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub point: Option<[f64; 3]>,
     /// Plane normal.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub normal: Option<[f64; 3]>,
     /// Region lower corner, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub lo: Option<[f64; 3]>,
     /// Region upper corner, m.
+    #[serde(default, deserialize_with = "super::exact::array")]
     pub hi: Option<[f64; 3]>,
     /// Diameter bin edges, m.
     pub bins: Option<Vec<f64>>,

@@ -335,6 +335,9 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         _ => None,
     });
     let walls = cx.section(|cx| walls::walls(cx, &raw, &given_names));
+    if let Some(setting) = &setting {
+        cx.section(|cx| walls::periodic_planes(cx, &raw, &setting.domain));
+    }
     let stages = match (&walls, dt) {
         (Some((wall_names, ..)), Some(dt)) => {
             cx.section(|cx| stages::stages(cx, &raw, &sim, wall_names, dt))
@@ -401,6 +404,7 @@ fn build_inner(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         return Err(cx.first_error());
     }
     let dt = time_step.dt;
+    output::unknown_trajectory_bodies(cx, &output, &inserts);
 
     let config = WorldConfig {
         domain: setting.domain,

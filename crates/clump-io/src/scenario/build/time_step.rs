@@ -6,6 +6,7 @@ use super::raw::*;
 use super::Seg::K;
 use super::{Cx, DT_ERROR_FRACTION, DT_STABLE_FRACTION, DT_WARN_FRACTION, R};
 use crate::scenario::bounds;
+use crate::scenario::diag::num;
 use clump_core::contact::time_scale::rayleigh_time;
 use clump_core::contact::{Material, PairProperties};
 
@@ -71,7 +72,7 @@ pub(super) fn time_step(
             let p = [K("simulation"), K("dt_fraction")];
             if !(f > 0.0 && f <= DT_ERROR_FRACTION) {
                 return Err(cx
-                    .err(&p, format!("dt_fraction must lie in (0, {DT_ERROR_FRACTION}], found {f}"))
+                    .err(&p, format!("dt_fraction must lie in (0, {DT_ERROR_FRACTION}], found {}", num(f)))
                     .note("note: DEM codes use 0.1–0.3 of the Rayleigh time; above 0.5 the explicit integration is unstable"));
             }
             f
