@@ -284,7 +284,12 @@ fn build_template(
     if let Some((k, s)) = spheres
         .iter()
         .enumerate()
-        .find(|(_, s)| !(RADIUS_RANGE.0..=RADIUS_RANGE.1).contains(&s.radius))
+        // non-positive and non-finite radii are reported below, at their row
+        .find(|(_, s)| {
+            s.radius > 0.0
+                && s.radius.is_finite()
+                && !(RADIUS_RANGE.0..=RADIUS_RANGE.1).contains(&s.radius)
+        })
     {
         return Err(cx
             .err(&p(if t.spheres.is_some() { "spheres" } else { "scale" }), format!(
