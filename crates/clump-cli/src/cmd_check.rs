@@ -135,6 +135,23 @@ fn report(sc: &Scenario) {
             ts.dt / h.stability_limit
         );
     }
+    if let Some(st) = &ts.stability {
+        let limited = ts.auto && ts.dt == scenario::DT_STABLE_FRACTION * st.dt;
+        outln!(
+            "  damped-contact stability limit dt_c = {:.4e} s (dt = {:.3} dt_c; {}), from {}",
+            st.dt,
+            ts.dt / st.dt,
+            if limited {
+                format!(
+                    "dt = \"auto\" is limited to {} dt_c by it",
+                    scenario::DT_STABLE_FRACTION
+                )
+            } else {
+                format!("warned about above {} dt_c", scenario::DT_STABLE_FRACTION)
+            },
+            st.contact
+        );
+    }
     outln!("\nstages:");
     for s in &sc.stages {
         outln!(

@@ -12,6 +12,7 @@ use clump_io::post::kernel::Kernel;
 use clump_io::post::read::{contact_frames, read_frame};
 use clump_io::post::spec::{FieldSeries, FieldSpec};
 use clump_validate::plot::{draw, Chart, Series, Style};
+use clump_validate::plot_discs::{draw_discs, Disc};
 use clump_validate::plot_segments::{draw_segments, Segment};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -53,6 +54,9 @@ pub struct PostArgs {
     /// Slab thickness, m (default: four mean body diameters).
     #[arg(long)]
     pub slab: Option<f64>,
+    /// Colour of the particle picture: speed, radius or body_id.
+    #[arg(long = "color", default_value = "speed")]
+    pub color: String,
 }
 
 fn axis(s: &str) -> Result<usize, String> {
@@ -385,6 +389,149 @@ fn force_chains(
     Ok(())
 }
 
+/// The file of the last frame of `RUN/spheres.pvd`, if any.
+fn last_spheres_frame(run: &Path) -> Option<PathBuf> {
+    let text = std::fs::read_to_string(run.join("spheres.pvd")).ok()?;
+    let line = text.lines().rev().find(|l| l.contains("file=\""))?;
+    let i = line.find("file=\"")? + 6;
+    let j = line[i..].find('"')?;
+    Some(run.join(&line[i..i + j]))
+}
+
+/// `particles.png`: the spheres of the last frame as discs seen along the
+/// slab axis (`--slab-axis`, default y: a side view), coloured by `--color`.
+fn particles(a: &PostArgs, out: &Path, made: &mut Vec<PathBuf>) -> Result<(), String> {
+    let Some(f) = last_spheres_frame(&a.run_dir) else {
+        return Ok(()); // no VTK output: nothing to draw
+    };
+    if f.extension().is_some_and(|e| e != "vtp") {
+        outln!(
+            "note: particles.png is drawn from .vtp frames only (this run wrote {})",
+            f.display()
+        );
+        return Ok(());
+    }
+    let arr = clump_io::post::read::read_vtp(&f)?;
+    let get = |k: &str| {
+        arr.get(k)
+            .ok_or_else(|| format!("{}: no array '{k}'", f.display()))
+    };
+    let (pts, radius) = (get("Points")?, get("radius")?);
+    let n = axis(&a.slab_axis)?;
+    let (u, v) = match n {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    };
+    let (value, label): (Box<dyn Fn(usize) -> f64>, &str) = match a.color.as_str() {
+        "speed" => {
+            let vel = get("velocity")?;
+            (
+                Box::new(move |i| {
+                    (vel[3 * i] * vel[3 * i]
+                        + vel[3 * i + 1] * vel[3 * i + 1]
+                        + vel[3 * i + 2] * vel[3 * i + 2])
+                        .sqrt()
+                }),
+                "|v| [m/s]",
+            )
+        }
+        "radius" => (Box::new(|i| radius[i]), "radius [m]"),
+        "body_id" => {
+            let id = get("body_id")?;
+            (Box::new(move |i| id[i]), "body id")
+        }
+        c => return Err(format!("--color {c}: allowed are speed, radius, body_id")),
+    };
+    // seen from the negative side of the axis for y (a right-handed side
+    // view with x to the right and z up), from the positive side otherwise
+    let toward = if n == 1 { -1.0 } else { 1.0 };
+    let discs: Vec<Disc> = (0..radius.len())
+        .map(|i| Disc {
+            centre: (pts[3 * i + u], pts[3 * i + v]),
+            depth: toward * pts[3 * i + n],
+            radius: radius[i],
+            value: value(i),
+        })
+        .collect();
+    if discs.is_empty() {
+        return Ok(());
+    }
+    let lo = discs.iter().map(|d| d.value).fold(f64::INFINITY, f64::min);
+    let hi = discs
+        .iter()
+        .map(|d| d.value)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let names = ["x", "y", "z"];
+    let p = out.join("particles.png");
+    let name = f
+        .file_name()
+        .map(|x| x.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    draw_discs(
+        &p,
+        &format!("{} spheres of {name}, seen along {}", discs.len(), names[n]),
+        (&format!("{} [m]", names[u]), &format!("{} [m]", names[v])),
+        label,
+        (lo, hi),
+        &discs,
+    )
+    .map_err(|e| format!("{}: {e}", p.display()))?;
+    made.push(p);
+    Ok(())
+}
+
+/// `paraview_view.py` beside the pictures: opens the run's spheres with the
+/// README's recipe (Glyph → Sphere scaled by `radius` × 2, All Points,
+/// coloured by velocity, at the last time): `paraview --script=FILE` or
+/// `pvpython FILE`.
+fn paraview_script(a: &PostArgs, out: &Path, made: &mut Vec<PathBuf>) -> Result<(), String> {
+    if !a.run_dir.join("spheres.pvd").is_file() {
+        return Ok(());
+    }
+    let run =
+        std::fs::canonicalize(&a.run_dir).map_err(|e| format!("{}: {e}", a.run_dir.display()))?;
+    let here = std::fs::canonicalize(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    // relative to the script when it sits inside the run folder (the
+    // default RUN/post), so the folder can be moved
+    let pvd = match here.strip_prefix(&run) {
+        Ok(rel) => {
+            let ups = rel.components().count();
+            let mut s = "os.path.join(HERE".to_string();
+            for _ in 0..ups {
+                s.push_str(", \"..\"");
+            }
+            s + ", \"spheres.pvd\")"
+        }
+        Err(_) => format!("{:?}", run.join("spheres.pvd").display().to_string()),
+    };
+    let text = format!(
+        r#"# Written by `clump post`: the run's spheres with the README's recipe.
+# paraview --script=paraview_view.py   (or: pvpython paraview_view.py)
+import os
+from paraview.simple import *
+HERE = os.path.dirname(os.path.abspath(__file__))
+r = PVDReader(FileName={pvd})
+t = r.TimestepValues[-1] if r.TimestepValues else 0.0
+g = Glyph(Input=r, GlyphType="Sphere")
+g.ScaleArray = ["POINTS", "radius"]
+g.ScaleFactor = 2.0            # a unit glyph sphere has diameter 1
+g.GlyphMode = "All Points"     # the default draws at most about 5000
+view = GetActiveViewOrCreate("RenderView")
+view.ViewTime = t
+d = Show(g, view)
+ColorBy(d, ("POINTS", "velocity", "Magnitude"))
+d.SetScalarBarVisibility(view, True)
+ResetCamera(view)
+Render(view)
+"#
+    );
+    let p = out.join("paraview_view.py");
+    std::fs::write(&p, text).map_err(|e| format!("cannot write {}: {e}", p.display()))?;
+    made.push(p);
+    Ok(())
+}
+
 /// Runs `clump post`.
 pub fn run(a: &PostArgs) -> ExitCode {
     let out = a.out.clone().unwrap_or_else(|| a.run_dir.join("post"));
@@ -408,9 +555,23 @@ pub fn run(a: &PostArgs) -> ExitCode {
             .map(|&(s, t)| read_frame(&a.run_dir, s, t))
             .collect::<Result<Vec<_>, _>>()?;
         fields(a, &frames, &out, &mut made)?;
+        if let (None, Some(last)) = (a.width, frames.last()) {
+            let d = last
+                .bodies
+                .iter()
+                .map(|b| b.equivalent_diameter())
+                .sum::<f64>()
+                / last.bodies.len().max(1) as f64;
+            outln!(
+                "note: {} contact frames, but no coarse-grained fields without --width (the kernel width in m; about one body diameter, {d:.3e} m here, e.g. --width {d:.1e} --axes z --cells 50); docs/post.md",
+                frames.len()
+            );
+        }
         if let Some(last) = frames.last() {
             force_chains(a, last, &out, &mut made)?;
         }
+        particles(a, &out, &mut made)?;
+        paraview_script(a, &out, &mut made)?;
         Ok(())
     })();
     for p in &made {

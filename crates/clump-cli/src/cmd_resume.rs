@@ -1,10 +1,10 @@
-//! `clump resume CHECKPOINT [-o OUTDIR] [--threads N] [--steps N]`.
+//! `clump resume CHECKPOINT [-o OUTDIR] [--threads N] [--steps N] [--rewind]`.
 
 use crate::cmd_run::progress::init_logging;
 use crate::cmd_run::{drive, error_exit};
 use crate::ranks::Ranks;
 use clap::Args;
-use clump_io::run::Runner;
+use clump_io::run::{ResumeOptions, Runner};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -14,7 +14,8 @@ pub struct ResumeArgs {
     /// Checkpoint file (`checkpoint_<step>.ckpt`); it holds the scenario, so
     /// nothing else is needed.
     pub checkpoint: PathBuf,
-    /// Output directory (default: the checkpoint's directory).
+    /// Output directory (default: the checkpoint's directory, which must
+    /// then be a run folder).
     #[arg(short = 'o', long = "out")]
     pub outdir: Option<PathBuf>,
     /// Worker threads (default: all cores).
@@ -24,6 +25,10 @@ pub struct ResumeArgs {
     /// the original run).
     #[arg(long)]
     pub steps: Option<u64>,
+    /// Continue even when the run folder went past the checkpoint (its later
+    /// rows, frames, manifest and final state are replaced).
+    #[arg(long)]
+    pub rewind: bool,
 }
 
 /// Runs `clump resume`.
@@ -33,9 +38,15 @@ pub fn run(args: &ResumeArgs) -> ExitCode {
     // rank 0 continues the run's files; the others keep the schedule in a
     // scratch folder
     let scratch = (!ranks.is_root()).then(|| ranks.outdir(std::path::Path::new(".")));
-    let mut runner = match Runner::resume(
+    let opts = ResumeOptions {
+        outdir_given: scratch.is_some() || args.outdir.is_some(),
+        rewind: args.rewind,
+        max_steps: args.steps,
+    };
+    let mut runner = match Runner::resume_with(
         &args.checkpoint,
         scratch.as_deref().or(args.outdir.as_deref()),
+        opts,
     ) {
         Ok(r) => r,
         Err(e) => {
@@ -44,11 +55,6 @@ pub fn run(args: &ResumeArgs) -> ExitCode {
             return code;
         }
     };
-    let at = runner.world().step;
-    if let Some(n) = args.steps.filter(|&n| n <= at) {
-        errln!("error: --steps {n} is not after the checkpoint's step {at}; nothing would be run\n  = help: --steps counts from the start of the original run: give a step above {at}");
-        return ExitCode::from(2);
-    }
     if let Err(e) = ranks.split(&mut runner) {
         errln!("error: {e}");
         ranks.fail(2);

@@ -54,13 +54,14 @@ pub fn capped_threads(n: usize) -> usize {
     }
 }
 
-/// Registers SIGINT/SIGTERM: the first sets the returned flag to the signal
-/// number (the run then checkpoints and stops); a second one terminates at once.
+/// Registers SIGINT, SIGTERM and SIGHUP (a closed terminal): the first sets
+/// the returned flag to the signal number (the run then checkpoints and
+/// stops, exit status 128 + the signal); a second one terminates at once.
 pub fn install_signals() -> Arc<AtomicUsize> {
-    use signal_hook::consts::{SIGINT, SIGTERM};
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
     let flag = Arc::new(AtomicUsize::new(0));
     let seen = Arc::new(AtomicBool::new(false));
-    for sig in [SIGINT, SIGTERM] {
+    for sig in [SIGINT, SIGTERM, SIGHUP] {
         let _ = signal_hook::flag::register_conditional_shutdown(sig, 128 + sig, Arc::clone(&seen));
         let _ = signal_hook::flag::register(sig, Arc::clone(&seen));
         let _ = signal_hook::flag::register_usize(sig, Arc::clone(&flag), sig as usize);

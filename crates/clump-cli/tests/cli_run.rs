@@ -1,6 +1,6 @@
 //! End-to-end tests of `clump run` / `clump resume`: a run split by a
-//! checkpoint repeats the uninterrupted run bit for bit, SIGTERM/SIGINT
-//! checkpoint and exit with 143/130, VTK series are complete, and bad input
+//! checkpoint repeats the uninterrupted run bit for bit, SIGTERM/SIGINT/SIGHUP
+//! checkpoint and exit with 143/130/129, VTK series are complete, and bad input
 //! exits with status 2.
 
 use std::path::{Path, PathBuf};
@@ -460,6 +460,13 @@ fn check_flushed_at(out: &Path, step: u64) {
 #[test]
 fn sigterm_checkpoints_and_exits_143_then_resumes() {
     interrupt_and_resume("TERM", 143);
+}
+
+/// A closed terminal (SIGHUP) stops the run like SIGTERM: a checkpoint at
+/// the stop, every output flushed, exit status 129, and it resumes bit for bit.
+#[test]
+fn sighup_checkpoints_and_exits_129_then_resumes() {
+    interrupt_and_resume("HUP", 129);
 }
 
 #[test]

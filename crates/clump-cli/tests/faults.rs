@@ -554,3 +554,142 @@ fn bodies_beyond_memory_are_refused_before_allocating() {
 fn text_of(o: &Output) -> String {
     text(&o.stderr)
 }
+
+/// Every file of `dir` with its bytes, sorted by name.
+fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_file() && !p.ends_with(".clump.lock"))
+        .map(|p| {
+            let name = p.file_name().unwrap().to_string_lossy().into_owned();
+            (name, std::fs::read(&p).unwrap())
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+/// A completed run with a checkpoint every 100 of its 400 steps.
+fn completed_run(d: &Path) -> (PathBuf, PathBuf) {
+    let sc = d.join("fall.toml");
+    let output = "vtk = { every_steps = 100 }\nthermo = { every_steps = 20 }\ncheckpoint = { every_steps = 100 }\n";
+    std::fs::write(&sc, common::fall(400, output)).unwrap();
+    let out = d.join("out");
+    let o = run(&[
+        "run".as_ref(),
+        sc.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    (sc, out)
+}
+
+/// What the user sees: `clump resume CKPT --steps N` with N not after the
+/// checkpoint exits 2 and says no file was touched; and none was (the
+/// completed run's thermo.csv, manifest and final state keep their bytes).
+#[test]
+fn refused_resume_touches_no_file() {
+    let dir = tmp("resume-steps");
+    let (_, out) = completed_run(dir.path());
+    let before = snapshot(&out);
+    let ck = out.join("checkpoint_000000200.ckpt");
+    let o = run(&[
+        "resume".as_ref(),
+        ck.as_os_str(),
+        "--steps".as_ref(),
+        "100".as_ref(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = text(&o.stderr);
+    assert!(
+        err.contains("--steps 100 is not after the checkpoint's step 200"),
+        "{err}"
+    );
+    assert!(err.contains("no file was touched"), "{err}");
+    assert!(
+        snapshot(&out) == before,
+        "a refused resume changed the run folder"
+    );
+}
+
+/// What the user sees: resuming a completed run from an earlier checkpoint
+/// is refused (exit 2) naming the step the run reached and `--rewind`, and
+/// changes nothing; with `--rewind` it runs, and no frame of the rewound
+/// run is left on disk unlisted by its `.pvd` (the resumed run here stops
+/// at step 300, so the frame of step 400 must go).
+#[test]
+fn rewinding_resume_needs_rewind_and_leaves_no_orphans() {
+    let dir = tmp("resume-rewind");
+    let (_, out) = completed_run(dir.path());
+    let before = snapshot(&out);
+    let ck = out.join("checkpoint_000000200.ckpt");
+    let o = run(&["resume".as_ref(), ck.as_os_str()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = text(&o.stderr);
+    assert!(
+        err.contains("went on to step 400, past the checkpoint's step 200"),
+        "{err}"
+    );
+    assert!(err.contains("--rewind"), "{err}");
+    assert!(
+        snapshot(&out) == before,
+        "a refused resume changed the run folder"
+    );
+    // into a new folder it is no rewind
+    let fresh = dir.path().join("fresh");
+    let o = run(&[
+        "resume".as_ref(),
+        ck.as_os_str(),
+        "-o".as_ref(),
+        fresh.as_os_str(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+    assert!(
+        snapshot(&out) == before,
+        "a resume into another folder changed the run folder"
+    );
+    let o = run(&[
+        "resume".as_ref(),
+        ck.as_os_str(),
+        "--rewind".as_ref(),
+        "--steps".as_ref(),
+        "300".as_ref(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+    for series in ["spheres", "bodies", "walls"] {
+        let pvd = std::fs::read_to_string(out.join(format!("{series}.pvd"))).unwrap();
+        for e in std::fs::read_dir(&out).unwrap() {
+            let name = e.unwrap().file_name().to_string_lossy().into_owned();
+            if name.starts_with(&format!("{series}_")) && name.ends_with(".vtp") {
+                assert!(
+                    pvd.contains(&name),
+                    "{name} is on disk but not in {series}.pvd"
+                );
+            }
+        }
+        assert!(!out.join(format!("{series}_000400.vtp")).exists());
+    }
+}
+
+/// What the user sees: a checkpoint saved outside any run folder (as
+/// Python's `save_checkpoint("x.ckpt")` in the current folder) is not
+/// resumed into that folder without `-o`: exit 2, a message naming `-o`,
+/// and no file is added there.
+#[test]
+fn resume_outside_a_run_folder_needs_o() {
+    let dir = tmp("resume-loose");
+    let (_, out) = completed_run(dir.path());
+    let loose = dir.path().join("loose");
+    std::fs::create_dir(&loose).unwrap();
+    let ck = loose.join("mine.ckpt");
+    std::fs::copy(out.join("checkpoint_000000200.ckpt"), &ck).unwrap();
+    let o = run(&["resume".as_ref(), ck.as_os_str()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = text(&o.stderr);
+    assert!(err.contains("is not in a run folder"), "{err}");
+    assert!(err.contains("-o DIR"), "{err}");
+    let names: Vec<String> = snapshot(&loose).into_iter().map(|(n, _)| n).collect();
+    assert_eq!(names, vec!["mine.ckpt".to_string()]);
+}

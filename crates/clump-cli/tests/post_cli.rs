@@ -1,7 +1,9 @@
 //! `clump post` on a small version of the hopper example with contact
 //! frames and flow probes: the plots are PNG files, the fields of the saved
 //! frames are written and their density integrates to the bodies' mass;
-//! a bad option is refused with a message and exit status 1.
+//! a picture of the particles and a ParaView script are written; without
+//! `--width` the user is told how to get fields; a bad option is refused
+//! with a message and exit status 1.
 
 use std::path::Path;
 use std::process::Command;
@@ -69,6 +71,7 @@ fn post_plots_fields_and_force_chains_of_a_hopper_run() {
         "profile_density.png",
         "profile_stress.png",
         "force_chains.png",
+        "particles.png",
     ] {
         let b = std::fs::read(post.join(f)).unwrap_or_else(|e| panic!("{f}: {e}\n{stdout}"));
         assert!(b.starts_with(b"\x89PNG") && b.len() > 5000, "{f}");
@@ -112,5 +115,31 @@ fn post_plots_fields_and_force_chains_of_a_hopper_run() {
         .unwrap();
     assert_eq!(o.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&o.stderr).contains("unknown axis 'w'"));
+    // the ParaView script applies the README's recipe to this run's spheres
+    let py = std::fs::read_to_string(post.join("paraview_view.py")).unwrap();
+    for want in [
+        "PVDReader",
+        "\"spheres.pvd\"",
+        "GlyphMode = \"All Points\"",
+        "ScaleFactor = 2.0",
+    ] {
+        assert!(py.contains(want), "paraview_view.py lacks {want}:\n{py}");
+    }
+    // without --width the user is told how to get the fields
+    let o = clump().arg("post").arg(&run).output().unwrap();
+    assert!(o.status.success());
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("no coarse-grained fields without --width"),
+        "{out}"
+    );
+    let o = clump()
+        .arg("post")
+        .arg(&run)
+        .args(["--color", "heat"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("allowed are speed, radius, body_id"));
     let _ = std::fs::remove_dir_all(&d);
 }

@@ -1,6 +1,6 @@
 //! Heat: one temperature per body (lumped: the Biot number of a grain is
 //! small), conduction through every sphere–sphere and sphere–wall contact,
-//! and volumetric sources (docs/theory.md T-50 … T-54).
+//! and volumetric sources (docs/theory.md T-53 … T-57).
 //!
 //! This module holds the settings and the conductance formulas; the stage
 //! that applies them each step is `step::heat`. The body temperatures
@@ -26,12 +26,12 @@ pub struct ThermalMaterial {
 #[serde(rename_all = "snake_case")]
 pub enum Conductance {
     /// Batchelor & O'Brien (1977): `H = 2 k* a`, with `a = √(R* δ)` the
-    /// Hertzian contact radius (T-50).
+    /// Hertzian contact radius (T-53).
     #[default]
     BatchelorObrien,
     /// LIGGGHTS `fix heat/gran/conduction` (without `areaCorrection`):
     /// `H = 2 k* √A` with `A` the area of the circle in which the two
-    /// undeformed spheres intersect (T-51).
+    /// undeformed spheres intersect (T-54).
     Geometric,
 }
 
@@ -85,7 +85,7 @@ pub struct Heat {
     pub wall_heat: Vec<f64>,
     /// The largest `dt Σ H / C` of any body in the last step: the step is
     /// stable and keeps temperatures within their neighbours' while it is
-    /// at most 1 (T-54).
+    /// at most 1 (T-57).
     pub stability: f64,
     /// Per body: the heat flow into it in this step, W (stage scratch).
     pub(crate) flow: Vec<f64>,
@@ -130,12 +130,12 @@ pub fn pair_conductance(model: Conductance, k_star: f64, r1: f64, r2: f64, dist:
     }
     match model {
         Conductance::BatchelorObrien => {
-            // T-50: a = √(R* δ)
+            // T-53: a = √(R* δ)
             let r_star = r1 * r2 / (r1 + r2);
             2.0 * k_star * (r_star * overlap).sqrt()
         }
         Conductance::Geometric => {
-            // T-51: the area of the intersection circle, as LIGGGHTS writes it
+            // T-54: the area of the intersection circle, as LIGGGHTS writes it
             let r = dist;
             let area = -std::f64::consts::FRAC_PI_4
                 * ((r - r1 - r2) * (r + r1 - r2) * (r - r1 + r2) * (r + r1 + r2))
@@ -154,10 +154,10 @@ pub fn wall_conductance(model: Conductance, k_star: f64, r: f64, overlap: f64) -
         return 0.0;
     }
     match model {
-        // T-50 with R* = r (the wall's radius is infinite)
+        // T-53 with R* = r (the wall's radius is infinite)
         Conductance::BatchelorObrien => 2.0 * k_star * (r * overlap).sqrt(),
         Conductance::Geometric => {
-            // T-51: the circle in which the wall plane cuts the sphere
+            // T-54: the circle in which the wall plane cuts the sphere
             let d = r - overlap;
             let area = (r * r - d * d) * std::f64::consts::PI;
             2.0 * k_star * area.max(0.0).sqrt()

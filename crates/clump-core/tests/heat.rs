@@ -1,4 +1,4 @@
-//! Heat transfer (docs/theory.md T-50 … T-54) against closed forms: two
+//! Heat transfer (docs/theory.md T-53 … T-57) against closed forms: two
 //! bodies relaxing to a common temperature, a chain of spheres between a
 //! hot and a cold wall at steady state (series conductances), and the
 //! effective conductivity of sphere lattices against Batchelor & O'Brien's
@@ -108,7 +108,7 @@ fn temp(w: &World, id: u64) -> f64 {
 
 /// Two spheres of different materials and radii, overlapping by `delta`:
 /// T₁ − T₂ decays as exp(−H (1/C₁ + 1/C₂) t) with H from the contact
-/// radius (T-50 or T-51 from outside the code), and Σ C T stays.
+/// radius (T-53 or T-54 from outside the code), and Σ C T stays.
 fn two_bodies(conductance: Conductance) {
     let (r1, r2, delta): (f64, f64, f64) = (1e-3, 1.5e-3, 2e-5);
     let k_star = 2.0 * K[0] * K[1] / (K[0] + K[1]);

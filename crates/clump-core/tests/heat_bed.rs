@@ -1,4 +1,4 @@
-//! The effective conductivity of random beds (docs/theory.md T-55): a bed
+//! The effective conductivity of random beds (docs/theory.md T-58): a bed
 //! of tetrahedral clumps and a bed of spheres of the same volume settle
 //! under gravity onto a floor, are frozen, and conduct from the floor at
 //! 400 K to the top layer held at 300 K. At steady state the conductivity
@@ -24,7 +24,7 @@ fn top_layer(w: &World) -> f64 {
     top - 2.0e-3
 }
 
-/// Batchelor–O'Brien's conductance of each touching sphere pair (T-50),
+/// Batchelor–O'Brien's conductance of each touching sphere pair (T-53),
 /// with the branch between the bodies' centres (minimum image in the
 /// periodic x and y): `(H, l)` per contact, and the body indices.
 fn contacts(w: &World) -> Vec<(f64, DVec3, usize, usize)> {
@@ -104,7 +104,7 @@ fn bed_conductivity(template: ClumpTemplate) -> (f64, f64, f64, f64) {
         zs.iter().cloned().fold(0.0, f64::max),
         w.spheres().radius[0]
     );
-    // c_p such that the explicit step is stable with margin (T-54)
+    // c_p such that the explicit step is stable with margin (T-57)
     let mut sum_h = vec![0.0; w.bodies().len()];
     for &(h, _, i, j) in &c {
         sum_h[i] += h;

@@ -2,7 +2,7 @@
 //! overlap`, `area_correction no`; Debian's `liggghts`): a small bed of 64
 //! spheres of two materials, held in place with jittered overlaps, its
 //! half x < 0 at 400 K and the rest at 300 K, conducts for 1000 steps under
-//! the geometric-area conductance (T-51). Every temperature agrees to
+//! the geometric-area conductance (T-54). Every temperature agrees to
 //! 1e-6 relative (the sums differ in order only). Skips, saying so, when
 //! `liggghts` is not installed.
 

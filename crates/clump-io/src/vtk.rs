@@ -362,8 +362,9 @@ impl PvdWriter {
     }
 
     /// Reopens the collection at `path` for a resumed run, keeping the
-    /// entries with time ≤ `max_time` (s). A missing or unreadable file
-    /// starts an empty collection.
+    /// entries with time ≤ `max_time` (s) and deleting the files of the
+    /// later ones (plain names beside the collection). A missing or
+    /// unreadable file starts an empty collection.
     pub fn resume(path: impl Into<PathBuf>, max_time: f64) -> Self {
         let path = path.into();
         let mut entries = Vec::new();
@@ -373,8 +374,13 @@ impl PvdWriter {
                     continue;
                 };
                 if let Ok(t) = t.parse::<f64>() {
+                    let f = unescape(&f);
                     if t <= max_time {
-                        entries.push((t, unescape(&f)));
+                        entries.push((t, f));
+                    } else if let (Some(dir), false) = (path.parent(), f.contains(['/', '\\'])) {
+                        // a frame after the restart belongs to the run that is
+                        // being rewound: delete it rather than leave it orphaned
+                        let _ = std::fs::remove_file(dir.join(&f));
                     }
                 }
             }

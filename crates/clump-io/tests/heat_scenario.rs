@@ -137,7 +137,7 @@ fn a_chain_scenario_reaches_the_series_solution_and_writes_its_temperatures() {
     let path = chain(&d, 6000, &[]);
     let sc = scenario::load(&path).unwrap_or_else(|e| panic!("{e}"));
     let h = sc.heat.as_ref().unwrap();
-    // T-54's bound: m c_p over 12 wall-form conductances at the guard's overlap
+    // T-57's bound: m c_p over 12 wall-form conductances at the guard's overlap
     let mass = 2500.0 * 4.0 / 3.0 * std::f64::consts::PI * R.powi(3);
     let ratio = sc.stability.max_overlap_ratio;
     let bound = mass * 800.0 / (12.0 * 2.0 * K * (R * ratio * R).sqrt());
@@ -150,7 +150,7 @@ fn a_chain_scenario_reaches_the_series_solution_and_writes_its_temperatures() {
     let out = d.join("out");
     let mut r = Runner::new(sc, &out).unwrap();
     r.run(RunOptions::default()).unwrap();
-    // series conductances, from outside the code (T-50)
+    // series conductances, from outside the code (T-53)
     let hs = 2.0 * K * (R / 2.0 * DS).sqrt();
     let hw = 2.0 * K * (R * DW).sqrt();
     let q = 100.0 / (2.0 / hw + (N - 1) as f64 / hs);

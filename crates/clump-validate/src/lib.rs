@@ -24,6 +24,7 @@ pub mod mbf;
 pub mod micro_slip;
 pub mod ode;
 pub mod plot;
+pub mod plot_discs;
 pub mod plot_segments;
 pub mod report;
 pub mod rigid_body;

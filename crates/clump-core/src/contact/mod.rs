@@ -54,7 +54,7 @@
 //!   (both on the scalar path [`extended`]).
 //! - [`rolling`]: rolling resistance, none, CDT or EPSD.
 //! - [`time_scale`]: Rayleigh time and Hertz contact duration, for choosing a
-//!   time step.
+//!   time step; [`stability`]: the damped contact's stability limit.
 //!
 //! # End of contact and tensile forces
 //! The engine keeps a contact while `overlap > 0` and calls `evaluate` for it.
@@ -79,6 +79,7 @@ pub mod model;
 pub mod normal;
 pub mod record;
 pub mod rolling;
+pub mod stability;
 pub mod table;
 pub mod tangential;
 pub mod time_scale;

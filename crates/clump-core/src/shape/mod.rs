@@ -34,6 +34,7 @@ pub mod eigen;
 pub mod error;
 pub mod from_mesh;
 pub mod mass_properties;
+pub mod mobility;
 pub mod planar;
 mod progress;
 mod set;

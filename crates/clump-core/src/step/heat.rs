@@ -1,4 +1,4 @@
-//! The heat stage (docs/theory.md T-50 … T-54): after the neighbours and
+//! The heat stage (docs/theory.md T-53 … T-57): after the neighbours and
 //! before the forces, at the sphere centres the force stage reads, each
 //! body's heat flow is summed over its sphere–sphere contacts (in pair-list
 //! order), its sphere–wall contacts with walls of fixed temperature (in
@@ -44,7 +44,7 @@ fn flows(w: &World, heat: &mut Heat) {
     let sp = &w.spheres;
     let pairs = &w.neighbors.pairs;
     let domain = &w.config.domain;
-    // sphere–sphere contacts, row by row (T-50, T-51, T-52)
+    // sphere–sphere contacts, row by row (T-53, T-54, T-55)
     for i in 0..sp.len() {
         let (p0, p1) = (pairs.row_start[i] as usize, pairs.row_start[i + 1] as usize);
         let (xi, ri) = (sp.position(i), sp.state[i].radius);
@@ -99,8 +99,8 @@ fn flows(w: &World, heat: &mut Heat) {
     }
 }
 
-/// The explicit Euler step of every temperature (T-53), the walls' heat
-/// and the step's stability ratio (T-54).
+/// The explicit Euler step of every temperature (T-56), the walls' heat
+/// and the step's stability ratio (T-57).
 fn integrate(w: &mut World, heat: &mut Heat) {
     let dt = w.config.dt;
     let mut worst = 0.0f64;

@@ -383,7 +383,7 @@ fn heat_of_new_body(
 }
 
 impl World {
-    /// Turns heat transfer on (docs/theory.md T-50 … T-54): every body,
+    /// Turns heat transfer on (docs/theory.md T-53 … T-57): every body,
     /// present or added later, gets its template's temperature and source.
     /// Call after the templates and walls are added. Fails when a
     /// template's material has no thermal properties or a positive

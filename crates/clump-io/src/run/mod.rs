@@ -174,6 +174,21 @@ pub struct Progress {
     pub stage: String,
 }
 
+/// What a resume may do besides continuing the run in its own folder.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ResumeOptions {
+    /// The output folder was named by the user (`-o`), so it need not be a
+    /// run folder already. Without it, the checkpoint's folder must be one
+    /// (`clump resume` never fills an arbitrary folder with a run's files).
+    pub outdir_given: bool,
+    /// Continue even when the folder's run went past the checkpoint: its
+    /// later thermo and trajectory rows, frames and final state are replaced.
+    /// Without it, such a resume is refused (nothing is lost silently).
+    pub rewind: bool,
+    /// The step the resumed run stops at (checked before anything is written).
+    pub max_steps: Option<u64>,
+}
+
 /// Options of one run.
 pub struct RunOptions<'a> {
     /// Stop when the world reaches this step (total, counted from 0).
@@ -361,8 +376,25 @@ impl Runner {
     }
 
     /// Resumes from a checkpoint file. Outputs go to `outdir`, by default the
-    /// directory of the checkpoint.
+    /// directory of the checkpoint, which may lie past the checkpoint (its
+    /// later rows and frames are then replaced); `clump resume` uses
+    /// [`Self::resume_with`], which refuses that unless asked.
     pub fn resume(checkpoint: &Path, outdir: Option<&Path>) -> Result<Self, RunError> {
+        let opts = ResumeOptions {
+            outdir_given: true,
+            rewind: true,
+            max_steps: None,
+        };
+        Self::resume_with(checkpoint, outdir, opts)
+    }
+
+    /// [`Self::resume`] with the checks of `clump resume` (`opts`), all made
+    /// before any file is written.
+    pub fn resume_with(
+        checkpoint: &Path,
+        outdir: Option<&Path>,
+        opts: ResumeOptions,
+    ) -> Result<Self, RunError> {
         let bytes = std::fs::read(checkpoint).map_err(|e| {
             RunError::InputMessage(format!(
                 "cannot read checkpoint {}: {e}",
@@ -370,6 +402,16 @@ impl Runner {
             ))
         })?;
         let (scenario, world, driver, run_id) = load_checkpoint_with_id(&bytes, checkpoint)?;
+        let at = world.step;
+        if let Some(n) = opts.max_steps.filter(|&n| n <= at) {
+            return Err(RunError::InputMessage(format!(
+                "--steps {n} is not after the checkpoint's step {at}; nothing would be run (no file was touched)\n  = help: --steps counts from the start of the original run: give a step above {at}"
+            )));
+        }
+        let opts = ResumeOptions {
+            outdir_given: opts.outdir_given || outdir.is_some(),
+            ..opts
+        };
         let outdir = match outdir {
             Some(d) => d.to_path_buf(),
             None => checkpoint
@@ -384,6 +426,7 @@ impl Runner {
             step,
             time,
             run_id: run_id.as_deref(),
+            opts,
         };
         let out = Outputs::open(&scenario, &outdir, start)?;
         tracing::info!(step, time, "resumed from {}", checkpoint.display());

@@ -180,20 +180,47 @@ pub fn prepare_fresh(
     Ok((lock, id))
 }
 
+/// The last step the run in `dir` recorded (`final_step` of its
+/// `manifest.json`), if any. A run that became unstable is not counted: its
+/// output after the last good checkpoint is what a resume recomputes (the
+/// instability message points there).
+fn last_step(dir: &Path) -> Option<u64> {
+    let text = std::fs::read_to_string(dir.join("manifest.json")).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    let status = v.get("status").and_then(|s| s.as_str()).unwrap_or("");
+    if status.starts_with("unstable") {
+        return None;
+    }
+    v.get("final_step")?.as_u64()
+}
+
 fn write_id(dir: &Path, id: &str) -> Result<(), RunError> {
     crate::atomic::write_atomic(dir.join(RUN_ID_FILE), format!("{id}\n").as_bytes())
         .map_err(|e| RunError::Runtime(format!("cannot write the run id: {e}")))
 }
 
 /// Prepares `dir` for resuming the run with id `run_id` (`None`: a
-/// checkpoint of an older version) from `checkpoint`: locks it and accepts
-/// it when it is that run's folder, or holds no run's files. Returns the
-/// lock and the id to continue with.
+/// checkpoint of an older version) from `checkpoint`, at `step`: locks it
+/// and accepts it when it is that run's folder, or holds no run's files.
+/// Refused before anything is written: a folder whose run went past `step`
+/// (unless `opts.rewind`), and a default folder (no `-o`) that is not a run
+/// folder. Returns the lock and the id to continue with.
 pub fn prepare_resume(
     dir: &Path,
     run_id: Option<&str>,
     checkpoint: &Path,
+    step: u64,
+    opts: super::ResumeOptions,
 ) -> Result<(FolderLock, String), RunError> {
+    // before the lock, which would leave its file in the folder
+    if !opts.outdir_given && run_files(dir).is_empty() && folder_run_id(dir).is_none() {
+        return Err(RunError::InputMessage(format!(
+            "{} is not in a run folder: resuming it there would write the run's outputs (thermo.csv, VTK frames, checkpoints) into {}\n  = help: name the output folder: clump resume {} -o DIR",
+            checkpoint.display(),
+            std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf()).display(),
+            checkpoint.display()
+        )));
+    }
     let lock = lock(dir)?;
     let files = run_files(dir);
     let owner = folder_run_id(dir);
@@ -217,6 +244,12 @@ pub fn prepare_resume(
             dir.display(),
             names(&files),
             checkpoint.display()
+        )));
+    }
+    if let (Some(last), false) = (last_step(dir).filter(|&s| s > step), opts.rewind) {
+        return Err(RunError::InputMessage(format!(
+            "the run in {} went on to step {last}, past the checkpoint's step {step}: resuming there would replace its thermo and trajectory rows, VTK frames, manifest and final state after step {step} (nothing was changed)\n  = help: pass --rewind to continue from step {step} anyway, or resume into a new folder with -o DIR",
+            dir.display()
         )));
     }
     let id = run_id.map(str::to_string).unwrap_or_else(new_run_id);

@@ -87,6 +87,8 @@ pub(super) enum Start<'a> {
         time: f64,
         /// The run id the checkpoint carries (absent in older ones).
         run_id: Option<&'a str>,
+        /// What the caller allows (rewinding, the folder).
+        opts: super::ResumeOptions,
     },
 }
 
@@ -101,8 +103,12 @@ impl Outputs {
         let (lock, run_id) = match start {
             Start::Fresh { overwrite } => outdir::prepare_fresh(outdir, overwrite, &scenario.path)?,
             Start::Resume {
-                checkpoint, run_id, ..
-            } => outdir::prepare_resume(outdir, run_id, checkpoint)?,
+                checkpoint,
+                run_id,
+                step,
+                opts,
+                ..
+            } => outdir::prepare_resume(outdir, run_id, checkpoint, step, opts)?,
         };
         crate::atomic::write_atomic(outdir.join("scenario.toml"), scenario.text.as_bytes())
             .map_err(rt("cannot copy the scenario"))?;

@@ -12,6 +12,7 @@
 mod bodies_file;
 pub mod bounds;
 pub mod diag;
+mod exact;
 pub mod guard;
 pub mod keys;
 mod model;
@@ -24,7 +25,7 @@ pub mod units;
 pub use bodies_file::BodyFileFormat;
 pub use diag::{Diagnostic, Location, ScenarioError, Severity};
 pub use model::*;
-pub use resolve::{DT_ERROR_FRACTION, DT_WARN_FRACTION, PACK_ERROR_FRACTION};
+pub use resolve::{DT_ERROR_FRACTION, DT_STABLE_FRACTION, DT_WARN_FRACTION, PACK_ERROR_FRACTION};
 pub use source::{Seg, Source};
 
 use clump_core::contact::ContactTable;

@@ -80,7 +80,7 @@ pub struct HeatDef {
     /// Per `[[insert]]`: the `temperature` column of its body file, one per
     /// body (K; over the insert's and the template's), if it has one.
     pub file_temperature: Vec<Option<Vec<f64>>>,
-    /// The thermal stability limit of the time step, s (T-54).
+    /// The thermal stability limit of the time step, s (T-57).
     pub stability_limit: f64,
     /// The template that sets it.
     pub limiting_template: String,
@@ -137,6 +137,21 @@ pub struct TimeStep {
     pub smallest_radius: Option<f64>,
     /// Template holding the smallest sphere.
     pub smallest_template: Option<String>,
+    /// The damped-contact stability limit of the templates (None without
+    /// templates or contact models).
+    pub stability: Option<StabilityLimit>,
+}
+
+/// The stability limit `dt_c` of the explicit step for the scenario's most
+/// demanding contact (docs/theory.md T-52).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StabilityLimit {
+    /// `dt_c`, s.
+    pub dt: f64,
+    /// The contact it comes from (templates, spheres, wall material).
+    pub contact: String,
+    /// The larger mobility factor `κ` of the contact (1 for spheres).
+    pub kappa: f64,
 }
 
 /// One insertion.

@@ -81,8 +81,10 @@ table! {
         pub viscosity: Option<f64>,
         /// Uniform interstitial velocity, world frame, m/s (default 0; a
         /// driver may set it per body).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub velocity: Option<[f64; 3]>,
         /// Pressure gradient beyond the hydrostatic one, world frame, Pa/m (default 0).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub pressure_gradient: Option<[f64; 3]>,
         /// Drag law: "stokes", "schiller_naumann", "di_felice", "beetstra"
         /// or "gidaspow" (default "schiller_naumann").
@@ -138,6 +140,7 @@ table! {
         /// Fraction of the Rayleigh time used by `dt = "auto"` (default 0.2).
         pub dt_fraction: Option<f64>,
         /// Gravity, world frame, m/s² (default `[0, 0, -9.81]`).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub gravity: Option<[f64; 3]>,
         /// Duration of the single implicit stage when there is no `[[stage]]`, s.
         pub duration: Option<f64>,
@@ -173,8 +176,10 @@ table! {
     /// `[domain]`.
     pub struct RawDomain {
         /// Lower corner, world frame, m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub lo: Option<[f64; 3]>,
         /// Upper corner, world frame, m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub hi: Option<[f64; 3]>,
         /// Periodic axes, e.g. `["x", "y"]` (default none).
         #[serde(default)]
@@ -338,6 +343,7 @@ table! {
         /// Material name.
         pub material: Option<String>,
         /// Inline spheres `[x, y, z, r]`, m (input frame).
+        #[serde(default, deserialize_with = "super::exact::rows")]
         pub spheres: Option<Vec<[f64; 4]>>,
         /// LIGGGHTS `x y z r` file, relative to the scenario file.
         pub file: Option<String>,
@@ -356,13 +362,17 @@ table! {
         /// Mass override, kg (needs `inertia`).
         pub mass: Option<f64>,
         /// Inertia tensor override about the centre of mass, input frame, kg m².
+        #[serde(default, deserialize_with = "super::exact::matrix")]
         pub inertia: Option<[[f64; 3]; 3]>,
         /// Centre of mass override, input frame, m (with `mass` and `inertia`,
         /// which is then taken about this point).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub center_of_mass: Option<[f64; 3]>,
         /// Force flags per world axis of this template's bodies (LIGGGHTS `fflag`).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub force_flags: Option<[bool; 3]>,
         /// Torque flags per world axis of this template's bodies (LIGGGHTS `tflag`).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub torque_flags: Option<[bool; 3]>,
         /// Initial temperature of its bodies, K (with `[heat]`).
         pub temperature: Option<f64>,
@@ -443,12 +453,16 @@ table! {
         #[key = "type"]
         pub kind: Option<RegionKind>,
         /// Box lower corner, m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub lo: Option<[f64; 3]>,
         /// Box upper corner, m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub hi: Option<[f64; 3]>,
         /// Cylinder: centre of the bottom disc, m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub base: Option<[f64; 3]>,
         /// Cylinder axis (unit vector, default `[0, 0, 1]`).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub axis: Option<[f64; 3]>,
         /// Cylinder radius, m.
         pub radius: Option<f64>,
@@ -508,8 +522,10 @@ table! {
         /// Random seed (default 1).
         pub seed: Option<u64>,
         /// Initial velocity, world frame, m/s.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub velocity: Option<[f64; 3]>,
         /// Fixed orientation quaternion `[w, x, y, z]` (default random).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub orientation: Option<[f64; 4]>,
         /// Stream rate, bodies/s.
         pub bodies_per_second: Option<f64>,
@@ -522,12 +538,16 @@ table! {
         /// Placement attempts per body.
         pub max_attempts: Option<u32>,
         /// Fixed orientation as z-x-z Euler angles `[phi, theta, psi]`, rad (pack, stream).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub euler: Option<[f64; 3]>,
         /// Initial angular velocity, world frame, rad/s (pack, stream).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub angular_velocity: Option<[f64; 3]>,
         /// Force flags per world axis (override the template's).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub force_flags: Option<[bool; 3]>,
         /// Torque flags per world axis (override the template's).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub torque_flags: Option<[bool; 3]>,
         /// The bodies never move (LIGGGHTS `fix freeze`); they still make contacts.
         pub fixed: Option<bool>,
@@ -558,6 +578,7 @@ table! {
     /// A rotation given as an axis and an angle (right-hand rule).
     pub struct RawRotation {
         /// Rotation axis, world frame (normalised; need not be unit).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub axis: Option<[f64; 3]>,
         /// Rotation angle, degrees (positive: counter-clockwise looking down the axis).
         pub angle: Option<f64>,
@@ -581,34 +602,45 @@ table! {
         /// Mesh: rotation applied after scaling (file frame → world frame).
         pub rotation: Option<RawRotation>,
         /// Mesh: translation applied last, world frame, m (default 0).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub offset: Option<[f64; 3]>,
         /// Mesh: contacts whose normals are closer than this angle are one
         /// contact patch, degrees (default 15).
         pub merge_angle: Option<f64>,
         /// Point about which the torque on the wall is reported, world frame, m
         /// (default: the centre of rotation, moving with the wall).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub torque_point: Option<[f64; 3]>,
         /// Plane: a point; cylinder: a point on the axis, m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub point: Option<[f64; 3]>,
         /// Plane unit normal (towards the particles).
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub normal: Option<[f64; 3]>,
         /// Cylinder unit axis.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub axis: Option<[f64; 3]>,
         /// Cylinder radius, m.
         pub radius: Option<f64>,
         /// Cylinder/box: particles inside (default true).
         pub inside: Option<bool>,
         /// Box lower corner, m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub lo: Option<[f64; 3]>,
         /// Box upper corner, m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub hi: Option<[f64; 3]>,
         /// Translation velocity, m/s.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub velocity: Option<[f64; 3]>,
         /// Angular velocity about `center`, rad/s.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub angular_velocity: Option<[f64; 3]>,
         /// Centre of rotation, m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub center: Option<[f64; 3]>,
         /// Extra tangential surface velocity, m/s.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub surface_velocity: Option<[f64; 3]>,
         /// Several-contact treatment.
         pub multi_contact: Option<MultiContact>,
@@ -627,12 +659,16 @@ table! {
         /// Set active/inactive.
         pub active: Option<bool>,
         /// New translation velocity, m/s.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub velocity: Option<[f64; 3]>,
         /// New angular velocity, rad/s.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub angular_velocity: Option<[f64; 3]>,
         /// New centre of rotation, m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub center: Option<[f64; 3]>,
         /// New surface velocity, m/s.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub surface_velocity: Option<[f64; 3]>,
     }
 }
@@ -643,8 +679,10 @@ table! {
         /// Global body id (1-based, in insertion order).
         pub id: Option<u64>,
         /// New centre-of-mass velocity, m/s.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub velocity: Option<[f64; 3]>,
         /// New angular velocity (world frame), rad/s.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub angular_velocity: Option<[f64; 3]>,
     }
 }
@@ -659,6 +697,7 @@ table! {
         /// Duration in steps.
         pub steps: Option<u64>,
         /// New gravity from this stage on, m/s².
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub gravity: Option<[f64; 3]>,
         /// Wall changes.
         #[serde(default)]
@@ -733,12 +772,16 @@ table! {
         #[key = "type"]
         pub kind: Option<String>,
         /// A point of the plane, m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub point: Option<[f64; 3]>,
         /// Normal of the plane; crossings along it count as positive.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub normal: Option<[f64; 3]>,
         /// Lower corner of the region (box), m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub lo: Option<[f64; 3]>,
         /// Upper corner of the region (box), m.
+        #[serde(default, deserialize_with = "super::exact::array")]
         pub hi: Option<[f64; 3]>,
         /// Edges of the volume-equivalent diameter bins of the region's size distribution, m,
         /// ascending.

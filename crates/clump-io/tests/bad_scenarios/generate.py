@@ -234,6 +234,27 @@ CASES = [
      ["unknown drag law 'difelice'", "did you mean 'di_felice'?", "'stokes', 'schiller_naumann'"]),
     ("fluid_missing_density", append('\n[fluid]\nviscosity = 1e-3\n'), "[fluid]",
      ["missing key 'density' in [fluid]"]),
+    # issue 61: exact vector lengths, contradictions, long numbers
+    ("gravity_four_components", rep("gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81, 7.0]"), "gravity",
+     ["'gravity' in [simulation]: expected an array of 3 numbers [x, y, z] in m/s^2", "found 4 elements"]),
+    ("wall_point_four_components", rep("point = [0.0, 0.0, 0.0]", "point = [0.0, 0.0, 0.0, 1.0]"), "point = [0.0, 0.0, 0.0, 1.0]",
+     ["'point' in [[wall]]: expected an array of 3 numbers", "found 4 elements"]),
+    ("sphere_row_five", rep('shape = "tetrahedron"\nradius = 0.002\nedge = 0.0025', "spheres = [[0.0, 0.0, 0.0, 0.002, 1.0]]"), "spheres",
+     ["'spheres' in [[template]]: expected an array of 4 numbers [x, y, z, r] in m", "found 5 elements"]),
+    ("periodic_twice", rep("hi = [0.1, 0.1, 0.3]", 'hi = [0.1, 0.1, 0.3]\nperiodic = ["x", "x"]'), "periodic",
+     ['axis "x" is listed twice in periodic']),
+    ("plane_normal_periodic", rep("hi = [0.1, 0.1, 0.3]", 'hi = [0.1, 0.1, 0.3]\nperiodic = ["z"]'), "normal = [0.0, 0.0, 1.0]",
+     ["plane wall 'floor' has a normal with a component along the periodic axis z"]),
+    ("stream_starts_after_stage", rep(PACK, 'kind = "stream"\nstage = "fill"\nmix = "pebbles"\nbodies_per_second = 100\nstart = 0.5\nregion = { type = "box", lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1] }'), "start = 0.5",
+     ["the stream starts 0.5 s into stage 'fill', which lasts", "it would insert nothing"]),
+    ("stream_rate_absurd", rep(PACK, 'kind = "stream"\nstage = "fill"\nmix = "pebbles"\nbodies_per_second = 1e308\nregion = { type = "box", lo = [-0.05, -0.05, 0.01], hi = [0.05, 0.05, 0.1] }'), "bodies_per_second",
+     ["the stream would insert 1.000e307 bodies", "above the limit of 1e9"]),
+    ("sphere_radius_huge", rep('shape = "tetrahedron"\nradius = 0.002\nedge = 0.0025', "spheres = [[0.0, 0.0, 0.0, 1e308]]"), "spheres",
+     ["template 'pebble': sphere 0 has radius 1e308 m (after scale), outside the range [1e-9, 1e6] m"]),
+    ("sphere_radius_tiny", rep('shape = "tetrahedron"\nradius = 0.002\nedge = 0.0025', "spheres = [[0.0, 0.0, 0.0, 1e-300]]"), "spheres",
+     ["template 'pebble': sphere 0 has radius 1e-300 m (after scale)"]),
+    ("long_number_shortened", rep("youngs_modulus = 5e6", "youngs_modulus = -1" + "0" * 300 + ".0"), "youngs_modulus = -1",
+     ["youngs_modulus must be > 0 Pa", "found -1e300"]),
 ]
 
 # the invalid-UTF-8 case is written as bytes

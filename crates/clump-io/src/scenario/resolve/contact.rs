@@ -4,6 +4,7 @@ use super::raw::*;
 use super::source::Seg;
 use super::Seg::{I, K};
 use super::{lookup, Cx, R};
+use crate::scenario::diag::num;
 use clump_core::contact::{
     CohesionLaw, NormalLaw, PairProperties, RollingLaw, TangentialLaw, TwistingLaw,
 };
@@ -91,7 +92,7 @@ fn contact_props(
             return Err(cx
                 .err(
                     &p("restitution"),
-                    format!("restitution must lie in [0, 1], found {e}"),
+                    format!("restitution must lie in [0, 1], found {}", num(e)),
                 )
                 .label("outside [0, 1]")
                 .note("note: e = 1 is perfectly elastic, e = 0 perfectly plastic"));

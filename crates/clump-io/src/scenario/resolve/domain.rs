@@ -3,8 +3,9 @@
 
 use super::diag::Diagnostic;
 use super::raw::*;
-use super::Seg::K;
+use super::Seg::{I, K};
 use super::{Cx, R};
+use crate::scenario::diag::num;
 use clump_core::boundary::Domain;
 use clump_core::health::{DEFAULT_KINETIC_JUMP, DEFAULT_MAX_OVERLAP_RATIO};
 use clump_core::rotation::RotationScheme;
@@ -60,7 +61,18 @@ pub(super) fn setting(cx: &mut Cx, raw: &RawScenario, sim: &RawSimulation) -> R<
         ));
     }
     let mut periodic = [false; 3];
-    for a in &dom.periodic {
+    for (i, a) in dom.periodic.iter().enumerate() {
+        if periodic[*a as usize] {
+            return Err(cx
+                .err(
+                    &[K("domain"), K("periodic"), I(i)],
+                    format!(
+                        "axis \"{}\" is listed twice in periodic",
+                        ["x", "y", "z"][*a as usize]
+                    ),
+                )
+                .note("help: list each periodic axis once, e.g. periodic = [\"x\", \"y\"]"));
+        }
         periodic[*a as usize] = true;
     }
     let domain = Domain { lo, hi, periodic };
@@ -101,7 +113,7 @@ pub(super) fn setting(cx: &mut Cx, raw: &RawScenario, sim: &RawSimulation) -> R<
                 return Err(cx
                     .err(
                         &[K("simulation"), K("max_overlap_ratio")],
-                        format!("max_overlap_ratio must lie in (0, 1], found {x}"),
+                        format!("max_overlap_ratio must lie in (0, 1], found {}", num(x)),
                     )
                     .label("overlap / smaller sphere radius")
                     .note(
@@ -118,7 +130,10 @@ pub(super) fn setting(cx: &mut Cx, raw: &RawScenario, sim: &RawSimulation) -> R<
                 return Err(cx
                     .err(
                         &[K("simulation"), K("kinetic_energy_jump")],
-                        format!("kinetic_energy_jump must be a finite number > 1, found {x}"),
+                        format!(
+                            "kinetic_energy_jump must be a finite number > 1, found {}",
+                            num(x)
+                        ),
                     )
                     .label("growth factor of the kinetic energy"));
             }

@@ -1,7 +1,7 @@
 //! `[heat]` and the heat keys of `[[material]]`, `[[template]]`,
 //! `[[wall]]` and `[[insert]]`: the engine's heat model
 //! (`clump_core::heat`), checked key by key, and the thermal stability
-//! limit of the time step (docs/theory.md T-54).
+//! limit of the time step (docs/theory.md T-57).
 
 use super::diag::num;
 use super::model::{HeatDef, MixDef, TemplateDef};
@@ -273,7 +273,7 @@ fn no_heat_keys(cx: &Cx, raw: &RawScenario) -> R<()> {
 /// the templates (at their smallest size in any mix), `m c_p / Σ H` with
 /// [`LIMIT_CONTACTS_PER_SPHERE`] contacts a sphere, each at the overlap
 /// guard's limit against the most conductive partner of at least the
-/// sphere's radius (T-54).
+/// sphere's radius (T-57).
 pub fn stability_limit(model: &HeatModel, inp: &HeatInput) -> (f64, String) {
     use clump_core::heat::{harmonic_conductivity, wall_conductance};
     let k_max = model

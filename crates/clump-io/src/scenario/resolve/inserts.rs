@@ -12,6 +12,10 @@ use clump_core::insert::{
 };
 use glam::{DQuat, DVec3};
 
+/// Most bodies one stream may insert (a larger number is a unit mistake;
+/// memory runs out long before).
+const MAX_STREAM_BODIES: f64 = 1e9;
+
 /// The insertions, in file order.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn inserts(
@@ -407,8 +411,31 @@ fn build_insert(
                 }
                 None => t_stage_end,
             };
+            if t0 + start >= t_stage_end {
+                return Err(cx
+                    .err(&p("start"), format!(
+                        "the stream starts {start} s into stage '{}', which lasts {:.6e} s: it would insert nothing",
+                        st.name,
+                        t_stage_end - t0
+                    ))
+                    .note("help: 'start' and 'end' count from the start of the insert's stage; give a start inside it, or move the insert to a later stage with stage = \"NAME\""));
+            }
             if let Some(n) = ins.count {
                 end = end.min(t0 + start + n as f64 / body_rate);
+            }
+            let expected = body_rate * (end - t0 - start);
+            if !(expected <= MAX_STREAM_BODIES) {
+                let key = if ins.bodies_per_second.is_some() {
+                    "bodies_per_second"
+                } else {
+                    "kg_per_second"
+                };
+                return Err(cx
+                    .err(&p(key), format!(
+                        "the stream would insert {expected:.3e} bodies ({body_rate:.3e} per second for {:.3e} s), above the limit of {MAX_STREAM_BODIES:.0e}",
+                        end - t0 - start
+                    ))
+                    .note("help: check the rate's unit (bodies per second), or set count = N"));
             }
             let vol_rate = body_rate * mean_volume;
             // the region must be able to take the stream: bodies leave at |v|

@@ -4,6 +4,7 @@ use super::diag::Diagnostic;
 use super::raw::{RawMaterial, RawScenario};
 use super::Seg::{I, K};
 use super::{unique_name, Cx, R};
+use crate::scenario::diag::num;
 use clump_core::contact::Material;
 
 /// The materials with their names, in file order.
@@ -65,13 +66,16 @@ fn material(cx: &Cx, i: usize, m: &RawMaterial, seen: &[String]) -> R<(String, M
         return Err(cx
             .err(
                 &p("youngs_modulus"),
-                format!("youngs_modulus must be > 0 Pa (inf for a rigid wall material), found {e}"),
+                format!(
+                    "youngs_modulus must be > 0 Pa (inf for a rigid wall material), found {}",
+                    num(e)
+                ),
             )
             .label("must be positive"));
     }
     if !(nu < 0.5) {
         return Err(cx
-                .err(&p("poisson_ratio"), format!("poisson_ratio must be < 0.5, found {nu}"))
+                .err(&p("poisson_ratio"), format!("poisson_ratio must be < 0.5, found {}", num(nu)))
                 .label("must lie in (-1, 0.5)")
                 .note("note: ν = 0.5 is an incompressible solid, for which the Hertz–Mindlin shear modulus terms break down"));
     }
@@ -79,7 +83,7 @@ fn material(cx: &Cx, i: usize, m: &RawMaterial, seen: &[String]) -> R<(String, M
         return Err(cx
             .err(
                 &p("poisson_ratio"),
-                format!("poisson_ratio must be > -1, found {nu}"),
+                format!("poisson_ratio must be > -1, found {}", num(nu)),
             )
             .label("must lie in (-1, 0.5)"));
     }
@@ -88,7 +92,7 @@ fn material(cx: &Cx, i: usize, m: &RawMaterial, seen: &[String]) -> R<(String, M
         return Err(cx
             .err(
                 &p("density"),
-                format!("density must be > 0 kg/m^3, found {rho}"),
+                format!("density must be > 0 kg/m^3, found {}", num(rho)),
             )
             .label("must be positive"));
     }

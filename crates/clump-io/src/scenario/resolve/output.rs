@@ -315,3 +315,36 @@ fn flow(
     })?;
     Ok(Some((every, probes)))
 }
+
+/// Warns about trajectory body ids above the number of bodies the inserts
+/// are expected to place (ids are 1, 2, … in insertion order), which would
+/// give an empty trajectory file (a driver that adds bodies itself, as from
+/// Python, may still create them: hence a warning).
+pub(super) fn unknown_trajectory_bodies(cx: &mut Cx, output: &OutputDef, inserts: &[InsertDef]) {
+    let Some(t) = &output.trajectory else { return };
+    let total: f64 = inserts
+        .iter()
+        .map(|i| match &i.kind {
+            InsertSpec::File { bodies } => bodies.len() as f64,
+            InsertSpec::Pack {
+                expected_bodies, ..
+            }
+            | InsertSpec::Stream {
+                expected_bodies, ..
+            } => *expected_bodies,
+        })
+        .sum();
+    let total = total.ceil();
+    for (j, &b) in t.bodies.iter().enumerate() {
+        if b as f64 > total {
+            let w = cx
+                .src
+                .warning_at(
+                    &[K("output"), K("trajectory"), K("bodies"), I(j)],
+                    format!("body {b} may never exist: the inserts place about {total} bodies, numbered 1 to {total} in insertion order"),
+                )
+                .label("no such body expected");
+            cx.warnings.push(w);
+        }
+    }
+}

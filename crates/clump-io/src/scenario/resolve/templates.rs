@@ -6,10 +6,18 @@ use super::raw::*;
 use super::source::Seg;
 use super::Seg::{I, K};
 use super::{dof, lookup, unique_name, Cx, MAX_ROD_SPHERES, R};
+use crate::scenario::diag::num;
 use clump_core::contact::Material;
 use clump_core::insert::{Mix, MixEntry, SizeDistribution};
 use clump_core::shape::{self, ClumpTemplate, ShapeError, Sphere};
 use glam::{DMat3, DVec3};
+
+/// Sphere radii a template may have, m: outside, the volume and inertia
+/// integrals under- or overflow (`r³`, `r⁵`) and the error would not name
+/// the radius.
+const RADIUS_RANGE: (f64, f64) = (1e-9, 1e6);
+/// Above this many spheres the mass-property integration is announced.
+const SLOW_TEMPLATE_SPHERES: usize = 10_000;
 
 /// The templates with their names, in file order.
 pub(super) fn templates(
@@ -104,7 +112,7 @@ fn shape_error(cx: &Cx, i: usize, e: ShapeError, inline: bool) -> Diagnostic {
         ),
         ShapeError::InvalidMass { mass } => cx.err(
             &[K("template"), I(i), K("mass")],
-            format!("mass must be > 0 kg, found {mass}"),
+            format!("mass must be > 0 kg, found {}", num(mass)),
         ),
         ShapeError::InvalidInertia { reason } => cx.err(
             &[K("template"), I(i), K("inertia")],
@@ -273,6 +281,31 @@ fn build_template(
         .iter()
         .map(|s| Sphere::new(s.center * scale, s.radius * scale))
         .collect();
+    if let Some((k, s)) = spheres
+        .iter()
+        .enumerate()
+        // non-positive and non-finite radii are reported below, at their row
+        .find(|(_, s)| {
+            s.radius > 0.0
+                && s.radius.is_finite()
+                && !(RADIUS_RANGE.0..=RADIUS_RANGE.1).contains(&s.radius)
+        })
+    {
+        return Err(cx
+            .err(&p(if t.spheres.is_some() { "spheres" } else { "scale" }), format!(
+                "template '{name}': sphere {k} has radius {} m (after scale), outside the range [{:e}, {:e}] m the mass properties can be computed in",
+                num(s.radius),
+                RADIUS_RANGE.0,
+                RADIUS_RANGE.1
+            ))
+            .note("help: give radii in metres (a file in mm needs scale = 0.001)"));
+    }
+    if spheres.len() > SLOW_TEMPLATE_SPHERES && t.mass.is_none() {
+        tracing::warn!(
+            "template '{name}' has {} spheres: its exact mass properties can take minutes when the spheres overlap densely (progress follows). To skip the integration give mass, inertia (and center_of_mass) in its [[template]]",
+            spheres.len()
+        );
+    }
     let template = match (t.mass, t.inertia) {
         (None, None) => {
             dof::template_center_of_mass(cx, i, t, scale)?;

@@ -4,10 +4,19 @@
 use super::model::*;
 use super::raw::*;
 use super::Seg::K;
-use super::{Cx, DT_ERROR_FRACTION, DT_WARN_FRACTION, R};
+use super::{Cx, DT_ERROR_FRACTION, DT_STABLE_FRACTION, DT_WARN_FRACTION, R};
 use crate::scenario::bounds;
+use crate::scenario::diag::num;
 use clump_core::contact::time_scale::rayleigh_time;
-use clump_core::contact::Material;
+use clump_core::contact::{Material, PairProperties};
+
+/// What the stability limit needs of the contacts: the pair properties
+/// (`nmat × nmat`, row-major; empty when they failed) and the walls'
+/// materials.
+pub(super) struct Contacts<'a> {
+    pub pairs: &'a [PairProperties],
+    pub wall_materials: &'a [u16],
+}
 
 /// The time step from `[simulation]` (`sim`) and the smallest sphere of the
 /// templates as the mixes scale them.
@@ -18,12 +27,14 @@ pub(super) fn time_step(
     mixes: &[MixDef],
     materials: &[Material],
     material_names: &[String],
+    contacts: &Contacts,
     domain: &clump_core::boundary::Domain,
     skin: Option<f64>,
 ) -> R<TimeStep> {
     // ---------------- time step from the smallest sphere
     bounds::finite_particle_stiffness(cx.src, templates, materials, material_names)?;
     let mut smallest: Option<(f64, f64, String)> = None; // (t_R, radius, template)
+    let mut scales = Vec::with_capacity(templates.len());
     for (ti, t) in templates.iter().enumerate() {
         let mut scale_min: f64 = 1.0;
         let mut used_scaled = false;
@@ -37,18 +48,31 @@ pub(super) fn time_step(
             }
         }
         let scale_min = scale_min.min(1.0);
+        scales.push(scale_min);
         let r = t.template.min_radius * scale_min;
         let tr = rayleigh_time(&materials[t.material as usize], r);
         if smallest.as_ref().map_or(true, |s| tr < s.0) {
             smallest = Some((tr, r, t.name.clone()));
         }
     }
+    let stability = (contacts.pairs.len() == materials.len() * materials.len())
+        .then(|| {
+            super::stability::stability_limit(
+                templates,
+                &scales,
+                materials,
+                contacts.pairs,
+                material_names,
+                contacts.wall_materials,
+            )
+        })
+        .flatten();
     let dt_fraction = match sim.dt_fraction {
         Some(f) => {
             let p = [K("simulation"), K("dt_fraction")];
             if !(f > 0.0 && f <= DT_ERROR_FRACTION) {
                 return Err(cx
-                    .err(&p, format!("dt_fraction must lie in (0, {DT_ERROR_FRACTION}], found {f}"))
+                    .err(&p, format!("dt_fraction must lie in (0, {DT_ERROR_FRACTION}], found {}", num(f)))
                     .note("note: DEM codes use 0.1–0.3 of the Rayleigh time; above 0.5 the explicit integration is unstable"));
             }
             f
@@ -56,9 +80,10 @@ pub(super) fn time_step(
         None => 0.2,
     };
     let dt_path = [K("simulation"), K("dt")];
+    let stable_dt = stability.as_ref().map(|s| DT_STABLE_FRACTION * s.dt);
     let (dt, dt_auto) = match sim.dt.unwrap_or(DtSpec::Auto) {
         DtSpec::Auto => match &smallest {
-            Some((tr, _, _)) => (dt_fraction * tr, true),
+            Some((tr, _, _)) => (stable_dt.map_or(dt_fraction * tr, |s| s.min(dt_fraction * tr)), true),
             None => {
                 return Err(cx
                     .err(&dt_path, "dt = \"auto\" needs at least one [[template]] (the time step follows the smallest sphere)")
@@ -88,6 +113,19 @@ pub(super) fn time_step(
                     );
                 }
             }
+            if let (Some(st), Some(limit)) = (&stability, stable_dt) {
+                if dt > limit {
+                    cx.warnings.push(
+                        cx.src
+                            .warning_at(&dt_path, format!(
+                                "dt = {dt:e} s is {:.2} × the damped-contact stability limit dt_c = {:.3e} s of {} (above {DT_STABLE_FRACTION}): a bed may never come to rest, its contact forces flipping sign every step",
+                                dt / st.dt, st.dt, st.contact
+                            ))
+                            .label("above the damped-contact limit")
+                            .note(format!("help: use dt <= {limit:.3e} s or dt = \"auto\"; dt_c is small where a clump turns about a sphere far from its centre of mass (κ = {:.2}) and the damping is strong (low restitution): docs/scenario.md, Time step and stability", st.kappa)),
+                    );
+                }
+            }
             (dt, false)
         }
     };
@@ -106,6 +144,7 @@ pub(super) fn time_step(
         rayleigh_time: smallest.as_ref().map(|s| s.0),
         smallest_radius: smallest.as_ref().map(|s| s.1),
         smallest_template: smallest.as_ref().map(|s| s.2.clone()),
+        stability,
     };
     Ok(time_step)
 }

@@ -4,6 +4,7 @@ use super::keys::{kind_keys, kind_specific, WALL_TYPE_KEYS};
 use super::raw::*;
 use super::Seg::{I, K};
 use super::{lookup, unique_name, v3, Cx, R};
+use crate::scenario::diag::num;
 use clump_core::wall::{TriMesh, Wall, WallMotion, WallShape};
 use glam::{DQuat, DVec3};
 
@@ -246,7 +247,7 @@ fn build_mesh(cx: &mut Cx, i: usize, w: &RawWall) -> R<TriMesh> {
             if !angle.is_finite() {
                 return Err(cx.err(
                     &rp("angle"),
-                    format!("'angle' must be finite (degrees), found {angle}"),
+                    format!("'angle' must be finite (degrees), found {}", num(angle)),
                 ));
             }
             DQuat::from_axis_angle(axis, angle.to_radians())
@@ -259,7 +260,7 @@ fn build_mesh(cx: &mut Cx, i: usize, w: &RawWall) -> R<TriMesh> {
             return Err(cx
                 .err(
                     &p("merge_angle"),
-                    format!("'merge_angle' must be in [0, 90) degrees, found {a}"),
+                    format!("'merge_angle' must be in [0, 90) degrees, found {}", num(a)),
                 )
                 .label("out of range"))
         }
@@ -277,4 +278,34 @@ fn build_mesh(cx: &mut Cx, i: usize, w: &RawWall) -> R<TriMesh> {
         })?;
     mesh.merge_angle = merge_angle;
     Ok(mesh)
+}
+
+/// A plane wall whose normal has a component along a periodic axis cuts
+/// through the periodic images: bodies wrap to the far side of the plane.
+/// Refused at the wall's `normal`.
+pub(super) fn periodic_planes(
+    cx: &mut Cx,
+    raw: &RawScenario,
+    domain: &clump_core::boundary::Domain,
+) -> R<()> {
+    for (i, w) in raw.wall.iter().enumerate() {
+        let (Some(WallKind::Plane), Some(n)) = (w.kind, w.normal) else {
+            continue;
+        };
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        for (a, name) in ["x", "y", "z"].iter().enumerate() {
+            if domain.periodic[a] && len > 0.0 && (n[a] / len).abs() > 1e-12 {
+                return Err(cx
+                    .err(
+                        &[K("wall"), I(i), K("normal")],
+                        format!(
+                            "plane wall '{}' has a normal with a component along the periodic axis {name}: bodies would wrap around to its far side",
+                            w.name.as_deref().unwrap_or("?")
+                        ),
+                    )
+                    .note(format!("help: a plane in a periodic domain must be parallel to its periodic axes (normal component {name} = 0), or make {name} non-periodic")));
+            }
+        }
+    }
+    Ok(())
 }
