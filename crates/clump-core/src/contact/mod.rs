@@ -70,6 +70,7 @@
 
 pub mod cohesion;
 pub mod damping;
+mod evaluate;
 pub mod extended;
 pub mod geometry;
 pub mod material;

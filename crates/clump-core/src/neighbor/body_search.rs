@@ -20,8 +20,9 @@
 //! per-sphere search does, and its order does not depend on the grid.
 
 use super::body_bounds::BodyBounds;
+use super::build_input::BuildInput;
 use super::grid::{CellGrid, Extent};
-use super::pairs::BuildInput;
+use super::sort::counting_sort;
 use crate::boundary::Domain;
 use glam::DVec3;
 
@@ -112,7 +113,7 @@ impl BodySearch {
         let cell = 2.0 * self.bounds.largest() + inp.skin;
         self.grid = CellGrid::coarse(domain, &extent, cell);
         let grid = &self.grid;
-        super::pairs::counting_sort(
+        counting_sort(
             nb,
             grid.len(),
             |b| grid.index(grid.coords(domain.wrap(centre(b)))),

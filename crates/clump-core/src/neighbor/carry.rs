@@ -19,7 +19,6 @@
 //! re-oriented from the old pair's `i → j` to the new one's (a reversal is a
 //! negation, so twice reversed is the same bits).
 
-use super::pairs::{reversed, PairList};
 use crate::contact::mdr::SlipProfile;
 use crate::contact::ContactHistory;
 use crate::sphere::{Spheres, SPHERE_ID_BITS};
@@ -54,38 +53,47 @@ pub(crate) struct HistoryCarry {
 }
 
 impl HistoryCarry {
-    /// Copies the pairs of `pairs` (built on the spheres `sp`) that hold
-    /// state: a non-zero history, or with `keep_live` a live flag.
-    pub(crate) fn save(&mut self, pairs: &PairList, sp: &Spheres, keep_live: bool) {
+    /// Starts a carry of the list built on spheres whose bodies' first
+    /// spheres are `old_first` (old body count + 1).
+    pub(crate) fn start(&mut self, old_first: &[u32], n: usize) {
         self.row_start.clear();
         self.j.clear();
         self.tangential.clear();
         self.rolling.clear();
         self.slip.clear();
         self.old_first.clear();
-        self.old_first.extend_from_slice(&sp.body_first);
-        // a list not built on these spheres (none built yet) carries nothing
-        let n = sp.body_first.last().map_or(0, |&s| s as usize);
-        let rows = if pairs.row_start.len() == n + 1 { n } else { 0 };
-        let with_rolling = !pairs.rolling.is_empty();
-        let with_slip = !pairs.slip.is_empty();
+        self.old_first.extend_from_slice(old_first);
         self.row_start.reserve(n + 1);
         self.row_start.push(0);
-        for i in 0..rows {
-            for p in pairs.row(i) {
-                if let Some(h) = pairs.kept_history(p, keep_live) {
-                    self.j.push(pairs.topo[p].j);
-                    self.tangential.push(h.tangential);
-                    if with_rolling {
-                        self.rolling.push(h.rolling);
-                    }
-                    if with_slip {
-                        self.slip.push(pairs.slip[p]);
-                    }
-                }
-            }
-            self.row_start.push(self.j.len() as u32);
+    }
+
+    /// Adds an entry to the current row: partner `j`, its history and,
+    /// where the list keeps them, its rolling spring and MDR profile.
+    #[inline]
+    pub(crate) fn push(
+        &mut self,
+        j: u32,
+        h: ContactHistory,
+        rolling: bool,
+        slip: Option<SlipProfile>,
+    ) {
+        self.j.push(j);
+        self.tangential.push(h.tangential);
+        if rolling {
+            self.rolling.push(h.rolling);
         }
+        if let Some(s) = slip {
+            self.slip.push(s);
+        }
+    }
+
+    /// Ends the current row.
+    pub(crate) fn end_row(&mut self) {
+        self.row_start.push(self.j.len() as u32);
+    }
+
+    /// Ends the carry: rows up to `n` spheres, then active.
+    pub(crate) fn finish(&mut self, n: usize) {
         self.row_start.resize(n + 1, self.j.len() as u32);
         self.active = true;
     }
@@ -182,11 +190,21 @@ pub(crate) fn old_body_index(sp: &Spheres, id: &[u64], perm: &[u32], out: &mut V
     );
 }
 
+/// The history of a pair seen from the other side (`j` to `i`): both springs
+/// are relative quantities of `i` with respect to `j`, so they change sign.
+#[inline]
+pub(crate) fn reversed(h: ContactHistory) -> ContactHistory {
+    ContactHistory {
+        tangential: -h.tangential,
+        rolling: -h.rolling,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::boundary::Domain;
-    use crate::neighbor::pairs::{BuildInput, HistoryMap, SlipMap};
+    use crate::neighbor::pairs::{BuildInput, HistoryMap, PairList, SlipMap};
     use crate::neighbor::CellGrid;
     use crate::sphere::sphere_gid;
     use rand::{Rng, SeedableRng};
@@ -311,7 +329,7 @@ mod tests {
             let mut by_id = PairList::default();
             build(&new_ids, &mut by_id, None, &map, &slips);
             let mut carry = HistoryCarry::default();
-            carry.save(&old, &old_sp, keep_live);
+            old.save_carry(&mut carry, &old_sp, keep_live);
             let mut old_body = Vec::new();
             old_body_index(&old_sp, &current, &perm, &mut old_body);
             assert_eq!(old_body.iter().filter(|&&o| o == NONE).count(), 1);

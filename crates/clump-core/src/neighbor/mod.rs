@@ -21,6 +21,7 @@
 
 mod body_bounds;
 mod body_search;
+mod build_input;
 pub(crate) mod carry;
 pub mod grid;
 pub mod pairs;

@@ -1,22 +1,17 @@
 //! The half list of candidate sphere pairs and their contact state.
 
 use super::body_search::{BodySearch, Image};
-use super::carry::HistoryCarry;
+pub use super::build_input::{BuildInput, HistoryMap, SlipMap};
+use super::carry::{reversed, HistoryCarry};
 use super::grid::CellGrid;
+use super::sort::counting_sort;
 use super::topo::{set_row_steps, PairTopo};
 use crate::boundary::Domain;
 use crate::contact::mdr::SlipProfile;
 use crate::contact::ContactHistory;
+use crate::sphere::Spheres;
 use glam::DVec3;
 use rayon::prelude::*;
-use std::collections::HashMap;
-
-/// Contact histories keyed by (lower, higher) global sphere id.
-pub type HistoryMap = HashMap<(u64, u64), ContactHistory, rustc_hash::FxBuildHasher>;
-
-/// MDR profiles ([`crate::contact::mdr`]) carried by global sphere ids,
-/// as [`HistoryMap`] (lower id first, oriented from the lower to the higher).
-pub type SlipMap = HashMap<(u64, u64), SlipProfile, rustc_hash::FxBuildHasher>;
 
 /// Spheres per parallel work block while building the list.
 const BLOCK: usize = 512;
@@ -178,31 +173,33 @@ pub(crate) unsafe fn column_sum(
     l
 }
 
-/// Inputs describing the spheres for a build.
-pub struct BuildInput<'a> {
-    /// Sphere states: their centres at the build (world frame, m) are the
-    /// ones read.
-    pub state: &'a [crate::sphere::SphereState],
-    /// Radii, m.
-    pub radius: &'a [f64],
-    /// Owner body (storage index).
-    pub body: &'a [u32],
-    /// First sphere of each body; the last entry is the number of spheres
-    /// (a body's spheres are contiguous).
-    pub body_first: &'a [u32],
-    /// Global sphere ids.
-    pub gid: &'a [u64],
-    /// Verlet skin, m.
-    pub skin: f64,
-    /// Keep rolling springs: some law of the contact table has rolling
-    /// resistance or is composed by the scalar path.
-    pub rolling: bool,
-    /// Keep MDR profiles (some law is `tangential = "mdr"`), with the
-    /// profiles carried by global id (may be empty); `None`: keep none.
-    pub slip: Option<&'a SlipMap>,
-}
-
 impl PairList {
+    /// Copies the pairs of this list (built on the spheres `sp`) that hold
+    /// state into `carry`: a non-zero history, or with `keep_live` a live
+    /// flag (`neighbor::carry`).
+    pub(crate) fn save_carry(&self, carry: &mut HistoryCarry, sp: &Spheres, keep_live: bool) {
+        // a list not built on these spheres (none built yet) carries nothing
+        let n = sp.body_first.last().map_or(0, |&s| s as usize);
+        carry.start(&sp.body_first, n);
+        let rows = if self.row_start.len() == n + 1 { n } else { 0 };
+        let with_rolling = !self.rolling.is_empty();
+        let with_slip = !self.slip.is_empty();
+        for i in 0..rows {
+            for p in self.row(i) {
+                if let Some(h) = self.kept_history(p, keep_live) {
+                    carry.push(
+                        self.topo[p].j,
+                        h,
+                        with_rolling,
+                        with_slip.then(|| self.slip[p]),
+                    );
+                }
+            }
+            carry.end_row();
+        }
+        carry.finish(n);
+    }
+
     /// Copies the bodies' centres, velocities, angular velocities and
     /// masses into `PairList::body` (built for `b`'s bodies), keeping the
     /// column sums.
@@ -602,37 +599,6 @@ impl PairList {
     }
 }
 
-/// Stable counting sort of items `0..n` into `buckets` buckets by `key`
-/// (called twice per item): `start` gets the offsets (`buckets + 1`),
-/// `items` the items bucket by bucket, ascending within each; `cursor` is
-/// scratch.
-pub(super) fn counting_sort(
-    n: usize,
-    buckets: usize,
-    key: impl Fn(usize) -> usize,
-    start: &mut Vec<u32>,
-    cursor: &mut Vec<u32>,
-    items: &mut Vec<u32>,
-) {
-    start.clear();
-    start.resize(buckets + 1, 0);
-    for i in 0..n {
-        start[key(i) + 1] += 1;
-    }
-    for k in 0..buckets {
-        start[k + 1] += start[k];
-    }
-    cursor.clear();
-    cursor.extend_from_slice(&start[..buckets]);
-    items.clear();
-    items.resize(n, 0);
-    for i in 0..n {
-        let c = &mut cursor[key(i)];
-        items[*c as usize] = i as u32;
-        *c += 1;
-    }
-}
-
 /// `topo` from the blocks' candidates, in block order.
 fn concat_blocks(topo: &mut Vec<PairTopo>, blocks: &[Vec<PairTopo>]) {
     topo.clear();
@@ -649,16 +615,6 @@ enum Carried<'a> {
     ById(&'a HistoryMap),
     /// The list before a re-sort, by storage index.
     ByIndex(&'a HistoryCarry),
-}
-
-/// The history of a pair seen from the other side (`j` to `i`): both springs
-/// are relative quantities of `i` with respect to `j`, so they change sign.
-#[inline]
-pub(crate) fn reversed(h: ContactHistory) -> ContactHistory {
-    ContactHistory {
-        tangential: -h.tangential,
-        rolling: -h.rolling,
-    }
 }
 
 struct Search<'a> {

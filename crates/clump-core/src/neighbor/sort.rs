@@ -142,3 +142,34 @@ mod tests {
         assert!(zwide > 10 * slab, "Z-curve farthest neighbour {zwide}");
     }
 }
+
+/// Stable counting sort of items `0..n` into `buckets` buckets by `key`
+/// (called twice per item): `start` gets the offsets (`buckets + 1`),
+/// `items` the items bucket by bucket, ascending within each; `cursor` is
+/// scratch.
+pub(crate) fn counting_sort(
+    n: usize,
+    buckets: usize,
+    key: impl Fn(usize) -> usize,
+    start: &mut Vec<u32>,
+    cursor: &mut Vec<u32>,
+    items: &mut Vec<u32>,
+) {
+    start.clear();
+    start.resize(buckets + 1, 0);
+    for i in 0..n {
+        start[key(i) + 1] += 1;
+    }
+    for k in 0..buckets {
+        start[k + 1] += start[k];
+    }
+    cursor.clear();
+    cursor.extend_from_slice(&start[..buckets]);
+    items.clear();
+    items.resize(n, 0);
+    for i in 0..n {
+        let c = &mut cursor[key(i)];
+        items[*c as usize] = i as u32;
+        *c += 1;
+    }
+}

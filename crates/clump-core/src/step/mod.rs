@@ -19,7 +19,7 @@
 //!    step's first half. The pair stage and the gather are one parallel
 //!    call: each thread takes its run of bodies through both.
 //!
-//! With heat on (`World::heat`), stage 3½, **heat** ([`heat`]): the bodies'
+//! With heat on (`World::heat`), stage 3½, **heat** (`heat`): the bodies'
 //! temperatures take one explicit step from the conduction through the
 //! contacts at the sphere centres stage 4 reads.
 //!

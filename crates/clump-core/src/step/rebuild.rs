@@ -39,9 +39,9 @@ pub fn rebuild(w: &mut World, reorganize: bool) -> Result<(), StepError> {
                     .pairs
                     .save_slip(&w.spheres.gid, &mut w.neighbors.slip_map);
             } else {
-                w.scratch
-                    .carry
-                    .save(&w.neighbors.pairs, &w.spheres, keep_live);
+                w.neighbors
+                    .pairs
+                    .save_carry(&mut w.scratch.carry, &w.spheres, keep_live);
             }
         }
         let domain = w.config.domain;
