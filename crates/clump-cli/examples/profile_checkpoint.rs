@@ -101,7 +101,7 @@ fn body() {
     );
     // a fingerprint of the final state, to compare builds bit for bit
     let mut h = 0xcbf29ce484222325u64;
-    let b = &w.bodies;
+    let b = w.bodies();
     let mut mix = |x: f64| {
         h ^= x.to_bits();
         h = h.wrapping_mul(0x100000001b3);

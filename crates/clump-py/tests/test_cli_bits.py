@@ -77,8 +77,11 @@ def test_checkpoint_continuation(dimers, tmp_path):
     assert again.step_count == 4321
     again.run()
     assert final_state(again.final_state_json()) == expected
-    run_cli("resume", mine)
-    assert final_state(mine.parent / "final_state.json") == expected
+    # a checkpoint outside a run folder resumes into the folder the user
+    # names (`clump resume` never writes into a loose folder)
+    out = tmp_path / "resumed"
+    run_cli("resume", mine, "-o", out)
+    assert final_state(out / "final_state.json") == expected
 
 
 def test_velocity_setter_equals_stage_body(dimers, tmp_path):
