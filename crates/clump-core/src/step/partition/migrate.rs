@@ -22,6 +22,7 @@ use crate::neighbor::pairs::{HistoryMap, SlipMap};
 use crate::neighbor::sort::CellOrder;
 use crate::neighbor::walls::{WallList, WALL_SLOTS};
 use crate::neighbor::CellGrid;
+use crate::partition::Part;
 use crate::sphere::SPHERE_ID_BITS;
 use crate::step::kinematics::rebuild_sphere_topology;
 use crate::step::kinematics::sphere_position;
@@ -73,10 +74,51 @@ fn decode<'a, T: Deserialize<'a>>(b: &'a [u8], from: usize) -> Result<T, StepErr
 pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
     let mut part = w.part.take().expect("a partitioned world");
     let (me, size) = (part.comm.rank(), part.comm.size());
+    // 1. + 2. the whole world's numbers, the regions, the skin, the losses
+    let (whole, keep) = reduce_totals(w, &mut part)?;
+    apply_totals(w, &whole);
+    // 3. each kept body to its new owner and the ranks within the halo
+    part.halo = halo(w);
+    let arrived = migrate_bodies(w, &mut part, &keep)?;
+    // 4. the part in the whole world's order
+    let (sphere_grid, sorted) = order_arrived(w, &whole, arrived)?;
+    // 5. the lists, as one process's rebuild makes them
+    rebuild_sphere_topology(w);
+    references_at_current_poses(w);
+    w.neighbors.grid = sphere_grid;
+    build_pair_list(w);
+    let ns = w.spheres.len();
+    w.neighbors
+        .wall_list
+        .live_entries(ns, &mut w.scratch.wall_carry);
+    build_wall_lists(w);
+    w.rebuilds += 1;
+    part.traffic.rebuilds += 1;
+
+    // 6. who owns what, and who sends whose state
+    let at: Vec<DVec3> = w.bodies.position.clone();
+    let roles = Roles::of(&part.regions, part.halo, me, size, &at);
+    if roles.keep.len() != at.len() {
+        return Err(StepError::Neighbor(format!(
+            "partition: rank {me} received {} bodies it does not hold",
+            at.len() - roles.keep.len()
+        )));
+    }
+    part.order = sorted.iter().map(|e| e.0).collect();
+    roles.install(&mut part);
+    part.local = true;
+    w.part = Some(part);
+    Ok(())
+}
+
+/// Step 1: this rank's share of the whole world's numbers (largest
+/// displacement, extents, lost bodies, a sample of the bodies' places and
+/// costs), reduced over the ranks; the regions re-balanced on the sample
+/// (the same on every rank). Returns the whole world's numbers and the
+/// owned bodies kept (wrapped into the domain).
+fn reduce_totals(w: &mut World, part: &mut Part) -> Result<(Totals, Vec<usize>), StepError> {
     let domain = w.config.domain;
     let n = w.bodies.len();
-
-    // 1. this rank's share of the whole world's numbers
     let d2 = crate::step::rebuild::largest_displacement2(w, (0..n).filter(|&b| part.owned[b]));
     let mut totals = Totals {
         displacement2: d2,
@@ -137,9 +179,12 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
     }
     // the regions re-balanced on the sample (the same on every rank)
     let (at, cost): (Vec<DVec3>, Vec<u32>) = whole.sample.iter().copied().unzip();
-    part.regions = crate::partition::Regions::balance(&domain, &at, &cost, size);
+    part.regions = crate::partition::Regions::balance(&domain, &at, &cost, part.comm.size());
+    Ok((whole, keep))
+}
 
-    // 2. the skin, as one process adapts it, and the lost bodies
+/// Step 2: the skin, as one process adapts it, and the lost bodies.
+fn apply_totals(w: &mut World, whole: &Totals) {
     if w.config.skin.is_none() && w.step > w.neighbors.built_step {
         w.neighbors.adapted_skin = w.adapted_skin(whole.displacement2.sqrt());
     }
@@ -150,8 +195,17 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
     }
     l.not_finite += whole.lost.not_finite;
     l.removed += whole.lost.removed;
+}
 
-    // 3. each kept body to its new owner and the ranks within the halo
+/// Step 3: each kept body, with its wall slots and pair histories, to its
+/// new owner and the ranks within the halo; returns what arrived here
+/// (this rank's own share first).
+fn migrate_bodies(
+    w: &mut World,
+    part: &mut Part,
+    keep: &[usize],
+) -> Result<Vec<Moving>, StepError> {
+    let (me, size) = (part.comm.rank(), part.comm.size());
     part.halo = halo(w);
     let mut history = HistoryMap::default();
     w.neighbors
@@ -185,7 +239,7 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
     let mut out: Vec<Moving> = (0..size).map(|_| Moving::default()).collect();
     let mut near = Vec::new();
     let mut one = Bodies::default();
-    for &b in &keep {
+    for &b in keep {
         let x = w.bodies.position[b];
         part.regions.near(x, part.halo, &mut near);
         near.push(part.regions.owner(x));
@@ -238,9 +292,19 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
     for (bytes, &r) in got.iter().zip(&sources) {
         arrived.push(decode(bytes, r)?);
     }
+    Ok(arrived)
+}
 
-    // 4. the part in the whole world's order: cell key on the whole
-    // world's grid, then id
+/// Step 4: the part in the whole world's order (cell key on the whole
+/// world's grid, then id): the bodies, their wall slots and the carried
+/// histories stored in the world. Returns the sphere grid and the sort keys.
+#[allow(clippy::type_complexity)]
+fn order_arrived(
+    w: &mut World,
+    whole: &Totals,
+    arrived: Vec<Moving>,
+) -> Result<(CellGrid, Vec<((u64, u64), u32)>), StepError> {
+    let domain = w.config.domain;
     let min_cell = 2.0 * w.max_radius() + w.skin();
     let body_grid =
         CellGrid::from_extent(&domain, &whole.bodies, min_cell).map_err(StepError::Neighbor)?;
@@ -290,33 +354,7 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         }
     }
 
-    // 5. the lists, as one process's rebuild makes them
     w.neighbors.wall_list = WallList::from_per_sphere(&k2, &h2);
     w.neighbors.wall_list.set_slip_per_sphere(&s2);
-    rebuild_sphere_topology(w);
-    references_at_current_poses(w);
-    w.neighbors.grid = sphere_grid;
-    build_pair_list(w);
-    let ns = w.spheres.len();
-    w.neighbors
-        .wall_list
-        .live_entries(ns, &mut w.scratch.wall_carry);
-    build_wall_lists(w);
-    w.rebuilds += 1;
-    part.traffic.rebuilds += 1;
-
-    // 6. who owns what, and who sends whose state
-    let at: Vec<DVec3> = w.bodies.position.clone();
-    let roles = Roles::of(&part.regions, part.halo, me, size, &at);
-    if roles.keep.len() != at.len() {
-        return Err(StepError::Neighbor(format!(
-            "partition: rank {me} received {} bodies it does not hold",
-            at.len() - roles.keep.len()
-        )));
-    }
-    part.order = sorted.iter().map(|e| e.0).collect();
-    roles.install(&mut part);
-    part.local = true;
-    w.part = Some(part);
-    Ok(())
+    Ok((sphere_grid, sorted))
 }
