@@ -248,22 +248,7 @@ impl<'a> WallPass<'a> {
         sums: &mut ChunkSums,
     ) {
         if self.walls_average {
-            ws.counts.clear();
-            for q in entries.clone() {
-                let s = self.entry_sphere[q] as usize;
-                for wi in self.candidates(q) {
-                    let k = self.walls[wi].shape.contacts(
-                        self.meshes,
-                        self.sp.position(s),
-                        self.sp.state[s].radius,
-                        0.0,
-                        &mut ws.buf,
-                    );
-                    for _ in 0..k {
-                        ws.counts.add(wi as u64);
-                    }
-                }
-            }
+            self.count_touches(ws, entries.clone());
         }
         let (v, wb) = self.body_velocity(bi);
         let keep_slip = self.slips.len() != 0;
@@ -277,29 +262,15 @@ impl<'a> WallPass<'a> {
             if cand.peek().is_none() {
                 // no wall to test: only clear what a contact left
                 if old_key[0] != 0 {
-                    unsafe {
-                        *self.keys.get(q) = [0; WALL_SLOTS];
-                        *self.hists.get(q) = [ContactHistory::default(); WALL_SLOTS];
-                        if keep_slip {
-                            *self.slips.get(q) = [SlipProfile::default(); WALL_SLOTS];
-                        }
-                    }
+                    // SAFETY: as above
+                    unsafe { self.store_keys(q, [0; WALL_SLOTS], 0, keep_slip) };
                 }
                 continue;
             }
-            // the histories before this step: a flush may write the new
-            // ones before this entry's last touch is matched
-            let old_hist = if old_key[0] != 0 {
-                unsafe { *self.hists.get(q) }
-            } else {
-                [ContactHistory::default(); WALL_SLOTS]
-            };
-            // the profiles before this step, likewise (written in collect)
-            let old_slip = if keep_slip && old_key[0] != 0 {
-                unsafe { *self.slips.get(q) }
-            } else {
-                [SlipProfile::default(); WALL_SLOTS]
-            };
+            // the histories and profiles before this step: a flush may
+            // write the new ones before this entry's last touch is matched
+            // SAFETY: as above
+            let (old_hist, old_slip) = unsafe { self.old_slots(q, old_key, keep_slip) };
             let mut new_key = [0u32; WALL_SLOTS];
             let mut n_new = 0;
             let mut used = [false; WALL_SLOTS];
@@ -406,18 +377,73 @@ impl<'a> WallPass<'a> {
                 }
             }
             if n_new > 0 || old_key[0] != 0 {
-                // the slots n_new.. cleared; the flush writes the others
-                unsafe {
-                    *self.keys.get(q) = new_key;
-                    for h in &mut self.hists.get(q)[n_new..] {
-                        *h = ContactHistory::default();
-                    }
-                    if keep_slip {
-                        for p in &mut self.slips.get(q)[n_new..] {
-                            *p = SlipProfile::default();
-                        }
-                    }
+                // SAFETY: as above
+                unsafe { self.store_keys(q, new_key, n_new, keep_slip) };
+            }
+        }
+    }
+
+    /// Entry `q`'s histories and MDR profiles before this step (defaults
+    /// where it held no contact, or the law keeps no profiles).
+    ///
+    /// # Safety
+    /// Entry `q` is the calling chunk's, and no reference to its slots lives.
+    #[inline(always)]
+    unsafe fn old_slots(
+        &self,
+        q: usize,
+        old_key: [u32; WALL_SLOTS],
+        keep_slip: bool,
+    ) -> ([ContactHistory; WALL_SLOTS], [SlipProfile; WALL_SLOTS]) {
+        let hist = if old_key[0] != 0 {
+            *self.hists.get(q)
+        } else {
+            [ContactHistory::default(); WALL_SLOTS]
+        };
+        let slip = if keep_slip && old_key[0] != 0 {
+            *self.slips.get(q)
+        } else {
+            [SlipProfile::default(); WALL_SLOTS]
+        };
+        (hist, slip)
+    }
+
+    /// `average` walls: the number of touches of each wall with the
+    /// spheres of `entries` (one body's), into `ws.counts`.
+    #[inline(always)]
+    fn count_touches(&self, ws: &mut WallScratch, entries: Range<usize>) {
+        ws.counts.clear();
+        for q in entries {
+            let s = self.entry_sphere[q] as usize;
+            for wi in self.candidates(q) {
+                let k = self.walls[wi].shape.contacts(
+                    self.meshes,
+                    self.sp.position(s),
+                    self.sp.state[s].radius,
+                    0.0,
+                    &mut ws.buf,
+                );
+                for _ in 0..k {
+                    ws.counts.add(wi as u64);
                 }
+            }
+        }
+    }
+
+    /// Entry `q`'s new slot keys `key`, its histories (and profiles) from
+    /// slot `n_new` on cleared; the flush writes the others.
+    ///
+    /// # Safety
+    /// Entry `q` is the calling chunk's, and no reference to its slots lives.
+    #[inline(always)]
+    unsafe fn store_keys(&self, q: usize, key: [u32; WALL_SLOTS], n_new: usize, keep_slip: bool) {
+        *self.keys.get(q) = key;
+        for h in &mut self.hists.get(q)[n_new..] {
+            *h = ContactHistory::default();
+        }
+        if keep_slip {
+            for p in &mut self.slips.get(q)[n_new..] {
+                *p = SlipProfile::default();
             }
         }
     }

@@ -340,7 +340,6 @@ impl RowCtx<'_> {
             return;
         }
         let len = batch.len.min(BATCH);
-        let l = &mut batch.lanes;
         // one material for all spheres (the common case): one model, no
         // per-pair lookup
         let single = self.sp.single_material.map(|m| self.table.index(m, m));
@@ -348,47 +347,8 @@ impl RowCtx<'_> {
             Some(m) => m,
             None => self.model_index(batch.row[0] as usize, batch.pair[0] as usize),
         };
-        let mut uniform = true;
-        for k in 0..len {
-            let p = batch.pair[k] as usize;
-            let i = batch.row[k] as usize;
-            let t = self.topo.read(p);
-            let j = t.j as usize;
-            let (si, sj) = (self.sphere(i), self.sphere(j));
-            let d = si.position - self.partner_position(j, t.shift);
-            let (bi, bj) = (at(&self.sp.body, i) as usize, at(&self.sp.body, j) as usize);
-            // the two bodies' packed state: read through raw pointers, as
-            // another thread may be writing their column sums
-            let (pi, pj) = (self.body.as_ptr().add(bi), self.body.as_ptr().add(bj));
-            let (wi, wj) = ((*pi).angular_velocity, (*pj).angular_velocity);
-            let h = self.tangential.read(p);
-            batch.body[k] = [bi as u32, bj as u32];
-            // the lever arms from each body's centre of mass to its sphere
-            // (each sphere's own position: the same for any periodic image)
-            set3(&mut l.arm_i, k, si.position - (*pi).position);
-            set3(&mut l.arm_j, k, sj.position - (*pj).position);
-            set3(&mut l.separation, k, d);
-            set3(&mut l.velocity_i, k, (*pi).velocity);
-            set3(&mut l.velocity_j, k, (*pj).velocity);
-            set3(&mut l.omega_i, k, wi);
-            set3(&mut l.omega_j, k, wj);
-            set3(&mut l.spring, k, h);
-            l.radius_i[k] = si.radius;
-            l.radius_j[k] = sj.radius;
-            l.mass_i[k] = (*pi).mass;
-            l.mass_j[k] = (*pj).mass;
-            l.scale[k] = if self.scale.is_empty() {
-                1.0
-            } else {
-                at(self.scale, p)
-            };
-            let m = match single {
-                Some(m) => m,
-                None => self.model_index(i, p),
-            };
-            batch.model[k] = m;
-            uniform &= m == first;
-        }
+        let uniform = self.load_lanes(batch, len, single, first);
+        let l = &mut batch.lanes;
         let table = self.table;
         let law = if uniform {
             Some(*table.by_index(first).sliding_law())
@@ -405,55 +365,8 @@ impl RowCtx<'_> {
         finish_sliding(l, len, law.as_ref(), self.dt, |k| {
             self.tangential.read(pairs[k] as usize)
         });
-        if table.any_extended() {
-            // pairs whose law only the scalar composition has: evaluated
-            // again from their stored history (the lanes ran the vectorised
-            // law on them, whose results are overwritten here); their
-            // rolling couple comes with it
-            for k in 0..len {
-                let model = table.by_index(batch.model[k]);
-                if model.is_extended() {
-                    let p = batch.pair[k] as usize;
-                    let mut h = ContactHistory {
-                        tangential: self.tangential.read(p),
-                        rolling: self.rolling.read(p),
-                    };
-                    let slip = (self.slip.len() > p).then(|| self.slip.get(p));
-                    l.contact_scalar(k, model, &mut h, slip, self.dt);
-                    *self.rolling.get(p) = h.rolling;
-                }
-            }
-        }
-        if table.any_rolling() {
-            for k in 0..len {
-                let model = table.by_index(batch.model[k]);
-                if !model.has_rolling() || model.is_extended() {
-                    continue;
-                }
-                let p = batch.pair[k] as usize;
-                // the rolling laws read the normal, the relative angular
-                // velocity, R*, m* and dt (not the sliding velocity)
-                let input = ContactInput {
-                    normal: get3(&l.normal, k),
-                    overlap: l.overlap[k],
-                    rel_velocity: DVec3::ZERO,
-                    rel_omega: get3(&l.omega_i, k) - get3(&l.omega_j, k),
-                    radius: l.r_star[k],
-                    radius_sum: l.radius_i[k] + l.radius_j[k],
-                    mass: l.m_star[k],
-                    dt: self.dt,
-                };
-                let (couple, e_r) =
-                    model.rolling_couple(&input, l.normal_force[k], l.kn[k], self.rolling.get(p));
-                let couple = couple * l.scale[k];
-                let (ti, tj) = (get3(&l.torque_i, k), get3(&l.torque_j, k));
-                set3(&mut l.torque_i, k, ti + couple);
-                set3(&mut l.torque_j, k, tj - couple);
-                if let Some(e) = e_r {
-                    l.energy[k] += e;
-                }
-            }
-        }
+        self.scalar_laws(batch, len);
+        let l = &mut batch.lanes;
         // The row sum of the current body and the statistics of the current
         // chunk are carried in registers and stored when the body or chunk
         // changes (bodies and chunks ascend in the batch; a body whose rows
@@ -547,6 +460,127 @@ impl RowCtx<'_> {
         }
         batch.carry = Some((body, li));
         *stats.get(chunk) = stat;
+    }
+
+    /// The gather of the batch's first `len` pairs into the lanes: each
+    /// pair's geometry, its bodies' packed state, lever arms, spring,
+    /// scale and model (`single`: the one model of a one-material world;
+    /// `first`: the first pair's). Returns whether every pair has the
+    /// model `first`.
+    ///
+    /// # Safety
+    /// As [`Self::contacts`].
+    #[inline(always)]
+    unsafe fn load_lanes(
+        &self,
+        batch: &mut Batch,
+        len: usize,
+        single: Option<u32>,
+        first: u32,
+    ) -> bool {
+        let l = &mut batch.lanes;
+        let mut uniform = true;
+        for k in 0..len {
+            let p = batch.pair[k] as usize;
+            let i = batch.row[k] as usize;
+            let t = self.topo.read(p);
+            let j = t.j as usize;
+            let (si, sj) = (self.sphere(i), self.sphere(j));
+            let d = si.position - self.partner_position(j, t.shift);
+            let (bi, bj) = (at(&self.sp.body, i) as usize, at(&self.sp.body, j) as usize);
+            // the two bodies' packed state: read through raw pointers, as
+            // another thread may be writing their column sums
+            let (pi, pj) = (self.body.as_ptr().add(bi), self.body.as_ptr().add(bj));
+            let (wi, wj) = ((*pi).angular_velocity, (*pj).angular_velocity);
+            let h = self.tangential.read(p);
+            batch.body[k] = [bi as u32, bj as u32];
+            // the lever arms from each body's centre of mass to its sphere
+            // (each sphere's own position: the same for any periodic image)
+            set3(&mut l.arm_i, k, si.position - (*pi).position);
+            set3(&mut l.arm_j, k, sj.position - (*pj).position);
+            set3(&mut l.separation, k, d);
+            set3(&mut l.velocity_i, k, (*pi).velocity);
+            set3(&mut l.velocity_j, k, (*pj).velocity);
+            set3(&mut l.omega_i, k, wi);
+            set3(&mut l.omega_j, k, wj);
+            set3(&mut l.spring, k, h);
+            l.radius_i[k] = si.radius;
+            l.radius_j[k] = sj.radius;
+            l.mass_i[k] = (*pi).mass;
+            l.mass_j[k] = (*pj).mass;
+            l.scale[k] = if self.scale.is_empty() {
+                1.0
+            } else {
+                at(self.scale, p)
+            };
+            let m = match single {
+                Some(m) => m,
+                None => self.model_index(i, p),
+            };
+            batch.model[k] = m;
+            uniform &= m == first;
+        }
+        uniform
+    }
+
+    /// The laws the lanes lack, pair by pair, over their results: pairs
+    /// whose law only the scalar composition has, and rolling couples.
+    ///
+    /// # Safety
+    /// As [`Self::contacts`].
+    #[inline(always)]
+    unsafe fn scalar_laws(&self, batch: &mut Batch, len: usize) {
+        let table = self.table;
+        let l = &mut batch.lanes;
+        if table.any_extended() {
+            // pairs whose law only the scalar composition has: evaluated
+            // again from their stored history (the lanes ran the vectorised
+            // law on them, whose results are overwritten here); their
+            // rolling couple comes with it
+            for k in 0..len {
+                let model = table.by_index(batch.model[k]);
+                if model.is_extended() {
+                    let p = batch.pair[k] as usize;
+                    let mut h = ContactHistory {
+                        tangential: self.tangential.read(p),
+                        rolling: self.rolling.read(p),
+                    };
+                    let slip = (self.slip.len() > p).then(|| self.slip.get(p));
+                    l.contact_scalar(k, model, &mut h, slip, self.dt);
+                    *self.rolling.get(p) = h.rolling;
+                }
+            }
+        }
+        if table.any_rolling() {
+            for k in 0..len {
+                let model = table.by_index(batch.model[k]);
+                if !model.has_rolling() || model.is_extended() {
+                    continue;
+                }
+                let p = batch.pair[k] as usize;
+                // the rolling laws read the normal, the relative angular
+                // velocity, R*, m* and dt (not the sliding velocity)
+                let input = ContactInput {
+                    normal: get3(&l.normal, k),
+                    overlap: l.overlap[k],
+                    rel_velocity: DVec3::ZERO,
+                    rel_omega: get3(&l.omega_i, k) - get3(&l.omega_j, k),
+                    radius: l.r_star[k],
+                    radius_sum: l.radius_i[k] + l.radius_j[k],
+                    mass: l.m_star[k],
+                    dt: self.dt,
+                };
+                let (couple, e_r) =
+                    model.rolling_couple(&input, l.normal_force[k], l.kn[k], self.rolling.get(p));
+                let couple = couple * l.scale[k];
+                let (ti, tj) = (get3(&l.torque_i, k), get3(&l.torque_j, k));
+                set3(&mut l.torque_i, k, ti + couple);
+                set3(&mut l.torque_j, k, tj - couple);
+                if let Some(e) = e_r {
+                    l.energy[k] += e;
+                }
+            }
+        }
     }
 
     /// Index in the contact table of the model of pair `p` in row `i`.
