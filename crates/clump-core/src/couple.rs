@@ -136,11 +136,7 @@ impl World {
         force: &[DVec3],
         torque: &[DVec3],
     ) -> Result<(), WorldError> {
-        self.check_loads(force, torque)?;
-        let (n, c) = (self.bodies.len(), &mut self.bodies.coupling);
-        in_use(&mut c.force, n, DVec3::ZERO).copy_from_slice(force);
-        in_use(&mut c.torque, n, DVec3::ZERO).copy_from_slice(torque);
-        Ok(())
+        self.set_loads(force, torque, false)
     }
 
     /// Sets the external force and torque on each body for the next step
@@ -150,10 +146,26 @@ impl World {
         force: &[DVec3],
         torque: &[DVec3],
     ) -> Result<(), WorldError> {
+        self.set_loads(force, torque, true)
+    }
+
+    /// Checks `force` and `torque` (one per body) and stores them as the
+    /// persistent loads, or with `once` as the next step's.
+    fn set_loads(
+        &mut self,
+        force: &[DVec3],
+        torque: &[DVec3],
+        once: bool,
+    ) -> Result<(), WorldError> {
         self.check_loads(force, torque)?;
         let (n, c) = (self.bodies.len(), &mut self.bodies.coupling);
-        in_use(&mut c.once_force, n, DVec3::ZERO).copy_from_slice(force);
-        in_use(&mut c.once_torque, n, DVec3::ZERO).copy_from_slice(torque);
+        let (f, t) = if once {
+            (&mut c.once_force, &mut c.once_torque)
+        } else {
+            (&mut c.force, &mut c.torque)
+        };
+        in_use(f, n, DVec3::ZERO).copy_from_slice(force);
+        in_use(t, n, DVec3::ZERO).copy_from_slice(torque);
         Ok(())
     }
 

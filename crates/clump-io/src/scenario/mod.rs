@@ -18,6 +18,7 @@ pub mod keys;
 mod model;
 mod placement;
 pub mod raw;
+mod raw_output;
 mod resolve;
 mod source;
 pub mod units;
