@@ -1,11 +1,17 @@
 //! Clump's device (GPU) path: the step as wgpu compute shaders (WGSL) with
 //! f64 state through wgpu's `SHADER_F64` feature (Vulkan's `shaderFloat64`).
 //!
-//! `context` opens the adapter and device and holds the buffer and
-//! pipeline helpers every kernel uses. ARCHITECTURE.md ("The device path")
-//! describes the device data layout, the kernels in step order and what
-//! crosses the bus and when.
+//! - `context`: the adapter and device, buffer and pipeline helpers;
+//! - `support`: what the device step runs, refused by scenario key;
+//! - `device_world`: a world's arrays on the device, the step's kernels in
+//!   order (`shaders/*.wgsl`), the copies in and out at events.
+//!
+//! ARCHITECTURE.md ("The device path") describes the device data layout,
+//! the kernels in step order and what crosses the bus and when.
 
 pub mod context;
+pub mod device_world;
+pub mod support;
 
 pub use context::{Gpu, GpuError};
+pub use device_world::{DeviceError, DeviceWorld};

@@ -1,0 +1,108 @@
+// Bindings shared by every kernel of the device step (one bind group, one
+// layout): the SoA arrays described in ARCHITECTURE.md, "The device path".
+// Vectors are stored as 3 (or 4, quaternions x y z w) consecutive f64s.
+// All arithmetic is written out in glam's operation order (dot, cross,
+// matrix product, quaternion to matrix) so that the device computes what
+// the CPU path computes, operation for operation.
+
+@group(0) @binding(0) var<storage, read_write> pf: array<f64>;    // float parameters (PF_*)
+@group(0) @binding(1) var<storage, read_write> pu: array<u32>;    // integer parameters and counters (PU_*)
+@group(0) @binding(2) var<storage, read_write> bx: array<f64>;    // body centre of mass, world, m (3/body)
+@group(0) @binding(3) var<storage, read_write> bv: array<f64>;    // velocity, world, m/s (3/body)
+@group(0) @binding(4) var<storage, read_write> bq: array<f64>;    // orientation body->world, x y z w (4/body)
+@group(0) @binding(5) var<storage, read_write> bl: array<f64>;    // angular momentum, world, kg m^2/s (3/body)
+@group(0) @binding(6) var<storage, read_write> bw: array<f64>;    // angular velocity, world, rad/s (3/body)
+@group(0) @binding(7) var<storage, read_write> bft: array<f64>;   // force N, torque N m, world (6/body)
+@group(0) @binding(8) var<storage, read_write> bm: array<f64>;    // mass, I (3), 1/I (3), dt/(2m) (8/body)
+@group(0) @binding(9) var<storage, read_write> bfirst: array<u32>; // first sphere of each body (nb+1)
+@group(0) @binding(10) var<storage, read_write> sown: array<u32>; // owner body, material (2/sphere)
+@group(0) @binding(11) var<storage, read_write> sref: array<f64>; // body-frame offset (3), radius (4/sphere)
+@group(0) @binding(12) var<storage, read_write> sx: array<f64>;   // sphere centre, world, m (3/sphere)
+@group(0) @binding(13) var<storage, read_write> sarm: array<f64>; // sphere centre - body centre, world (3/sphere)
+@group(0) @binding(14) var<storage, read_write> keys: array<u32>; // cell key per sorted slot (npow2)
+@group(0) @binding(15) var<storage, read_write> idx: array<u32>;  // sphere per sorted slot (npow2)
+@group(0) @binding(16) var<storage, read_write> cells: array<u32>; // first, end slot per cell (2/cell)
+@group(0) @binding(17) var<storage, read_write> noff: array<u32>; // neighbour count, then offset (ns+1)
+@group(0) @binding(18) var<storage, read_write> nbr: array<u32>;  // neighbour sphere per entry (cap)
+@group(0) @binding(19) var<storage, read_write> hist: array<f64>; // tangential spring, world, m (3/entry)
+@group(0) @binding(20) var<storage, read_write> old_off: array<u32>; // last step's noff
+@group(0) @binding(21) var<storage, read_write> old_nbr: array<u32>; // last step's nbr
+@group(0) @binding(22) var<storage, read_write> old_hist: array<f64>; // last step's hist
+@group(0) @binding(23) var<storage, read_write> mirror: array<u32>; // entry (j,i) of entry (i,j), j < i
+@group(0) @binding(24) var<storage, read_write> pout: array<f64>; // force on i, torque on i's and j's body (9/entry)
+@group(0) @binding(25) var<storage, read_write> sft: array<f64>;  // pair force, torque, wall force, torque (12/sphere)
+@group(0) @binding(26) var<storage, read_write> walls: array<f64>; // plane point (3), unit normal (3), material (7/wall)
+@group(0) @binding(27) var<storage, read_write> whist: array<f64>; // wall tangential spring (3/(sphere, wall))
+@group(0) @binding(28) var<storage, read_write> laws: array<f64>; // SlidingLaw per material pair (8/pair)
+
+const PF_DT: u32 = 0u;
+const PF_G: u32 = 1u;       // gravity, 3
+const PF_LO: u32 = 4u;      // grid origin, 3
+const PF_CELL: u32 = 7u;    // cell size
+const PU_NB: u32 = 0u;
+const PU_NS: u32 = 1u;
+const PU_NPOW2: u32 = 2u;
+const PU_GRID: u32 = 3u;    // nx, ny, nz
+const PU_CAP: u32 = 6u;
+const PU_NW: u32 = 7u;
+const PU_NMAT: u32 = 8u;
+const PU_SORT_K: u32 = 9u;
+const PU_SORT_J: u32 = 10u;
+const PU_OVERFLOW: u32 = 11u; // 1: a sphere had more than MAXN neighbours, 2: the table exceeded cap
+const MAXN: u32 = 32u;
+const WG: u32 = 64u;
+
+// 3-vector loads and stores per array (WGSL passes no storage pointers).
+fn ld_bl(i: u32) -> vec3<f64> { return vec3<f64>(bl[3u * i], bl[3u * i + 1u], bl[3u * i + 2u]); }
+fn st_bl(i: u32, v: vec3<f64>) { bl[3u * i] = v.x; bl[3u * i + 1u] = v.y; bl[3u * i + 2u] = v.z; }
+fn ld_bv(i: u32) -> vec3<f64> { return vec3<f64>(bv[3u * i], bv[3u * i + 1u], bv[3u * i + 2u]); }
+fn st_bv(i: u32, v: vec3<f64>) { bv[3u * i] = v.x; bv[3u * i + 1u] = v.y; bv[3u * i + 2u] = v.z; }
+fn ld_bw(i: u32) -> vec3<f64> { return vec3<f64>(bw[3u * i], bw[3u * i + 1u], bw[3u * i + 2u]); }
+fn st_bw(i: u32, v: vec3<f64>) { bw[3u * i] = v.x; bw[3u * i + 1u] = v.y; bw[3u * i + 2u] = v.z; }
+fn ld_bx(i: u32) -> vec3<f64> { return vec3<f64>(bx[3u * i], bx[3u * i + 1u], bx[3u * i + 2u]); }
+fn st_bx(i: u32, v: vec3<f64>) { bx[3u * i] = v.x; bx[3u * i + 1u] = v.y; bx[3u * i + 2u] = v.z; }
+fn ld_hist(i: u32) -> vec3<f64> { return vec3<f64>(hist[3u * i], hist[3u * i + 1u], hist[3u * i + 2u]); }
+fn st_hist(i: u32, v: vec3<f64>) { hist[3u * i] = v.x; hist[3u * i + 1u] = v.y; hist[3u * i + 2u] = v.z; }
+fn ld_old_hist(i: u32) -> vec3<f64> { return vec3<f64>(old_hist[3u * i], old_hist[3u * i + 1u], old_hist[3u * i + 2u]); }
+fn st_old_hist(i: u32, v: vec3<f64>) { old_hist[3u * i] = v.x; old_hist[3u * i + 1u] = v.y; old_hist[3u * i + 2u] = v.z; }
+fn ld_sarm(i: u32) -> vec3<f64> { return vec3<f64>(sarm[3u * i], sarm[3u * i + 1u], sarm[3u * i + 2u]); }
+fn st_sarm(i: u32, v: vec3<f64>) { sarm[3u * i] = v.x; sarm[3u * i + 1u] = v.y; sarm[3u * i + 2u] = v.z; }
+fn ld_sx(i: u32) -> vec3<f64> { return vec3<f64>(sx[3u * i], sx[3u * i + 1u], sx[3u * i + 2u]); }
+fn st_sx(i: u32, v: vec3<f64>) { sx[3u * i] = v.x; sx[3u * i + 1u] = v.y; sx[3u * i + 2u] = v.z; }
+fn ld_whist(i: u32) -> vec3<f64> { return vec3<f64>(whist[3u * i], whist[3u * i + 1u], whist[3u * i + 2u]); }
+fn st_whist(i: u32, v: vec3<f64>) { whist[3u * i] = v.x; whist[3u * i + 1u] = v.y; whist[3u * i + 2u] = v.z; }
+// glam DVec3::dot: (x x' + y y') + z z'
+fn dot3(a: vec3<f64>, b: vec3<f64>) -> f64 {
+    return (a.x * b.x + a.y * b.y) + a.z * b.z;
+}
+// glam DVec3::cross
+fn cross3(a: vec3<f64>, b: vec3<f64>) -> vec3<f64> {
+    return vec3<f64>(a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y);
+}
+struct Mat3 { x: vec3<f64>, y: vec3<f64>, z: vec3<f64> }
+// glam DMat3::from_quat (columns)
+fn mat_from_quat(q: vec4<f64>) -> Mat3 {
+    let x2 = q.x + q.x;
+    let y2 = q.y + q.y;
+    let z2 = q.z + q.z;
+    let xx = q.x * x2;
+    let xy = q.x * y2;
+    let xz = q.x * z2;
+    let yy = q.y * y2;
+    let yz = q.y * z2;
+    let zz = q.z * z2;
+    let wx = q.w * x2;
+    let wy = q.w * y2;
+    let wz = q.w * z2;
+    let one = 1.0lf;
+    return Mat3(vec3<f64>(one - (yy + zz), xy + wz, xz - wy),
+                vec3<f64>(xy - wz, one - (xx + zz), yz + wx),
+                vec3<f64>(xz + wy, yz - wx, one - (xx + yy)));
+}
+// glam DMat3 * DVec3: ((x_axis v.x) + (y_axis v.y)) + z_axis v.z
+fn mat_mul(m: Mat3, v: vec3<f64>) -> vec3<f64> {
+    return (m.x * v.x + m.y * v.y) + m.z * v.z;
+}
+fn ldq(i: u32) -> vec4<f64> {
+    return vec4<f64>(bq[4u * i], bq[4u * i + 1u], bq[4u * i + 2u], bq[4u * i + 3u]);
+}
