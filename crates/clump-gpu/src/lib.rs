@@ -2,6 +2,7 @@
 //! f64 state through wgpu's `SHADER_F64` feature (Vulkan's `shaderFloat64`).
 //!
 //! - `context`: the adapter and device, buffer and pipeline helpers;
+//! - `bed`: a bed of tetra clumps in a closed box, all of it on the device;
 //! - `support`: what the device step runs, refused by scenario key;
 //! - `device_world`: a world's arrays on the device, the step's kernels in
 //!   order (`shaders/*.wgsl`), the copies in and out at events.
@@ -9,6 +10,7 @@
 //! ARCHITECTURE.md ("The device path") describes the device data layout,
 //! the kernels in step order and what crosses the bus and when.
 
+pub mod bed;
 pub mod context;
 pub mod device_world;
 pub mod support;

@@ -7,66 +7,100 @@ use clump_core::wall::WallShape;
 use clump_core::world::World;
 use glam::DVec3;
 
+/// One step of a scenario key's path: a table key or an array index.
+#[derive(Debug, Clone, PartialEq)]
+pub enum KeySeg {
+    Key(&'static str),
+    Index(usize),
+}
+
 /// One refusal: the scenario key and what the device path allows.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Unsupported {
-    /// The scenario key (dotted path) that selects the feature.
-    pub key: String,
+    /// The scenario key that selects the feature (`integrator.rotation`,
+    /// `wall[2].type`); where a default selects it, the key that would
+    /// change it.
+    pub path: Vec<KeySeg>,
     /// What is allowed there on the device.
     pub allowed: String,
 }
 
+impl Unsupported {
+    /// The key as written in docs/scenario.md: `wall[2].type`.
+    pub fn key(&self) -> String {
+        let mut out = String::new();
+        for s in &self.path {
+            match s {
+                KeySeg::Key(k) if out.is_empty() => out.push_str(k),
+                KeySeg::Key(k) => out.push_str(&format!(".{k}")),
+                KeySeg::Index(i) => out.push_str(&format!("[{i}]")),
+            }
+        }
+        out
+    }
+}
+
 impl std::fmt::Display for Unsupported {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "key '{}': not on the GPU path yet; allowed: {}", self.key, self.allowed)
+        write!(f, "'{}' is not on the GPU path yet; allowed there: {}", self.key(), self.allowed)
     }
+}
+
+/// `a.b.c` as key segments.
+fn keys(dotted: &'static str) -> Vec<KeySeg> {
+    dotted.split('.').map(KeySeg::Key).collect()
+}
+
+/// `wall[k]` and then `key`, if any.
+fn wall_key(k: usize, key: Option<&'static str>) -> Vec<KeySeg> {
+    let mut p = vec![KeySeg::Key("wall"), KeySeg::Index(k)];
+    p.extend(key.map(KeySeg::Key));
+    p
 }
 
 /// Everything in `world` the device step does not do (empty: it runs).
 pub fn unsupported(world: &World) -> Vec<Unsupported> {
     let mut out = Vec::new();
-    let mut no = |key: &str, allowed: &str| {
-        out.push(Unsupported { key: key.into(), allowed: allowed.into() })
-    };
+    let mut no = |path: Vec<KeySeg>, allowed: &str| out.push(Unsupported { path, allowed: allowed.into() });
     let c = &world.config;
     if c.rotation != RotationScheme::RichardsonLiggghts {
-        no("simulation.rotation", "\"richardson_liggghts\" (the others need f64 sin/cos, see ARCHITECTURE.md)");
+        no(keys("integrator.rotation"), "\"richardson_liggghts\" (the others need f64 sin/cos, see ARCHITECTURE.md)");
     }
     if c.domain.periodic.iter().any(|&p| p) {
-        no("domain.periodic", "false on every axis");
+        no(keys("domain.periodic"), "false on every axis");
     }
     if c.added_mass.coefficient != 0.0 {
-        no("fluid.added_mass", "none");
+        no(keys("integrator.added_mass"), "none");
     }
     if c.multi_contact != clump_core::multi_contact::MultiContact::Sum {
-        no("contact.multi_contact", "\"sum\"");
+        no(keys("simulation.multi_contact"), "\"sum\"");
     }
     let t = &world.contact_table;
     if t.any_extended() || t.any_rolling() || t.any_reach() {
-        no("contact.*", "Hertz-Mindlin or linear laws without rolling, twisting, cohesion or micro-slip");
+        no(keys("pair"), "Hertz-Mindlin or linear laws without rolling, twisting, cohesion or micro-slip");
     }
     for (k, w) in world.walls.iter().enumerate() {
         if !matches!(w.shape, WallShape::Plane { .. }) {
-            no(&format!("walls[{k}].type"), "\"plane\"");
+            no(wall_key(k, Some("type")), "\"plane\"");
         }
         let m = &w.motion;
         if m.velocity != DVec3::ZERO || m.angular_velocity != DVec3::ZERO || m.surface_velocity != DVec3::ZERO {
-            no(&format!("walls[{k}].motion"), "none (static walls)");
+            no(wall_key(k, None), "none (static walls)");
         }
         if w.multi_contact != clump_core::multi_contact::MultiContact::Sum || !w.active {
-            no(&format!("walls[{k}]"), "active, multi_contact = \"sum\"");
+            no(wall_key(k, None), "active, multi_contact = \"sum\"");
         }
     }
     let b = world.bodies();
     let free = (0..b.len()).all(|i| b.force_flag[i] == [true; 3] && b.torque_flag[i] == [true; 3]);
     if !free {
-        no("bodies.dof", "every axis free");
+        no(keys("template.force_flags"), "every axis free (force_flags and torque_flags all true, no fixed or driven bodies)");
     }
     if (0..b.len()).any(|i| b.start_step[i] > world.step) {
-        no("insert (bodies with a later start step)", "bodies that have started");
+        no(keys("insert"), "bodies present from the start of the device run");
     }
     if world.heat.is_some() {
-        no("heat", "off");
+        no(keys("heat"), "off");
     }
     out
 }
