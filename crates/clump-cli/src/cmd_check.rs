@@ -18,6 +18,10 @@ pub struct CheckArgs {
     /// Skip the trial packing of `kind = "pack"` insertions.
     #[arg(long)]
     pub no_pack: bool,
+    /// Also check the scenario for this device: `gpu` names the adapter and
+    /// refuses, at the key, what the GPU path does not run yet.
+    #[arg(long, value_enum, default_value_t = crate::device::Device::Cpu)]
+    pub device: crate::device::Device,
 }
 
 /// Rough memory per sphere (bytes): sphere arrays, wall-contact slots and
@@ -58,6 +62,9 @@ pub fn run(args: &CheckArgs) -> ExitCode {
             err!("{e}");
             return ExitCode::from(2);
         }
+    }
+    if args.device == crate::device::Device::Gpu && !crate::device::check(&sc) {
+        return ExitCode::from(2);
     }
     outln!("\nok: {} is valid", args.scenario.display());
     ExitCode::SUCCESS

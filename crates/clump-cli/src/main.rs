@@ -20,6 +20,7 @@ mod cmd_run;
 mod cmd_template;
 mod cmd_validate;
 mod core_latency;
+mod device;
 mod memory;
 mod ranks;
 

@@ -92,6 +92,12 @@ pub struct BenchArgs {
     /// Steps of phase B, dense bed, timed on its own (default: the second stage).
     #[arg(long)]
     pub nb: Option<u64>,
+    /// Where Clump's step runs. `gpu`: a box bed of about `--n` tetra clumps
+    /// that the GPU path runs whole, `--nb` steps (default 1000) on the
+    /// device and on the CPU path, sphere-steps/s of both and their largest
+    /// position difference (needs the `gpu` feature).
+    #[arg(long, value_enum, default_value_t = crate::device::Device::Cpu)]
+    pub device: crate::device::Device,
     /// Threads for Clump (rayon).
     #[arg(long, default_value_t = 1)]
     pub threads: usize,
@@ -148,6 +154,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     if !args.scaling.is_empty() {
         return scaling::scaling(args);
+    }
+    if args.device == crate::device::Device::Gpu {
+        return crate::device::bench(args.n, args.nb.unwrap_or(1000), args.threads);
     }
     match args.case {
         Case::Tetra => {}
