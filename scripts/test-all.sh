@@ -8,7 +8,12 @@
 #      runs the examples in examples/python in their short form and compares
 #      against the `clump` binary built by step 1;
 #   3. the MPI suite: `clump` built with the `mpi` feature (OpenMPI), run by
-#      `mpirun -np 2, 3, 4` against one process (crates/clump-cli/tests/mpi.rs).
+#      `mpirun -np 2, 3, 4` against one process (crates/clump-cli/tests/mpi.rs);
+#   4. the GPU suite: `clump` built with the `gpu` feature, `clump check|bench
+#      --device gpu` on the machine's Vulkan adapter (Mesa's lavapipe in CI,
+#      crates/clump-cli/tests/device_gpu.rs). The device step's own tests
+#      (crates/clump-gpu: f64 kernels, the step against the CPU path,
+#      run-to-run bits) run in step 1.
 # Every suite always runs; the exit status is non-zero if either failed.
 # All three build with the `ci` profile (root Cargo.toml): the release
 # profile's optimisation, without link-time optimisation, which cut the Rust
@@ -59,6 +64,9 @@ else
   echo "error: mpirun not found (Debian: openmpi-bin libopenmpi-dev); the MPI suite cannot run"
   status=1
 fi
+
+echo "== GPU suite: cargo test --profile ci -p clump-cli --features gpu --test device_gpu"
+cargo test --profile ci -p clump-cli --features gpu --test device_gpu || status=1
 
 if [ "$status" -ne 0 ]; then
   echo "== FAILED: at least one suite failed (see above)"
