@@ -86,7 +86,7 @@ pub fn check(_sc: &clump_io::scenario::Scenario) -> bool {
 pub fn bench(n: usize, steps: u64, threads: usize) -> anyhow::Result<()> {
     use std::time::Instant;
     let side = ((n as f64).cbrt().round() as usize).max(1);
-    let world = clump_gpu::bed::tetra_box_bed(side, side);
+    let world = clump_gpu::bed::box_bed(side, side, clump_core::rotation::RotationScheme::NoSquish);
     let gpu = clump_gpu::Gpu::new()?;
     outln!("device: {}", gpu.describe());
     let t = Instant::now();

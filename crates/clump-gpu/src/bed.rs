@@ -5,6 +5,7 @@ use clump_core::boundary::Domain;
 use clump_core::contact::{ContactTable, PairProperties};
 use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::RotationScheme;
+use clump_core::shape::{builtin, ClumpTemplate};
 use clump_core::testbed::{tetra_material, tetra_template};
 use clump_core::wall::{Wall, WallMotion, WallShape};
 use clump_core::world::{AddedMass, World, WorldConfig};
@@ -13,14 +14,16 @@ use glam::{DQuat, DVec3};
 /// Lattice pitch, m (the tetra bed's, `clump_core::testbed::LATTICE_PITCH`).
 const PITCH: f64 = clump_core::testbed::LATTICE_PITCH;
 
-/// `n × n × layers` tetra clumps (`clump_core::testbed`'s template and
-/// material, Clump's default Hertz-Mindlin pair law) on a lattice in a box
+/// `n × n × layers` clumps on a lattice, tetra clumps (`clump_core::testbed`'s
+/// template and material) and rods of three spheres (radius 1 mm, spacing
+/// 1.1 mm: an asymmetric top) in turn, Clump's default Hertz-Mindlin pair
+/// law, in a box
 /// `n` pitches wide closed by five static planes, gravity -9.81 m/s² along
-/// z, LIGGGHTS' Richardson rotation, dt = 1e-5 s; each clump with a
+/// z, the rotation scheme `rotation`, dt = 1e-5 s; each clump with a
 /// deterministic velocity of up to 0.2 m/s and spin of up to 100 rad/s, so
 /// that clump-clump and wall contacts form, slide and end within a few
 /// thousand steps. Everything in it runs on the device.
-pub fn tetra_box_bed(n: usize, layers: usize) -> World {
+pub fn box_bed(n: usize, layers: usize, rotation: RotationScheme) -> World {
     let mats = vec![tetra_material()];
     let table = ContactTable::new(&mats, |_, _| PairProperties::default()).expect("a valid test bed");
     let l = n as f64 * PITCH;
@@ -29,13 +32,18 @@ pub fn tetra_box_bed(n: usize, layers: usize) -> World {
         domain: Domain { lo: DVec3::ZERO, hi: DVec3::new(l, l, h), periodic: [false; 3] },
         gravity: DVec3::new(0.0, 0.0, -9.81),
         dt: 1e-5,
-        rotation: RotationScheme::RichardsonLiggghts,
+        rotation,
         added_mass: AddedMass::default(),
         skin: None,
         multi_contact: MultiContact::Sum,
     };
     let mut w = World::new(config, mats, table);
-    let t = w.add_template(tetra_template(), 0).expect("a valid test bed");
+    let rod = ClumpTemplate::from_spheres("rod", &builtin::rod(3, 1e-3, 1.1e-3), tetra_material().density)
+        .expect("a valid test bed");
+    let templates = [
+        w.add_template(tetra_template(), 0).expect("a valid test bed"),
+        w.add_template(rod, 0).expect("a valid test bed"),
+    ];
     let planes = [
         (DVec3::ZERO, DVec3::Z),
         (DVec3::ZERO, DVec3::X),
@@ -62,7 +70,7 @@ pub fn tetra_box_bed(n: usize, layers: usize) -> World {
                 let kf = k as f64;
                 let q = DQuat::from_euler(glam::EulerRot::ZXZ, kf * 0.7, kf * 1.3, kf * 0.4);
                 let p = DVec3::new(x as f64 + 0.5, y as f64 + 0.5, z as f64 + 0.6) * PITCH;
-                let mut b = BodyInit::at_rest(t, p, q);
+                let mut b = BodyInit::at_rest(templates[k as usize % 2], p, q);
                 b.velocity = 0.2 * DVec3::new((kf * 1.7).sin(), (kf * 2.3).sin(), (kf * 3.1).sin());
                 b.angular_velocity = 100.0 * DVec3::new((kf * 0.9).cos(), (kf * 1.1).cos(), (kf * 1.9).cos());
                 w.add_body(&b).expect("a valid test bed");

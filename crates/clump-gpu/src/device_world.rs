@@ -8,8 +8,9 @@ use clump_core::world::World;
 use glam::{DQuat, DVec3};
 
 /// The kernels, one WGSL module.
-const SHADER: [&str; 4] = [
+const SHADER: [&str; 5] = [
     include_str!("shaders/common.wgsl"),
+    include_str!("shaders/rotation.wgsl"),
     include_str!("shaders/body.wgsl"),
     include_str!("shaders/pairs.wgsl"),
     include_str!("shaders/contact.wgsl"),
@@ -372,6 +373,11 @@ impl HostArrays {
             })
             .collect();
         let mut pu = vec![0u32; 16];
+        // common.wgsl PU_ROT (support.rs refuses the other schemes)
+        pu[12] = match c.rotation {
+            clump_core::rotation::RotationScheme::NoSquish => 1,
+            _ => 0,
+        };
         pu[..9].copy_from_slice(&[
             nb as u32, ns as u32, n.npow2 as u32, dims[0] as u32, dims[1] as u32, dims[2] as u32,
             n.cap as u32, world.walls.len() as u32, nmat as u32,

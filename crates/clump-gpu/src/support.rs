@@ -63,8 +63,8 @@ pub fn unsupported(world: &World) -> Vec<Unsupported> {
     let mut out = Vec::new();
     let mut no = |path: Vec<KeySeg>, allowed: &str| out.push(Unsupported { path, allowed: allowed.into() });
     let c = &world.config;
-    if c.rotation != RotationScheme::RichardsonLiggghts {
-        no(keys("integrator.rotation"), "\"richardson_liggghts\" (the others need f64 sin/cos, see ARCHITECTURE.md)");
+    if !matches!(c.rotation, RotationScheme::NoSquish | RotationScheme::RichardsonLiggghts) {
+        no(keys("integrator.rotation"), "\"no_squish\" (the default) or \"richardson_liggghts\"");
     }
     if c.domain.periodic.iter().any(|&p| p) {
         no(keys("domain.periodic"), "false on every axis");

@@ -1,5 +1,5 @@
 //! The device step against the CPU path, its reference: a small bed of
-//! tetra clumps (4 spheres each) falling into a closed box of five plane
+//! tetra clumps and 3-sphere rods falling into a closed box of five plane
 //! walls, with jostling initial velocities so that clump-clump and wall
 //! contacts form, slide and end within the run. The CPU path's equations
 //! are the device's (same laws, same order of operations); the two differ
@@ -8,7 +8,8 @@
 //! 1e-9 of the domain size after a few thousand steps.
 
 use clump_core::world::World;
-use clump_gpu::bed::tetra_box_bed as bed;
+use clump_core::rotation::RotationScheme;
+use clump_gpu::bed::box_bed;
 use clump_gpu::{DeviceWorld, Gpu};
 use glam::DVec3;
 
@@ -20,12 +21,13 @@ fn max_dev(dev: &DeviceWorld, x: &[DVec3], cpu: &World) -> f64 {
     dev.ids.iter().zip(x).map(|(id, p)| (*p - b.position[at[id]]).abs().max_element()).fold(0.0, f64::max)
 }
 
-#[test]
-fn device_step_agrees_with_the_cpu_path() {
-    let mut cpu = bed(4, 3);
+/// The bed under `rotation`, `at` steps on both paths; the largest
+/// position difference over the checkpoints, relative to the box.
+fn compare(rotation: RotationScheme) -> f64 {
+    let mut cpu = box_bed(4, 3, rotation);
     let size = cpu.config.domain.size().max_element();
     let mut dev = DeviceWorld::upload(Gpu::new().unwrap(), &cpu).unwrap_or_else(|e| panic!("{e}"));
-    eprintln!("adapter: {}, {} spheres", dev.gpu.describe(), dev.spheres());
+    eprintln!("{rotation:?}: adapter {}, {} spheres", dev.gpu.describe(), dev.spheres());
     cpu.prepare().unwrap();
     let mut done = 0;
     let mut worst = 0.0f64;
@@ -45,12 +47,24 @@ fn device_step_agrees_with_the_cpu_path() {
         done = at;
     }
     assert!(cpu.stats.pair_contacts > 0, "the bed must have contacts for the comparison to mean anything");
+    worst
+}
+
+#[test]
+fn device_step_agrees_with_the_cpu_path_no_squish() {
+    let worst = compare(RotationScheme::NoSquish);
+    assert!(worst < 1e-9, "device and CPU positions differ by {worst:e} of the domain size");
+}
+
+#[test]
+fn device_step_agrees_with_the_cpu_path_richardson_liggghts() {
+    let worst = compare(RotationScheme::RichardsonLiggghts);
     assert!(worst < 1e-9, "device and CPU positions differ by {worst:e} of the domain size");
 }
 
 #[test]
 fn device_runs_are_bit_reproducible() {
-    let w = bed(4, 3);
+    let w = box_bed(4, 3, RotationScheme::NoSquish);
     let run = || {
         let mut d = DeviceWorld::upload(Gpu::new().unwrap(), &w).unwrap();
         d.run(500).unwrap();

@@ -2,7 +2,7 @@
 // Richardson rotation, docs/theory.md T-15 and T-19), the spheres following
 // their bodies (T-2), and the body gather with the final half kick.
 // Formulas and operation order as crates/clump-core/src/step/kick.rs,
-// first_half.rs and rotation/richardson_liggghts.rs.
+// first_half.rs and rotation/richardson_liggghts.rs (NO_SQUISH: rotation.wgsl).
 
 // LAMMPS MathExtra::vecquat: (0, a) (x) b
 fn vecquat(a: vec3<f64>, b: vec4<f64>) -> vec4<f64> {
@@ -39,6 +39,30 @@ fn drift_q(q: vec4<f64>, wq: vec4<f64>, h: f64) -> vec4<f64> {
     return q + wq * h;
 }
 
+struct QW { q: vec4<f64>, w: vec3<f64> }
+// richardson_liggghts::drift_omega: the orientation and the world angular
+// velocity of the first half sub-step, which moves the spheres this step
+fn richardson_liggghts(q: vec4<f64>, l: vec3<f64>, inertia: vec3<f64>, dt: f64) -> QW {
+    let dtq = 0.5lf * dt;
+    var w = mq_to_omega(l, q, inertia);
+    var wq = vecquat(w, q);
+    let qfull = qnormalize(drift_q(q, wq, dtq));
+    var qhalf = qnormalize(drift_q(q, wq, 0.5lf * dtq));
+    w = mq_to_omega(l, qhalf, inertia);
+    wq = vecquat(w, qhalf);
+    qhalf = qnormalize(drift_q(qhalf, wq, 0.5lf * dtq));
+    return QW(qnormalize(qhalf * 2.0lf - qfull), w);
+}
+
+// rotation::omega_world_rot: omega = R (1/I (R^T L)), c L for a spherical top
+fn omega_world(rot: Mat3, l: vec3<f64>, inv: vec3<f64>) -> vec3<f64> {
+    if (inv.x == inv.y && inv.y == inv.z) {
+        return l * inv.x;
+    }
+    let lb = vec3<f64>(dot3(rot.x, l), dot3(rot.y, l), dot3(rot.z, l));
+    return mat_mul(rot, lb * inv);
+}
+
 @compute @workgroup_size(64)
 fn first_half(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
@@ -52,17 +76,17 @@ fn first_half(@builtin(global_invocation_id) gid: vec3<u32>) {
     let l = ld_bl(i) + dtt * m;
     let x = ld_bx(i) + v * dt;
     let inertia = vec3<f64>(bm[8u * i + 1u], bm[8u * i + 2u], bm[8u * i + 3u]);
-    // richardson_liggghts::drift_omega
-    let q = ldq(i);
-    let dtq = 0.5lf * dt;
-    var w = mq_to_omega(l, q, inertia);
-    var wq = vecquat(w, q);
-    let qfull = qnormalize(drift_q(q, wq, dtq));
-    var qhalf = qnormalize(drift_q(q, wq, 0.5lf * dtq));
-    w = mq_to_omega(l, qhalf, inertia);
-    wq = vecquat(w, qhalf);
-    qhalf = qnormalize(drift_q(qhalf, wq, 0.5lf * dtq));
-    let qn = qnormalize(qhalf * 2.0lf - qfull);
+    var qn: vec4<f64>;
+    var w: vec3<f64>;
+    if (pu[PU_ROT] == 0u) {
+        let qw = richardson_liggghts(ldq(i), l, inertia, dt);
+        qn = qw.q;
+        w = qw.w;
+    } else {
+        qn = no_squish_drift(ldq(i), l, inertia, dt);
+        let inv = vec3<f64>(bm[8u * i + 4u], bm[8u * i + 5u], bm[8u * i + 6u]);
+        w = omega_world(mat_from_quat(qn), l, inv);
+    }
     st_bv(i, v);
     st_bl(i, l);
     st_bx(i, x);
@@ -154,13 +178,6 @@ fn gather_kick(@builtin(global_invocation_id) gid: vec3<u32>) {
     st_bv(b, v);
     st_bl(b, l);
     let inv = vec3<f64>(bm[8u * b + 4u], bm[8u * b + 5u], bm[8u * b + 6u]);
-    var om: vec3<f64>;
-    if (inv.x == inv.y && inv.y == inv.z) {
-        om = l * inv.x;
-    } else {
-        let rot = mat_from_quat(ldq(b));
-        let lb = vec3<f64>(dot3(rot.x, l), dot3(rot.y, l), dot3(rot.z, l));
-        om = mat_mul(rot, lb * inv);
-    }
-    st_bw(b, om);
+    // rotation::omega_world_inv
+    st_bw(b, omega_world(mat_from_quat(ldq(b)), l, inv));
 }

@@ -49,6 +49,7 @@ const PU_NMAT: u32 = 8u;
 const PU_SORT_K: u32 = 9u;
 const PU_SORT_J: u32 = 10u;
 const PU_OVERFLOW: u32 = 11u; // 1: a sphere had more than MAXN neighbours, 2: the table exceeded cap
+const PU_ROT: u32 = 12u;      // rotation scheme: 0 richardson_liggghts, 1 no_squish
 const MAXN: u32 = 32u;
 const WG: u32 = 64u;
 
