@@ -77,9 +77,9 @@ pub fn check(_sc: &clump_io::scenario::Scenario) -> bool {
     false
 }
 
-/// `clump bench --device gpu`: the tetra clumps of `clump_gpu::bed` in a
-/// closed box (the shared tetra bed is periodic and uses NO_SQUISH, which
-/// the GPU path does not run yet), about `n` clumps, `steps` steps on the
+/// `clump bench --device gpu`: the clumps of `clump_gpu::bed` in a closed
+/// box (the shared tetra bed uses the exact Richardson rotation, which the
+/// GPU path does not run yet), about `n` clumps, `steps` steps on the
 /// device and on the CPU path with `threads` threads; sphere-steps/s of
 /// both and the largest position difference between them.
 #[cfg(feature = "gpu")]
@@ -93,7 +93,7 @@ pub fn bench(n: usize, steps: u64, threads: usize) -> anyhow::Result<()> {
     let mut dev = clump_gpu::DeviceWorld::upload(gpu, &world)?;
     let ns = dev.spheres() as f64;
     outln!(
-        "box bed of {side}x{side}x{side} tetra clumps ({ns} spheres), {steps} steps; upload and first forces {:.3} s",
+        "box bed of {side}x{side}x{side} clumps (tetra and 3-sphere rods in turn, {ns} spheres), {steps} steps; upload and first forces {:.3} s",
         t.elapsed().as_secs_f64()
     );
     let t = Instant::now();
