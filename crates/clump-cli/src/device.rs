@@ -100,7 +100,7 @@ pub fn bench(n: usize, steps: u64, threads: usize) -> anyhow::Result<()> {
     dev.run(steps)?;
     let x_dev = dev.positions()?;
     let gpu_rate = ns * steps as f64 / t.elapsed().as_secs_f64();
-    outln!("gpu: {:.3} M sphere-steps/s", gpu_rate / 1e6);
+    outln!("gpu: {:.3} M sphere-steps/s ({} pair-table builds)", gpu_rate / 1e6, dev.builds);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
     let mut cpu = world;
     let t = Instant::now();

@@ -16,11 +16,13 @@ const SHADER: [&str; 5] = [
     include_str!("shaders/contact.wgsl"),
 ];
 /// Storage bindings of the module (common.wgsl).
-const N_BINDINGS: u32 = 29;
+const N_BINDINGS: u32 = 30;
 /// Pair-table entries reserved per sphere (each pair twice, one entry per side).
 const ENTRIES_PER_SPHERE: usize = 16;
 /// Index of the integer parameter holding the overflow bits (common.wgsl PU_OVERFLOW).
 const PU_OVERFLOW: usize = 11;
+/// Index of the count of table builds (common.wgsl PU_BUILDS).
+const PU_BUILDS: usize = 14;
 /// Most neighbours of one sphere (common.wgsl MAXN).
 const MAXN: usize = 32;
 
@@ -40,11 +42,20 @@ const K_PAIR_FORCES: usize = 11;
 const K_SPHERE_GATHER: usize = 12;
 const K_BODY_GATHER: usize = 13;
 const K_GATHER_KICK: usize = 14;
-const ENTRIES: [&str; 15] = [
+const K_REBUILD_ARGS: usize = 15;
+const K_TABLE_SAVE: usize = 16;
+const ENTRIES: [&str; 17] = [
     "first_half", "spheres", "sort_reset", "sort_next", "sort_step", "cells_clear", "cells_bounds",
     "pairs_count", "pairs_scan", "pairs_fill", "pairs_mirror", "pair_forces", "sphere_gather",
-    "body_gather", "gather_kick",
+    "body_gather", "gather_kick", "rebuild_args", "table_save",
 ];
+/// The indirect dispatch sizes `rebuild_args` writes (pairs.wgsl): one
+/// group per 64 sort slots, cells, spheres, table entries; or one group.
+const A_SLOTS: u64 = 0;
+const A_CELLS: u64 = 1;
+const A_SPHERES: u64 = 2;
+const A_ONE: u64 = 3;
+const A_ENTRIES: u64 = 4;
 
 /// Why a world cannot run on, or a step failed on, the device.
 #[derive(Debug)]
@@ -91,15 +102,15 @@ struct Sizes {
 pub struct DeviceWorld {
     pub gpu: Gpu,
     n: Sizes,
-    /// Buffers by binding; 17..=22 swap between the two bind groups.
+    /// Buffers by binding of group 0.
     buffers: Vec<wgpu::Buffer>,
-    /// Bind group 0 for even and odd steps: the pair table (noff, nbr,
-    /// hist) of one step is the old table (old_off, old_nbr, old_hist) of
-    /// the next, without a copy.
-    groups: [wgpu::BindGroup; 2],
+    /// Group 0, every kernel's arrays.
+    group: wgpu::BindGroup,
+    /// Group 1 of `rebuild_args`: the indirect dispatch sizes of the
+    /// table build, which the build's dispatches read as their sizes.
+    args_group: wgpu::BindGroup,
+    args: wgpu::Buffer,
     pipelines: Vec<wgpu::ComputePipeline>,
-    /// Which group holds the current table as its new one.
-    parity: usize,
     /// Global id of each body, in device order (the world's storage order
     /// at upload; the CPU path reorders its bodies at rebuilds, the device
     /// keeps this order).
@@ -108,6 +119,9 @@ pub struct DeviceWorld {
     pub step: u64,
     /// Simulated time, s.
     pub time: f64,
+    /// Pair-table builds so far (a sphere left half the skin), as of the
+    /// last batch.
+    pub builds: u64,
     dt: f64,
 }
 
@@ -142,9 +156,27 @@ impl DeviceWorld {
                 })
                 .collect::<Vec<_>>(),
         });
+        let args_layout = gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("clump build sizes"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only: false },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
         let pl = gpu.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("clump step"),
             bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pl_args = gpu.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("clump build sizes"),
+            bind_group_layouts: &[Some(&layout), Some(&args_layout)],
             immediate_size: 0,
         });
         let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -156,7 +188,7 @@ impl DeviceWorld {
             .map(|e| {
                 gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                     label: Some(e),
-                    layout: Some(&pl),
+                    layout: Some(if *e == "rebuild_args" { &pl_args } else { &pl }),
                     module: &module,
                     entry_point: Some(e),
                     compilation_options: Default::default(),
@@ -164,21 +196,22 @@ impl DeviceWorld {
                 })
             })
             .collect();
-        let group = |swap: bool| {
-            let entries: Vec<wgpu::BindGroupEntry> = (0..N_BINDINGS as usize)
-                .map(|b| {
-                    // 17..=19 (new table) and 20..=22 (old table) trade places
-                    let src = match (swap, b) {
-                        (true, 17..=19) => b + 3,
-                        (true, 20..=22) => b - 3,
-                        _ => b,
-                    };
-                    wgpu::BindGroupEntry { binding: b as u32, resource: buffers[src].as_entire_binding() }
-                })
-                .collect();
-            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor { label: None, layout: &layout, entries: &entries })
-        };
-        let groups = [group(false), group(true)];
+        let entries: Vec<wgpu::BindGroupEntry> = (0..N_BINDINGS as usize)
+            .map(|b| wgpu::BindGroupEntry { binding: b as u32, resource: buffers[b].as_entire_binding() })
+            .collect();
+        let group =
+            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor { label: None, layout: &layout, entries: &entries });
+        let args = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("build sizes"),
+            size: 15 * 4,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT,
+            mapped_at_creation: false,
+        });
+        let args_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &args_layout,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: args.as_entire_binding() }],
+        });
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Device(format!("setting up the device step: {e}")).into());
         }
@@ -186,12 +219,14 @@ impl DeviceWorld {
             gpu,
             n,
             buffers,
-            groups,
+            group,
+            args_group,
+            args,
             pipelines,
-            parity: 0,
             ids: world.bodies().id.clone(),
             step: world.step,
             time: world.time,
+            builds: 0,
             dt: world.config.dt,
         };
         dw.submit(0, true)?;
@@ -215,18 +250,13 @@ impl DeviceWorld {
     /// then `steps` whole steps. Checks the overflow flags after it.
     fn submit(&mut self, steps: u64, prepare: bool) -> Result<(), DeviceError> {
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            if prepare {
-                self.encode_forces(&mut pass);
-                self.dispatch(&mut pass, K_BODY_GATHER, self.n.nb);
-            }
-            for _ in 0..steps {
-                self.parity ^= 1;
-                self.dispatch(&mut pass, K_FIRST_HALF, self.n.nb);
-                self.encode_forces(&mut pass);
-                self.dispatch(&mut pass, K_GATHER_KICK, self.n.nb);
-            }
+        if prepare {
+            self.encode_positions(&mut enc, false);
+            self.encode_forces(&mut enc, K_BODY_GATHER);
+        }
+        for _ in 0..steps {
+            self.encode_positions(&mut enc, true);
+            self.encode_forces(&mut enc, K_GATHER_KICK);
         }
         self.gpu.queue.submit(Some(enc.finish()));
         for _ in 0..steps {
@@ -234,6 +264,7 @@ impl DeviceWorld {
             self.time += self.dt;
         }
         let pu: Vec<u32> = self.gpu.read(&self.buffers[1])?;
+        self.builds = pu[PU_BUILDS] as u64;
         match pu[PU_OVERFLOW] {
             0 => Ok(()),
             bits => Err(DeviceError::Overflow(format!(
@@ -246,32 +277,59 @@ impl DeviceWorld {
 
     fn dispatch(&self, pass: &mut wgpu::ComputePass<'_>, k: usize, n: usize) {
         pass.set_pipeline(&self.pipelines[k]);
-        pass.set_bind_group(0, &self.groups[self.parity], &[]);
+        pass.set_bind_group(0, &self.group, &[]);
         pass.dispatch_workgroups(n.div_ceil(64).max(1) as u32, 1, 1);
     }
 
-    /// Stages 3-5 of the step on the device: sphere centres and cell keys,
-    /// the bitonic sort, cell ranges, the pair table with its carried
-    /// springs, the pair forces, and the gather per sphere.
-    fn encode_forces(&self, pass: &mut wgpu::ComputePass<'_>) {
+    /// A kernel of the table build, its size from `rebuild_args` (zero
+    /// groups while the table is good).
+    fn dispatch_build(&self, pass: &mut wgpu::ComputePass<'_>, k: usize, size: u64) {
+        pass.set_pipeline(&self.pipelines[k]);
+        pass.set_bind_group(0, &self.group, &[]);
+        pass.dispatch_workgroups_indirect(&self.args, 12 * size);
+    }
+
+    /// Stages 1-2 of the step (with `first_half`) or the positions of the
+    /// current state: the first half per body, the sphere centres with
+    /// the skin check, and the sizes of this step's table build. A pass of
+    /// its own: the build's dispatches read those sizes.
+    fn encode_positions(&self, enc: &mut wgpu::CommandEncoder, first_half: bool) {
         let n = self.n;
-        self.dispatch(pass, K_SPHERES, n.npow2);
-        self.dispatch(pass, K_SORT_RESET, 1);
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        if first_half {
+            self.dispatch(&mut pass, K_FIRST_HALF, n.nb);
+        }
+        self.dispatch(&mut pass, K_SPHERES, n.npow2);
+        pass.set_pipeline(&self.pipelines[K_REBUILD_ARGS]);
+        pass.set_bind_group(0, &self.group, &[]);
+        pass.set_bind_group(1, &self.args_group, &[]);
+        pass.dispatch_workgroups(1, 1, 1);
+    }
+
+    /// Stages 3-5 on the device: the table build when a sphere left half
+    /// the skin (bitonic sort, cell ranges, the table with its carried
+    /// springs), the pair forces, the gather per sphere, and `last` (the
+    /// body gather, with or without the final kick).
+    fn encode_forces(&self, enc: &mut wgpu::CommandEncoder, last: usize) {
+        let n = self.n;
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        self.dispatch_build(&mut pass, K_SORT_RESET, A_ONE);
         let p = n.npow2.trailing_zeros() as usize;
         for _ in 0..p * (p + 1) / 2 {
-            self.dispatch(pass, K_SORT_NEXT, 1);
-            self.dispatch(pass, K_SORT_STEP, n.npow2);
+            self.dispatch_build(&mut pass, K_SORT_NEXT, A_ONE);
+            self.dispatch_build(&mut pass, K_SORT_STEP, A_SLOTS);
         }
-        self.dispatch(pass, K_CELLS_CLEAR, n.cells);
-        self.dispatch(pass, K_CELLS_BOUNDS, n.ns);
-        self.dispatch(pass, K_PAIRS_COUNT, n.ns);
+        self.dispatch_build(&mut pass, K_CELLS_CLEAR, A_CELLS);
+        self.dispatch_build(&mut pass, K_CELLS_BOUNDS, A_SPHERES);
+        self.dispatch_build(&mut pass, K_TABLE_SAVE, A_ENTRIES);
+        self.dispatch_build(&mut pass, K_PAIRS_COUNT, A_SPHERES);
         // one workgroup of 256
-        pass.set_pipeline(&self.pipelines[K_PAIRS_SCAN]);
-        pass.dispatch_workgroups(1, 1, 1);
-        self.dispatch(pass, K_PAIRS_FILL, n.ns);
-        self.dispatch(pass, K_PAIRS_MIRROR, n.ns);
-        self.dispatch(pass, K_PAIR_FORCES, n.ns);
-        self.dispatch(pass, K_SPHERE_GATHER, n.ns);
+        self.dispatch_build(&mut pass, K_PAIRS_SCAN, A_ONE);
+        self.dispatch_build(&mut pass, K_PAIRS_FILL, A_SPHERES);
+        self.dispatch_build(&mut pass, K_PAIRS_MIRROR, A_SPHERES);
+        self.dispatch(&mut pass, K_PAIR_FORCES, n.ns);
+        self.dispatch(&mut pass, K_SPHERE_GATHER, n.ns);
+        self.dispatch(&mut pass, last, n.nb);
     }
 
     /// Body centres of mass, world frame, m (storage order of the world
@@ -331,7 +389,7 @@ impl HostArrays {
         let nb = b.len();
         let mut bfirst = vec![0u32];
         let (mut sown, mut sref) = (Vec::new(), Vec::new());
-        let mut rmax = 0.0f64;
+        let (mut rmax, mut rmin) = (0.0f64, f64::INFINITY);
         for i in 0..nb {
             let t = b.template[i] as usize;
             let mat = world.templates.material(t) as u32;
@@ -339,14 +397,18 @@ impl HostArrays {
                 sown.extend([i as u32, mat]);
                 sref.extend([s.center.x, s.center.y, s.center.z, s.radius]);
                 rmax = rmax.max(s.radius);
+                rmin = rmin.min(s.radius);
             }
             bfirst.push((sown.len() / 2) as u32);
         }
         let ns = sown.len() / 2;
-        // cells at least one largest diameter wide: a touching pair lies in
-        // neighbouring cells
+        // cells at least one largest diameter plus the skin wide: a pair of
+        // the table lies in neighbouring cells
+        // the Verlet skin: the scenario's, else 0.2 of the smallest radius
+        // (the CPU path's first build); results do not depend on it
+        let skin = c.skin.unwrap_or(0.2 * rmin.min(rmax));
         let size = c.domain.size();
-        let mut cell_size = (2.0 * rmax).max(f64::MIN_POSITIVE);
+        let mut cell_size = (2.0 * rmax + skin).max(f64::MIN_POSITIVE);
         let dims_of = |cs: f64| [size.x, size.y, size.z].map(|l| ((l / cs).floor() as usize).max(1));
         while dims_of(cell_size).iter().product::<usize>() > 1 << 24 {
             cell_size *= 2.0;
@@ -360,7 +422,7 @@ impl HostArrays {
             cap: ns * ENTRIES_PER_SPHERE,
         };
         let lo = c.domain.lo;
-        let pf = vec![c.dt, c.gravity.x, c.gravity.y, c.gravity.z, lo.x, lo.y, lo.z, cell_size];
+        let pf = vec![c.dt, c.gravity.x, c.gravity.y, c.gravity.z, lo.x, lo.y, lo.z, cell_size, skin];
         let nmat = world.materials.len();
         let walls: Vec<f64> = world
             .walls
@@ -378,6 +440,8 @@ impl HostArrays {
             clump_core::rotation::RotationScheme::NoSquish => 1,
             _ => 0,
         };
+        // PU_STALE: the first step builds the table
+        pu[13] = 1;
         pu[..9].copy_from_slice(&[
             nb as u32, ns as u32, n.npow2 as u32, dims[0] as u32, dims[1] as u32, dims[2] as u32,
             n.cap as u32, world.walls.len() as u32, nmat as u32,
@@ -420,7 +484,7 @@ impl HostArrays {
         (HostArrays { pf, pu, bodies, bfirst, sown, sref, walls, laws }, n)
     }
 
-    /// The 29 storage buffers, by binding.
+    /// The storage buffers of group 0, by binding.
     fn buffers(&self, gpu: &Gpu, n: Sizes) -> Vec<wgpu::Buffer> {
         let nw = (self.walls.len() / 7).max(1);
         let mut out = vec![gpu.buffer("pf", &self.pf), gpu.buffer("pu", &self.pu)];
@@ -436,6 +500,7 @@ impl HostArrays {
         out.push(gpu.zeroed::<u32>("idx", n.npow2));
         out.push(gpu.zeroed::<u32>("cells", 2 * n.cells));
         for _ in 0..2 {
+            // the table, then its copy at the last build (old_*)
             out.push(gpu.zeroed::<u32>("noff", n.ns + 1));
             out.push(gpu.zeroed::<u32>("nbr", n.cap));
             out.push(gpu.zeroed::<f64>("hist", 3 * n.cap));
@@ -446,6 +511,7 @@ impl HostArrays {
         out.push(gpu.buffer("walls", &self.walls));
         out.push(gpu.zeroed::<f64>("whist", 3 * n.ns * nw));
         out.push(gpu.buffer("laws", &self.laws));
+        out.push(gpu.zeroed::<f64>("sx0", 3 * n.ns));
         out
     }
 }

@@ -39,8 +39,9 @@ fn compare(rotation: RotationScheme) -> f64 {
         cpu.run(at - done).unwrap();
         let dev_rel = max_dev(&dev, &gpu_x, &cpu) / size;
         eprintln!(
-            "step {at}: max |x_gpu - x_cpu| / L = {dev_rel:.3e}; contacts on the CPU {}; device {:.0} sphere-steps/s",
+            "step {at}: max |x_gpu - x_cpu| / L = {dev_rel:.3e}; contacts on the CPU {}; device table builds {}, {:.0} sphere-steps/s",
             format!("{} pair, {} wall", cpu.stats.pair_contacts, cpu.stats.wall_contacts),
+            dev.builds,
             (dev.spheres() as f64 * (at - done) as f64) / secs
         );
         worst = worst.max(dev_rel);

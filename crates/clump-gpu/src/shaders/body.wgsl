@@ -94,8 +94,8 @@ fn first_half(@builtin(global_invocation_id) gid: vec3<u32>) {
     bq[4u * i] = qn.x; bq[4u * i + 1u] = qn.y; bq[4u * i + 2u] = qn.z; bq[4u * i + 3u] = qn.w;
 }
 
-// Sphere centres r = r_cm + R(q) r_b, their lever arms R(q) r_b, and their
-// cell keys (linear index of the cell of the grid, clamped to the grid:
+// Sphere centres r = r_cm + R(q) r_b, their lever arms R(q) r_b, whether
+// one left half the skin, and their cell keys (linear index of the cell of the grid, clamped to the grid:
 // the boundary cells reach to infinity, so no touching pair is missed).
 @compute @workgroup_size(64)
 fn spheres(@builtin(global_invocation_id) gid: vec3<u32>) {
@@ -116,6 +116,13 @@ fn spheres(@builtin(global_invocation_id) gid: vec3<u32>) {
     st_sx(s, x);
     keys[s] = cell_key(cell_of(x));
     idx[s] = s;
+    // the skin check (the CPU's rule): the table holds every pair within
+    // the radius sum plus the skin at its build, so it is good until a
+    // sphere has moved half the skin. Every invocation that finds one
+    // stores the same 1: the flag does not depend on which does.
+    let d = x - ld_sx0(s);
+    let h = 0.5lf * pf[PF_SKIN];
+    if (dot3(d, d) > h * h) { pu[PU_STALE] = 1u; }
 }
 
 fn cell_of(x: vec3<f64>) -> vec3<i32> {

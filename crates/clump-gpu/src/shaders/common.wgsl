@@ -34,11 +34,13 @@
 @group(0) @binding(26) var<storage, read_write> walls: array<f64>; // plane point (3), unit normal (3), material (7/wall)
 @group(0) @binding(27) var<storage, read_write> whist: array<f64>; // wall tangential spring (3/(sphere, wall))
 @group(0) @binding(28) var<storage, read_write> laws: array<f64>; // SlidingLaw per material pair (8/pair)
+@group(0) @binding(29) var<storage, read_write> sx0: array<f64>;  // sphere centre at the last table build (3/sphere)
 
 const PF_DT: u32 = 0u;
 const PF_G: u32 = 1u;       // gravity, 3
 const PF_LO: u32 = 4u;      // grid origin, 3
 const PF_CELL: u32 = 7u;    // cell size
+const PF_SKIN: u32 = 8u;    // Verlet skin, m
 const PU_NB: u32 = 0u;
 const PU_NS: u32 = 1u;
 const PU_NPOW2: u32 = 2u;
@@ -50,6 +52,8 @@ const PU_SORT_K: u32 = 9u;
 const PU_SORT_J: u32 = 10u;
 const PU_OVERFLOW: u32 = 11u; // 1: a sphere had more than MAXN neighbours, 2: the table exceeded cap
 const PU_ROT: u32 = 12u;      // rotation scheme: 0 richardson_liggghts, 1 no_squish
+const PU_STALE: u32 = 13u;    // 1: a sphere moved more than half the skin since the last build
+const PU_BUILDS: u32 = 14u;   // table builds so far
 const MAXN: u32 = 32u;
 const WG: u32 = 64u;
 
@@ -64,6 +68,8 @@ fn ld_bx(i: u32) -> vec3<f64> { return vec3<f64>(bx[3u * i], bx[3u * i + 1u], bx
 fn st_bx(i: u32, v: vec3<f64>) { bx[3u * i] = v.x; bx[3u * i + 1u] = v.y; bx[3u * i + 2u] = v.z; }
 fn ld_hist(i: u32) -> vec3<f64> { return vec3<f64>(hist[3u * i], hist[3u * i + 1u], hist[3u * i + 2u]); }
 fn st_hist(i: u32, v: vec3<f64>) { hist[3u * i] = v.x; hist[3u * i + 1u] = v.y; hist[3u * i + 2u] = v.z; }
+fn ld_sx0(i: u32) -> vec3<f64> { return vec3<f64>(sx0[3u * i], sx0[3u * i + 1u], sx0[3u * i + 2u]); }
+fn st_sx0(i: u32, v: vec3<f64>) { sx0[3u * i] = v.x; sx0[3u * i + 1u] = v.y; sx0[3u * i + 2u] = v.z; }
 fn ld_old_hist(i: u32) -> vec3<f64> { return vec3<f64>(old_hist[3u * i], old_hist[3u * i + 1u], old_hist[3u * i + 2u]); }
 fn st_old_hist(i: u32, v: vec3<f64>) { old_hist[3u * i] = v.x; old_hist[3u * i + 1u] = v.y; old_hist[3u * i + 2u] = v.z; }
 fn ld_sarm(i: u32) -> vec3<f64> { return vec3<f64>(sarm[3u * i], sarm[3u * i + 1u], sarm[3u * i + 2u]); }

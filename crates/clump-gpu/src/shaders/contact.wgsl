@@ -69,8 +69,16 @@ fn pair_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         if (j < i) { continue; }
         let bj = sown[2u * j];
         let rj = sref[4u * j + 3u];
-        // contact::geometry::sphere_pair
         let dv = ld_sx(i) - ld_sx(j);
+        // the pair kernel's test (step/pair_kernel): a pair of the table
+        // that does not touch exerts nothing and loses its spring
+        let rsum = ri + rj;
+        if (!(dot3(dv, dv) < rsum * rsum)) {
+            st_hist(e, vec3<f64>(0.0lf));
+            for (var c = 0u; c < 9u; c++) { pout[9u * e + c] = 0.0lf; }
+            continue;
+        }
+        // contact::geometry::sphere_pair
         let dist = sqrt(dot3(dv, dv));
         let nrm = dv * (1.0lf / dist);
         let overlap = (ri + rj) - dist;

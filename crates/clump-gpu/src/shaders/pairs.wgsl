@@ -5,6 +5,35 @@
 // Every output is written by one invocation and integer-valued or copied:
 // the table is the same whatever the scheduling.
 
+// The indirect dispatch sizes of the table build (rebuild_args): all zero
+// unless a sphere left half the skin; then clears the flag.
+@group(1) @binding(0) var<storage, read_write> args: array<u32>;
+@compute @workgroup_size(1)
+fn rebuild_args() {
+    let go = pu[PU_STALE] != 0u;
+    let sizes = array<u32, 5>(pu[PU_NPOW2], arrayLength(&cells) / 2u, pu[PU_NS], 1u, pu[PU_CAP]);
+    for (var k = 0u; k < 5u; k++) {
+        var groups = (sizes[k] + WG - 1u) / WG;
+        if (k == 3u) { groups = 1u; }
+        if (!go) { groups = 0u; }
+        args[3u * k] = groups;
+        args[3u * k + 1u] = 1u;
+        args[3u * k + 2u] = 1u;
+    }
+    if (go) { pu[PU_BUILDS] = pu[PU_BUILDS] + 1u; }
+    pu[PU_STALE] = 0u;
+}
+
+// The current table becomes the old one, whose springs the build carries.
+@compute @workgroup_size(64)
+fn table_save(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let e = gid.x;
+    if (e <= pu[PU_NS]) { old_off[e] = noff[e]; }
+    if (e >= pu[PU_CAP]) { return; }
+    old_nbr[e] = nbr[e];
+    st_old_hist(e, ld_hist(e));
+}
+
 // One compare-exchange step (k, j in PU_SORT_K, PU_SORT_J) of the bitonic
 // sort of (keys, idx) by key, then by sphere (a total order: stable bits).
 @compute @workgroup_size(64)
@@ -65,16 +94,16 @@ fn cells_bounds(@builtin(global_invocation_id) gid: vec3<u32>) {
     if (k == ns - 1u || keys[k + 1u] != key) { cells[2u * key + 1u] = k + 1u; }
 }
 
-// Whether spheres i and j (of different bodies) overlap; the same test
-// as the pair stage's geometry (contact::geometry::sphere_pair).
-fn touching(i: u32, j: u32) -> bool {
+// Whether spheres i and j (of different bodies) are nearer than their
+// radius sum plus the skin: a pair of the table.
+fn near(i: u32, j: u32) -> bool {
     if (sown[2u * i] == sown[2u * j]) { return false; }
     let d = ld_sx(i) - ld_sx(j);
-    let dist = sqrt(dot3(d, d));
-    return (sref[4u * i + 3u] + sref[4u * j + 3u]) - dist > 0.0lf;
+    let cut = sref[4u * i + 3u] + sref[4u * j + 3u] + pf[PF_SKIN];
+    return dot3(d, d) < cut * cut;
 }
 
-// Sphere i's touching neighbours, in the order of the 27 cells and their
+// Sphere i's near neighbours, in the order of the 27 cells and their
 // sorted slots, at most MAXN (PU_OVERFLOW bit 1 set beyond).
 fn neighbours(i: u32, out: ptr<function, array<u32, 32>>) -> u32 {
     let c = cell_of(ld_sx(i));
@@ -88,7 +117,7 @@ fn neighbours(i: u32, out: ptr<function, array<u32, 32>>) -> u32 {
                 let key = cell_key(cc);
                 for (var k = cells[2u * key]; k < cells[2u * key + 1u]; k++) {
                     let j = idx[k];
-                    if (j != i && touching(i, j)) {
+                    if (j != i && near(i, j)) {
                         if (count < MAXN) { (*out)[count] = j; }
                         count++;
                     }
@@ -144,8 +173,9 @@ fn pairs_scan(@builtin(local_invocation_id) lid: vec3<u32>) {
 }
 
 // Sphere i's entries, sorted by neighbour; an entry (i, j > i) owns the
-// pair and takes its spring from last step's entry (i, j), or zero for a
-// new contact (a contact that ended lost its spring, as on the CPU).
+// pair and takes its spring from the last table's entry (i, j), or zero
+// for a new pair (a contact that ended lost its spring, as on the CPU).
+// The sphere's position is kept for the skin check.
 @compute @workgroup_size(64)
 fn pairs_fill(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
@@ -162,6 +192,7 @@ fn pairs_fill(@builtin(global_invocation_id) gid: vec3<u32>) {
         }
         list[b] = v;
     }
+    st_sx0(i, ld_sx(i));
     let o = noff[i];
     let cap = pu[PU_CAP];
     for (var a = 0u; a < n; a++) {
