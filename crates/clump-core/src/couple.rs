@@ -189,6 +189,20 @@ impl World {
         Ok(())
     }
 
+    /// Evaluates the forces of the current state where the next step
+    /// would do it at its start (the first step after bodies were added or
+    /// removed, or after a restart): the same computation at the same
+    /// state, so no result changes. A coupling driver calls it at a step
+    /// boundary so that loads it sets there always act from the force
+    /// evaluation at the end of the next step; without it they would act
+    /// from the start of such a step (a next-step load then counted 1.5 times).
+    pub fn ready_forces(&mut self) -> Result<(), crate::step::StepError> {
+        if self.phase.forces_ready() {
+            return Ok(());
+        }
+        self.prepare()
+    }
+
     /// Removes all external loads and per-body fluid fields.
     pub fn clear_coupling_arrays(&mut self) {
         let c = &mut self.bodies.coupling;
