@@ -240,6 +240,15 @@ impl Simulation {
         }
     }
 
+    /// The coupling arrays: external loads, fluid velocity and void
+    /// fraction per body, fluid forces, the void fraction on a grid.
+    #[getter]
+    fn coupling(slf: &Bound<'_, Self>) -> crate::coupling::Coupling {
+        crate::coupling::Coupling {
+            sim: slf.clone().unbind(),
+        }
+    }
+
     /// The contacts of the last step: a dict of arrays (ids, point m,
     /// normal, overlap m, force_normal and force_tangential N on sphere i;
     /// world frame; copies).
