@@ -282,6 +282,29 @@ fn a_checkpoint_continues_bit_for_bit() {
     let fluid = "[fluid]\ndensity = 1000\nviscosity = 1e-3\nvelocity = [0.0, 0.0, 0.01]\n";
     let a = open(tmp.path(), fluid);
     step(a, 10);
+    // the coupling arrays travel in the checkpoint: persistent loads, a
+    // next-step load, fluid velocities and void fractions, the uniform velocity
+    let f = [1e-6, 0.0, 0.0, 0.0, 2e-6, 0.0, 0.0, 0.0, -1e-6];
+    let t = [0.0, 0.0, 1e-12, 0.0, 0.0, 0.0, 1e-12, 0.0, 0.0];
+    let u = [0.0, 0.0, 0.02, 0.001, 0.0, 0.01, 0.0, 0.0, 0.0];
+    let eps = [0.9, 0.7, 1.0];
+    let uniform = [0.0, 0.0, 0.005];
+    unsafe {
+        assert_eq!(
+            clump_sim_set_external_loads(a, f.as_ptr(), t.as_ptr(), 9, CLUMP_LOAD_PERSISTENT),
+            CLUMP_OK
+        );
+        assert_eq!(
+            clump_sim_set_external_loads(a, t.as_ptr(), f.as_ptr(), 9, CLUMP_LOAD_NEXT_STEP),
+            CLUMP_OK
+        );
+        assert_eq!(clump_sim_set_fluid_velocities(a, u.as_ptr(), 9), CLUMP_OK);
+        assert_eq!(clump_sim_set_void_fractions(a, eps.as_ptr(), 3), CLUMP_OK);
+        assert_eq!(
+            clump_sim_set_uniform_fluid_velocity(a, uniform.as_ptr()),
+            CLUMP_OK
+        );
+    }
     let ck = tmp.path().join("at10.ckpt");
     assert_eq!(
         unsafe { clump_sim_save_checkpoint(a, c(&ck).as_ptr()) },
@@ -309,7 +332,8 @@ fn a_checkpoint_continues_bit_for_bit() {
             "{x:?} {y:?}"
         );
     }
-    // the fluid lifts every body: drag towards +z
+    // the fluid lifts the bodies in an upward flow: drag towards +z (the
+    // third sees the uniform 5 mm/s, as set, not the scenario's 10 mm/s)
     let ff = body_field(a, CLUMP_BODY_FLUID_FORCE, 3);
     assert!(ff[2] > 0.0 && ff[5] > 0.0 && ff[8] > 0.0, "{ff:?}");
     unsafe {

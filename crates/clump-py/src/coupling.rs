@@ -148,13 +148,16 @@ impl Coupling {
     /// cells of edges `cell` (m) from the corner `lo` (m, world frame), as
     /// an (n0, n1, n2) array indexed [i, j, k], from the bodies as they
     /// are (theory T-69). Not clamped: overlapping bodies can make a cell
-    /// overfull (below 0).
+    /// overfull (below 0). `periodic` per axis: the solid beyond the grid
+    /// wraps into it (for a grid spanning a periodic axis of the domain).
+    #[pyo3(signature = (lo, cell, n, periodic=(false, false, false)))]
     fn void_fraction<'py>(
         &self,
         py: Python<'py>,
         lo: &Bound<'_, PyAny>,
         cell: &Bound<'_, PyAny>,
         n: (usize, usize, usize),
+        periodic: (bool, bool, bool),
     ) -> PyResult<Bound<'py, PyArray3<f64>>> {
         let lo = vec3_in(lo, "lo")?;
         let cell = vec3_in(cell, "cell")?;
@@ -168,7 +171,7 @@ impl Coupling {
             lo,
             cell,
             n,
-            periodic: [false; 3],
+            periodic: [periodic.0, periodic.1, periodic.2],
         };
         let mut v = Vec::new();
         self.sim

@@ -321,12 +321,14 @@ class Coupling:
     def fluid_force(self) -> _F64:
         """Fluid force of the last step per body (N×3, N): drag, buoyancy,
         pressure gradient; zeros without ``[fluid]``. A copy."""
-    def void_fraction(self, lo: _ArrayLike, cell: _ArrayLike,
-                      n: tuple[int, int, int]) -> np.ndarray:
+    def void_fraction(self, lo: _ArrayLike, cell: _ArrayLike, n: tuple[int, int, int],
+                      periodic: tuple[bool, bool, bool] = (False, False, False)) -> np.ndarray:
         """Void fraction of the cells of a grid: ``n`` cells per axis of
         edges ``cell`` (m) from the corner ``lo`` (m), as an (n0, n1, n2)
         array indexed [i, j, k], from the bodies as they are (theory T-69;
-        overlaps within a body counted once; not clamped)."""
+        overlaps within a body counted once; not clamped). ``periodic``
+        per axis: solid beyond the grid wraps into it (a grid spanning a
+        periodic axis of the domain)."""
 
 class Walls:
     """The walls as a read-only mapping name → Wall (scenario order)."""
