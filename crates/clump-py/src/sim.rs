@@ -302,6 +302,11 @@ impl Simulation {
                 values.push(f(v)?);
             }
         }
+        if let Some(ff) = t.fluid_force {
+            for v in ff.to_array() {
+                values.push(f(v)?);
+            }
+        }
         let d = PyDict::new(py);
         for (k, v) in names.into_iter().zip(values) {
             d.set_item(k, v)?;
