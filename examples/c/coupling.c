@@ -55,7 +55,7 @@ int main(int argc, char **argv) {
     CHECK(clump_sim_body_field(sim, CLUMP_BODY_POSITION, x, 3 * nb));
     CHECK(clump_sim_sphere_field(sim, CLUMP_SPHERE_RADIUS, r, ns));
     CHECK(clump_sim_sphere_body(sim, owner, ns));
-    CHECK(clump_sim_void_fraction_grid(sim, lo, cell, n, eps_grid, nz));
+    CHECK(clump_sim_void_fraction_grid(sim, lo, cell, n, NULL, eps_grid, nz));
     for (size_t b = 0; b < nb; ++b) {
       long k = (long)((x[3 * b + 2] - lo[2]) / cell[2]);
       double e = (k >= 0 && k < (long)nz) ? eps_grid[k] : 1.0;

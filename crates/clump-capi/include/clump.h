@@ -245,14 +245,18 @@ int32_t clump_sim_clear_coupling(ClumpSim *sim);
  * cell (i, j, k) at entry `i + n0 (j + n1 k)` (`len` = cells), from the
  * bodies as they are (theory T-69: each sphere divided among the cells by
  * a fixed lattice of points, overlaps within a body counted once).
+ * `periodic` (3 values, or NULL for none): per axis, non-zero where the
+ * solid beyond the grid wraps into it (a grid spanning a periodic axis).
  *
  * # Safety
- * `sim` is a live handle; `lo`, `cell` hold 3 values, `n` 3, `out` `len`.
+ * `sim` is a live handle; `lo`, `cell` hold 3 values, `n` 3, `periodic`
+ * 3 or NULL, `out` `len`.
  */
 int32_t clump_sim_void_fraction_grid(ClumpSim *sim,
                                      const double *lo,
                                      const double *cell,
                                      const size_t *n,
+                                     const int32_t *periodic,
                                      double *out,
                                      size_t len);
 

@@ -406,15 +406,19 @@ pub unsafe extern "C" fn clump_sim_clear_coupling(sim: *mut ClumpSim) -> i32 {
 /// cell (i, j, k) at entry `i + n0 (j + n1 k)` (`len` = cells), from the
 /// bodies as they are (theory T-69: each sphere divided among the cells by
 /// a fixed lattice of points, overlaps within a body counted once).
+/// `periodic` (3 values, or NULL for none): per axis, non-zero where the
+/// solid beyond the grid wraps into it (a grid spanning a periodic axis).
 ///
 /// # Safety
-/// `sim` is a live handle; `lo`, `cell` hold 3 values, `n` 3, `out` `len`.
+/// `sim` is a live handle; `lo`, `cell` hold 3 values, `n` 3, `periodic`
+/// 3 or NULL, `out` `len`.
 #[no_mangle]
 pub unsafe extern "C" fn clump_sim_void_fraction_grid(
     sim: *mut ClumpSim,
     lo: *const f64,
     cell: *const f64,
     n: *const usize,
+    periodic: *const i32,
     out: *mut f64,
     len: usize,
 ) -> i32 {
@@ -436,11 +440,16 @@ pub unsafe extern "C" fn clump_sim_void_fraction_grid(
             .try_fold(1usize, |a, &b| a.checked_mul(b))
             .ok_or_else(|| Fail::value("grid has too many cells"))?;
         let o = out_slice(out, len, cells, "void fraction")?;
+        // SAFETY: a non-NULL `periodic` points to 3 values (the caller's contract).
+        let periodic = match unsafe { periodic.as_ref() } {
+            Some(_) => unsafe { [*periodic != 0, *periodic.add(1) != 0, *periodic.add(2) != 0] },
+            None => [false; 3],
+        };
         let grid = VoidGrid {
             lo,
             cell,
             n,
-            periodic: [false; 3],
+            periodic,
         };
         let mut v = Vec::with_capacity(cells);
         r.runner.world_mut().void_fraction(&grid, &mut v);

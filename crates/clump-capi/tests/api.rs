@@ -266,6 +266,7 @@ fn void_fraction_of_a_cell_holding_one_ball() {
             lo.as_ptr(),
             cell.as_ptr(),
             n.as_ptr(),
+            null(),
             eps.as_mut_ptr(),
             1,
         )
@@ -273,6 +274,28 @@ fn void_fraction_of_a_cell_holding_one_ball() {
     assert_eq!(s, CLUMP_OK, "{}", message(sim));
     let expect = 1.0 - 4.0 / 3.0 * std::f64::consts::PI * R.powi(3) / 0.004f64.powi(3);
     assert!((eps[0] - expect).abs() < 1e-12, "{} vs {expect}", eps[0]);
+    // the solid on a grid is conserved when its seam cuts a body and the
+    // axis is periodic: 8 cells of 5 mm along x from -10.5 mm cut the ball
+    // at x = -10 mm; periodic, its cut-off cap wraps to the far end
+    let solid = |lo_x: f64, periodic: *const i32| -> f64 {
+        let (lo, cell, n) = ([lo_x, -0.002, 0.008], [0.005, 0.004, 0.004], [8usize, 1, 1]);
+        let mut e = [0.0; 8];
+        let s = unsafe {
+            let (lo, cell) = (lo.as_ptr(), cell.as_ptr());
+            clump_sim_void_fraction_grid(sim, lo, cell, n.as_ptr(), periodic, e.as_mut_ptr(), 8)
+        };
+        assert_eq!(s, CLUMP_OK, "{}", message(sim));
+        e.iter().map(|x| (1.0 - x) * 0.005 * 0.004 * 0.004).sum()
+    };
+    let whole = solid(-0.015, null()); // the grid holds every body whole
+    let wrapped = solid(-0.0105, [1, 0, 0].as_ptr());
+    let cut = solid(-0.0105, null());
+    let ball = 4.0 / 3.0 * std::f64::consts::PI * R.powi(3);
+    assert!(
+        (wrapped - whole).abs() < 1e-12 * whole,
+        "{wrapped} vs {whole}"
+    );
+    assert!(whole - cut > 0.1 * ball, "{cut} vs {whole}");
     unsafe { clump_sim_free(sim) };
 }
 
