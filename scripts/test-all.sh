@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every test suite of the repository, the README's one test command:
-#   1. the Rust suite: cargo test --workspace --profile ci (needs no Python),
+#   1. the Rust suite: cargo test --workspace --profile ci (needs no Python;
+#      it compiles and runs the C API's example examples/c with the system cc),
 #      and clump-core's API docs built without a warning;
 #   2. the Python package: a virtual environment (.venv-test, or $CLUMP_VENV)
 #      with maturin, numpy, pytest and matplotlib, `pip install

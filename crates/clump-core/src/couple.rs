@@ -189,6 +189,41 @@ impl World {
         Ok(())
     }
 
+    /// Evaluates the forces of the current state where the next step
+    /// would do it at its start (the first step after bodies were added or
+    /// removed, or after a restart): the same computation at the same
+    /// state, so no result changes. A coupling driver calls it at a step
+    /// boundary so that loads it sets there always act from the force
+    /// evaluation at the end of the next step; without it they would act
+    /// from the start of such a step (a next-step load then counted 1.5 times).
+    pub fn ready_forces(&mut self) -> Result<(), crate::step::StepError> {
+        if self.phase.forces_ready() {
+            return Ok(());
+        }
+        self.prepare()
+    }
+
+    /// The coupling arrays and the fluid's uniform velocity of a checkpoint
+    /// (`World::restore_state`, its bodies already in place).
+    pub(crate) fn restore_coupling(
+        &mut self,
+        coupling: Option<crate::fluid::BodyCoupling>,
+        fluid_velocity: Option<DVec3>,
+    ) -> Result<(), String> {
+        if let Some(u) = fluid_velocity.filter(|u| !u.is_finite()) {
+            return Err(format!("checkpoint fluid velocity {u} is not finite"));
+        }
+        self.bodies.coupling = coupling.unwrap_or_default();
+        if let Some(f) = self.fluid.as_mut() {
+            if let Some(u) = fluid_velocity {
+                f.fluid.velocity = u;
+            }
+            let n = self.bodies.len();
+            in_use(&mut self.bodies.coupling.fluid_force, n, DVec3::ZERO);
+        }
+        Ok(())
+    }
+
     /// Removes all external loads and per-body fluid fields.
     pub fn clear_coupling_arrays(&mut self) {
         let c = &mut self.bodies.coupling;

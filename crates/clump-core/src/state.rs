@@ -69,6 +69,17 @@ pub struct WorldState {
     /// empty when no law keeps them.
     #[serde(default)]
     pub wall_slip: Vec<[SlipProfile; WALL_SLOTS]>,
+    // --- fluid coupling (issue 59): absent unless in use, so checkpoints
+    // without a fluid or coupling keep their bytes
+    /// The bodies' coupling arrays (external loads, fluid velocity, void
+    /// fraction, fluid force; storage order), where any is in use.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coupling: Option<crate::fluid::BodyCoupling>,
+    /// The fluid's uniform velocity (m/s, world frame), which a driver may
+    /// have changed, where a fluid is set.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fluid_velocity: Option<DVec3>,
+    // --- end fluid coupling
 }
 
 impl World {
@@ -137,6 +148,8 @@ impl World {
                 .map_or(Vec::new(), |h| h.wall_heat.clone()),
             pair_slip,
             wall_slip,
+            coupling: (!self.bodies.coupling.is_empty()).then(|| self.bodies.coupling.clone()),
+            fluid_velocity: self.fluid.as_ref().map(|f| f.fluid.velocity),
         })
     }
 
@@ -203,6 +216,11 @@ impl World {
         if s.wall_loads.len() != s.walls.len() {
             return Err("checkpoint wall loads do not match its walls".into());
         }
+        if s.coupling.as_ref().is_some_and(|c| !c.fits(nb)) {
+            return Err(format!(
+                "checkpoint coupling arrays do not fit its {nb} bodies"
+            ));
+        }
         for (a, b) in s.walls.iter().zip(&self.walls) {
             let same_kind = match (&a.shape, &b.shape) {
                 (
@@ -250,6 +268,7 @@ impl World {
         self.rebuilds = s.rebuilds;
         self.next_id = s.next_id;
         self.bodies = s.bodies;
+        self.restore_coupling(s.coupling, s.fluid_velocity)?;
         self.walls.list = s.walls;
         self.walls.loads = s.wall_loads;
         self.stats = s.stats;

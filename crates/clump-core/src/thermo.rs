@@ -33,6 +33,10 @@ pub struct Thermo {
     pub wall_loads: Vec<WallLoad>,
     /// The bodies' temperatures and heat, when the world has heat.
     pub heat: Option<HeatThermo>,
+    /// Total fluid force on the bodies of the last force evaluation (drag,
+    /// buoyancy, pressure gradient), N, world frame, when a fluid is set.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fluid_force: Option<glam::DVec3>,
 }
 
 /// Whole-system thermal quantities (SI units).
@@ -81,6 +85,9 @@ impl World {
             lost_bodies: self.lost.total(),
             wall_loads: self.walls.loads.clone(),
             heat: self.heat_thermo(),
+            fluid_force: self
+                .fluid()
+                .map(|_| self.fluid_forces().iter().copied().sum()),
         }
     }
 

@@ -18,7 +18,9 @@
 //! of the bodies), `heat_stability` (the last step's largest dt Σ H /
 //! (m c_p), stable up to 1), then per wall `<name>_heat_flow[W]` (from the
 //! wall into the bodies in the last step) and `<name>_heat[J]` (since the
-//! start).
+//! start). With `[fluid]`, last: `fluid_fx[N],fluid_fy[N],fluid_fz[N]`, the
+//! total fluid force on the bodies (drag, buoyancy, pressure gradient) of
+//! the last force evaluation.
 //!
 //! The file is an append-only log: each row is written to the file at once,
 //! so an interrupted run keeps every row written so far (a row cut by a
@@ -41,6 +43,8 @@ pub struct ThermoWriter {
     power: Vec<bool>,
     /// The heat columns are written.
     heat: bool,
+    /// The fluid-force columns are written.
+    fluid: bool,
     out: AppendLog,
 }
 
@@ -131,6 +135,16 @@ impl ThermoWriter {
         h
     }
 
+    /// The header line (without newline) for the given walls, with the
+    /// heat columns when `heat` and the fluid-force columns when `fluid`.
+    pub fn header_columns(walls: &[WallColumns], heat: bool, fluid: bool) -> String {
+        let mut h = Self::header_heat(walls, heat);
+        if fluid {
+            h.push_str(",fluid_fx[N],fluid_fy[N],fluid_fz[N]");
+        }
+        h
+    }
+
     /// The values of the heat columns of [`Self::header_heat`], in order.
     pub fn heat_values(h: &clump_core::thermo::HeatThermo) -> Vec<f64> {
         let mut v = vec![
@@ -177,10 +191,20 @@ impl ThermoWriter {
         walls: &[WallColumns],
         heat: bool,
     ) -> io::Result<Self> {
+        Self::create_columns(path, walls, heat, false)
+    }
+
+    /// [`ThermoWriter::create_walls`], with the fluid-force columns when `fluid`.
+    pub fn create_columns(
+        path: impl AsRef<Path>,
+        walls: &[WallColumns],
+        heat: bool,
+        fluid: bool,
+    ) -> io::Result<Self> {
         let path = path.as_ref().to_path_buf();
-        let header = Self::header_heat(walls, heat);
+        let header = Self::header_columns(walls, heat, fluid);
         write_atomic(&path, format!("{header}\n").as_bytes())?;
-        Self::open_append(path, header, walls, heat)
+        Self::open_append(path, header, walls, (heat, fluid))
     }
 
     /// Reopens `path` for a resumed run: keeps the header and the complete
@@ -203,12 +227,23 @@ impl ThermoWriter {
         resume_step: u64,
         heat: bool,
     ) -> io::Result<Self> {
+        Self::resume_columns(path, walls, resume_step, heat, false)
+    }
+
+    /// [`ThermoWriter::resume_walls`], with the fluid-force columns when `fluid`.
+    pub fn resume_columns(
+        path: impl AsRef<Path>,
+        walls: &[WallColumns],
+        resume_step: u64,
+        heat: bool,
+        fluid: bool,
+    ) -> io::Result<Self> {
         let path = path.as_ref().to_path_buf();
-        let header = Self::header_heat(walls, heat);
+        let header = Self::header_columns(walls, heat, fluid);
         let text = match std::fs::read(&path) {
             Ok(b) => String::from_utf8_lossy(&b).into_owned(),
             Err(e) if e.kind() == io::ErrorKind::NotFound => {
-                return Self::create_walls(path, walls, heat)
+                return Self::create_columns(path, walls, heat, fluid)
             }
             Err(e) => {
                 return Err(io::Error::new(
@@ -244,14 +279,14 @@ impl ThermoWriter {
             }
         }
         write_atomic(&path, keep.as_bytes())?;
-        Self::open_append(path, header, walls, heat)
+        Self::open_append(path, header, walls, (heat, fluid))
     }
 
     fn open_append(
         path: PathBuf,
         header: String,
         walls: &[WallColumns],
-        heat: bool,
+        (heat, fluid): (bool, bool),
     ) -> io::Result<Self> {
         Ok(ThermoWriter {
             out: AppendLog::open(&path)?,
@@ -259,6 +294,7 @@ impl ThermoWriter {
             header,
             power: walls.iter().map(|w| w.power).collect(),
             heat,
+            fluid,
         })
     }
 
@@ -310,6 +346,12 @@ impl ThermoWriter {
         }
         if let (true, Some(h)) = (self.heat, &t.heat) {
             for v in Self::heat_values(h) {
+                row.push(',');
+                row.push_str(&fmt_f64(v));
+            }
+        }
+        if self.fluid {
+            for v in t.fluid_force.unwrap_or_default().to_array() {
                 row.push(',');
                 row.push_str(&fmt_f64(v));
             }

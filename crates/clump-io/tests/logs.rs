@@ -31,6 +31,7 @@ fn thermo(step: u64) -> Thermo {
             torque: DVec3::new(-1.0, 0.0, 1e-20),
         }],
         heat: None,
+        fluid_force: None,
     }
 }
 

@@ -8,6 +8,7 @@
 mod access;
 mod arrays;
 mod contacts;
+mod coupling;
 mod dict;
 mod errors;
 mod order;
@@ -28,6 +29,7 @@ fn _clump(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<access::Bodies>()?;
     m.add_class::<access::Spheres>()?;
     m.add_class::<walls::Walls>()?;
+    m.add_class::<coupling::Coupling>()?;
     m.add_class::<walls::Wall>()?;
     m.add_class::<template::Template>()?;
     m.add("__version__", clump_io::run::VERSION)?;

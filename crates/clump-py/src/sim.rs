@@ -240,6 +240,15 @@ impl Simulation {
         }
     }
 
+    /// The coupling arrays: external loads, fluid velocity and void
+    /// fraction per body, fluid forces, the void fraction on a grid.
+    #[getter]
+    fn coupling(slf: &Bound<'_, Self>) -> crate::coupling::Coupling {
+        crate::coupling::Coupling {
+            sim: slf.clone().unbind(),
+        }
+    }
+
     /// The contacts of the last step: a dict of arrays (ids, point m,
     /// normal, overlap m, force_normal and force_tangential N on sphere i;
     /// world frame; copies).
@@ -290,6 +299,11 @@ impl Simulation {
         }
         if let Some(h) = &t.heat {
             for v in clump_io::thermo_csv::ThermoWriter::heat_values(h) {
+                values.push(f(v)?);
+            }
+        }
+        if let Some(ff) = t.fluid_force {
+            for v in ff.to_array() {
                 values.push(f(v)?);
             }
         }

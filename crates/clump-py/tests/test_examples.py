@@ -42,3 +42,30 @@ def test_read_outputs(tmp_path):
     out = run_example("read_outputs.py", tmp_path)
     run = tmp_path / "out" / "python_t_handle"
     assert (run / "summary.png").exists() and "completed" in out
+
+
+def test_fluidised_bed(tmp_path):
+    """The bed's pressure drop levels off at its buoyant weight per area once
+    the floor carries nothing (within 2 %: dP is averaged over 0.06 s while
+    the bed still expands), and the minimum fluidisation velocity is Wen &
+    Yu's within 20 %: their correlation is Ergun's equation at a void
+    fraction of about 0.38 (its constants 1650 and 24.5), and U_mf changes by
+    about 17 % between a bed void fraction of 0.38 and 0.40 (as eps^3/(1-eps));
+    the fixed bed's pressure drop is Ergun's at the bed's interior void
+    fraction within 10 % (the looser layers at the floor and the surface
+    take less drag than the interior)."""
+    out = run_example("fluidised_bed.py", tmp_path, tmp_path / "fb")
+    assert (tmp_path / "fb" / "fluidised_bed.png").stat().st_size > 1000
+    lines = out.splitlines()
+    umf = next(l for l in lines if l.startswith("U_mf measured"))
+    measured = float(umf.split("measured ")[1].split()[0])
+    wen_yu = float(umf.split("Wen-Yu ")[1].split()[0])
+    assert abs(measured / wen_yu - 1) < 0.2, umf
+    fixed = next(l for l in lines if l.startswith("fixed bed:"))
+    dp = float(fixed.split("mm/s: ")[1].split()[0])
+    ergun = float(fixed.split(": ")[-1].split()[0])
+    assert abs(dp / ergun - 1) < 0.1, fixed
+    fluidised = [l for l in lines if l.startswith("fluidised:")]
+    assert fluidised, out
+    for l in fluidised:
+        assert abs(float(l.split("= ")[-1]) - 1) < 0.02, l

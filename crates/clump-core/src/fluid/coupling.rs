@@ -6,7 +6,9 @@
 use glam::DVec3;
 
 /// Per-body coupling data, indexed by storage index like the bodies.
-#[derive(Debug, Clone, Default)]
+/// Checkpoints hold it beside the bodies (`WorldState::coupling`).
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct BodyCoupling {
     /// External force acting at every step until changed, N.
     pub force: Vec<DVec3>,
@@ -49,6 +51,20 @@ impl BodyCoupling {
             && self.fluid_velocity.is_empty()
             && self.void_fraction.is_empty()
             && self.fluid_force.is_empty()
+    }
+
+    /// True when every array is unused or holds `n` entries (one per body).
+    pub fn fits(&self, n: usize) -> bool {
+        fn ok<T>(v: &[T], n: usize) -> bool {
+            v.is_empty() || v.len() == n
+        }
+        ok(&self.force, n)
+            && ok(&self.torque, n)
+            && ok(&self.once_force, n)
+            && ok(&self.once_torque, n)
+            && ok(&self.fluid_velocity, n)
+            && ok(&self.void_fraction, n)
+            && ok(&self.fluid_force, n)
     }
 
     /// A body was appended: the arrays in use grow by its default entry.

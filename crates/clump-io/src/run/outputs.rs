@@ -161,19 +161,21 @@ impl Outputs {
             thermo: match (o.thermo, start) {
                 (None, _) => None,
                 (Some(_), Start::Fresh { .. }) => Some(
-                    ThermoWriter::create_walls(
+                    ThermoWriter::create_columns(
                         outdir.join("thermo.csv"),
                         &wall_columns,
                         scenario.heat.is_some(),
+                        scenario.fluid.is_some(),
                     )
                     .map_err(rt("cannot create thermo.csv"))?,
                 ),
                 (Some(_), Start::Resume { step, .. }) => Some(
-                    ThermoWriter::resume_walls(
+                    ThermoWriter::resume_columns(
                         outdir.join("thermo.csv"),
                         &wall_columns,
                         step,
                         scenario.heat.is_some(),
+                        scenario.fluid.is_some(),
                     )
                     .map_err(rt("cannot resume thermo.csv"))?,
                 ),

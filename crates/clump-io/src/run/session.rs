@@ -98,8 +98,11 @@ impl Runner {
     /// (with units) and the values.
     pub fn thermo_row(&self) -> (Vec<String>, Thermo, Vec<f64>) {
         let cols: Vec<WallColumns> = wall_columns(&self.scenario);
-        let header =
-            crate::thermo_csv::ThermoWriter::header_heat(&cols, self.scenario.heat.is_some());
+        let header = crate::thermo_csv::ThermoWriter::header_columns(
+            &cols,
+            self.scenario.heat.is_some(),
+            self.scenario.fluid.is_some(),
+        );
         let (t, power) = wall_thermo(&self.world, &self.scenario.torque_points);
         let power = cols
             .iter()

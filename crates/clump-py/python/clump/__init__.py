@@ -8,6 +8,7 @@ SI units throughout; vectors are in the world frame unless named
 
 from ._clump import (  # noqa: F401
     Bodies,
+    Coupling,
     ScenarioError,
     Simulation,
     SimulationError,
@@ -21,6 +22,7 @@ from ._clump import (  # noqa: F401
 
 __all__ = [
     "Bodies",
+    "Coupling",
     "ScenarioError",
     "Simulation",
     "SimulationError",

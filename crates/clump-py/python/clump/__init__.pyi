@@ -20,6 +20,7 @@ __version__: str
 
 _Path = Union[str, PathLike]
 _F64 = npt.NDArray[np.float64]
+_ArrayLike = npt.ArrayLike
 _I64 = npt.NDArray[np.int64]
 
 class ScenarioError(ValueError):
@@ -139,6 +140,11 @@ class Simulation:
     @property
     def walls(self) -> "Walls":
         """The walls by name."""
+    @property
+    def coupling(self) -> "Coupling":
+        """The coupling arrays of a fluid solver or other driver: external
+        loads, fluid velocity and void fraction per body, fluid forces, the
+        void fraction on a grid."""
 
     def contacts(self) -> dict[str, np.ndarray]:
         """The touching contacts of the last step, as the kernels computed
@@ -286,6 +292,43 @@ class Spheres:
     @property
     def body(self) -> _I64:
         """Id of each sphere's body (M,)."""
+
+class Coupling:
+    """What a coupled code exchanges with the run between steps (CFD–DEM).
+    Per-body arrays are in body-id order (the order of ``sim.bodies``);
+    SI units, world frame. A load, fluid velocity or void fraction set at a
+    step boundary acts from the force evaluation at the end of the next
+    step: a persistent force F held for N steps gives the impulse
+    F (N − ½) dt, a next-step force F dt (velocity Verlet). Every array is
+    checked (shape, finite, range) before anything changes; a bad one
+    raises ValueError. docs/python.md, "Coupling"."""
+
+    def set_external_loads(self, force: _ArrayLike, torque: Optional[_ArrayLike] = None,
+                           persistent: bool = True) -> None:
+        """External force (N×3, N) and torque about the centre of mass
+        (N×3, N m; None: zero) per body. ``persistent``: until set again;
+        else for the next step only, on top of the persistent ones."""
+    def set_fluid_velocity(self, velocity: _ArrayLike) -> None:
+        """A 3-vector: the uniform ``[fluid] velocity`` (needs ``[fluid]``).
+        An N×3 array: the interstitial fluid velocity at each body, m/s,
+        which the drag uses instead of the uniform one."""
+    def set_void_fractions(self, eps: _ArrayLike) -> None:
+        """The void fraction at each body (N values in (0, 1]), read by the
+        hindered drag laws (di_felice, beetstra, gidaspow)."""
+    def clear(self) -> None:
+        """Removes every external load and per-body fluid value."""
+    @property
+    def fluid_force(self) -> _F64:
+        """Fluid force of the last step per body (N×3, N): drag, buoyancy,
+        pressure gradient; zeros without ``[fluid]``. A copy."""
+    def void_fraction(self, lo: _ArrayLike, cell: _ArrayLike, n: tuple[int, int, int],
+                      periodic: tuple[bool, bool, bool] = (False, False, False)) -> np.ndarray:
+        """Void fraction of the cells of a grid: ``n`` cells per axis of
+        edges ``cell`` (m) from the corner ``lo`` (m), as an (n0, n1, n2)
+        array indexed [i, j, k], from the bodies as they are (theory T-69;
+        overlaps within a body counted once; not clamped). ``periodic``
+        per axis: solid beyond the grid wraps into it (a grid spanning a
+        periodic axis of the domain)."""
 
 class Walls:
     """The walls as a read-only mapping name → Wall (scenario order)."""
