@@ -65,6 +65,7 @@
 pub mod body;
 pub mod boundary;
 pub mod contact;
+pub mod convection;
 pub mod couple;
 pub mod dof;
 pub mod fluid;
