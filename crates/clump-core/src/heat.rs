@@ -101,6 +101,9 @@ pub struct Heat {
     /// Per body: its convective conductance `h A`, W/K (stage scratch;
     /// empty without convection).
     pub(crate) convective: Vec<f64>,
+    /// Per template: its `(g₀, g₁)` of [`convective_coefficients`] (stage
+    /// scratch).
+    pub(crate) convective_template: Vec<(f64, f64)>,
     /// On a rank of a split world: this step's heat flow through each wall
     /// touch of an owned sphere, for the sum over the ranks in one
     /// process's order (T-94; stage scratch).
@@ -136,6 +139,7 @@ impl Heat {
             convection: None,
             fluid_flow: 0.0,
             convective: Vec::new(),
+            convective_template: Vec::new(),
             rank_wall_flows: Vec::new(),
         }
     }
@@ -198,11 +202,27 @@ pub fn convective_conductance(
     t: &crate::fluid::TemplateFluid,
     w: f64,
 ) -> f64 {
+    let (g0, g1) = convective_coefficients(f, h, t);
+    g0 + g1 * w.sqrt()
+}
+
+/// T-90 … T-92 as `h A = g₀ + g₁ √w` for slip speed `w` (m/s), with the
+/// clump's and the fluid's constants folded into `(g₀, g₁)`: `g₀ = 2 k_f A
+/// / d_v` (W/K), `g₁ = 0.6 Pr^⅓ (ρ_f d_v / μ)^½ k_f A / d_v` (W/K per
+/// (m/s)^½); once per template, so that a body costs one square root.
+pub fn convective_coefficients(
+    f: &crate::fluid::Fluid,
+    h: &FluidHeat,
+    t: &crate::fluid::TemplateFluid,
+) -> (f64, f64) {
     let d = t.diameter;
-    let re = f.density * w * d / f.viscosity;
+    let area = std::f64::consts::PI * d * d / t.sphericity;
     let pr = h.specific_heat * f.viscosity / h.conductivity;
-    let coefficient = ranz_marshall(re, pr) * h.conductivity / d;
-    coefficient * std::f64::consts::PI * d * d / t.sphericity
+    let per_nu = h.conductivity * area / d;
+    // Nu = 2 + 0.6 Pr^⅓ Re^½, Re^½ = (ρ_f d_v / μ)^½ √w
+    let g0 = ranz_marshall(0.0, pr) * per_nu;
+    let g1 = 0.6 * pr.cbrt() * (f.density * d / f.viscosity).sqrt() * per_nu;
+    (g0, g1)
 }
 
 /// The harmonic combination `k* = 2 k₁ k₂ / (k₁ + k₂)` of two
@@ -284,6 +304,40 @@ mod tests {
         // the wall: a plane 0.9 from the centre cuts the same circle
         let hw = wall_conductance(Conductance::Geometric, 1.0, 1.0, 0.1);
         assert!((hw - expect).abs() < 1e-12 * expect, "{hw} {expect}");
+    }
+
+    #[test]
+    fn folded_convective_conductance_is_ranz_marshall() {
+        use crate::fluid::{DragLaw, Fluid, TemplateFluid};
+        let f = Fluid {
+            density: 1.2,
+            viscosity: 1.8e-5,
+            velocity: glam::DVec3::ZERO,
+            pressure_gradient: glam::DVec3::ZERO,
+            drag: DragLaw::Stokes,
+            buoyancy: false,
+        };
+        let h = FluidHeat {
+            temperature: 300.0,
+            conductivity: 0.026,
+            specific_heat: 1005.0,
+        };
+        let t = TemplateFluid {
+            volume: 1e-9,
+            diameter: 1.24e-3,
+            sphericity: 0.8,
+        };
+        for w in [0.0, 1e-3, 0.7, 30.0] {
+            let re = 1.2 * w * 1.24e-3 / 1.8e-5;
+            let pr: f64 = 1005.0 * 1.8e-5 / 0.026;
+            let nu = 2.0 + 0.6 * re.sqrt() * pr.powf(1.0 / 3.0);
+            let direct = nu * 0.026 / 1.24e-3 * std::f64::consts::PI * 1.24e-3 * 1.24e-3 / 0.8;
+            let got = convective_conductance(&f, &h, &t, w);
+            assert!(
+                (got - direct).abs() < 1e-14 * direct,
+                "w = {w}: {got} {direct}"
+            );
+        }
     }
 
     #[test]

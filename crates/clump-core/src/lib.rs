@@ -76,6 +76,7 @@ pub mod lost;
 pub mod math;
 pub mod multi_contact;
 pub mod neighbor;
+pub mod oscillation;
 pub(crate) mod par;
 pub mod partition;
 pub mod prelude;

@@ -16,7 +16,7 @@
 //! branch.
 
 use crate::heat::{
-    convective_conductance, harmonic_conductivity, pair_conductance, wall_conductance, Heat,
+    convective_coefficients, harmonic_conductivity, pair_conductance, wall_conductance, Heat,
     RankWallFlow,
 };
 use crate::wall::{WallTouch, MAX_TOUCHES_PER_WALL};
@@ -142,6 +142,10 @@ fn convect(w: &World, heat: &mut Heat) {
     let lag = w.phase.bodies_lag();
     let per_body = &b.coupling.fluid_velocity;
     let owned = w.part.as_deref().map(|p| &p.owned);
+    heat.convective_template.clear();
+    let per_template = fs.templates.iter();
+    let coefficients = per_template.map(|t| convective_coefficients(&fs.fluid, &fh, t));
+    heat.convective_template.extend(coefficients);
     heat.convective.clear();
     heat.fluid_flow = 0.0;
     for i in 0..b.len() {
@@ -151,8 +155,8 @@ fn convect(w: &World, heat: &mut Heat) {
             b.velocity[i]
         };
         let u = per_body.get(i).copied().unwrap_or(fs.fluid.velocity);
-        let t = &fs.templates[b.template[i] as usize];
-        let ha = convective_conductance(&fs.fluid, &fh, t, (u - v).length());
+        let (g0, g1) = heat.convective_template[b.template[i] as usize];
+        let ha = g0 + g1 * (u - v).length().sqrt();
         let q = ha * (fh.temperature - b.temperature[i]);
         heat.flow[i] += q;
         if owned.map_or(true, |o| o[i]) {
