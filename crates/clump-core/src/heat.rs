@@ -108,6 +108,8 @@ pub struct Heat {
     /// touch of an owned sphere, for the sum over the ranks in one
     /// process's order (T-94; stage scratch).
     pub(crate) rank_wall_flows: Vec<RankWallFlow>,
+    /// Per pair-list entry: its conductance and heat flow (stage scratch).
+    pub(crate) pair_flow: Vec<(f64, f64)>,
 }
 
 /// The heat flow through one wall touch of a rank's owned sphere, with the
@@ -141,6 +143,7 @@ impl Heat {
             convective: Vec::new(),
             convective_template: Vec::new(),
             rank_wall_flows: Vec::new(),
+            pair_flow: Vec::new(),
         }
     }
 }

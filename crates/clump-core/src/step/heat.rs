@@ -10,15 +10,16 @@
 //! the exponential one of T-93, exact for convection alone and stable for
 //! any `h A dt / C`.
 //!
-//! One pass on the calling thread: the sums have one order whatever the
-//! thread count, and the stage allocates nothing once its arrays have
-//! grown to the bodies. Without heat (`World::heat` is `None`) it is one
+//! The pairs' flows are computed on several threads (`heat_pairs`), the
+//! sums and the wall pass run on the calling thread: the sums have one
+//! order whatever the thread count, and the stage allocates nothing once
+//! its arrays have grown to the bodies and pairs. Without heat (`World::heat` is `None`) it is one
 //! branch.
 
 use crate::heat::{
-    convective_coefficients, harmonic_conductivity, pair_conductance, wall_conductance, Heat,
-    RankWallFlow,
+    convective_coefficients, harmonic_conductivity, wall_conductance, Heat, RankWallFlow,
 };
+use crate::par::affinity::{Balance, HEAT_LOOP};
 use crate::wall::{WallTouch, MAX_TOUCHES_PER_WALL};
 use crate::world::World;
 
@@ -27,7 +28,9 @@ pub(crate) fn conduct(w: &mut World) {
     let Some(mut heat) = w.heat.take() else {
         return;
     };
-    flows(w, &mut heat);
+    let mut balance = std::mem::take(&mut w.scratch.balance[HEAT_LOOP]);
+    flows(w, &mut heat, &mut balance);
+    w.scratch.balance[HEAT_LOOP] = balance;
     convect(w, &mut heat);
     integrate(w, &mut heat);
     w.heat = Some(heat);
@@ -35,7 +38,7 @@ pub(crate) fn conduct(w: &mut World) {
 
 /// Each body's heat flow (W) and conductance sum (W/K) into `heat`'s
 /// scratch, and each wall's flow.
-fn flows(w: &World, heat: &mut Heat) {
+fn flows(w: &World, heat: &mut Heat, balance: &mut Balance) {
     let nb = w.bodies.len();
     let Heat {
         model,
@@ -43,6 +46,7 @@ fn flows(w: &World, heat: &mut Heat) {
         flow,
         conductance_sum,
         rank_wall_flows,
+        pair_flow,
         ..
     } = heat;
     flow.clear();
@@ -53,28 +57,17 @@ fn flows(w: &World, heat: &mut Heat) {
     let temp = &w.bodies.temperature;
     let sp = &w.spheres;
     let pairs = &w.neighbors.pairs;
-    let domain = &w.config.domain;
-    // sphere–sphere contacts, row by row (T-53, T-54, T-55)
+    // sphere–sphere contacts (T-53, T-54, T-55): each entry's flow on
+    // several threads, summed per body here in pair-list order
+    super::heat_pairs::pair_flows(w, model, pair_flow, balance);
     for i in 0..sp.len() {
         let (p0, p1) = (pairs.row_start[i] as usize, pairs.row_start[i + 1] as usize);
-        let (xi, ri) = (sp.position(i), sp.state[i].radius);
         let bi = sp.body[i] as usize;
-        let ki = model.conductivity(sp.material[i]);
-        for t in &pairs.topo[p0..p1] {
-            let j = t.j as usize;
-            let mut xj = sp.position(j);
-            if t.shift != [0; 3] {
-                xj -= domain.shift_vector(t.shift);
-            }
-            let rj = sp.state[j].radius;
-            let dist = (xi - xj).length();
-            if dist >= ri + rj {
+        for (t, &(h, q)) in pairs.topo[p0..p1].iter().zip(&pair_flow[p0..p1]) {
+            if h == super::heat_pairs::APART {
                 continue;
             }
-            let k = harmonic_conductivity(ki, model.conductivity(sp.material[j]));
-            let h = pair_conductance(model.conductance, k, ri, rj, dist);
-            let bj = sp.body[j] as usize;
-            let q = h * (temp[bj] - temp[bi]);
+            let bj = sp.body[t.j as usize] as usize;
             flow[bi] += q;
             flow[bj] -= q;
             conductance_sum[bi] += h;
