@@ -331,7 +331,7 @@ mod tests {
             sphericity: 0.8,
         };
         for w in [0.0, 1e-3, 0.7, 30.0] {
-            let re = 1.2 * w * 1.24e-3 / 1.8e-5;
+            let re: f64 = 1.2 * w * 1.24e-3 / 1.8e-5;
             let pr: f64 = 1005.0 * 1.8e-5 / 0.026;
             let nu = 2.0 + 0.6 * re.sqrt() * pr.powf(1.0 / 3.0);
             let direct = nu * 0.026 / 1.24e-3 * std::f64::consts::PI * 1.24e-3 * 1.24e-3 / 0.8;
