@@ -59,17 +59,9 @@ impl Ranks {
     }
 
     /// Splits the runner's world over the ranks when there are several.
-    /// Heat transfer does not run split yet: a scenario with `[heat]` on
-    /// several ranks is refused (an error naming the key).
     pub fn split(&self, runner: &mut Runner) -> Result<(), String> {
         #[cfg(feature = "mpi")]
         if let Some(m) = self.mpi.as_ref().filter(|m| m.size() > 1) {
-            if runner.scenario().heat.is_some() {
-                return Err(format!(
-                    "{}: [heat]: heat transfer does not run over several MPI ranks yet; run it in one process (without mpirun), where threads still speed it up",
-                    runner.scenario().path.display()
-                ));
-            }
             runner.partition(Box::new(m.comm()));
         }
         let _ = runner;

@@ -3,8 +3,9 @@
 //! the final state, the checkpoint's world), at 2 and 4 ranks, on the
 //! examples in short versions (stones: stream insertion onto a floor;
 //! drum: a rotating mesh wall), a periodic box with clumps crossing its
-//! sides, a restart at 3 ranks from a checkpoint written at 2, and SIGTERM
-//! on 2 ranks (one checkpoint of the whole world, which resumes bit for bit).
+//! sides (also with heat and convection, at 2 and 3 ranks), a restart at
+//! 3 ranks from a checkpoint written at 2, and SIGTERM on 2 ranks (one
+//! checkpoint of the whole world, which resumes bit for bit).
 //! Built only with the `mpi` feature (scripts/test-all.sh runs it).
 #![cfg(feature = "mpi")]
 
@@ -66,6 +67,7 @@ fn world_of(checkpoint: &Path) -> Vec<(&'static str, Vec<u8>)> {
             j(serde_json::to_vec(&(&s.wall_key, &s.wall_hist))),
         ),
         ("wall loads", j(serde_json::to_vec(&s.wall_loads))),
+        ("walls' heat", j(serde_json::to_vec(&s.wall_heat))),
         ("build poses", j(serde_json::to_vec(&s.reference_pose))),
         ("statistics", j(serde_json::to_vec(&s.stats))),
         (
@@ -126,6 +128,12 @@ fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
 }
 
 fn same_bits_at_2_and_4_ranks(name: &str, scenario: &str, steps: &str) {
+    same_bits_at(name, scenario, steps, &[2, 4]);
+}
+
+/// `scenario` run `steps` steps on each of `ranks` ranks gives one
+/// process's outputs.
+fn same_bits_at(name: &str, scenario: &str, steps: &str, ranks: &[usize]) {
     let serial = out_dir(&format!("{name}-1"));
     clump(
         0,
@@ -138,7 +146,7 @@ fn same_bits_at_2_and_4_ranks(name: &str, scenario: &str, steps: &str) {
             steps,
         ],
     );
-    for np in [2, 4] {
+    for &np in ranks {
         let d = out_dir(&format!("{name}-{np}"));
         clump(
             np,
@@ -166,6 +174,19 @@ fn clumps_crossing_periodic_sides_have_the_same_bits() {
         "periodic",
         "crates/clump-cli/tests/fixtures/periodic_straddle.toml",
         "1000",
+    );
+}
+
+/// Heat on ranks: conduction through contacts and the floor, and
+/// convection from the air; thermo.csv's temperatures and the floor's heat,
+/// the bodies frames' temperatures and the checkpoint are one process's.
+#[test]
+fn heat_and_convection_have_the_same_bits_at_2_and_3_ranks() {
+    same_bits_at(
+        "heat",
+        "crates/clump-cli/tests/fixtures/periodic_heat.toml",
+        "1000",
+        &[2, 3],
     );
 }
 

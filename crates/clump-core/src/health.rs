@@ -79,6 +79,15 @@ pub enum InstabilityKind {
         /// Body with the largest kinetic energy now.
         body: u64,
     },
+    /// The contacts' elastic energy rose and fell in turn at every step
+    /// for many steps: a bounded period-two oscillation of the contact
+    /// forces ([`crate::oscillation`]).
+    PeriodTwo {
+        /// Steps in a row it alternated.
+        steps: u64,
+        /// Its smallest change in those steps, relative to it.
+        relative_change: f64,
+    },
 }
 
 /// An instability found by [`HealthMonitor::check`].
@@ -102,6 +111,7 @@ impl Instability {
             InstabilityKind::Overlap { bodies, .. } => {
                 bodies.iter().copied().filter(|&b| b != 0).collect()
             }
+            InstabilityKind::PeriodTwo { .. } => Vec::new(),
         }
     }
 }
@@ -140,6 +150,13 @@ impl fmt::Display for Instability {
                 "the kinetic energy jumped from {from:.3e} J at step {since_step} to {to:.3e} J (×{:.1e}); body {body} has the most",
                 to / from.max(f64::MIN_POSITIVE)
             ),
+            InstabilityKind::PeriodTwo {
+                steps,
+                relative_change,
+            } => write!(
+                f,
+                "the contacts' elastic energy rose and fell in turn at each of the last {steps} steps (by at least {relative_change:.1e} of it each step): contact forces flip sign every step, a period-two oscillation that stays bounded, so the bodies never come to rest"
+            ),
         }
     }
 }
@@ -155,6 +172,9 @@ pub struct HealthMonitor {
     pub reference_energy: Option<f64>,
     /// Step of the last reference point.
     pub reference_step: u64,
+    /// The watch for a period-two oscillation.
+    #[serde(default)]
+    pub zigzag: crate::oscillation::ZigZag,
 }
 
 impl HealthMonitor {
@@ -164,6 +184,7 @@ impl HealthMonitor {
             limits,
             reference_energy: None,
             reference_step: 0,
+            zigzag: Default::default(),
         }
     }
 
@@ -219,6 +240,12 @@ impl HealthMonitor {
                 self.reference_step = step;
             }
         }
+        if let Some((steps, relative_change)) = self.zigzag.add(s.elastic_energy) {
+            return fail(InstabilityKind::PeriodTwo {
+                steps,
+                relative_change,
+            });
+        }
         Ok(())
     }
 }
@@ -248,6 +275,11 @@ impl World {
     /// insertion, pointing at an overlapping placement).
     pub fn diagnose(&self, inst: &Instability, steps_since_insertion: Option<u64>) -> String {
         let dt = self.config.dt;
+        if let InstabilityKind::PeriodTwo { .. } = inst.kind {
+            return format!(
+                "dt = {dt:.3e} s is above the stability limit of a damped contact (docs/theory.md T-51, T-52): a strongly damped contact on a clump that responds there like a much lighter body (far from its centre of mass) over-corrects every step; `clump check` prints that limit (dt_c); use dt = \"auto\" (at most 0.4 dt_c) or halve dt, or raise the restitution (less damping)"
+            );
+        }
         let (bodies, wall) = match &inst.kind {
             InstabilityKind::Overlap { bodies, wall, .. } => (bodies.to_vec(), *wall),
             k => (

@@ -92,6 +92,40 @@ pub struct Heat {
     /// Per body: the sum of its contacts' conductances, W/K (stage
     /// scratch).
     pub(crate) conductance_sum: Vec<f64>,
+    // --- convection from the fluid (T-90 … T-93)
+    /// The fluid's thermal properties; `None`: no convection
+    /// ([`crate::world::World::set_fluid_heat`]).
+    pub convection: Option<FluidHeat>,
+    /// The heat flow from the fluid into the bodies in the last step, W.
+    pub fluid_flow: f64,
+    /// Per body: its convective conductance `h A`, W/K (stage scratch;
+    /// empty without convection).
+    pub(crate) convective: Vec<f64>,
+    /// Per template: its `(g₀, g₁)` of [`convective_coefficients`] (stage
+    /// scratch).
+    pub(crate) convective_template: Vec<(f64, f64)>,
+    /// On a rank of a split world: this step's heat flow through each wall
+    /// touch of an owned sphere, for the sum over the ranks in one
+    /// process's order (T-94; stage scratch).
+    pub(crate) rank_wall_flows: Vec<RankWallFlow>,
+    /// Per pair-list entry: its conductance and heat flow (stage scratch).
+    pub(crate) pair_flow: Vec<(f64, f64)>,
+}
+
+/// The heat flow through one wall touch of a rank's owned sphere, with the
+/// key that sorts it as one process's wall pass meets it (T-94).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub(crate) struct RankWallFlow {
+    /// The wall.
+    pub wall: u32,
+    /// The body's place in the whole world's storage order.
+    pub body_order: (u64, u64),
+    /// The sphere's index in its template.
+    pub sphere: u32,
+    /// The touch's index among the sphere's touches of the wall.
+    pub touch: u32,
+    /// Heat flow from the wall into the body, W.
+    pub flow: f64,
 }
 
 impl Heat {
@@ -104,8 +138,94 @@ impl Heat {
             stability: 0.0,
             flow: Vec::new(),
             conductance_sum: Vec::new(),
+            convection: None,
+            fluid_flow: 0.0,
+            convective: Vec::new(),
+            convective_template: Vec::new(),
+            rank_wall_flows: Vec::new(),
+            pair_flow: Vec::new(),
         }
     }
+}
+
+/// The thermal properties of the fluid the bodies are in, for convection
+/// (docs/theory.md T-90 … T-93).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct FluidHeat {
+    /// The fluid's temperature, K (uniform).
+    pub temperature: f64,
+    /// The fluid's thermal conductivity `k_f`, W/(m K).
+    pub conductivity: f64,
+    /// The fluid's specific heat capacity `c_f`, J/(kg K).
+    pub specific_heat: f64,
+}
+
+impl FluidHeat {
+    /// Checks the values; the error names the field and what is allowed.
+    pub fn validate(&self) -> Result<(), String> {
+        let positive = |x: f64| x > 0.0 && x.is_finite();
+        if !positive(self.temperature) {
+            return Err(format!(
+                "fluid temperature must be > 0 K, got {}",
+                self.temperature
+            ));
+        }
+        if !positive(self.conductivity) {
+            return Err(format!(
+                "fluid thermal conductivity must be > 0 W/(m K), got {}",
+                self.conductivity
+            ));
+        }
+        if !positive(self.specific_heat) {
+            return Err(format!(
+                "fluid specific heat must be > 0 J/(kg K), got {}",
+                self.specific_heat
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// (T-90) The Ranz–Marshall (1952) Nusselt number of a sphere at particle
+/// Reynolds number `re` and Prandtl number `pr`: `Nu = 2 + 0.6 Re^½ Pr^⅓`.
+#[inline]
+pub fn ranz_marshall(re: f64, pr: f64) -> f64 {
+    2.0 + 0.6 * re.sqrt() * pr.cbrt()
+}
+
+/// (T-91, T-92) The convective conductance `h A` (W/K) of a clump with the
+/// fluid data `t` (volume-equivalent diameter `d_v`, sphericity `φ`) at
+/// slip speed `w` (m/s) in fluid `f` with thermal properties `h`:
+/// `Re = ρ_f w d_v / μ`, `Pr = c_f μ / k_f`, `h = Nu k_f / d_v`, on the
+/// clump's true surface area `A = π d_v² / φ`.
+#[inline]
+pub fn convective_conductance(
+    f: &crate::fluid::Fluid,
+    h: &FluidHeat,
+    t: &crate::fluid::TemplateFluid,
+    w: f64,
+) -> f64 {
+    let (g0, g1) = convective_coefficients(f, h, t);
+    g0 + g1 * w.sqrt()
+}
+
+/// T-90 … T-92 as `h A = g₀ + g₁ √w` for slip speed `w` (m/s), with the
+/// clump's and the fluid's constants folded into `(g₀, g₁)`: `g₀ = 2 k_f A
+/// / d_v` (W/K), `g₁ = 0.6 Pr^⅓ (ρ_f d_v / μ)^½ k_f A / d_v` (W/K per
+/// (m/s)^½); once per template, so that a body costs one square root.
+pub fn convective_coefficients(
+    f: &crate::fluid::Fluid,
+    h: &FluidHeat,
+    t: &crate::fluid::TemplateFluid,
+) -> (f64, f64) {
+    let d = t.diameter;
+    let area = std::f64::consts::PI * d * d / t.sphericity;
+    let pr = h.specific_heat * f.viscosity / h.conductivity;
+    let per_nu = h.conductivity * area / d;
+    // Nu = 2 + 0.6 Pr^⅓ Re^½, Re^½ = (ρ_f d_v / μ)^½ √w
+    let g0 = ranz_marshall(0.0, pr) * per_nu;
+    let g1 = 0.6 * pr.cbrt() * (f.density * d / f.viscosity).sqrt() * per_nu;
+    (g0, g1)
 }
 
 /// The harmonic combination `k* = 2 k₁ k₂ / (k₁ + k₂)` of two
@@ -187,6 +307,40 @@ mod tests {
         // the wall: a plane 0.9 from the centre cuts the same circle
         let hw = wall_conductance(Conductance::Geometric, 1.0, 1.0, 0.1);
         assert!((hw - expect).abs() < 1e-12 * expect, "{hw} {expect}");
+    }
+
+    #[test]
+    fn folded_convective_conductance_is_ranz_marshall() {
+        use crate::fluid::{DragLaw, Fluid, TemplateFluid};
+        let f = Fluid {
+            density: 1.2,
+            viscosity: 1.8e-5,
+            velocity: glam::DVec3::ZERO,
+            pressure_gradient: glam::DVec3::ZERO,
+            drag: DragLaw::Stokes,
+            buoyancy: false,
+        };
+        let h = FluidHeat {
+            temperature: 300.0,
+            conductivity: 0.026,
+            specific_heat: 1005.0,
+        };
+        let t = TemplateFluid {
+            volume: 1e-9,
+            diameter: 1.24e-3,
+            sphericity: 0.8,
+        };
+        for w in [0.0, 1e-3, 0.7, 30.0] {
+            let re: f64 = 1.2 * w * 1.24e-3 / 1.8e-5;
+            let pr: f64 = 1005.0 * 1.8e-5 / 0.026;
+            let nu = 2.0 + 0.6 * re.sqrt() * pr.powf(1.0 / 3.0);
+            let direct = nu * 0.026 / 1.24e-3 * std::f64::consts::PI * 1.24e-3 * 1.24e-3 / 0.8;
+            let got = convective_conductance(&f, &h, &t, w);
+            assert!(
+                (got - direct).abs() < 1e-14 * direct,
+                "w = {w}: {got} {direct}"
+            );
+        }
     }
 
     #[test]

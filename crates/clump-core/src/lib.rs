@@ -65,6 +65,7 @@
 pub mod body;
 pub mod boundary;
 pub mod contact;
+pub mod convection;
 pub mod couple;
 pub mod dof;
 pub mod fluid;
@@ -75,6 +76,7 @@ pub mod lost;
 pub mod math;
 pub mod multi_contact;
 pub mod neighbor;
+pub mod oscillation;
 pub(crate) mod par;
 pub mod partition;
 pub mod prelude;

@@ -208,6 +208,26 @@ pub fn state_bits(w: &World) -> Vec<u64> {
     out
 }
 
+/// Turns heat on in a testbed world (Batchelor & O'Brien conductance):
+/// every material of conductivity `k` (W/(m K)) and specific heat `cp`
+/// (J/(kg K)), every wall at `wall_t` (K), the bodies of every template at
+/// `body_t` (K) with the volumetric source `q` (W/m³).
+pub fn heat_on(w: &mut World, k: f64, cp: f64, wall_t: f64, body_t: f64, q: f64) {
+    use crate::heat::{Conductance, HeatModel, ThermalMaterial};
+    let thermal = Some(ThermalMaterial {
+        conductivity: k,
+        specific_heat: cp,
+    });
+    w.enable_heat(HeatModel {
+        conductance: Conductance::BatchelorObrien,
+        materials: vec![thermal; w.materials.len()],
+        wall_temperature: vec![Some(wall_t); w.walls.len()],
+        template_temperature: vec![body_t; w.templates.len()],
+        template_source: vec![q; w.templates.len()],
+    })
+    .expect("valid heat settings");
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -110,3 +110,84 @@ fn deep_overlap_and_energy_blow_up_are_found() {
     );
     assert!(e.to_string().contains("kinetic energy jumped"), "{e}");
 }
+
+/// A sphere (r = 2 mm) resting on a floor under gravity through a strongly
+/// damped contact (restitution 0.1), stepped at `factor` × the damped
+/// contact's stability limit dt_c (T-52, at the resting Hertz overlap
+/// δ = (3 m g / (4 E* √r))^⅔) under the health check for up to 20 000
+/// steps; returns the instability, if any, the vertical net force of the
+/// last two steps over the weight, and the final kinetic energy (J).
+fn resting_sphere(factor: f64) -> (Option<clump_core::health::Instability>, [f64; 2], f64) {
+    let r = 2e-3;
+    let mut w = common::world(
+        rock(),
+        PairProperties {
+            restitution: 0.1,
+            ..PairProperties::default()
+        },
+        1.0,
+        common::open_domain(0.1),
+        DVec3::new(0.0, 0.0, -9.81),
+    );
+    let m = 2500.0 * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+    let e_star = 1e7 / (1.0 - 0.3 * 0.3);
+    let delta = (3.0 * m * 9.81 / (4.0 * e_star * r.sqrt())).powf(2.0 / 3.0);
+    let model = w.contact_table.get(0, 1);
+    let dt_c = clump_core::contact::stability::contact_step_limit(model, r, delta, m, m);
+    w.config.dt = factor * dt_c;
+    w.add_template(common::coincident(1, r, 2500.0), 0).unwrap();
+    w.add_wall(common::plane(
+        DVec3::ZERO,
+        DVec3::Z,
+        clump_core::multi_contact::MultiContact::Sum,
+    ))
+    .unwrap();
+    let at = DVec3::new(0.0, 0.0, r - 0.5 * delta);
+    w.add_body(&common::moving(0, at, DVec3::ZERO, DVec3::ZERO))
+        .unwrap();
+    let mut h = HealthMonitor::new(HealthLimits {
+        specific_energy_floor: 1.0,
+        ..HealthLimits::default()
+    });
+    let mut f = [0.0; 2];
+    for _ in 0..20_000 {
+        w.step().unwrap();
+        f = [f[1], w.bodies().force[0].z / (m * 9.81)];
+        if let Err(e) = h.check(&w) {
+            println!("{factor} dt_c: {e}\n  {}", w.diagnose(&e, None));
+            return (Some(e), f, w.thermo().kinetic_translational);
+        }
+    }
+    let ke = w.thermo().kinetic_translational;
+    println!("{factor} dt_c: no trip, net force / weight {f:?}, kinetic energy {ke:.3e} J");
+    (None, f, ke)
+}
+
+/// Just above the damped contact's limit (1.1 dt_c) the resting sphere
+/// chatters at period two: the check names it within a few hundred steps,
+/// when its net force already flips sign every step at about its weight
+/// (the oscillation grows until the contact opens every other step).
+/// At the default 0.4 dt_c (and at 0.9 dt_c) it comes to rest untripped.
+#[test]
+fn period_two_chatter_is_found_and_a_resting_sphere_is_not() {
+    let (trip, f, _) = resting_sphere(1.1);
+    let trip = trip.expect("the chatter at 1.1 dt_c is found");
+    assert!(
+        matches!(trip.kind, InstabilityKind::PeriodTwo { .. }),
+        "{trip}"
+    );
+    assert!(trip.step < 1000, "found late: {trip}");
+    assert!(
+        f[0] * f[1] < 0.0 && f[0].abs().min(f[1].abs()) > 0.5,
+        "net force / weight of the last two steps {f:?}"
+    );
+    for factor in [0.4, 0.9] {
+        let (trip, f, ke) = resting_sphere(factor);
+        assert!(trip.is_none(), "{factor} dt_c: {trip:?}");
+        assert!(ke < 1e-20, "{factor} dt_c: kinetic energy {ke:e} J");
+        assert!(
+            (f[1] - 0.0).abs() < 1e-6,
+            "{factor} dt_c: net force / weight {f:?}"
+        );
+    }
+}

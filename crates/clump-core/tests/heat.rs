@@ -415,18 +415,7 @@ fn a_settling_bed_conducts_the_same_bits_on_any_thread_count_and_conserves_heat(
             .unwrap();
         pool.install(|| {
             let mut w = clump_core::testbed::tetra_lattice_bed(5, 5, 4, None);
-            let thermal = Some(ThermalMaterial {
-                conductivity: 5.0,
-                specific_heat: 1.0,
-            });
-            w.enable_heat(HeatModel {
-                conductance: Conductance::BatchelorObrien,
-                materials: vec![thermal; w.materials.len()],
-                wall_temperature: vec![Some(400.0)],
-                template_temperature: vec![300.0; w.templates.len()],
-                template_source: vec![0.0; w.templates.len()],
-            })
-            .unwrap();
+            clump_core::testbed::heat_on(&mut w, 5.0, 1.0, 400.0, 300.0, 0.0);
             let content = |w: &World| w.thermo().heat.unwrap().heat_content;
             let c0 = content(&w);
             w.run(6000).unwrap();

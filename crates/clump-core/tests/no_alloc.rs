@@ -174,21 +174,9 @@ fn memory_is_linear_in_the_number_of_bodies() {
 /// same bed with conduction through every contact and a hot floor.
 #[test]
 fn no_heap_allocation_per_step_with_heat() {
-    use clump_core::heat::{Conductance, HeatModel, ThermalMaterial};
     let _serial = serial();
     let mut w = bed(10);
-    let thermal = Some(ThermalMaterial {
-        conductivity: 1.0,
-        specific_heat: 800.0,
-    });
-    w.enable_heat(HeatModel {
-        conductance: Conductance::BatchelorObrien,
-        materials: vec![thermal; w.materials.len()],
-        wall_temperature: vec![Some(400.0); w.walls.len()],
-        template_temperature: vec![300.0; w.templates.len()],
-        template_source: vec![1e3; w.templates.len()],
-    })
-    .unwrap();
+    clump_core::testbed::heat_on(&mut w, 1.0, 800.0, 400.0, 300.0, 1e3);
     w.run(3000).unwrap();
     let (mut steps, mut allocs) = (0u64, 0u64);
     for _ in 0..1000 {

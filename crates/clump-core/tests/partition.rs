@@ -164,3 +164,72 @@ fn mdr_profiles_have_the_same_bits_on_2_and_3_ranks() {
         }
     }
 }
+
+/// The bed with heat: a floor at 400 K under bodies at 300 K, conducting
+/// through every contact while it settles.
+fn heat_bed() -> World {
+    let mut w = bed();
+    clump_core::testbed::heat_on(&mut w, 5.0, 1.0, 400.0, 300.0, 0.0);
+    w
+}
+
+/// The temperatures (by id) and the walls' heat of a world, as bits.
+fn heat_bits(w: &World) -> (Vec<(u64, u64)>, Vec<u64>) {
+    let b = w.bodies();
+    let mut t: Vec<(u64, u64)> =
+        b.id.iter()
+            .zip(&b.temperature)
+            .map(|(&i, &t)| (i, t.to_bits()))
+            .collect();
+    t.sort();
+    let h = w.heat.as_ref().unwrap();
+    (t, h.wall_heat.iter().map(|x| x.to_bits()).collect())
+}
+
+/// Heat on ranks (T-94): ghosts carry their owners' temperatures and the
+/// floor's heat flows are summed in one process's order, so the
+/// temperatures and the floor's heat have one process's bits on 2 and 3
+/// ranks, as do the body states.
+#[test]
+fn heat_has_the_same_bits_on_2_and_3_ranks() {
+    let (steps, rounds) = (2000, 2);
+    let mut serial = heat_bed();
+    serial.run(steps * rounds as u64).unwrap();
+    let want = (state_bits(&serial), heat_bits(&serial));
+    let hottest = serial.thermo().heat.unwrap().max_temperature;
+    assert!(
+        serial.rebuilds > 3 && hottest > 300.1,
+        "{} rebuilds, hottest body {hottest} K",
+        serial.rebuilds
+    );
+    for ranks in [2, 3] {
+        let handles: Vec<_> = ThreadComm::group(ranks)
+            .into_iter()
+            .map(|comm| {
+                std::thread::spawn(move || {
+                    let mut w = heat_bed();
+                    w.partition(Box::new(comm));
+                    for _ in 0..rounds {
+                        w.run(steps).unwrap();
+                    }
+                    (state_bits(&w), heat_bits(&w))
+                })
+            })
+            .collect();
+        for (rank, h) in handles.into_iter().enumerate() {
+            let got = h.join().unwrap();
+            assert!(
+                got.0 == want.0,
+                "{ranks} ranks, rank {rank}: body states differ"
+            );
+            assert!(
+                got.1 .0 == want.1 .0,
+                "{ranks} ranks, rank {rank}: temperatures differ"
+            );
+            assert_eq!(
+                got.1 .1, want.1 .1,
+                "{ranks} ranks, rank {rank}: floor heat"
+            );
+        }
+    }
+}

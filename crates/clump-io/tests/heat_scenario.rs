@@ -294,13 +294,13 @@ fn bad_heat_input_is_refused_at_its_key() {
         "a heat key without [heat]",
     );
     refused(
-        "convection",
+        "heat_key_removed",
         &[(
             "conductance = \"batchelor_obrien\"",
             "convection = \"ranz_marshall\"",
         )],
         ("convection", 0),
-        "not available yet",
+        "convection",
     );
     refused(
         "no_specific_heat",
@@ -366,4 +366,92 @@ fn initial_temperatures_come_from_the_file_then_the_insert_then_the_template() {
         "{msg}"
     );
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// `[fluid]` with a temperature, for [`chain`]'s patches: water at 350 K
+/// flowing at 0.1 m/s across the chain.
+const FLUID: &str = "[heat]\nconductance = \"batchelor_obrien\"\n\n[fluid]\ndensity = 1000.0\nviscosity = 1e-3\nvelocity = [0.0, 0.0, 0.1]\ntemperature = 350.0\nthermal_conductivity = 0.6\nspecific_heat = 4180.0\n";
+
+/// Convection through the scenario file: the chain's spheres, held in
+/// place and not conducting (k = 0), each follow the lumped closed form
+/// `T_f + (T₀ − T_f) exp(−h A t / (m c))` with h from Ranz & Marshall
+/// (1952), written here: Nu = 2 + 0.6 Re^½ Pr^⅓, Re = ρ_f u d / μ,
+/// Pr = c_f μ / k_f, h = Nu k_f / d, A = π d².
+#[test]
+fn convection_from_the_fluid_follows_the_lumped_closed_form() {
+    let d = dir("convection");
+    let steps = 2000;
+    let path = chain(
+        &d,
+        steps,
+        &[
+            (
+                "thermal_conductivity = 10000.0\nspecific_heat",
+                "thermal_conductivity = 0.0\nspecific_heat",
+            ),
+            ("[heat]\nconductance = \"batchelor_obrien\"\n", FLUID),
+        ],
+    );
+    let sc = scenario::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let out = d.join("out");
+    let mut r = Runner::new(sc, &out).unwrap();
+    r.run(RunOptions::default()).unwrap();
+    let (dp, u) = (2.0 * R, 0.1);
+    let re = 1000.0 * u * dp / 1e-3;
+    let pr: f64 = 4180.0 * 1e-3 / 0.6;
+    let h = (2.0 + 0.6 * re.sqrt() * pr.powf(1.0 / 3.0)) * 0.6 / dp;
+    let (area, mass) = (
+        std::f64::consts::PI * dp * dp,
+        2500.0 * std::f64::consts::PI * dp.powi(3) / 6.0,
+    );
+    let t = steps as f64 * 5e-5;
+    let expect = 350.0 - 50.0 * (-h * area * t / (mass * 800.0)).exp();
+    let (header, row) = last_row(&std::fs::read_to_string(out.join("thermo.csv")).unwrap());
+    for c in [
+        "mean_temperature[K]",
+        "min_temperature[K]",
+        "max_temperature[K]",
+    ] {
+        let got = row[column(&header, c)];
+        assert!(
+            ((got - 350.0) / (expect - 350.0) - 1.0).abs() < 1e-9,
+            "{c}: {got} K, closed form {expect} K"
+        );
+    }
+    println!(
+        "convection through the scenario: h = {h:.4} W/(m² K), T = {expect:.9} K at t = {t} s"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn bad_convection_input_is_refused_at_its_key() {
+    let with = |from: &'static str, to: &'static str| {
+        let fluid: &'static str = Box::leak(FLUID.replacen(from, to, 1).into_boxed_str());
+        [("[heat]\nconductance = \"batchelor_obrien\"\n", fluid)]
+    };
+    refused(
+        "fluid_at_0_k",
+        &with("temperature = 350.0", "temperature = 0.0"),
+        ("temperature = 0.0", 0),
+        "temperature must be > 0 K",
+    );
+    refused(
+        "fluid_without_conductivity",
+        &with("thermal_conductivity = 0.6\n", ""),
+        ("[fluid]", 0),
+        "missing key 'thermal_conductivity'",
+    );
+    refused(
+        "fluid_negative_specific_heat",
+        &with("specific_heat = 4180.0", "specific_heat = -1.0"),
+        ("specific_heat = -1.0", 0),
+        "'specific_heat' must be",
+    );
+    refused(
+        "fluid_conductivity_without_temperature",
+        &with("temperature = 350.0\n", ""),
+        ("thermal_conductivity = 0.6", 0),
+        "without the fluid's temperature",
+    );
 }

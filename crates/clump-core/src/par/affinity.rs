@@ -29,8 +29,10 @@ pub(crate) const GATHER_LOOP: usize = 2;
 /// Index of the [`Balance`] of the pair stage and the gather taken
 /// together ([`for_each_run_then`]).
 pub(crate) const FORCE_LOOP: usize = 3;
+/// Index of the heat stage's pair loop's [`Balance`] (`step::heat_pairs`).
+pub(crate) const HEAT_LOOP: usize = 4;
 /// Number of [`Balance`]s, one per loop.
-pub(crate) const LOOPS: usize = 4;
+pub(crate) const LOOPS: usize = 5;
 
 /// Spheres a body chunk aims at (see [`body_chunk`]).
 const CHUNK_SPHERES: usize = 128;

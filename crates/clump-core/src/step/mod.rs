@@ -41,6 +41,7 @@ mod first_half;
 mod first_half_lanes;
 mod gather;
 mod heat;
+mod heat_pairs;
 mod kick;
 pub mod kinematics;
 mod law_lanes;

@@ -46,12 +46,16 @@ impl World {
     }
 
     /// After the gather: the ghosts take their owners' new state, and the
-    /// statistics and wall loads are summed over the ranks.
+    /// statistics, wall loads and walls' heat flows are summed over the
+    /// ranks.
     pub(super) fn exchange_after_gather(&mut self) {
         if self.part.is_none() {
             return;
         }
         ghosts::refresh(self);
         ghosts::reduce(self);
+        if self.heat.is_some() {
+            super::partition::heat::reduce(self);
+        }
     }
 }

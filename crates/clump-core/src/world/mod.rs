@@ -390,11 +390,6 @@ impl World {
     /// specific heat, a template has no temperature above 0 K, or a wall
     /// temperature is not above 0 K.
     pub fn enable_heat(&mut self, model: crate::heat::HeatModel) -> Result<(), WorldError> {
-        if self.part.is_some() {
-            return Err(WorldError::BadValue(
-                "heat transfer is not available in a world split over ranks".into(),
-            ));
-        }
         if model.materials.len() != self.materials.len() {
             return Err(WorldError::BadValue(format!(
                 "the heat model lists {} materials, the world has {}",

@@ -84,6 +84,9 @@ pub struct HeatDef {
     pub stability_limit: f64,
     /// The template that sets it.
     pub limiting_template: String,
+    /// The fluid's thermal properties when `[fluid]` has a temperature:
+    /// convection from the fluid (T-90 … T-93).
+    pub convection: Option<clump_core::heat::FluidHeat>,
 }
 
 /// A template with its name and material.

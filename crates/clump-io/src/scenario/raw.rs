@@ -68,8 +68,6 @@ table! {
         pub conductance: Option<clump_core::heat::Conductance>,
         /// Initial temperature of bodies whose template gives none, K.
         pub temperature: Option<f64>,
-        /// Convection from a fluid: not available yet (needs a `[fluid]`).
-        pub convection: Option<toml::Value>,
     }
 }
 
@@ -92,6 +90,13 @@ table! {
         pub drag: Option<String>,
         /// Buoyancy in the hydrostatic pressure field (default true).
         pub buoyancy: Option<bool>,
+        /// The fluid's temperature, K: convection from the fluid (needs
+        /// `[heat]`, `thermal_conductivity` and `specific_heat`).
+        pub temperature: Option<f64>,
+        /// The fluid's thermal conductivity, W/(m K).
+        pub thermal_conductivity: Option<f64>,
+        /// The fluid's specific heat, J/(kg K).
+        pub specific_heat: Option<f64>,
     }
 }
 

@@ -1,4 +1,5 @@
-//! After each step: ghosts take their owners' new state, and the step's
+//! After each step: ghosts take their owners' new state (with heat, their
+//! temperature too), and the step's
 //! statistics and wall loads are summed over the ranks.
 
 use crate::stats::ContactStats;
@@ -31,11 +32,13 @@ fn take3(bytes: &[u8], k: &mut usize) -> DVec3 {
 pub(crate) fn refresh(w: &mut World) {
     let part = w.part.as_mut().expect("a partitioned world");
     let b = &mut w.bodies;
+    // with heat, the temperature follows the state
+    let heat = w.heat.is_some();
     let sends: Vec<(usize, Vec<u8>)> = part
         .send
         .iter()
         .map(|(r, list)| {
-            let mut out = Vec::with_capacity(list.len() * STATE_LEN * 8);
+            let mut out = Vec::with_capacity(list.len() * (STATE_LEN + heat as usize) * 8);
             for &i in list {
                 let i = i as usize;
                 put3(&mut out, b.position[i]);
@@ -47,6 +50,9 @@ pub(crate) fn refresh(w: &mut World) {
                 put3(&mut out, b.angular_velocity[i]);
                 put3(&mut out, b.force[i]);
                 put3(&mut out, b.torque[i]);
+                if heat {
+                    out.extend_from_slice(&b.temperature[i].to_le_bytes());
+                }
             }
             (*r, out)
         })
@@ -74,6 +80,9 @@ pub(crate) fn refresh(w: &mut World) {
             b.angular_velocity[i] = take3(bytes, &mut k);
             b.force[i] = take3(bytes, &mut k);
             b.torque[i] = take3(bytes, &mut k);
+            if heat {
+                b.temperature[i] = take(bytes, &mut k);
+            }
         }
     }
     let ghosts = part.owned.iter().filter(|&&o| !o).count() as u64;

@@ -1,9 +1,11 @@
 //! The stages of a world split over ranks (see [`crate::partition`]): keep a
 //! rank's part of the whole world ([`restrict`]), gather the whole world
 //! ([`join`]), rebuild the parts between neighbours ([`migrate`]), refresh
-//! ghosts and sum statistics after each step ([`ghosts`]).
+//! ghosts and sum statistics after each step ([`ghosts`]), and the walls'
+//! heat flows ([`heat`]).
 
 pub(crate) mod ghosts;
+pub(crate) mod heat;
 pub(crate) mod join;
 pub(crate) mod migrate;
 pub(crate) mod restrict;
@@ -16,6 +18,9 @@ impl World {
     /// [`World::advance`] steps this rank's part only, and hands the whole
     /// world back at its end. Call on every rank with the same world (the
     /// scenario built alike on each).
+    ///
+    /// Heat runs split too: ghosts carry their owners' temperatures and
+    /// the walls' heat flows are summed in one process's order (T-94).
     pub fn partition(&mut self, comm: Box<dyn Comm>) {
         let size = comm.size();
         self.part = Some(Box::new(Part {

@@ -42,12 +42,6 @@ pub(super) fn heat(cx: &mut Cx, raw: &RawScenario, inp: &HeatInput) -> R<Option<
         }
         return no_heat_keys(cx, raw).map(|()| None);
     };
-    if h.convection.is_some() {
-        return Err(cx
-            .err(&[K("heat"), K("convection")], "convection from a fluid is not available yet: it needs the fluid of a [fluid] table, which this version does not have")
-            .label("not yet")
-            .note("help: remove 'convection'; conduction through contacts and walls and the templates' heat_source work"));
-    }
     let default_t = h
         .temperature
         .map(|t| temperature(cx, &[K("heat"), K("temperature")], t))
@@ -127,6 +121,8 @@ pub(super) fn heat(cx: &mut Cx, raw: &RawScenario, inp: &HeatInput) -> R<Option<
         file_temperature,
         stability_limit: limit,
         limiting_template,
+        // set with the [fluid] keys (`convection::fluid_heat`)
+        convection: None,
     }))
 }
 
@@ -153,7 +149,7 @@ fn file_temperatures(cx: &mut Cx, raw: &RawScenario) -> R<Vec<Option<Vec<f64>>>>
 }
 
 /// A temperature key: finite and above 0 K.
-fn temperature(cx: &Cx, path: &[Seg], t: f64) -> R<f64> {
+pub(super) fn temperature(cx: &Cx, path: &[Seg], t: f64) -> R<f64> {
     if t.is_finite() && t > 0.0 {
         Ok(t)
     } else {

@@ -8,6 +8,7 @@
 )]
 
 mod contact;
+mod convection;
 mod dof;
 mod domain;
 mod fluid;
@@ -452,6 +453,9 @@ fn resolve_sections(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             dt_auto: time_step.auto,
         },
     )?;
+    // convection: the heat keys of [fluid]
+    let convection = convection::fluid_heat(cx, &raw, heat.is_some())?;
+    let heat = heat.map(|h| HeatDef { convection, ..h });
     Ok(Scenario {
         path: cx.src.path.clone(),
         text: cx.src.text.clone(),
