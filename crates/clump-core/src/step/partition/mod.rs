@@ -1,12 +1,14 @@
 //! The stages of a world split over ranks (see [`crate::partition`]): keep a
 //! rank's part of the whole world ([`restrict`]), gather the whole world
 //! ([`join`]), rebuild the parts between neighbours ([`migrate`]), refresh
-//! ghosts and sum statistics after each step ([`ghosts`]).
+//! ghosts and sum statistics after each step ([`ghosts`]), keep the world
+//! split through an event or gather it ([`split`]).
 
 pub(crate) mod ghosts;
 pub(crate) mod join;
 pub(crate) mod migrate;
 pub(crate) mod restrict;
+pub(crate) mod split;
 
 use crate::partition::{Comm, Part, PartInfo, Regions, Traffic};
 use crate::world::World;
@@ -27,6 +29,7 @@ impl World {
             send: Vec::new(),
             recv: Vec::new(),
             halo: 0.0,
+            stay_split: false,
             traffic: Traffic::default(),
         }));
     }
