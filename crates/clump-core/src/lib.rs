@@ -85,6 +85,7 @@ pub mod rotation;
 pub mod shape;
 pub mod sphere;
 pub mod state;
+pub mod state_pieces;
 pub mod stats;
 pub mod steer;
 pub mod step;

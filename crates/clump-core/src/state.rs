@@ -126,31 +126,48 @@ impl World {
             .slip_per_sphere(self.spheres.len(), self.contact_table.keeps_slip_profile());
         let (wall_key, wall_hist) = self.neighbors.wall_list.per_sphere(self.spheres.len());
         Ok(WorldState {
+            bodies: self.bodies.clone(),
+            reference_pose: self.neighbors.reference_pose.clone(),
+            pair_history,
+            wall_key,
+            wall_hist,
+            pair_slip,
+            wall_slip,
+            coupling: (!self.bodies.coupling.is_empty()).then(|| self.bodies.coupling.clone()),
+            ..self.global_state()
+        })
+    }
+
+    /// The state's global part (settings, counters, walls, wall loads,
+    /// statistics, skin), with no bodies: what every rank of a world split
+    /// over ranks holds alike.
+    pub(crate) fn global_state(&self) -> WorldState {
+        WorldState {
             config: self.config,
             step: self.step,
             time: self.time,
             lost: self.lost,
             rebuilds: self.rebuilds,
             next_id: self.next_id,
-            bodies: self.bodies.clone(),
+            bodies: Bodies::default(),
             walls: self.walls.to_vec(),
             wall_loads: self.walls.loads.clone(),
             stats: self.stats,
-            reference_pose: self.neighbors.reference_pose.clone(),
-            pair_history,
-            wall_key,
-            wall_hist,
+            reference_pose: Vec::new(),
+            pair_history: Vec::new(),
+            wall_key: Vec::new(),
+            wall_hist: Vec::new(),
             adapted_skin: self.neighbors.adapted_skin,
             built_step: self.neighbors.built_step,
             wall_heat: self
                 .heat
                 .as_ref()
                 .map_or(Vec::new(), |h| h.wall_heat.clone()),
-            pair_slip,
-            wall_slip,
-            coupling: (!self.bodies.coupling.is_empty()).then(|| self.bodies.coupling.clone()),
+            pair_slip: Vec::new(),
+            wall_slip: Vec::new(),
+            coupling: None,
             fluid_velocity: self.fluid.as_ref().map(|f| f.fluid.velocity),
-        })
+        }
     }
 
     /// Restores a state saved by [`World::save_state`] into a world built

@@ -76,6 +76,9 @@ pub struct Part {
     pub(crate) recv: Vec<(usize, Vec<u32>)>,
     /// The halo of the last restriction, m.
     pub(crate) halo: f64,
+    /// The next event keeps the world split (set by the driver, taken by
+    /// `World::advance`).
+    pub(crate) stay_split: bool,
     /// Bytes and messages this rank sent (ghost states, gathers).
     pub traffic: Traffic,
 }

@@ -229,6 +229,12 @@ impl World {
         // a stop asked by the hook after a step is or-ed over the ranks with
         // the stop requests before the next (one reduction per step)
         let mut tripped = false;
+        // an event whose boundary work needs only each rank's part keeps
+        // the world split: no whole step before it, no gather after it
+        let split_event = self
+            .part
+            .as_mut()
+            .is_some_and(|p| std::mem::take(&mut p.stay_split));
         loop {
             let flags = [tripped, hook.stop_requested()];
             let [trip, interrupt] = self.any_ranks(flags);
@@ -244,7 +250,7 @@ impl World {
                 break;
             }
             let last = self.step + 1 == event.step;
-            if last {
+            if last && !split_event {
                 // the step before an event runs whole on every rank, as one
                 // process takes it: its statistics, wall loads and contact
                 // records (for output) are then one process's, bit for bit
@@ -256,7 +262,9 @@ impl World {
             let report = self.report();
             tripped = hook.end_of_step(&report) == Flow::Stop;
         }
-        if self.part.as_ref().is_some_and(|p| p.local) {
+        // a tripped run is diagnosed on the whole world
+        let whole = !split_event || end == Advance::Tripped;
+        if whole && self.part.as_ref().is_some_and(|p| p.local) {
             super::partition::join::join(self)?;
         }
         Ok(end)

@@ -36,6 +36,11 @@ pub struct Checkpoint {
     /// Id of the run (see [`super::outdir`]; absent in older checkpoints).
     #[serde(default)]
     pub run_id: Option<String>,
+    /// A checkpoint of a world split over MPI ranks: the pieces holding
+    /// its bodies, one per rank (`world` then holds none; see
+    /// [`super::pieces`]). `None`: `world` is the whole world.
+    #[serde(default)]
+    pub pieces: Option<Vec<super::pieces::PieceRef>>,
 }
 impl Runner {
     /// Writes a checkpoint of the current state into the output directory
@@ -54,30 +59,15 @@ impl Runner {
     /// output directory's checkpoints go through [`Runner::write_checkpoint`]).
     /// `clump resume` and [`Runner::resume`] continue from it bit for bit.
     pub fn write_checkpoint_to(&mut self, path: &Path) -> Result<(), RunError> {
+        if self.world.is_split() {
+            return self.write_split_checkpoint(path);
+        }
         let world = self
             .world
             .save_state()
             .map_err(rt("cannot capture the state"))?;
-        let extra: Vec<(ClumpTemplate, u16)> = (self.n_scenario_templates
-            ..self.world.templates.len())
-            .map(|i| {
-                (
-                    self.world.templates[i].clone(),
-                    self.world.templates.material(i),
-                )
-            })
-            .collect();
-        let ck = Checkpoint {
-            version: VERSION.to_string(),
-            scenario_path: self.scenario.path.display().to_string(),
-            scenario_text: self.scenario.text.clone(),
-            files: self.scenario.files.clone(),
-            outdir: self.out.dir.display().to_string(),
-            extra_templates: extra,
-            driver: self.st.clone(),
-            world,
-            run_id: (!self.out.run_id.is_empty()).then(|| self.out.run_id.clone()),
-        };
+        let run_id = (!self.out.run_id.is_empty()).then(|| self.out.run_id.clone());
+        let ck = self.checkpoint_of(world, run_id);
         let json = serde_json::to_string(&ck).map_err(rt("cannot encode the checkpoint"))?;
         write_checkpoint(path, &json, self.scenario.fingerprint())
             .map_err(rt("cannot write the checkpoint"))?;
@@ -87,6 +77,31 @@ impl Runner {
             path.display()
         );
         Ok(())
+    }
+
+    /// The checkpoint of this run with the world state `world`.
+    pub(super) fn checkpoint_of(&self, world: WorldState, run_id: Option<String>) -> Checkpoint {
+        let extra: Vec<(ClumpTemplate, u16)> = (self.n_scenario_templates
+            ..self.world.templates.len())
+            .map(|i| {
+                (
+                    self.world.templates[i].clone(),
+                    self.world.templates.material(i),
+                )
+            })
+            .collect();
+        Checkpoint {
+            version: VERSION.to_string(),
+            scenario_path: self.scenario.path.display().to_string(),
+            scenario_text: self.scenario.text.clone(),
+            files: self.scenario.files.clone(),
+            outdir: self.out.dir.display().to_string(),
+            extra_templates: extra,
+            driver: self.st.clone(),
+            world,
+            run_id,
+            pieces: None,
+        }
     }
 }
 
@@ -112,7 +127,7 @@ pub fn load_checkpoint_with_id(
     let (json, fingerprint): (String, u64) =
         crate::checkpoint::decode_checkpoint(bytes, checkpoint)
             .map_err(|e| RunError::InputMessage(e.to_string()))?;
-    let ck: Checkpoint = serde_json::from_str(&json).map_err(|e| {
+    let mut ck: Checkpoint = serde_json::from_str(&json).map_err(|e| {
         RunError::InputMessage(format!(
             "checkpoint {}: cannot decode the state: {e}",
             checkpoint.display()
@@ -147,6 +162,20 @@ pub fn load_checkpoint_with_id(
             checkpoint.display(),
             scenario.stages.len()
         )));
+    }
+    if let Some(refs) = ck.pieces.take() {
+        let pieces = super::pieces::read_pieces(
+            checkpoint,
+            (&ck.run_id, ck.world.step),
+            &refs,
+            fingerprint,
+        )?;
+        ck.world = world.merge_pieces(&ck.world, pieces).map_err(|e| {
+            RunError::InputMessage(format!(
+                "checkpoint {}: its pieces do not make one world: {e}",
+                checkpoint.display()
+            ))
+        })?;
     }
     world.restore_state(ck.world).map_err(|e| {
         RunError::InputMessage(format!(

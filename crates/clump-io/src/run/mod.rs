@@ -32,6 +32,7 @@ mod error;
 mod manifest;
 pub mod outdir;
 mod outputs;
+mod pieces;
 mod report;
 mod session;
 mod stages;
@@ -39,6 +40,7 @@ mod stages;
 pub use checkpoint::{load_checkpoint, load_checkpoint_with_id, Checkpoint};
 pub use error::{RunError, UnstableRun};
 pub use manifest::final_state_json;
+pub use pieces::PieceRef;
 pub use report::InsertionCount;
 pub use session::{Tally, Until};
 
@@ -514,6 +516,10 @@ impl Runner {
             self.periodic_checkpoint()?;
             // --- the steps to the next event
             let event = self.next_event(opts.max_steps);
+            // over MPI ranks, an event with no boundary work but a
+            // checkpoint (written in pieces) keeps the world split
+            let split = event.step < self.next_whole_step();
+            self.world.keep_split_at_next_event(split);
             let pace = Pace {
                 interrupt: opts.interrupt.as_deref(),
                 deadline: None,
@@ -529,6 +535,10 @@ impl Runner {
             }
         };
         let wall_time = t_start.elapsed().as_secs_f64();
+        // final_state.json holds every body
+        self.world
+            .make_whole()
+            .map_err(rt("cannot gather the world for the final state"))?;
         if let Some(f) = &self.out.fields {
             f.finish()
                 .map_err(rt("cannot write the time-averaged fields"))?;
@@ -643,10 +653,18 @@ impl Runner {
 
     /// The step of the next event (see [`Self::next_event`]).
     fn next_event_step(&self, max_steps: Option<u64>) -> u64 {
+        let e = max_steps.unwrap_or(u64::MAX).min(self.st.next_checkpoint);
+        e.min(self.next_whole_step()).max(self.world.step + 1)
+    }
+
+    /// The next step whose boundary work needs the whole world: the end of
+    /// the current stage, an insertion, an output row or frame (every
+    /// event but a checkpoint and the step limit).
+    fn next_whole_step(&self) -> u64 {
         let (st, step) = (&self.st, self.world.step);
         let o = &self.scenario.output;
         let dt = self.world.config.dt;
-        let mut e = max_steps.unwrap_or(u64::MAX).min(st.next_checkpoint);
+        let mut e = u64::MAX;
         if let Some(stage) = self.scenario.stages.get(st.stage) {
             e = e.min(step.saturating_add(stage.steps.saturating_sub(st.step_in_stage)));
         }
@@ -671,6 +689,6 @@ impl Runner {
         if o.flow.is_some() && self.out.flow.is_some() {
             e = e.min(st.next_flow);
         }
-        e.max(step + 1)
+        e
     }
 }

@@ -43,8 +43,20 @@ pub fn is_run_file(name: &str) -> bool {
             .any(|p| numbered(p, ".vtp") || numbered(p, ".vtu"))
         || numbered("traj_", ".csv")
         || numbered("checkpoint_", ".ckpt")
+        || is_piece_file(name)
         // temporary files of crate::atomic (`.<name>.tmp.<pid>.<n>`)
         || (name.starts_with('.') && name.contains(".tmp."))
+}
+
+/// True for a rank's piece of a split checkpoint,
+/// `checkpoint_<step>.rank<r>of<n>.piece` ([`super::pieces`]).
+fn is_piece_file(name: &str) -> bool {
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    name.strip_prefix("checkpoint_")
+        .and_then(|r| r.strip_suffix(".piece"))
+        .and_then(|r| r.split_once(".rank"))
+        .and_then(|(step, rn)| Some((step, rn.split_once("of")?)))
+        .is_some_and(|(step, (r, n))| digits(step) && digits(r) && digits(n))
 }
 
 /// The run files in `dir` (sorted; none when `dir` does not exist).

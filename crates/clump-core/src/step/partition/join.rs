@@ -17,24 +17,24 @@ use serde::{Deserialize, Serialize};
 
 /// One rank's owned bodies, as sent to every rank.
 #[derive(Serialize, Deserialize, Default)]
-struct Owned {
+pub(crate) struct Owned {
     /// Each body's place in the whole world's storage order.
-    order: Vec<(u64, u64)>,
-    bodies: Bodies,
-    reference_pose: Vec<(DVec3, DQuat)>,
+    pub(crate) order: Vec<(u64, u64)>,
+    pub(crate) bodies: Bodies,
+    pub(crate) reference_pose: Vec<(DVec3, DQuat)>,
     /// Histories of the pairs with at least one owned sphere.
-    pair_history: Vec<((u64, u64), ContactHistory)>,
+    pub(crate) pair_history: Vec<((u64, u64), ContactHistory)>,
     /// Wall slots per sphere of the owned bodies, in their order.
-    wall_key: Vec<[u32; WALL_SLOTS]>,
-    wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
+    pub(crate) wall_key: Vec<[u32; WALL_SLOTS]>,
+    pub(crate) wall_hist: Vec<[ContactHistory; WALL_SLOTS]>,
     /// MDR profiles, as `pair_history` and `wall_hist` (empty when no law
     /// keeps them).
-    pair_slip: Vec<((u64, u64), SlipProfile)>,
-    wall_slip: Vec<[SlipProfile; WALL_SLOTS]>,
+    pub(crate) pair_slip: Vec<((u64, u64), SlipProfile)>,
+    pub(crate) wall_slip: Vec<[SlipProfile; WALL_SLOTS]>,
 }
 
 /// This rank's owned bodies with everything that travels with them.
-fn owned(w: &World) -> Owned {
+pub(crate) fn owned(w: &World) -> Owned {
     let part = w.part.as_ref().expect("a partitioned world");
     let mut out = Owned::default();
     let keep: Vec<u32> = (0..w.bodies.len() as u32)

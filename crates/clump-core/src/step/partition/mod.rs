@@ -1,14 +1,16 @@
 //! The stages of a world split over ranks (see [`crate::partition`]): keep a
 //! rank's part of the whole world ([`restrict`]), gather the whole world
 //! ([`join`]), rebuild the parts between neighbours ([`migrate`]), refresh
-//! ghosts and sum statistics after each step ([`ghosts`]), and the walls'
-//! heat flows ([`heat`]).
+//! ghosts and sum statistics after each step ([`ghosts`]), the walls' heat
+//! flows ([`heat`]), keep the world split through an event or gather it
+//! ([`split`]).
 
 pub(crate) mod ghosts;
 pub(crate) mod heat;
 pub(crate) mod join;
 pub(crate) mod migrate;
 pub(crate) mod restrict;
+pub(crate) mod split;
 
 use crate::partition::{Comm, Part, PartInfo, Regions, Traffic};
 use crate::world::World;
@@ -32,6 +34,7 @@ impl World {
             send: Vec::new(),
             recv: Vec::new(),
             halo: 0.0,
+            stay_split: false,
             traffic: Traffic::default(),
         }));
     }

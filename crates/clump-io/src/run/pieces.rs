@@ -1,0 +1,211 @@
+//! Checkpoints of a world split over MPI ranks, written without gathering
+//! it: each rank writes its piece (`<stem>.rank<r>of<n>.piece`, the state of
+//! the bodies it owns, see [`clump_core::state_pieces::RankPiece`]) next to the
+//! manifest `<stem>.ckpt` that rank 0 writes once every piece is on disk.
+//! The manifest is an ordinary checkpoint whose world has no bodies and
+//! which lists the pieces with their sizes and CRC-32s; reading it (at any
+//! rank count, or in one process) reads and checks every piece and merges
+//! them into the whole world's state. A missing piece, a piece of another
+//! checkpoint or run, and a truncated or damaged piece are each a clear
+//! error naming the file.
+
+use super::error::rt;
+use super::{RunError, Runner};
+use crate::checkpoint::{decode_checkpoint, encode_checkpoint};
+use clump_core::state_pieces::RankPiece;
+use clump_core::world::World;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// A piece as the manifest lists it.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct PieceRef {
+    /// File name, in the manifest's folder.
+    pub file: String,
+    /// Its size, bytes.
+    pub bytes: u64,
+    /// CRC-32 (IEEE) of the whole file.
+    pub crc32: u32,
+}
+
+/// What a piece file holds.
+#[derive(Serialize, Deserialize)]
+struct PieceFile {
+    /// The run's id (rank 0's).
+    run_id: Option<String>,
+    /// The step of the checkpoint.
+    step: u64,
+    /// The rank that wrote it, and the number of ranks.
+    rank: usize,
+    ranks: usize,
+    piece: RankPiece,
+}
+
+/// The piece file name of rank `r` of `n` for the manifest `manifest`.
+fn piece_name(manifest: &Path, r: usize, n: usize) -> String {
+    let stem = manifest
+        .file_stem()
+        .map_or_else(|| "checkpoint".into(), |s| s.to_string_lossy().into_owned());
+    format!("{stem}.rank{r}of{n}.piece")
+}
+
+/// Rank 0's value of `mine` on every rank (a collective call).
+fn from_root(w: &mut World, mine: &str) -> String {
+    let all = w.gather_from_ranks(mine.as_bytes());
+    String::from_utf8_lossy(&all[0]).into_owned()
+}
+
+impl Runner {
+    /// Writes a checkpoint of a world split over ranks to rank 0's `path`
+    /// (every rank calls it): each rank's piece, then rank 0's manifest.
+    /// An error on any rank is an error on every rank, and no manifest is
+    /// written (the last complete checkpoint stays the last one listed).
+    pub(super) fn write_split_checkpoint(&mut self, path: &Path) -> Result<(), RunError> {
+        let info = self
+            .world
+            .part_info()
+            .expect("a split world is partitioned");
+        let (me, n) = (info.rank, info.size);
+        let dir = path.parent().filter(|p| !p.as_os_str().is_empty());
+        let dir = dir.map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+        let dir = std::fs::canonicalize(&dir).unwrap_or(dir);
+        let manifest = dir.join(path.file_name().unwrap_or_default());
+        let manifest = PathBuf::from(from_root(&mut self.world, &manifest.to_string_lossy()));
+        let run_id = from_root(&mut self.world, &self.out.run_id);
+        let run_id = (!run_id.is_empty()).then_some(run_id);
+        let step = self.world.step;
+        let fingerprint = self.scenario.fingerprint();
+        let name = piece_name(&manifest, me, n);
+        let piece_path = manifest.with_file_name(&name);
+        let mut global = None;
+        let written = self
+            .world
+            .save_rank_piece()
+            .map_err(|e| format!("cannot capture the state: {e}"))
+            .and_then(|piece| {
+                let file = PieceFile {
+                    run_id: run_id.clone(),
+                    step,
+                    rank: me,
+                    ranks: n,
+                    piece,
+                };
+                let json = serde_json::to_string(&file).map_err(|e| e.to_string())?;
+                let bytes = encode_checkpoint(&json, fingerprint).map_err(|e| e.to_string())?;
+                crate::atomic::write_atomic(&piece_path, &bytes)
+                    .map_err(|e| format!("{}: {e}", piece_path.display()))?;
+                global = Some(file.piece.state.into_global());
+                Ok(PieceRef {
+                    file: name,
+                    bytes: bytes.len() as u64,
+                    crc32: crc32fast::hash(&bytes),
+                })
+            });
+        let mine = match &written {
+            Ok(r) => serde_json::to_vec(&Ok::<_, String>(r)),
+            Err(e) => serde_json::to_vec(&Err::<PieceRef, _>(e)),
+        }
+        .unwrap_or_default();
+        let all = self.world.gather_from_ranks(&mine);
+        let mut refs = Vec::with_capacity(n);
+        for (r, bytes) in all.iter().enumerate() {
+            match serde_json::from_slice::<Result<PieceRef, String>>(bytes) {
+                Ok(Ok(p)) => refs.push(p),
+                Ok(Err(e)) => {
+                    return Err(RunError::Runtime(format!(
+                        "cannot write the checkpoint of step {step}: rank {r} could not write its piece: {e}"
+                    )))
+                }
+                Err(e) => {
+                    return Err(RunError::Runtime(format!(
+                        "cannot write the checkpoint of step {step}: rank {r}'s report is unreadable: {e}"
+                    )))
+                }
+            }
+        }
+        if me != 0 {
+            return Ok(());
+        }
+        let Some(global) = global else {
+            return Err(RunError::Runtime(format!(
+                "cannot write the checkpoint of step {step}: rank 0 could not capture its state"
+            )));
+        };
+        let mut ck = self.checkpoint_of(global, run_id);
+        ck.pieces = Some(refs);
+        let json = serde_json::to_string(&ck).map_err(rt("cannot encode the checkpoint"))?;
+        crate::checkpoint::write_checkpoint(&manifest, &json, fingerprint)
+            .map_err(rt("cannot write the checkpoint"))?;
+        tracing::info!(
+            step,
+            ranks = n,
+            "checkpoint written to {} with one piece per rank",
+            manifest.display()
+        );
+        Ok(())
+    }
+}
+
+/// Reads and checks every piece a split checkpoint's manifest lists (the
+/// manifest `checkpoint` of run `run_id` at `step`, of the scenario
+/// `fingerprint`).
+pub(super) fn read_pieces(
+    checkpoint: &Path,
+    (run_id, step): (&Option<String>, u64),
+    refs: &[PieceRef],
+    fingerprint: u64,
+) -> Result<Vec<RankPiece>, RunError> {
+    let n = refs.len();
+    let bad =
+        |m: String| RunError::InputMessage(format!("checkpoint {}: {m}", checkpoint.display()));
+    let mut pieces = Vec::with_capacity(n);
+    for (r, p) in refs.iter().enumerate() {
+        if p.file.contains(['/', '\\']) || p.file.is_empty() {
+            return Err(bad(format!(
+                "piece {r} has the name '{}', not a file name",
+                p.file
+            )));
+        }
+        let path = checkpoint.with_file_name(&p.file);
+        let bytes = std::fs::read(&path).map_err(|e| {
+            bad(format!(
+                "piece {r} of {n}, {}, cannot be read ({e}): a checkpoint written on {n} MPI ranks is this manifest and one piece per rank, in the same folder",
+                path.display()
+            ))
+        })?;
+        let crc = crc32fast::hash(&bytes);
+        if bytes.len() as u64 != p.bytes || crc != p.crc32 {
+            return Err(bad(format!(
+                "piece {r} of {n}, {}, has {} bytes (CRC-32 {crc:08x}) but the manifest lists {} bytes (CRC-32 {:08x}): the piece is truncated or damaged, or belongs to another checkpoint",
+                path.display(),
+                bytes.len(),
+                p.bytes,
+                p.crc32
+            )));
+        }
+        let (json, fp): (String, u64) =
+            decode_checkpoint(&bytes, &path).map_err(|e| RunError::InputMessage(e.to_string()))?;
+        if fp != fingerprint {
+            return Err(bad(format!(
+                "piece {} is of another scenario (fingerprint {fp:016x}, the manifest's {fingerprint:016x})",
+                path.display()
+            )));
+        }
+        let f: PieceFile = serde_json::from_str(&json)
+            .map_err(|e| bad(format!("piece {} cannot be decoded: {e}", path.display())))?;
+        if f.run_id != *run_id || f.step != step || f.rank != r || f.ranks != n {
+            return Err(bad(format!(
+                "piece {} is rank {} of {} of run {:?} at step {}, but the manifest lists rank {r} of {n} of run {:?} at step {}",
+                path.display(),
+                f.rank,
+                f.ranks,
+                f.run_id,
+                f.step,
+                run_id,
+                step
+            )));
+        }
+        pieces.push(f.piece);
+    }
+    Ok(pieces)
+}
