@@ -21,8 +21,13 @@ mod cmd_template;
 mod cmd_validate;
 mod core_latency;
 mod device;
+mod huge_pages;
 mod memory;
 mod ranks;
+
+/// Large arrays on huge pages (`huge_pages`).
+#[global_allocator]
+static ALLOCATOR: huge_pages::HugePages = huge_pages::HugePages;
 
 /// Clump: a DEM simulator for rigid clumps of overlapping spheres.
 #[derive(Parser)]

@@ -1,7 +1,7 @@
 //! `clump bench --scaling`: the cost per sphere-step of dense beds of
 //! several sizes, timed in alternation.
 
-use super::measure::{current_rss_mb, peak_rss_mb};
+use super::measure::{cpu_seconds, current_rss_mb, peak_rss_mb};
 use super::BenchArgs;
 use anyhow::{bail, Result};
 use std::time::Instant;
@@ -25,6 +25,10 @@ struct ScalingBed {
     reps: u64,
     /// Seconds and stage times of each round.
     rounds: Vec<(f64, clump_core::stats::StageTimes)>,
+    /// CPU seconds (user + system, all threads) of each round: on a shared
+    /// machine whose cores other tenants' processes take turns on, the
+    /// wall time also counts the turns of the others.
+    cpu: Vec<f64>,
     /// Neighbour rebuilds during the timed rounds.
     rebuilds: u64,
 }
@@ -80,6 +84,7 @@ pub(super) fn scaling(args: &BenchArgs) -> Result<()> {
                 rss_mb: current_rss_mb() - r0,
                 reps: 1,
                 rounds: Vec::new(),
+                cpu: Vec::new(),
                 rebuilds: 0,
             });
         }
@@ -101,6 +106,7 @@ pub(super) fn scaling(args: &BenchArgs) -> Result<()> {
                     None
                 };
                 let (mut secs, mut times) = (0.0, clump_core::stats::StageTimes::default());
+                let mut cpu = 0.0;
                 for rep in 0..bed.reps {
                     if let (Some(s), true) = (&saved, rep > 0) {
                         w.restore_state(s.clone()).map_err(|e| anyhow::anyhow!(e))?;
@@ -110,13 +116,15 @@ pub(super) fn scaling(args: &BenchArgs) -> Result<()> {
                     // rebuilt after a restore)
                     w.run(SCALING_WARM_STEPS)?;
                     w.stage_times = Default::default();
-                    let (t0, r0) = (Instant::now(), w.rebuilds);
+                    let (t0, c0, r0) = (Instant::now(), cpu_seconds(), w.rebuilds);
                     w.run(args.steps)?;
                     secs += t0.elapsed().as_secs_f64();
+                    cpu += cpu_seconds() - c0;
                     times += w.stage_times;
                     bed.rebuilds += w.rebuilds - r0;
                 }
                 bed.rounds.push((secs, times));
+                bed.cpu.push(cpu);
             }
         }
         Ok(beds)
@@ -137,13 +145,14 @@ pub(super) fn scaling(args: &BenchArgs) -> Result<()> {
         "RSS B/sphere"
     );
     // ns per sphere-step of each round of each bed
-    let mut costs = Vec::new();
+    let (mut costs, mut cpu_costs) = (Vec::new(), Vec::new());
     for bed in beds.iter_mut() {
         let w = &bed.world;
         let ns = w.spheres().len();
         let steps = args.steps * bed.reps;
         let per = 1e9 / (ns as f64 * steps as f64);
         costs.push(bed.rounds.iter().map(|r| r.0 * per).collect::<Vec<_>>());
+        cpu_costs.push(bed.cpu.iter().map(|c| c * per).collect::<Vec<_>>());
         bed.rounds.sort_by(|a, b| a.0.total_cmp(&b.0));
         let (best, times) = bed.rounds[0];
         let median = bed.rounds[bed.rounds.len() / 2].0;
@@ -169,19 +178,32 @@ pub(super) fn scaling(args: &BenchArgs) -> Result<()> {
             bed.rss_mb * 1024.0 * 1024.0 / ns as f64
         );
         outln!("{:>153}", stages.join(", "));
+        let cpu: Vec<String> = bed.cpu.iter().map(|c| format!("{:.1}", c * per)).collect();
+        outln!(
+            "{:>9} CPU ns/sph-step (all threads) per round: {}",
+            "",
+            cpu.join(", ")
+        );
     }
+    ratio_line("wall", &costs);
+    ratio_line("CPU", &cpu_costs);
+    outln!("process peak RSS {:.0} MB", peak_rss_mb());
+    Ok(())
+}
+
+/// The cost per sphere-step of the largest bed over the smallest's, round
+/// by round, and their median, from `costs` (per bed, per round).
+fn ratio_line(what: &str, costs: &[Vec<f64>]) {
     if let (Some(small), Some(large)) = (costs.first(), costs.last()) {
         if costs.len() > 1 {
             let mut ratios: Vec<f64> = small.iter().zip(large).map(|(a, b)| b / a).collect();
             let shown: Vec<String> = ratios.iter().map(|r| format!("{r:.3}")).collect();
             ratios.sort_by(f64::total_cmp);
             outln!(
-                "cost per sphere-step, largest bed / smallest, per round: {}; median {:.3}",
+                "{what} cost per sphere-step, largest bed / smallest, per round: {}; median {:.3}",
                 shown.join(", "),
                 ratios[ratios.len() / 2]
             );
         }
     }
-    outln!("process peak RSS {:.0} MB", peak_rss_mb());
-    Ok(())
 }
