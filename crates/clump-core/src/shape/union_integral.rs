@@ -342,6 +342,19 @@ pub fn union_integrals(spheres: &[Sphere]) -> UnionIntegrals {
     // its interval only, so the outcome does not depend on the thread count).
     let progress = Progress::new(shifted.len());
     let intervals = windows.len();
+    if shifted.len() >= Progress::ESTIMATED_FROM && intervals > 0 {
+        // time a sample of intervals spread along the union (results
+        // discarded) to announce the pass
+        let sample: Vec<_> = (0..Progress::SAMPLE)
+            .map(|k| windows[k * intervals / Progress::SAMPLE])
+            .collect();
+        let timer = std::time::Instant::now();
+        for &(slab, a, b) in &sample {
+            let _ = gk15(&mut new_slicer(), slab, a, b, 0.0, 1.0);
+        }
+        let mean = timer.elapsed().as_secs_f64() / sample.len() as f64;
+        progress.estimate(mean, intervals, rayon::current_num_threads());
+    }
     let segments: Vec<Segment> = windows
         .par_iter()
         .map_init(new_slicer, |slicer, &(slab, a, b)| {

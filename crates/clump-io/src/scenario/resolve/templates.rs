@@ -302,7 +302,7 @@ fn build_template(
     }
     if spheres.len() > SLOW_TEMPLATE_SPHERES && t.mass.is_none() {
         tracing::warn!(
-            "template '{name}' has {} spheres: its exact mass properties can take minutes when the spheres overlap densely (progress follows). To skip the integration give mass, inertia (and center_of_mass) in its [[template]]",
+            "template '{name}' has {} spheres: its exact mass properties can take minutes when the spheres overlap densely (progress with the time left follows). To skip the integration give mass, inertia (and center_of_mass) in its [[template]]",
             spheres.len()
         );
     }
