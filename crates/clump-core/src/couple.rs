@@ -27,6 +27,7 @@ impl World {
                 self.fluid = Some(FluidState {
                     fluid: f,
                     templates,
+                    grid: None,
                 });
                 in_use(&mut self.bodies.coupling.fluid_force, n, DVec3::ZERO);
             }
@@ -55,6 +56,17 @@ impl World {
         new.velocity = velocity;
         new.validate().map_err(WorldError::BadValue)?;
         f.fluid = new;
+        Ok(())
+    }
+
+    /// Sets (or with `None` removes) the fluid velocity field on a grid
+    /// (T-83): each step a body without a per-body velocity is given the
+    /// grid's trilinear interpolation at its centre of mass. Needs a fluid.
+    pub fn set_fluid_velocity_grid(
+        &mut self,
+        grid: Option<std::sync::Arc<crate::fluid::VelocityGrid>>,
+    ) -> Result<(), WorldError> {
+        self.fluid.as_mut().ok_or_else(no_fluid)?.grid = grid;
         Ok(())
     }
 
