@@ -3,6 +3,8 @@
 //! uniform upward flow, and in a sheared flow read from a grid file; and
 //! the columns survive a resume.
 
+mod support;
+
 use clump_io::run::{RunOptions, Runner};
 use clump_io::scenario;
 use std::path::PathBuf;
@@ -147,22 +149,10 @@ fn thermo_fluid_force_in_a_grid_velocity_field() {
     let mut run = Runner::new(sc, &out).unwrap();
     run.run(RunOptions::default()).unwrap();
     let text = std::fs::read_to_string(out.join("thermo.csv")).unwrap();
-    let last: Vec<f64> = text
-        .lines()
-        .last()
-        .unwrap()
-        .split(',')
-        .map(|v| v.parse().unwrap())
-        .collect();
-    let n = last.len();
+    let fz = support::last_value(&out.join("thermo.csv"), "fluid_fz[N]");
     let v = 4.0 / 3.0 * std::f64::consts::PI * R.powi(3);
     let want = 3.0 * std::f64::consts::PI * MU * 2.0 * R * U * 2.4 + 2.0 * RHO_F * v * 9.81;
-    assert!(
-        (last[n - 1] - want).abs() < 1e-12 * want,
-        "{} vs {}",
-        last[n - 1],
-        want
-    );
+    assert!((fz - want).abs() < 1e-12 * want, "{fz} vs {want}");
     drop(run);
     // the resumed run reads the grid from the scenario again: same rows
     let ck = out.join("checkpoint_000000010.ckpt");
