@@ -13,7 +13,8 @@ use crate::world::{World, WorldError};
 use glam::DVec3;
 
 impl World {
-    /// Sets the fluid (validated), or with `None` removes it.
+    /// Sets the fluid (validated), or with `None` removes it; either way
+    /// without a velocity grid ([`World::set_fluid_velocity_grid`]).
     pub fn set_fluid(&mut self, fluid: Option<Fluid>) -> Result<(), WorldError> {
         let n = self.bodies.len();
         match fluid {

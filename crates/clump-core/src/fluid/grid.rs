@@ -11,6 +11,9 @@ pub struct VelocityGrid {
     origin: DVec3,
     /// Node spacing along x, y, z, m (1 along an axis with one node).
     spacing: DVec3,
+    /// The largest node coordinates, world frame, m (as in the nodes, so
+    /// the bounds carry no rounding of `origin + (n − 1) spacing`).
+    top: DVec3,
     /// Nodes along x, y, z.
     n: [usize; 3],
     /// Node velocities, x fastest: node (i, j, k) at `i + n_x (j + n_y k)`.
@@ -43,10 +46,12 @@ impl VelocityGrid {
         let mut n = [0usize; 3];
         let mut origin = DVec3::ZERO;
         let mut spacing = DVec3::ONE;
+        let mut top = DVec3::ZERO;
         for a in 0..3 {
             let v = axis_values(points, a);
             n[a] = v.len();
             origin[a] = v[0];
+            top[a] = v[v.len() - 1];
             if v.len() > 1 {
                 let h = (v[v.len() - 1] - v[0]) / (v.len() - 1) as f64;
                 for (k, x) in v.iter().enumerate() {
@@ -83,6 +88,7 @@ impl VelocityGrid {
         Ok(VelocityGrid {
             origin,
             spacing,
+            top,
             n,
             u,
         })
@@ -90,12 +96,7 @@ impl VelocityGrid {
 
     /// The lower and upper corners of the grid, world frame, m.
     pub fn bounds(&self) -> (DVec3, DVec3) {
-        let top = DVec3::new(
-            (self.n[0] - 1) as f64,
-            (self.n[1] - 1) as f64,
-            (self.n[2] - 1) as f64,
-        );
-        (self.origin, self.origin + top * self.spacing)
+        (self.origin, self.top)
     }
 
     /// The trilinear interpolation at `p` (world frame, m), in m/s, as

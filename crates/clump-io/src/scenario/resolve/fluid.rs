@@ -101,14 +101,14 @@ fn grid_file(cx: &mut Cx, name: &str) -> R<VelocityGrid> {
         .lines()
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty());
-    let header: Vec<&str> = match lines.next() {
-        Some((_, h)) => h.split(',').map(str::trim).collect(),
-        None => vec![],
+    let (at_line, header): (usize, Vec<&str>) = match lines.next() {
+        Some((k, h)) => (k + 1, h.split(',').map(str::trim).collect()),
+        None => (1, vec![]),
     };
     if header != ["x", "y", "z", "ux", "uy", "uz"] {
         return Err(bad(
             cx,
-            1,
+            at_line,
             format!(
                 "the header must be x,y,z,ux,uy,uz, found '{}'",
                 header.join(",")
