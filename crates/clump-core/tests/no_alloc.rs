@@ -193,3 +193,48 @@ fn no_heap_allocation_per_step_with_heat() {
     assert_eq!(allocs, 0, "a step with heat allocated");
     assert!(w.thermo().heat.unwrap().max_temperature > 300.0);
 }
+
+/// The coupling stage with a fluid whose velocity is sampled from a grid
+/// at every body (`fluid::VelocityGrid`, T-83) allocates nothing per step.
+#[test]
+fn no_heap_allocation_per_step_with_a_fluid_velocity_grid() {
+    use clump_core::fluid::{DragLaw, Fluid, VelocityGrid};
+    let _serial = serial();
+    let mut w = bed(10);
+    w.run(3000).unwrap();
+    let mut nodes = Vec::new();
+    for k in 0..5 {
+        for j in 0..5 {
+            for i in 0..5 {
+                let p = DVec3::new(i as f64, j as f64, k as f64) * 0.5 - DVec3::ONE;
+                nodes.push((p, DVec3::new(0.01 * p.z, 0.0, 0.0)));
+            }
+        }
+    }
+    let grid = VelocityGrid::from_nodes(&nodes).unwrap();
+    w.set_fluid(Some(Fluid {
+        density: 1000.0,
+        viscosity: 1e-3,
+        velocity: DVec3::ZERO,
+        pressure_gradient: DVec3::ZERO,
+        drag: DragLaw::SchillerNaumann,
+        buoyancy: true,
+    }))
+    .unwrap();
+    w.set_fluid_velocity_grid(Some(std::sync::Arc::new(grid)))
+        .unwrap();
+    w.run(200).unwrap();
+    let (mut steps, mut allocs) = (0u64, 0u64);
+    for _ in 0..1000 {
+        let r0 = w.rebuilds;
+        let a0 = ALLOCS.load(Ordering::Relaxed);
+        w.step().unwrap();
+        if w.rebuilds == r0 {
+            steps += 1;
+            allocs += ALLOCS.load(Ordering::Relaxed) - a0;
+        }
+    }
+    eprintln!("with a fluid velocity grid: {allocs} allocations in {steps} steps without rebuild");
+    assert!(steps > 100);
+    assert_eq!(allocs, 0, "a step with a fluid velocity grid allocated");
+}
