@@ -13,7 +13,8 @@ use crate::world::{World, WorldError};
 use glam::DVec3;
 
 impl World {
-    /// Sets the fluid (validated), or with `None` removes it.
+    /// Sets the fluid (validated), or with `None` removes it; either way
+    /// without a velocity grid ([`World::set_fluid_velocity_grid`]).
     pub fn set_fluid(&mut self, fluid: Option<Fluid>) -> Result<(), WorldError> {
         let n = self.bodies.len();
         match fluid {
@@ -27,6 +28,7 @@ impl World {
                 self.fluid = Some(FluidState {
                     fluid: f,
                     templates,
+                    grid: None,
                 });
                 in_use(&mut self.bodies.coupling.fluid_force, n, DVec3::ZERO);
             }
@@ -55,6 +57,17 @@ impl World {
         new.velocity = velocity;
         new.validate().map_err(WorldError::BadValue)?;
         f.fluid = new;
+        Ok(())
+    }
+
+    /// Sets (or with `None` removes) the fluid velocity field on a grid
+    /// (T-83): each step a body without a per-body velocity is given the
+    /// grid's trilinear interpolation at its centre of mass. Needs a fluid.
+    pub fn set_fluid_velocity_grid(
+        &mut self,
+        grid: Option<std::sync::Arc<crate::fluid::VelocityGrid>>,
+    ) -> Result<(), WorldError> {
+        self.fluid.as_mut().ok_or_else(no_fluid)?.grid = grid;
         Ok(())
     }
 

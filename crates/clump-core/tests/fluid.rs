@@ -9,7 +9,7 @@
 mod common;
 use clump_core::body::BodyInit;
 use clump_core::contact::{Material, PairProperties};
-use clump_core::fluid::{DragLaw, Fluid};
+use clump_core::fluid::{DragLaw, Fluid, VelocityGrid};
 use clump_core::shape::{ClumpTemplate, Sphere};
 use clump_core::world::World;
 use common::*;
@@ -400,4 +400,95 @@ fn void_fraction_on_a_grid() {
         rel(solid, vu)
     );
     assert!(rel(solid, vu) < 0.03);
+}
+
+/// The nodes of the grid `x_i = o + i h` (`n` nodes an axis) with the
+/// velocity `u(x)`.
+fn grid_nodes(o: DVec3, h: DVec3, n: [usize; 3], u: impl Fn(DVec3) -> DVec3) -> VelocityGrid {
+    let mut nodes = Vec::new();
+    // z slowest, then x, then y: the grid must not depend on the order
+    for k in 0..n[2] {
+        for i in 0..n[0] {
+            for j in 0..n[1] {
+                let p = o + DVec3::new(i as f64, j as f64, k as f64) * h;
+                nodes.push((p, u(p)));
+            }
+        }
+    }
+    VelocityGrid::from_nodes(&nodes).unwrap()
+}
+
+#[test]
+fn velocity_grid_interpolates_a_linear_field_exactly() {
+    // trilinear interpolation reproduces any field linear in x, y, z;
+    // u = (a z, b x + c y, 0), s⁻¹ times m
+    let (a, b, c) = (3.0, -1.5, 0.25);
+    let u = |p: DVec3| DVec3::new(a * p.z, b * p.x + c * p.y, 0.0);
+    let o = DVec3::new(-0.1, -0.2, 0.05);
+    let h = DVec3::new(0.05, 0.1, 0.0375);
+    let g = grid_nodes(o, h, [5, 3, 9], u);
+    let (lo, hi) = g.bounds();
+    assert!(
+        (lo - o).length() < 1e-15 && (hi - (o + h * DVec3::new(4.0, 2.0, 8.0))).length() < 1e-15
+    );
+    let mut s = 0x2545_f491_4f6c_dd1du64;
+    let mut r = || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..1000 {
+        let p = lo + DVec3::new(r(), r(), r()) * (hi - lo);
+        let e = g.sample(p) - u(p);
+        assert!(e.length() < 1e-14, "at {p}: {} vs {}", g.sample(p), u(p));
+    }
+    // outside the grid: the value at the nearest point of it
+    let q = DVec3::new(0.0, 0.0, 1.0);
+    assert!((g.sample(q) - u(DVec3::new(0.0, 0.0, hi.z))).length() < 1e-14);
+}
+
+#[test]
+fn velocity_grid_refuses_an_irregular_grid() {
+    let p = |x: f64| (DVec3::new(x, 0.0, 0.0), DVec3::ZERO);
+    let e = VelocityGrid::from_nodes(&[p(0.0), p(1.0), p(3.0)]).unwrap_err();
+    assert!(e.contains("not equally spaced"), "{e}");
+    let q = |x: f64, y: f64| (DVec3::new(x, y, 0.0), DVec3::ZERO);
+    let e = VelocityGrid::from_nodes(&[q(0.0, 0.0), q(1.0, 0.0), q(0.0, 1.0)]).unwrap_err();
+    assert!(e.contains("need 4 nodes, found 3"), "{e}");
+}
+
+#[test]
+fn settling_in_a_uniform_grid_field_matches_the_uniform_velocity() {
+    // a Stokes sphere in an upward flow U: terminal velocity U − v_t
+    // (Stokes 1851, v_t = (ρ_p − ρ_f) g d² / 18 μ); the same flow given as
+    // a grid gives the same bits (the interpolation returns a uniform
+    // field exactly)
+    let d = 50e-6;
+    let up = 2e-3;
+    let vt = (RHO_P - RHO_F) * G * d * d / (18.0 * MU);
+    let mut f = water(DragLaw::Stokes);
+    f.velocity = DVec3::new(0.0, 0.0, up);
+    let mut uniform = settling(sphere(d), f, 1e-5);
+    let mut gridded = settling(sphere(d), water(DragLaw::Stokes), 1e-5);
+    let u = DVec3::new(0.0, 0.0, up);
+    let g = grid_nodes(DVec3::splat(-1.0), DVec3::splat(0.5), [5, 5, 5], |_| u);
+    gridded
+        .set_fluid_velocity_grid(Some(std::sync::Arc::new(g)))
+        .unwrap();
+    for _ in 0..3000 {
+        uniform.step().unwrap();
+        gridded.step().unwrap();
+    }
+    let (a, b) = (uniform.bodies(), gridded.bodies());
+    assert_eq!(
+        a.velocity[0].to_array().map(f64::to_bits),
+        b.velocity[0].to_array().map(f64::to_bits)
+    );
+    assert_eq!(
+        a.position[0].to_array().map(f64::to_bits),
+        b.position[0].to_array().map(f64::to_bits)
+    );
+    let v = b.velocity[0].z;
+    assert!((v - (up - vt)).abs() < 1e-9 * vt, "{v} vs {}", up - vt);
 }

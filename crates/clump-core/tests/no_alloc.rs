@@ -170,16 +170,11 @@ fn memory_is_linear_in_the_number_of_bodies() {
     assert!(r2 < 1.5 * r1, "pairs per body grew from {r1} to {r2}");
 }
 
-/// The heat stage (`step::heat`) allocates nothing per step either: the
-/// same bed with conduction through every contact and a hot floor.
-#[test]
-fn no_heap_allocation_per_step_with_heat() {
-    let _serial = serial();
-    let mut w = bed(10);
-    clump_core::testbed::heat_on(&mut w, 1.0, 800.0, 400.0, 300.0, 1e3);
-    w.run(3000).unwrap();
+/// Runs `n` steps of `w`; returns the number of steps without a
+/// neighbour-list rebuild and the allocations made in them.
+fn plain_step_allocations(w: &mut World, n: usize) -> (u64, u64) {
     let (mut steps, mut allocs) = (0u64, 0u64);
-    for _ in 0..1000 {
+    for _ in 0..n {
         let r0 = w.rebuilds;
         let a0 = ALLOCS.load(Ordering::Relaxed);
         w.step().unwrap();
@@ -188,8 +183,56 @@ fn no_heap_allocation_per_step_with_heat() {
             allocs += ALLOCS.load(Ordering::Relaxed) - a0;
         }
     }
+    (steps, allocs)
+}
+
+/// The heat stage (`step::heat`) allocates nothing per step either: the
+/// same bed with conduction through every contact and a hot floor.
+#[test]
+fn no_heap_allocation_per_step_with_heat() {
+    let _serial = serial();
+    let mut w = bed(10);
+    clump_core::testbed::heat_on(&mut w, 1.0, 800.0, 400.0, 300.0, 1e3);
+    w.run(3000).unwrap();
+    let (steps, allocs) = plain_step_allocations(&mut w, 1000);
     eprintln!("with heat: {allocs} allocations in {steps} steps without rebuild");
     assert!(steps > 100);
     assert_eq!(allocs, 0, "a step with heat allocated");
     assert!(w.thermo().heat.unwrap().max_temperature > 300.0);
+}
+
+/// The coupling stage with a fluid whose velocity is sampled from a grid
+/// at every body (`fluid::VelocityGrid`, T-83) allocates nothing per step.
+#[test]
+fn no_heap_allocation_per_step_with_a_fluid_velocity_grid() {
+    use clump_core::fluid::{DragLaw, Fluid, VelocityGrid};
+    let _serial = serial();
+    let mut w = bed(10);
+    w.run(3000).unwrap();
+    let mut nodes = Vec::new();
+    for k in 0..5 {
+        for j in 0..5 {
+            for i in 0..5 {
+                let p = DVec3::new(i as f64, j as f64, k as f64) * 0.5 - DVec3::ONE;
+                nodes.push((p, DVec3::new(0.01 * p.z, 0.0, 0.0)));
+            }
+        }
+    }
+    let grid = VelocityGrid::from_nodes(&nodes).unwrap();
+    w.set_fluid(Some(Fluid {
+        density: 1000.0,
+        viscosity: 1e-3,
+        velocity: DVec3::ZERO,
+        pressure_gradient: DVec3::ZERO,
+        drag: DragLaw::SchillerNaumann,
+        buoyancy: true,
+    }))
+    .unwrap();
+    w.set_fluid_velocity_grid(Some(std::sync::Arc::new(grid)))
+        .unwrap();
+    w.run(200).unwrap();
+    let (steps, allocs) = plain_step_allocations(&mut w, 1000);
+    eprintln!("with a fluid velocity grid: {allocs} allocations in {steps} steps without rebuild");
+    assert!(steps > 100);
+    assert_eq!(allocs, 0, "a step with a fluid velocity grid allocated");
 }

@@ -178,3 +178,28 @@ fn tensile_key_is_parsed() {
     );
     assert_eq!(at(0, 1).restitution, 0.4);
 }
+
+#[test]
+fn fluid_velocity_grid_file_is_read() {
+    // the grid file holds u = (0, 0, 0.01) m/s at the corners of the
+    // domain box; its trilinear interpolation is that value everywhere
+    let base = std::fs::read_to_string(corpus().join("base_valid.toml")).unwrap();
+    let text =
+        base + "\n[fluid]\ndensity = 1000\nviscosity = 1e-3\nvelocity = \"data_fluid_grid.csv\"\n";
+    let sc = scenario::parse(
+        &corpus().join("fluid_grid.toml"),
+        text,
+        scenario::Files::disk(&corpus()),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let g = sc.fluid_grid.as_ref().expect("a velocity grid");
+    let (lo, hi) = g.bounds();
+    assert_eq!(
+        (lo.to_array(), hi.to_array()),
+        ([-0.1, -0.1, -0.01], [0.1, 0.1, 0.3])
+    );
+    let u = g.sample(glam::DVec3::new(0.03, -0.02, 0.11));
+    assert_eq!(u.to_array(), [0.0, 0.0, 0.01]);
+    assert_eq!(sc.fluid.unwrap().velocity, glam::DVec3::ZERO);
+    sc.build_world().unwrap_or_else(|e| panic!("{e}"));
+}

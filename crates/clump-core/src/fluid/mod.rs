@@ -13,12 +13,14 @@
 
 pub mod coupling;
 pub mod drag;
+pub mod grid;
 pub mod shape;
 pub mod void;
 
 pub use coupling::BodyCoupling;
 pub use drag::FluidProps;
 use glam::DVec3;
+pub use grid::VelocityGrid;
 use serde::{Deserialize, Serialize};
 
 /// A drag law (docs/theory.md T-60 to T-64).
@@ -209,4 +211,7 @@ pub struct FluidState {
     pub fluid: Fluid,
     /// Per template: what the fluid force reads of it.
     pub templates: Vec<TemplateFluid>,
+    /// The velocity field on a grid, sampled at each body's centre of
+    /// mass (where no per-body velocity is set); None: the uniform velocity.
+    pub grid: Option<std::sync::Arc<VelocityGrid>>,
 }

@@ -92,7 +92,8 @@ impl<'a> CouplingPass<'a> {
 
     /// Body `bi`'s load `(f, m)` (N, N m, world frame) with its external
     /// and fluid loads, at its velocity `v` (m/s) and kicked mass `m_eff`
-    /// (kg, with the added-mass factor).
+    /// (kg, with the added-mass factor); `x` its centre of mass (world
+    /// frame, m), where a velocity grid is sampled.
     ///
     /// # Safety
     /// Body `bi` is the calling chunk's.
@@ -102,6 +103,7 @@ impl<'a> CouplingPass<'a> {
         bi: usize,
         (mut f, mut m): (DVec3, DVec3),
         v: DVec3,
+        x: DVec3,
         m_eff: f64,
     ) -> (DVec3, DVec3) {
         if !self.force.is_empty() {
@@ -125,9 +127,10 @@ impl<'a> CouplingPass<'a> {
         let Some(fs) = self.fluid else {
             return (f, m);
         };
-        let u = match self.fluid_velocity.get(bi) {
-            Some(&u) => u,
-            None => fs.fluid.velocity,
+        let u = match (self.fluid_velocity.get(bi), &fs.grid) {
+            (Some(&u), _) => u,
+            (None, Some(g)) => g.sample(x),
+            (None, None) => fs.fluid.velocity,
         };
         let eps = self.void_fraction.get(bi).copied().unwrap_or(1.0);
         let t = &fs.templates[self.template[bi] as usize];

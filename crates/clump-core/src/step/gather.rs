@@ -510,7 +510,8 @@ impl Gather<'_> {
                 } else {
                     self.vel.read(bi)
                 };
-                c.apply(bi, load, v, self.mass.mass(bi) * self.mass.factor(bi))
+                let x = self.pos.read(bi);
+                c.apply(bi, load, v, x, self.mass.mass(bi) * self.mass.factor(bi))
             }
         }
     }

@@ -170,6 +170,9 @@ impl Scenario {
             world.enable_heat(h.model.clone())?;
         }
         world.set_fluid(self.fluid)?;
+        if self.fluid.is_some() {
+            world.set_fluid_velocity_grid(self.fluid_grid.clone())?;
+        }
         if let Some(c) = self.heat.as_ref().and_then(|h| h.convection) {
             world.set_fluid_heat(Some(c))?;
         }

@@ -18,6 +18,8 @@ use std::path::PathBuf;
 pub struct Scenario {
     /// The fluid the particles are in (`[fluid]`), if any.
     pub fluid: Option<clump_core::fluid::Fluid>,
+    /// The fluid velocity on a grid (`[fluid] velocity = "file.csv"`), if any.
+    pub fluid_grid: Option<std::sync::Arc<clump_core::fluid::VelocityGrid>>,
     /// The scenario file as given.
     pub path: PathBuf,
     /// Its text.

@@ -78,10 +78,11 @@ table! {
         pub density: Option<f64>,
         /// Dynamic viscosity, Pa s.
         pub viscosity: Option<f64>,
-        /// Uniform interstitial velocity, world frame, m/s (default 0; a
-        /// driver may set it per body).
-        #[serde(default, deserialize_with = "super::exact::array")]
-        pub velocity: Option<[f64; 3]>,
+        /// Interstitial velocity, world frame, m/s: `[ux, uy, uz]` (uniform,
+        /// default 0) or a CSV file `x,y,z,ux,uy,uz` on a regular grid
+        /// covering the domain, interpolated at each body (a driver may
+        /// set it per body).
+        pub velocity: Option<RawVelocity>,
         /// Pressure gradient beyond the hydrostatic one, world frame, Pa/m (default 0).
         #[serde(default, deserialize_with = "super::exact::array")]
         pub pressure_gradient: Option<[f64; 3]>,
@@ -98,6 +99,16 @@ table! {
         /// The fluid's specific heat, J/(kg K).
         pub specific_heat: Option<f64>,
     }
+}
+
+/// `[fluid] velocity`: a uniform vector or the name of a grid file.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(untagged)]
+pub enum RawVelocity {
+    /// `[ux, uy, uz]`, m/s.
+    Uniform(Vec<f64>),
+    /// A CSV file relative to the scenario.
+    File(String),
 }
 
 /// A time step: a number of seconds or `"auto"`.

@@ -255,6 +255,18 @@ CASES = [
      ["template 'pebble': sphere 0 has radius 1e-300 m (after scale)"]),
     ("long_number_shortened", rep("youngs_modulus = 5e6", "youngs_modulus = -1" + "0" * 300 + ".0"), "youngs_modulus = -1",
      ["youngs_modulus must be > 0 Pa", "found -1e300"]),
+    ("fluid_grid_missing", append('\n[fluid]\ndensity = 1000\nviscosity = 1e-3\nvelocity = "data_no_such_grid.csv"\n'), "data_no_such_grid",
+     ["cannot read velocity grid file 'data_no_such_grid.csv'"]),
+    ("fluid_grid_bad_header", append('\n[fluid]\ndensity = 1000\nviscosity = 1e-3\nvelocity = "data_fluid_grid_bad_header.csv"\n'), "data_fluid_grid_bad_header",
+     ["velocity grid file 'data_fluid_grid_bad_header.csv', line 1: the header must be x,y,z,ux,uy,uz"]),
+    ("fluid_grid_bad_row", append('\n[fluid]\ndensity = 1000\nviscosity = 1e-3\nvelocity = "data_fluid_grid_bad_row.csv"\n'), "data_fluid_grid_bad_row",
+     ["velocity grid file 'data_fluid_grid_bad_row.csv', line 3:", "has 5 values, 6 are needed"]),
+    ("fluid_grid_irregular", append('\n[fluid]\ndensity = 1000\nviscosity = 1e-3\nvelocity = "data_fluid_grid_irregular.csv"\n'), "data_fluid_grid_irregular",
+     ["velocity grid file 'data_fluid_grid_irregular.csv': not a regular grid"]),
+    ("fluid_grid_short", append('\n[fluid]\ndensity = 1000\nviscosity = 1e-3\nvelocity = "data_fluid_grid_short.csv"\n'), "data_fluid_grid_short",
+     ["grid does not cover the domain", "its lower z is 0 m, above the domain's -0.01 m"]),
+    ("fluid_velocity_two_numbers", append('\n[fluid]\ndensity = 1000\nviscosity = 1e-3\nvelocity = [0, 1]\n'), "velocity = [0, 1]",
+     ["'velocity' needs 3 numbers [ux, uy, uz], found 2"]),
 ]
 
 # the invalid-UTF-8 case is written as bytes

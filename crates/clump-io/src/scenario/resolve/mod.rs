@@ -379,7 +379,7 @@ fn resolve_sections(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
             inserts = None;
         }
     }
-    let fluid = cx.section(|cx| fluid::fluid(cx, &raw));
+    let fluid = cx.section(|cx| fluid::fluid(cx, &raw, setting.as_ref().map(|s| &s.domain)));
     let output = match (&stages, dt, two_d, &setting) {
         (Some(stages), Some(dt), Some(two_d), Some(setting)) => {
             cx.section(|cx| output::output(cx, &raw, stages, dt, two_d, &setting.domain))
@@ -475,7 +475,8 @@ fn resolve_sections(cx: &mut Cx, raw: RawScenario) -> R<Scenario> {
         overlap_estimate,
         stages,
         output,
-        fluid,
+        fluid: fluid.0,
+        fluid_grid: fluid.1,
         warnings: Vec::new(),
         heat,
     })
