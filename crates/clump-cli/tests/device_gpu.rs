@@ -17,12 +17,13 @@ fn clump(args: &[&str]) -> (bool, String, String) {
 #[cfg(feature = "gpu")]
 #[test]
 fn check_names_the_adapter_and_refuses_at_the_key() {
-    let (ok, out, err) = clump(&["check", "--device", "gpu", "benches/tetra_bed_2000.toml"]);
-    assert!(!ok, "the tetra bed's exact Richardson rotation must be refused:\n{out}\n{err}");
+    let scenario = "crates/clump-cli/tests/fixtures/gpu_refused.toml";
+    let (ok, out, err) = clump(&["check", "--device", "gpu", scenario]);
+    assert!(!ok, "the exact Richardson rotation must be refused:\n{out}\n{err}");
     assert!(out.contains("  adapter "), "no adapter named in:\n{out}");
     for want in [
         "error: 'integrator.rotation' is not on the GPU path yet",
-        "benches/tetra_bed_2000.toml:34:1",
+        "crates/clump-cli/tests/fixtures/gpu_refused.toml:15:1",
         "allowed on the GPU path: \"no_squish\" (the default) or \"richardson_liggghts\"",
     ] {
         assert!(err.contains(want), "{want:?} missing from:\n{err}");
