@@ -62,7 +62,10 @@ pub fn check(sc: &clump_io::scenario::Scenario) -> bool {
             })
             .collect();
         let d = src.error_at_key(&segs, format!("'{}' is not on the GPU path yet", u.key()));
-        err!("{}", d.note(format!("allowed on the GPU path: {}", u.allowed)));
+        err!(
+            "{}",
+            d.note(format!("allowed on the GPU path: {}", u.allowed))
+        );
         ok = false;
     }
     if ok {
@@ -100,8 +103,14 @@ pub fn bench(n: usize, steps: u64, threads: usize) -> anyhow::Result<()> {
     dev.run(steps)?;
     let x_dev = dev.positions()?;
     let gpu_rate = ns * steps as f64 / t.elapsed().as_secs_f64();
-    outln!("gpu: {:.3} M sphere-steps/s ({} pair-table builds)", gpu_rate / 1e6, dev.builds);
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
+    outln!(
+        "gpu: {:.3} M sphere-steps/s ({} pair-table builds)",
+        gpu_rate / 1e6,
+        dev.builds
+    );
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()?;
     let mut cpu = world;
     let t = Instant::now();
     pool.install(|| -> anyhow::Result<()> {
@@ -110,9 +119,13 @@ pub fn bench(n: usize, steps: u64, threads: usize) -> anyhow::Result<()> {
         Ok(())
     })?;
     let cpu_rate = ns * steps as f64 / t.elapsed().as_secs_f64();
-    outln!("cpu ({threads} threads): {:.3} M sphere-steps/s", cpu_rate / 1e6);
+    outln!(
+        "cpu ({threads} threads): {:.3} M sphere-steps/s",
+        cpu_rate / 1e6
+    );
     let b = cpu.bodies();
-    let at: std::collections::HashMap<u64, usize> = b.id.iter().enumerate().map(|(k, &id)| (id, k)).collect();
+    let at: std::collections::HashMap<u64, usize> =
+        b.id.iter().enumerate().map(|(k, &id)| (id, k)).collect();
     let dev_max = dev
         .ids
         .iter()

@@ -9,7 +9,11 @@ use std::process::Command;
 
 fn clump(args: &[&str]) -> (bool, String, String) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let o = Command::new(env!("CARGO_BIN_EXE_clump")).args(args).current_dir(root).output().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_clump"))
+        .args(args)
+        .current_dir(root)
+        .output()
+        .unwrap();
     let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
     (o.status.success(), text(&o.stdout), text(&o.stderr))
 }
@@ -19,7 +23,10 @@ fn clump(args: &[&str]) -> (bool, String, String) {
 fn check_names_the_adapter_and_refuses_at_the_key() {
     let scenario = "crates/clump-cli/tests/fixtures/gpu_refused.toml";
     let (ok, out, err) = clump(&["check", "--device", "gpu", scenario]);
-    assert!(!ok, "the exact Richardson rotation must be refused:\n{out}\n{err}");
+    assert!(
+        !ok,
+        "the exact Richardson rotation must be refused:\n{out}\n{err}"
+    );
     assert!(out.contains("  adapter "), "no adapter named in:\n{out}");
     for want in [
         "error: 'integrator.rotation' is not on the GPU path yet",
@@ -35,7 +42,10 @@ fn check_names_the_adapter_and_refuses_at_the_key() {
 fn bench_agrees_with_the_cpu_path() {
     let (ok, out, err) = clump(&["bench", "--device", "gpu", "--n", "27", "--nb", "300"]);
     assert!(ok, "{out}\n{err}");
-    let line = out.lines().find(|l| l.starts_with("largest |x_gpu - x_cpu| / domain size")).expect("difference line");
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("largest |x_gpu - x_cpu| / domain size"))
+        .expect("difference line");
     let dev: f64 = line.rsplit(' ').next().unwrap().parse().unwrap();
     assert!(dev < 1e-9, "{line}");
     assert!(out.contains(" M sphere-steps/s"), "{out}");

@@ -25,11 +25,16 @@ const PITCH: f64 = clump_core::testbed::LATTICE_PITCH;
 /// thousand steps. Everything in it runs on the device.
 pub fn box_bed(n: usize, layers: usize, rotation: RotationScheme) -> World {
     let mats = vec![tetra_material()];
-    let table = ContactTable::new(&mats, |_, _| PairProperties::default()).expect("a valid test bed");
+    let table =
+        ContactTable::new(&mats, |_, _| PairProperties::default()).expect("a valid test bed");
     let l = n as f64 * PITCH;
     let h = (layers as f64 + 2.0) * PITCH;
     let config = WorldConfig {
-        domain: Domain { lo: DVec3::ZERO, hi: DVec3::new(l, l, h), periodic: [false; 3] },
+        domain: Domain {
+            lo: DVec3::ZERO,
+            hi: DVec3::new(l, l, h),
+            periodic: [false; 3],
+        },
         gravity: DVec3::new(0.0, 0.0, -9.81),
         dt: 1e-5,
         rotation,
@@ -38,10 +43,15 @@ pub fn box_bed(n: usize, layers: usize, rotation: RotationScheme) -> World {
         multi_contact: MultiContact::Sum,
     };
     let mut w = World::new(config, mats, table);
-    let rod = ClumpTemplate::from_spheres("rod", &builtin::rod(3, 1e-3, 1.1e-3), tetra_material().density)
-        .expect("a valid test bed");
+    let rod = ClumpTemplate::from_spheres(
+        "rod",
+        &builtin::rod(3, 1e-3, 1.1e-3),
+        tetra_material().density,
+    )
+    .expect("a valid test bed");
     let templates = [
-        w.add_template(tetra_template(), 0).expect("a valid test bed"),
+        w.add_template(tetra_template(), 0)
+            .expect("a valid test bed"),
         w.add_template(rod, 0).expect("a valid test bed"),
     ];
     let planes = [
@@ -72,11 +82,11 @@ pub fn box_bed(n: usize, layers: usize, rotation: RotationScheme) -> World {
                 let p = DVec3::new(x as f64 + 0.5, y as f64 + 0.5, z as f64 + 0.6) * PITCH;
                 let mut b = BodyInit::at_rest(templates[k as usize % 2], p, q);
                 b.velocity = 0.2 * DVec3::new((kf * 1.7).sin(), (kf * 2.3).sin(), (kf * 3.1).sin());
-                b.angular_velocity = 100.0 * DVec3::new((kf * 0.9).cos(), (kf * 1.1).cos(), (kf * 1.9).cos());
+                b.angular_velocity =
+                    100.0 * DVec3::new((kf * 0.9).cos(), (kf * 1.1).cos(), (kf * 1.9).cos());
                 w.add_body(&b).expect("a valid test bed");
             }
         }
     }
     w
 }
-

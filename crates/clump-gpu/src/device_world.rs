@@ -45,9 +45,23 @@ const K_GATHER_KICK: usize = 14;
 const K_REBUILD_ARGS: usize = 15;
 const K_TABLE_SAVE: usize = 16;
 const ENTRIES: [&str; 17] = [
-    "first_half", "spheres", "sort_reset", "sort_next", "sort_step", "cells_clear", "cells_bounds",
-    "pairs_count", "pairs_scan", "pairs_fill", "pairs_mirror", "pair_forces", "sphere_gather",
-    "body_gather", "gather_kick", "rebuild_args", "table_save",
+    "first_half",
+    "spheres",
+    "sort_reset",
+    "sort_next",
+    "sort_step",
+    "cells_clear",
+    "cells_bounds",
+    "pairs_count",
+    "pairs_scan",
+    "pairs_fill",
+    "pairs_mirror",
+    "pair_forces",
+    "sphere_gather",
+    "body_gather",
+    "gather_kick",
+    "rebuild_args",
+    "table_save",
 ];
 /// The indirect dispatch sizes `rebuild_args` writes (pairs.wgsl): one
 /// group per 64 sort slots, cells, spheres, table entries; or one group.
@@ -73,7 +87,11 @@ impl std::fmt::Display for DeviceError {
             DeviceError::Gpu(e) => write!(f, "{e}"),
             DeviceError::Unsupported(list) => {
                 let lines: Vec<String> = list.iter().map(|u| u.to_string()).collect();
-                write!(f, "the GPU path cannot run this scenario:\n  {}", lines.join("\n  "))
+                write!(
+                    f,
+                    "the GPU path cannot run this scenario:\n  {}",
+                    lines.join("\n  ")
+                )
             }
             DeviceError::Overflow(e) => write!(f, "{e}"),
         }
@@ -155,46 +173,63 @@ impl DeviceWorld {
         let (host, n) = HostArrays::new(world);
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let buffers = host.buffers(&gpu, n);
-        let layout = gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("clump step"),
-            entries: &(0..N_BINDINGS).map(storage_entry).collect::<Vec<_>>(),
-        });
-        let args_layout = gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("clump build sizes"),
-            entries: &[storage_entry(0)],
-        });
-        let pl = gpu.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("clump step"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pl_args = gpu.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("clump build sizes"),
-            bind_group_layouts: &[Some(&layout), Some(&args_layout)],
-            immediate_size: 0,
-        });
-        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("clump step"),
-            source: wgpu::ShaderSource::Wgsl(SHADER.concat().into()),
-        });
+        let layout = gpu
+            .device
+            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("clump step"),
+                entries: &(0..N_BINDINGS).map(storage_entry).collect::<Vec<_>>(),
+            });
+        let args_layout = gpu
+            .device
+            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("clump build sizes"),
+                entries: &[storage_entry(0)],
+            });
+        let pl = gpu
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("clump step"),
+                bind_group_layouts: &[Some(&layout)],
+                immediate_size: 0,
+            });
+        let pl_args = gpu
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("clump build sizes"),
+                bind_group_layouts: &[Some(&layout), Some(&args_layout)],
+                immediate_size: 0,
+            });
+        let module = gpu
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("clump step"),
+                source: wgpu::ShaderSource::Wgsl(SHADER.concat().into()),
+            });
         let pipelines = ENTRIES
             .iter()
             .map(|e| {
-                gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some(e),
-                    layout: Some(if *e == "rebuild_args" { &pl_args } else { &pl }),
-                    module: &module,
-                    entry_point: Some(e),
-                    compilation_options: Default::default(),
-                    cache: None,
-                })
+                gpu.device
+                    .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                        label: Some(e),
+                        layout: Some(if *e == "rebuild_args" { &pl_args } else { &pl }),
+                        module: &module,
+                        entry_point: Some(e),
+                        compilation_options: Default::default(),
+                        cache: None,
+                    })
             })
             .collect();
         let entries: Vec<wgpu::BindGroupEntry> = (0..N_BINDINGS as usize)
-            .map(|b| wgpu::BindGroupEntry { binding: b as u32, resource: buffers[b].as_entire_binding() })
+            .map(|b| wgpu::BindGroupEntry {
+                binding: b as u32,
+                resource: buffers[b].as_entire_binding(),
+            })
             .collect();
-        let group =
-            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor { label: None, layout: &layout, entries: &entries });
+        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &layout,
+            entries: &entries,
+        });
         let args = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("build sizes"),
             size: 15 * 4,
@@ -204,7 +239,10 @@ impl DeviceWorld {
         let args_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &args_layout,
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: args.as_entire_binding() }],
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: args.as_entire_binding(),
+            }],
         });
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Device(format!("setting up the device step: {e}")).into());
@@ -330,27 +368,42 @@ impl DeviceWorld {
     /// uploaded).
     pub fn positions(&self) -> Result<Vec<DVec3>, DeviceError> {
         let x: Vec<f64> = self.gpu.read(&self.buffers[2])?;
-        Ok(x.chunks(3).take(self.n.nb).map(|c| DVec3::new(c[0], c[1], c[2])).collect())
+        Ok(x.chunks(3)
+            .take(self.n.nb)
+            .map(|c| DVec3::new(c[0], c[1], c[2]))
+            .collect())
     }
 
     /// Copies the bodies' state back into `world` (an event: output,
     /// checkpoint, steering): positions, orientations, velocities, angular
     /// momenta and velocities, the step count and time, matched by body id.
     pub fn download(&self, world: &mut World) -> Result<(), DeviceError> {
-        let at: std::collections::HashMap<u64, usize> =
-            world.bodies().id.iter().enumerate().map(|(k, &id)| (id, k)).collect();
-        let read = |b: usize| -> Result<Vec<f64>, DeviceError> { Ok(self.gpu.read(&self.buffers[b])?) };
+        let at: std::collections::HashMap<u64, usize> = world
+            .bodies()
+            .id
+            .iter()
+            .enumerate()
+            .map(|(k, &id)| (id, k))
+            .collect();
+        let read =
+            |b: usize| -> Result<Vec<f64>, DeviceError> { Ok(self.gpu.read(&self.buffers[b])?) };
         let (x, v, q, l, w) = (read(2)?, read(3)?, read(4)?, read(5)?, read(6)?);
-        let bad = |e: clump_core::world::WorldError| DeviceError::Overflow(format!("device state: {e}"));
+        let bad =
+            |e: clump_core::world::WorldError| DeviceError::Overflow(format!("device state: {e}"));
         for i in 0..self.n.nb {
             let k = *at.get(&self.ids[i]).ok_or_else(|| {
-                DeviceError::Overflow(format!("body {} left the world while on the device", self.ids[i]))
+                DeviceError::Overflow(format!(
+                    "body {} left the world while on the device",
+                    self.ids[i]
+                ))
             })?;
             let d3 = |a: &[f64]| DVec3::new(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
             let quat = DQuat::from_xyzw(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
             world.set_body_pose_at(k, d3(&x), quat).map_err(bad)?;
             world.set_body_velocity_at(k, d3(&v)).map_err(bad)?;
-            world.set_body_angular_state_at(k, d3(&w), d3(&l)).map_err(bad)?;
+            world
+                .set_body_angular_state_at(k, d3(&w), d3(&l))
+                .map_err(bad)?;
         }
         world.step = self.step;
         world.time = self.time;
@@ -403,7 +456,8 @@ impl HostArrays {
         let skin = c.skin.unwrap_or(0.2 * rmin.min(rmax));
         let size = c.domain.size();
         let mut cell_size = (2.0 * rmax + skin).max(f64::MIN_POSITIVE);
-        let dims_of = |cs: f64| [size.x, size.y, size.z].map(|l| ((l / cs).floor() as usize).max(1));
+        let dims_of =
+            |cs: f64| [size.x, size.y, size.z].map(|l| ((l / cs).floor() as usize).max(1));
         while dims_of(cell_size).iter().product::<usize>() > 1 << 24 {
             cell_size *= 2.0;
         }
@@ -416,15 +470,31 @@ impl HostArrays {
             cap: ns * ENTRIES_PER_SPHERE,
         };
         let lo = c.domain.lo;
-        let pf = vec![c.dt, c.gravity.x, c.gravity.y, c.gravity.z, lo.x, lo.y, lo.z, cell_size, skin];
+        let pf = vec![
+            c.dt,
+            c.gravity.x,
+            c.gravity.y,
+            c.gravity.z,
+            lo.x,
+            lo.y,
+            lo.z,
+            cell_size,
+            skin,
+        ];
         let nmat = world.materials.len();
         let walls: Vec<f64> = world
             .walls
             .iter()
             .flat_map(|w| match w.shape {
-                clump_core::wall::WallShape::Plane { point, normal } => {
-                    [point.x, point.y, point.z, normal.x, normal.y, normal.z, w.material as f64]
-                }
+                clump_core::wall::WallShape::Plane { point, normal } => [
+                    point.x,
+                    point.y,
+                    point.z,
+                    normal.x,
+                    normal.y,
+                    normal.z,
+                    w.material as f64,
+                ],
                 _ => unreachable!("refused by support::unsupported"),
             })
             .collect();
@@ -437,8 +507,15 @@ impl HostArrays {
         // PU_STALE: the first step builds the table
         pu[13] = 1;
         pu[..9].copy_from_slice(&[
-            nb as u32, ns as u32, n.npow2 as u32, dims[0] as u32, dims[1] as u32, dims[2] as u32,
-            n.cap as u32, world.walls.len() as u32, nmat as u32,
+            nb as u32,
+            ns as u32,
+            n.npow2 as u32,
+            dims[0] as u32,
+            dims[1] as u32,
+            dims[2] as u32,
+            n.cap as u32,
+            world.walls.len() as u32,
+            nmat as u32,
         ]);
         let mut laws = Vec::with_capacity(8 * nmat * nmat);
         for a in 0..nmat {
@@ -462,10 +539,30 @@ impl HostArrays {
             let (m, inertia) = (b.mass[i], b.inertia[i]);
             let inv = clump_core::rotation::inverse_inertia(inertia);
             // kick::HalfKick::new without added mass: (dt/2)/(m * 1)
-            bm.extend([m, inertia.x, inertia.y, inertia.z, inv.x, inv.y, inv.z, (0.5 * c.dt) / (m * 1.0)]);
-            load.extend([b.force[i].x, b.force[i].y, b.force[i].z, b.torque[i].x, b.torque[i].y, b.torque[i].z]);
+            bm.extend([
+                m,
+                inertia.x,
+                inertia.y,
+                inertia.z,
+                inv.x,
+                inv.y,
+                inv.z,
+                (0.5 * c.dt) / (m * 1.0),
+            ]);
+            load.extend([
+                b.force[i].x,
+                b.force[i].y,
+                b.force[i].z,
+                b.torque[i].x,
+                b.torque[i].y,
+                b.torque[i].z,
+            ]);
         }
-        let q: Vec<f64> = b.orientation.iter().flat_map(|q| [q.x, q.y, q.z, q.w]).collect();
+        let q: Vec<f64> = b
+            .orientation
+            .iter()
+            .flat_map(|q| [q.x, q.y, q.z, q.w])
+            .collect();
         let bodies = [
             flat3(&b.position),
             flat3(&b.velocity),
@@ -475,7 +572,19 @@ impl HostArrays {
             load,
             bm,
         ];
-        (HostArrays { pf, pu, bodies, bfirst, sown, sref, walls, laws }, n)
+        (
+            HostArrays {
+                pf,
+                pu,
+                bodies,
+                bfirst,
+                sown,
+                sref,
+                walls,
+                laws,
+            },
+            n,
+        )
     }
 
     /// The storage buffers of group 0, by binding.

@@ -42,7 +42,12 @@ impl Unsupported {
 
 impl std::fmt::Display for Unsupported {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "'{}' is not on the GPU path yet; allowed there: {}", self.key(), self.allowed)
+        write!(
+            f,
+            "'{}' is not on the GPU path yet; allowed there: {}",
+            self.key(),
+            self.allowed
+        )
     }
 }
 
@@ -61,10 +66,21 @@ fn wall_key(k: usize, key: Option<&'static str>) -> Vec<KeySeg> {
 /// Everything in `world` the device step does not do (empty: it runs).
 pub fn unsupported(world: &World) -> Vec<Unsupported> {
     let mut out = Vec::new();
-    let mut no = |path: Vec<KeySeg>, allowed: &str| out.push(Unsupported { path, allowed: allowed.into() });
+    let mut no = |path: Vec<KeySeg>, allowed: &str| {
+        out.push(Unsupported {
+            path,
+            allowed: allowed.into(),
+        })
+    };
     let c = &world.config;
-    if !matches!(c.rotation, RotationScheme::NoSquish | RotationScheme::RichardsonLiggghts) {
-        no(keys("integrator.rotation"), "\"no_squish\" (the default) or \"richardson_liggghts\"");
+    if !matches!(
+        c.rotation,
+        RotationScheme::NoSquish | RotationScheme::RichardsonLiggghts
+    ) {
+        no(
+            keys("integrator.rotation"),
+            "\"no_squish\" (the default) or \"richardson_liggghts\"",
+        );
     }
     if c.domain.periodic.iter().any(|&p| p) {
         no(keys("domain.periodic"), "false on every axis");
@@ -77,14 +93,20 @@ pub fn unsupported(world: &World) -> Vec<Unsupported> {
     }
     let t = &world.contact_table;
     if t.any_extended() || t.any_rolling() || t.any_reach() {
-        no(keys("pair"), "Hertz-Mindlin or linear laws without rolling, twisting, cohesion or micro-slip");
+        no(
+            keys("pair"),
+            "Hertz-Mindlin or linear laws without rolling, twisting, cohesion or micro-slip",
+        );
     }
     for (k, w) in world.walls.iter().enumerate() {
         if !matches!(w.shape, WallShape::Plane { .. }) {
             no(wall_key(k, Some("type")), "\"plane\"");
         }
         let m = &w.motion;
-        if m.velocity != DVec3::ZERO || m.angular_velocity != DVec3::ZERO || m.surface_velocity != DVec3::ZERO {
+        if m.velocity != DVec3::ZERO
+            || m.angular_velocity != DVec3::ZERO
+            || m.surface_velocity != DVec3::ZERO
+        {
             no(wall_key(k, None), "none (static walls)");
         }
         if w.multi_contact != clump_core::multi_contact::MultiContact::Sum || !w.active {
@@ -94,10 +116,16 @@ pub fn unsupported(world: &World) -> Vec<Unsupported> {
     let b = world.bodies();
     let free = (0..b.len()).all(|i| b.force_flag[i] == [true; 3] && b.torque_flag[i] == [true; 3]);
     if !free {
-        no(keys("template.force_flags"), "every axis free (force_flags and torque_flags all true, no fixed or driven bodies)");
+        no(
+            keys("template.force_flags"),
+            "every axis free (force_flags and torque_flags all true, no fixed or driven bodies)",
+        );
     }
     if (0..b.len()).any(|i| b.start_step[i] > world.step) {
-        no(keys("insert"), "bodies present from the start of the device run");
+        no(
+            keys("insert"),
+            "bodies present from the start of the device run",
+        );
     }
     if world.heat.is_some() {
         no(keys("heat"), "off");

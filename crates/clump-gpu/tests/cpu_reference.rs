@@ -7,8 +7,8 @@
 //! agree to round-off amplified by the contacts: the criterion is
 //! 1e-9 of the domain size after a few thousand steps.
 
-use clump_core::world::World;
 use clump_core::rotation::RotationScheme;
+use clump_core::world::World;
 use clump_gpu::bed::box_bed;
 use clump_gpu::{DeviceWorld, Gpu};
 use glam::DVec3;
@@ -17,8 +17,13 @@ use glam::DVec3;
 /// CPU world's, matched by id (the CPU path reorders its bodies).
 fn max_dev(dev: &DeviceWorld, x: &[DVec3], cpu: &World) -> f64 {
     let b = cpu.bodies();
-    let at: std::collections::HashMap<u64, usize> = b.id.iter().enumerate().map(|(k, &id)| (id, k)).collect();
-    dev.ids.iter().zip(x).map(|(id, p)| (*p - b.position[at[id]]).abs().max_element()).fold(0.0, f64::max)
+    let at: std::collections::HashMap<u64, usize> =
+        b.id.iter().enumerate().map(|(k, &id)| (id, k)).collect();
+    dev.ids
+        .iter()
+        .zip(x)
+        .map(|(id, p)| (*p - b.position[at[id]]).abs().max_element())
+        .fold(0.0, f64::max)
 }
 
 /// The bed under `rotation`, `at` steps on both paths; the largest
@@ -27,7 +32,11 @@ fn compare(rotation: RotationScheme) -> f64 {
     let mut cpu = box_bed(4, 3, rotation);
     let size = cpu.config.domain.size().max_element();
     let mut dev = DeviceWorld::upload(Gpu::new().unwrap(), &cpu).unwrap_or_else(|e| panic!("{e}"));
-    eprintln!("{rotation:?}: adapter {}, {} spheres", dev.gpu.describe(), dev.spheres());
+    eprintln!(
+        "{rotation:?}: adapter {}, {} spheres",
+        dev.gpu.describe(),
+        dev.spheres()
+    );
     cpu.prepare().unwrap();
     let mut done = 0;
     let mut worst = 0.0f64;
@@ -47,20 +56,29 @@ fn compare(rotation: RotationScheme) -> f64 {
         worst = worst.max(dev_rel);
         done = at;
     }
-    assert!(cpu.stats.pair_contacts > 0, "the bed must have contacts for the comparison to mean anything");
+    assert!(
+        cpu.stats.pair_contacts > 0,
+        "the bed must have contacts for the comparison to mean anything"
+    );
     worst
 }
 
 #[test]
 fn device_step_agrees_with_the_cpu_path_no_squish() {
     let worst = compare(RotationScheme::NoSquish);
-    assert!(worst < 1e-9, "device and CPU positions differ by {worst:e} of the domain size");
+    assert!(
+        worst < 1e-9,
+        "device and CPU positions differ by {worst:e} of the domain size"
+    );
 }
 
 #[test]
 fn device_step_agrees_with_the_cpu_path_richardson_liggghts() {
     let worst = compare(RotationScheme::RichardsonLiggghts);
-    assert!(worst < 1e-9, "device and CPU positions differ by {worst:e} of the domain size");
+    assert!(
+        worst < 1e-9,
+        "device and CPU positions differ by {worst:e} of the domain size"
+    );
 }
 
 #[test]
@@ -72,6 +90,9 @@ fn device_runs_are_bit_reproducible() {
         d.positions().unwrap()
     };
     let (a, b) = (run(), run());
-    let same = a.iter().zip(&b).all(|(p, q)| p.to_array().map(f64::to_bits) == q.to_array().map(f64::to_bits));
+    let same = a
+        .iter()
+        .zip(&b)
+        .all(|(p, q)| p.to_array().map(f64::to_bits) == q.to_array().map(f64::to_bits));
     assert!(same, "two device runs of the same world differ");
 }

@@ -23,7 +23,9 @@ fn sin_cos_f64_is_within_a_few_ulp_of_libm() {
         KERNEL,
     ]
     .concat();
-    let xs: Vec<f64> = (0..4096).map(|k| (k as f64 - 2048.0) * 0.0123456789 + 1e-3 * (k as f64).sin()).collect();
+    let xs: Vec<f64> = (0..4096)
+        .map(|k| (k as f64 - 2048.0) * 0.0123456789 + 1e-3 * (k as f64).sin())
+        .collect();
     let data: Vec<f64> = xs.iter().flat_map(|&x| [x, 0.0, 0.0]).collect();
     let buf = gpu.buffer("pf", &data);
     let p = gpu.pipeline("probe", &src, "probe");
@@ -44,6 +46,9 @@ fn sin_cos_f64_is_within_a_few_ulp_of_libm() {
         let e = ((out[3 * k + 1] - s).abs().max((out[3 * k + 2] - c).abs())) / f64::EPSILON;
         worst = worst.max(e);
     }
-    eprintln!("largest |device - libm| over {} angles in [-25.3, 25.3] rad: {worst:.2} ulp of 1", xs.len());
+    eprintln!(
+        "largest |device - libm| over {} angles in [-25.3, 25.3] rad: {worst:.2} ulp of 1",
+        xs.len()
+    );
     assert!(worst <= 2.0, "{worst} ulp");
 }

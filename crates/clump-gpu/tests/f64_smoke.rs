@@ -52,5 +52,8 @@ fn f64_kernel_matches_cpu_bits() {
     eprintln!("{unequal} of {n} differ in the last bits; worst relative difference {worst:e}");
     // f32 arithmetic would differ by ~1e-8 relative; contraction into an
     // FMA by ~1 ulp of a*a relative to the result.
-    assert!(worst < 1e-14, "worst relative difference {worst:e}: not f64 arithmetic");
+    assert!(
+        worst < 1e-14,
+        "worst relative difference {worst:e}: not f64 arithmetic"
+    );
 }

@@ -1,12 +1,15 @@
 //! What the device path refuses, by scenario key (no device needed).
 
-use clump_gpu::bed::box_bed;
 use clump_core::rotation::RotationScheme;
+use clump_gpu::bed::box_bed;
 use clump_gpu::support::unsupported;
 
 #[test]
 fn the_box_bed_runs_whole_on_the_device() {
-    assert_eq!(unsupported(&box_bed(3, 2, RotationScheme::NoSquish)), vec![]);
+    assert_eq!(
+        unsupported(&box_bed(3, 2, RotationScheme::NoSquish)),
+        vec![]
+    );
 }
 
 #[test]
