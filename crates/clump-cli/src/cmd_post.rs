@@ -290,7 +290,7 @@ fn fields(
             }
         );
     }
-    let d = mean_diameter(first);
+    let d = window.last().map_or(0.0, |f| mean_diameter(f));
     if width < 0.5 * d {
         outln!(
             "note: --width {width:e} m is under half the mean body diameter ({d:.3e} m): the fields resolve the layers of body centres (densities can exceed the solid's); a width of d/2 or more gives bulk values"
