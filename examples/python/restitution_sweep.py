@@ -19,7 +19,10 @@ Writes OUTDIR/rebound.png (default out/python_sweep).
 import os
 import sys
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    sys.exit("this example draws its plot with matplotlib: pip install matplotlib")
 
 matplotlib.use("Agg")  # no display needed
 import matplotlib.pyplot as plt  # noqa: E402

@@ -20,7 +20,10 @@ Writes OUTDIR/servo.png and OUTDIR/servo.csv (default out/python_servo).
 import os
 import sys
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    sys.exit("this example draws its plot with matplotlib: pip install matplotlib")
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

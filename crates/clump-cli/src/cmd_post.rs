@@ -7,6 +7,7 @@
 //! written.
 
 use clap::Args;
+use clump_io::post::bed::{density_in_bed, Occupancy};
 use clump_io::post::frame::Frame;
 use clump_io::post::kernel::Kernel;
 use clump_io::post::read::{contact_frames, read_frame};
@@ -66,6 +67,17 @@ fn axis(s: &str) -> Result<usize, String> {
         "z" => Ok(2),
         _ => Err(format!("unknown axis '{s}': allowed are x, y, z")),
     }
+}
+
+/// The mean volume-equivalent diameter of a frame's bodies, m (0 without
+/// bodies).
+fn mean_diameter(frame: &Frame) -> f64 {
+    frame
+        .bodies
+        .iter()
+        .map(|b| b.equivalent_diameter())
+        .sum::<f64>()
+        / frame.bodies.len().max(1) as f64
 }
 
 /// Reads a CSV with a header into (columns, rows).
@@ -254,15 +266,39 @@ fn fields(
     let first = frames.first().ok_or("no contact frames to coarse-grain")?;
     spec.check(&first.domain)?;
     let mut series = FieldSeries::new(out, spec.clone());
-    for f in frames.iter().filter(|f| a.from.is_none_or(|t| f.time >= t)) {
+    let window: Vec<&Frame> = frames
+        .iter()
+        .filter(|f| a.from.is_none_or(|t| f.time >= t))
+        .collect();
+    for f in &window {
         series.add(f).map_err(|e| e.to_string())?;
     }
     let mean = series
         .finish()
         .map_err(|e| e.to_string())?
         .ok_or("no frames in the averaging window")?;
+    if let (Some(f0), Some(f1)) = (window.first(), window.last()) {
+        outln!(
+            "fields averaged over {} frames, t = {:.4} to {:.4} s{}",
+            window.len(),
+            f0.time,
+            f1.time,
+            if a.from.is_none() {
+                " (all frames; --from T averages the settled ones only)"
+            } else {
+                ""
+            }
+        );
+    }
+    let d = window.last().map_or(0.0, |f| mean_diameter(f));
+    if width < 0.5 * d {
+        outln!(
+            "note: --width {width:e} m is under half the mean body diameter ({d:.3e} m): the fields resolve the layers of body centres (densities can exceed the solid's); a width of d/2 or more gives bulk values"
+        );
+    }
     if spec.axes.len() == 1 {
         let g = spec.grid(&first.domain);
+        let in_bed = bed_profile(&g, &window, &mean.density, out, made)?;
         let name = ["x", "y", "z"][spec.axes[0]];
         let z: Vec<f64> = (0..g.len()).map(|i| g.centre(0, i)).collect();
         let prof = |title: &str, unit: &str, curves: Vec<(&str, Vec<f64>)>| Chart {
@@ -279,11 +315,19 @@ fn fields(
         let charts = [
             (
                 "profile_density.png",
-                prof(
-                    "Density (time average)",
-                    "kg/m³",
-                    vec![("density", mean.density.clone())],
-                ),
+                Chart {
+                    title: "Density (time average)".into(),
+                    x_label: format!("{name} [m]"),
+                    y_label: "kg/m³".into(),
+                    series: vec![
+                        Series::new(
+                            "over the whole cross-section",
+                            z.iter().copied().zip(mean.density.clone()).collect(),
+                            Style::Line,
+                        ),
+                        Series::new("in the bed (profile_bed.csv)", in_bed, Style::Line),
+                    ],
+                },
             ),
             (
                 "profile_stress.png",
@@ -336,6 +380,45 @@ fn fields(
     Ok(())
 }
 
+/// `profile_bed.csv`: the share of the cross-section the bed occupies at
+/// each cell of the 1D grid `g` (averaged over `window`) and the density
+/// in the bed, [`clump_io::post::bed`]; returns the density's points
+/// where it is defined, for the density plot.
+fn bed_profile(
+    g: &clump_io::post::grid::Grid,
+    window: &[&Frame],
+    density: &[f64],
+    out: &Path,
+    made: &mut Vec<PathBuf>,
+) -> Result<Vec<(f64, f64)>, String> {
+    let mut occ = Occupancy::default();
+    for f in window {
+        occ.add(f, g);
+    }
+    let fraction = occ.mean();
+    let in_bed = density_in_bed(density, &fraction);
+    let name = ["x", "y", "z"][g.axes[0]];
+    let mut csv = format!("{name}[m],occupied_fraction,density_in_bed[kg/m^3]\n");
+    let mut points = Vec::new();
+    for (k, (f, b)) in fraction.iter().zip(&in_bed).enumerate() {
+        let x = g.centre(0, k);
+        match b {
+            Some(b) => {
+                csv += &format!("{x:e},{f:e},{b:e}\n");
+                points.push((x, *b));
+            }
+            None => csv += &format!("{x:e},{f:e},nan\n"),
+        }
+    }
+    let p = out.join("profile_bed.csv");
+    std::fs::write(&p, csv).map_err(|e| format!("cannot write {}: {e}", p.display()))?;
+    made.push(p);
+    if let Some(peak) = points.iter().map(|p| p.1).reduce(f64::max) {
+        outln!("density in the bed: up to {peak:.4e} kg/m³ (the share of the cross-section the bed occupies is in profile_bed.csv)");
+    }
+    Ok(points)
+}
+
 /// The force chains of the last frame in a slab, projected on the plane
 /// normal to the slab axis, line width ∝ |F|.
 fn force_chains(
@@ -351,13 +434,7 @@ fn force_chains(
         _ => (0, 1),
     };
     let cs = frame.contacts.as_deref().unwrap_or(&[]);
-    let d_mean = frame
-        .bodies
-        .iter()
-        .map(|b| b.equivalent_diameter())
-        .sum::<f64>()
-        / frame.bodies.len().max(1) as f64;
-    let thick = a.slab.unwrap_or(4.0 * d_mean);
+    let thick = a.slab.unwrap_or(4.0 * mean_diameter(frame));
     let mid = 0.5 * (frame.domain.lo[n] + frame.domain.hi[n]);
     let inside: Vec<_> = cs
         .iter()
@@ -556,12 +633,7 @@ pub fn run(a: &PostArgs) -> ExitCode {
             .collect::<Result<Vec<_>, _>>()?;
         fields(a, &frames, &out, &mut made)?;
         if let (None, Some(last)) = (a.width, frames.last()) {
-            let d = last
-                .bodies
-                .iter()
-                .map(|b| b.equivalent_diameter())
-                .sum::<f64>()
-                / last.bodies.len().max(1) as f64;
+            let d = mean_diameter(last);
             outln!(
                 "note: {} contact frames, but no coarse-grained fields without --width (the kernel width in m; about one body diameter, {d:.3e} m here, e.g. --width {d:.1e} --axes z --cells 50); docs/post.md",
                 frames.len()

@@ -5,7 +5,8 @@
 //! drum: a rotating mesh wall), a periodic box with clumps crossing its
 //! sides (also with heat and convection, at 2 and 3 ranks), a restart at
 //! 3 ranks from a checkpoint written in pieces at 2, and SIGTERM on 2 ranks
-//! (one checkpoint of the whole world, which resumes bit for bit).
+//! (one checkpoint of the whole world, which resumes bit for bit), and a
+//! rank killed mid-run (the run stops; its last checkpoint resumes).
 //! Built only with the `mpi` feature (scripts/test-all.sh runs it).
 #![cfg(feature = "mpi")]
 
@@ -261,7 +262,8 @@ fn a_restart_on_3_ranks_from_a_checkpoint_of_2_continues_bit_for_bit() {
     let _ = std::fs::remove_dir_all(&two);
 }
 
-/// The processes whose parent is `pid` (Linux: from /proc).
+/// The `clump` processes whose parent is `pid` (Linux: from /proc; other
+/// helpers mpirun may fork are left out).
 fn children(pid: u32) -> Vec<u32> {
     let mut out = Vec::new();
     for e in std::fs::read_dir("/proc").unwrap().flatten() {
@@ -277,7 +279,7 @@ fn children(pid: u32) -> Vec<u32> {
             .split_whitespace()
             .nth(1)
             .and_then(|x| x.parse::<u32>().ok());
-        if ppid == Some(pid) {
+        if ppid == Some(pid) && stat.contains("(clump)") {
             out.push(p);
         }
     }
@@ -371,4 +373,119 @@ fn sigterm_on_two_ranks_checkpoints_the_whole_world_at_one_step() {
     );
     let _ = std::fs::remove_dir_all(&d);
     let _ = std::fs::remove_dir_all(&straight);
+}
+
+/// A rank killed mid-run (SIGKILL: no handler runs) stops the run: mpirun
+/// exits with a failure naming the rank within a minute, the others do
+/// not hang, and the last checkpoint the manifest lists stays complete: one
+/// process resumes from it and repeats an uninterrupted run bit for bit.
+#[test]
+fn a_rank_killed_mid_run_stops_the_run_and_the_last_checkpoint_resumes() {
+    let bin = env!("CARGO_BIN_EXE_clump");
+    let d = out_dir("killed");
+    let mut child = Command::new("mpirun")
+        .args(["--oversubscribe", "--allow-run-as-root", "-np", "2", bin])
+        .args(["run", "examples/stones.toml", "-o", d.to_str().unwrap()])
+        .args(["--threads", "1"])
+        .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+        .current_dir(repo())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("mpirun must be installed");
+    // wait for the first periodic checkpoint (0.2 s of simulated time) to
+    // be listed in the manifest
+    let listed = || -> Option<PathBuf> {
+        let text = std::fs::read_to_string(d.join("manifest.json")).ok()?;
+        let m: serde_json::Value = serde_json::from_str(&text).ok()?;
+        m["checkpoint"].as_str().map(PathBuf::from)
+    };
+    let t0 = std::time::Instant::now();
+    let ckpt = loop {
+        if let Some(c) = listed() {
+            break c;
+        }
+        assert!(
+            t0.elapsed().as_secs() < 300,
+            "no checkpoint listed after 300 s"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    eprintln!(
+        "checkpoint listed after {:.1} s",
+        t0.elapsed().as_secs_f64()
+    );
+    let ranks = children(child.id());
+    assert_eq!(ranks.len(), 2, "mpirun's children: {ranks:?}");
+    let st = Command::new("kill")
+        .args(["-KILL", &ranks[1].to_string()])
+        .status()
+        .unwrap();
+    assert!(st.success());
+    let t1 = std::time::Instant::now();
+    let mut hung = false;
+    while child.try_wait().unwrap().is_none() {
+        if t1.elapsed().as_secs() > 60 {
+            hung = true;
+            let _ = Command::new("kill")
+                .args(["-KILL", &ranks[0].to_string()])
+                .status();
+            let _ = child.kill();
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    let out = child.wait_with_output().unwrap();
+    eprintln!(
+        "mpirun exited {:.1} s after the kill",
+        t1.elapsed().as_secs_f64()
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !hung,
+        "rank 0 was still running 60 s after rank 1 was killed"
+    );
+    assert!(!out.status.success(), "mpirun reported success");
+    assert!(
+        stderr.contains("signal 9") || stderr.contains("Killed") || stderr.contains("killed"),
+        "mpirun's message does not name the killed rank:\n{stderr}"
+    );
+    // the checkpoint listed last (the manifest may have moved on before the
+    // kill) loads, and one process resumed from it repeats a straight run
+    let ckpt = listed().unwrap_or(ckpt);
+    let bytes = std::fs::read(&ckpt).unwrap();
+    let (_, world, _) = clump_io::run::load_checkpoint(&bytes, &ckpt)
+        .unwrap_or_else(|e| panic!("{}: {e}", ckpt.display()));
+    let step = world.step;
+    let resumed = out_dir("killed-resumed");
+    let target = (step + 200).to_string();
+    clump(
+        0,
+        &[
+            "resume",
+            ckpt.to_str().unwrap(),
+            "-o",
+            resumed.to_str().unwrap(),
+            "--steps",
+            &target,
+        ],
+    );
+    let straight = out_dir("killed-straight");
+    clump(
+        0,
+        &[
+            "run",
+            "examples/stones.toml",
+            "-o",
+            straight.to_str().unwrap(),
+            "--steps",
+            &target,
+        ],
+    );
+    let name = format!("checkpoint_{:09}.ckpt", step + 200);
+    let diff = differing(&resumed.join(&name), &straight.join(&name));
+    assert!(diff.is_empty(), "resumed after the kill: {diff:?} differ");
+    for p in [&d, &resumed, &straight] {
+        let _ = std::fs::remove_dir_all(p);
+    }
 }

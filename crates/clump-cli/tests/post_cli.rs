@@ -76,6 +76,22 @@ fn post_plots_fields_and_force_chains_of_a_hopper_run() {
         let b = std::fs::read(post.join(f)).unwrap_or_else(|e| panic!("{f}: {e}\n{stdout}"));
         assert!(b.starts_with(b"\x89PNG") && b.len() > 5000, "{f}");
     }
+    // the bed's share of the cross-section, per cell, lies in [0, 1], and
+    // the user is told which frames were averaged
+    let bed = std::fs::read_to_string(post.join("profile_bed.csv")).unwrap();
+    assert!(bed.starts_with("z[m],occupied_fraction,density_in_bed[kg/m^3]\n"));
+    let shares: Vec<f64> = bed
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(shares.len(), 40);
+    assert!(
+        shares.iter().all(|f| (0.0..=1.0 + 1e-12).contains(f)),
+        "{bed}"
+    );
+    assert!(shares.iter().any(|&f| f > 0.0), "{bed}");
+    assert!(stdout.contains("fields averaged over"), "{stdout}");
     // the last frame's density profile integrates to the bodies' mass (the
     // grid reaches beyond the domain's height by more than the kernel)
     let frames = std::fs::read_to_string(run.join("contacts.pvd")).unwrap();

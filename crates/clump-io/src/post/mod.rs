@@ -7,6 +7,7 @@
 //! `clump post` (from the saved `.vtp` frames), through one [`frame::Frame`]
 //! type; a separate crate would need both sides' types.
 
+pub mod bed;
 pub mod fields;
 pub mod flow;
 pub mod frame;
