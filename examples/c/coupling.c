@@ -1,11 +1,13 @@
 /* A tiny CFD–DEM coupling loop through Clump's C API (docs/c_api.md).
  *
  * The "fluid solver" here is one line: an upward flow whose interstitial
- * velocity is U / eps, with eps the void fraction of the horizontal layer
- * of cells that holds each body, which this program reads from Clump's
- * void-fraction grid. Every coupling interval it reads the bodies, sets
- * the fluid velocity and void fraction at each body and a persistent
- * external force, steps Clump, and reads back the fluid forces.
+ * velocity is U / eps in each horizontal layer of cells, with eps the
+ * layer's void fraction, which this program reads from Clump's
+ * void-fraction grid. Every coupling interval it reads the bodies, hands
+ * Clump its fields on grids (the void fraction per cell, the velocity at
+ * nodes on the layers' centres, which Clump interpolates at each body),
+ * sets a persistent external force per body, steps Clump, and reads back
+ * the fluid forces.
  *
  * Build: cc coupling.c -I crates/clump-capi/include -L target/ci -lclump_capi
  * Run:   ./a.out examples/c/settling.toml
@@ -33,7 +35,9 @@ int main(int argc, char **argv) {
   const size_t nz = 8;              /* cell layers over the domain height */
   const double lo[3] = {-0.01, -0.01, 0.0}, cell[3] = {0.02, 0.02, 0.005};
   const size_t n[3] = {1, 1, nz};
-  double eps_grid[8];
+  /* the velocity nodes sit on the cells' centres */
+  const double node_origin[3] = {0.0, 0.0, lo[2] + 0.5 * cell[2]};
+  double eps_grid[8], eps_field[8];
 
   ClumpSim *sim = clump_sim_new();
   printf("clump %s\n", clump_version());
@@ -47,8 +51,6 @@ int main(int argc, char **argv) {
     size_t nb = 0, ns = 0;
     CHECK(clump_sim_counts(sim, &nb, &ns));
     double *x = malloc(3 * nb * sizeof(double));
-    double *u = malloc(3 * nb * sizeof(double));
-    double *eps = malloc(nb * sizeof(double));
     double *f = calloc(3 * nb, sizeof(double));
     double *r = malloc(ns * sizeof(double));
     size_t *owner = malloc(ns * sizeof(size_t));
@@ -56,18 +58,19 @@ int main(int argc, char **argv) {
     CHECK(clump_sim_sphere_field(sim, CLUMP_SPHERE_RADIUS, r, ns));
     CHECK(clump_sim_sphere_body(sim, owner, ns));
     CHECK(clump_sim_void_fraction_grid(sim, lo, cell, n, NULL, eps_grid, nz));
-    for (size_t b = 0; b < nb; ++b) {
-      long k = (long)((x[3 * b + 2] - lo[2]) / cell[2]);
-      double e = (k >= 0 && k < (long)nz) ? eps_grid[k] : 1.0;
-      if (e < 0.4) e = 0.4;
-      eps[b] = e;
-      u[3 * b] = 0.0;
-      u[3 * b + 1] = 0.0;
-      u[3 * b + 2] = superficial / e;
-      f[3 * b] = 1e-7; /* a small persistent push along x, N */
+    /* the fluid's fields: eps per layer (at least 0.4), u_z = U / eps at
+       the node on each layer's centre */
+    double node_u[3 * 8];
+    for (size_t k = 0; k < nz; ++k) {
+      double e = eps_grid[k] < 0.4 ? 0.4 : eps_grid[k];
+      eps_field[k] = e;
+      node_u[3 * k] = 0.0;
+      node_u[3 * k + 1] = 0.0;
+      node_u[3 * k + 2] = superficial / e;
     }
-    CHECK(clump_sim_set_fluid_velocities(sim, u, 3 * nb));
-    CHECK(clump_sim_set_void_fractions(sim, eps, nb));
+    CHECK(clump_sim_set_void_fraction_field(sim, lo, cell, n, eps_field, nz));
+    CHECK(clump_sim_set_fluid_velocity_grid(sim, node_origin, cell, n, node_u, 3 * nz));
+    for (size_t b = 0; b < nb; ++b) f[3 * b] = 1e-7; /* a small persistent push along x, N */
     CHECK(clump_sim_set_external_loads(sim, f, NULL, 3 * nb, CLUMP_LOAD_PERSISTENT));
     uint64_t taken = 0;
     CHECK(clump_sim_step(sim, 50, &taken));
@@ -79,8 +82,6 @@ int main(int argc, char **argv) {
     printf("t = %.6e s  bodies %zu  spheres %zu  steps %llu  sum fluid Fz = %.6e N  eps(layer 0) = %.4f\n",
            t, nb, ns, (unsigned long long)taken, fz, eps_grid[0]);
     free(x);
-    free(u);
-    free(eps);
     free(f);
     free(r);
     free(owner);

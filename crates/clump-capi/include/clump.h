@@ -261,6 +261,50 @@ int32_t clump_sim_void_fraction_grid(ClumpSim *sim,
                                      size_t len);
 
 /**
+ * Sets the fluid velocity field on a regular grid of `n[0] × n[1] ×
+ * n[2]` nodes from `origin` (m, world frame) at `spacing` (m; ignored
+ * along an axis of one node): `velocity` holds 3 values (m/s, world
+ * frame) per node, node (i, j, k) starting at `3 (i + n0 (j + n1 k))`
+ * (`len` = 3 × nodes). Each step a body without a per-body velocity
+ * (`clump_sim_set_fluid_velocities`) is given the trilinear interpolation
+ * at its centre of mass (theory T-83; outside the grid, the value at the
+ * nearest point of it). A NULL `velocity` removes the grid (the other
+ * arguments are then not read). The scenario must have a `[fluid]`; the
+ * grid is not kept in checkpoints (set it again after a resume).
+ *
+ * # Safety
+ * `sim` is a live handle; `origin`, `spacing` hold 3 values, `n` 3,
+ * `velocity` `len` or NULL.
+ */
+int32_t clump_sim_set_fluid_velocity_grid(ClumpSim *sim,
+                                          const double *origin,
+                                          const double *spacing,
+                                          const size_t *n,
+                                          const double *velocity,
+                                          size_t len);
+
+/**
+ * Sets a void-fraction field the host computed, one value per cell of a
+ * grid of `n[0] × n[1] × n[2]` cells of edges `cell` (m) from the corner
+ * `lo` (m, world frame), cell (i, j, k) at entry `i + n0 (j + n1 k)`
+ * (`len` = cells), each in (0, 1]. Each step a body without a per-body
+ * void fraction (`clump_sim_set_void_fractions`) takes the value of the
+ * cell holding its centre of mass (1 outside the grid), and the drag laws
+ * read it (without a field or a per-body value they use 1). A NULL `eps`
+ * removes the field (the other arguments are then not read). The
+ * scenario must have a `[fluid]`; the field is not kept in checkpoints.
+ *
+ * # Safety
+ * `sim` is a live handle; `lo`, `cell` hold 3 values, `n` 3, `eps` `len` or NULL.
+ */
+int32_t clump_sim_set_void_fraction_field(ClumpSim *sim,
+                                          const double *lo,
+                                          const double *cell,
+                                          const size_t *n,
+                                          const double *eps,
+                                          size_t len);
+
+/**
  * A new handle holding no simulation (never NULL).
  */
 ClumpSim *clump_sim_new(void);

@@ -1,11 +1,10 @@
 //! Arrays across the boundary: counts, ids, body and sphere fields, the
 //! sphere → body map (read, id order), external loads, per-body fluid
-//! velocity and void fraction (set, id order), and the void fraction on a
-//! grid. Every length is checked before anything is written or changed.
+//! velocity and void fraction (set, id order); fields on grids are in
+//! `fields.rs`. Every length is checked before anything is written or changed.
 
 use crate::handle::{put, with_run, ClumpSim, Fail, Run};
 use crate::*;
-use clump_core::fluid::void::VoidGrid;
 use clump_core::world::World;
 use glam::DVec3;
 
@@ -27,7 +26,12 @@ fn sort_by_key(order: &mut Vec<usize>, key: &[u64]) {
 
 /// The caller's output array of `len` values as a slice, checked to hold
 /// `need` of them.
-fn out_slice<'a, T>(out: *mut T, len: usize, need: usize, what: &str) -> Result<&'a mut [T], Fail> {
+pub(crate) fn out_slice<'a, T>(
+    out: *mut T,
+    len: usize,
+    need: usize,
+    what: &str,
+) -> Result<&'a mut [T], Fail> {
     if out.is_null() {
         return Err(Fail(
             CLUMP_ERR_NULL,
@@ -44,7 +48,12 @@ fn out_slice<'a, T>(out: *mut T, len: usize, need: usize, what: &str) -> Result<
 }
 
 /// The caller's input array of `need` values, checked to be finite.
-fn in_slice<'a>(v: *const f64, len: usize, need: usize, what: &str) -> Result<&'a [f64], Fail> {
+pub(crate) fn in_slice<'a>(
+    v: *const f64,
+    len: usize,
+    need: usize,
+    what: &str,
+) -> Result<&'a [f64], Fail> {
     if v.is_null() {
         return Err(Fail(CLUMP_ERR_NULL, format!("{what}: input array is NULL")));
     }
@@ -81,7 +90,7 @@ fn known(width: usize, kind: &str, field: i32) -> Result<usize, Fail> {
     }
 }
 
-fn world_err(e: clump_core::world::WorldError) -> Fail {
+pub(crate) fn world_err(e: clump_core::world::WorldError) -> Fail {
     Fail::value(e.to_string())
 }
 
@@ -397,63 +406,6 @@ pub unsafe extern "C" fn clump_sim_set_uniform_fluid_velocity(
 pub unsafe extern "C" fn clump_sim_clear_coupling(sim: *mut ClumpSim) -> i32 {
     with_run(sim, |r| {
         r.runner.world_mut().clear_coupling_arrays();
-        Ok(())
-    })
-}
-
-/// Writes the void fraction of every cell of a grid of `n[0] × n[1] ×
-/// n[2]` cells of edges `cell` (m) from the corner `lo` (m, world frame),
-/// cell (i, j, k) at entry `i + n0 (j + n1 k)` (`len` = cells), from the
-/// bodies as they are (theory T-69: each sphere divided among the cells by
-/// a fixed lattice of points, overlaps within a body counted once).
-/// `periodic` (3 values, or NULL for none): per axis, non-zero where the
-/// solid beyond the grid wraps into it (a grid spanning a periodic axis).
-///
-/// # Safety
-/// `sim` is a live handle; `lo`, `cell` hold 3 values, `n` 3, `periodic`
-/// 3 or NULL, `out` `len`.
-#[no_mangle]
-pub unsafe extern "C" fn clump_sim_void_fraction_grid(
-    sim: *mut ClumpSim,
-    lo: *const f64,
-    cell: *const f64,
-    n: *const usize,
-    periodic: *const i32,
-    out: *mut f64,
-    len: usize,
-) -> i32 {
-    with_run(sim, |r| {
-        let lo = DVec3::from_slice(in_slice(lo, 3, 3, "grid corner")?);
-        let cell = DVec3::from_slice(in_slice(cell, 3, 3, "grid cell")?);
-        if n.is_null() {
-            return Err(Fail(CLUMP_ERR_NULL, "grid cell counts are NULL".into()));
-        }
-        // SAFETY: `n` points to 3 values (the caller's contract).
-        let n = unsafe { [*n, *n.add(1), *n.add(2)] };
-        if cell.min_element() <= 0.0 || n.contains(&0) {
-            return Err(Fail::value(format!(
-                "grid cells must have positive edges and counts, got {cell} m and {n:?}"
-            )));
-        }
-        let cells = n
-            .iter()
-            .try_fold(1usize, |a, &b| a.checked_mul(b))
-            .ok_or_else(|| Fail::value("grid has too many cells"))?;
-        let o = out_slice(out, len, cells, "void fraction")?;
-        // SAFETY: a non-NULL `periodic` points to 3 values (the caller's contract).
-        let periodic = match unsafe { periodic.as_ref() } {
-            Some(_) => unsafe { [*periodic != 0, *periodic.add(1) != 0, *periodic.add(2) != 0] },
-            None => [false; 3],
-        };
-        let grid = VoidGrid {
-            lo,
-            cell,
-            n,
-            periodic,
-        };
-        let mut v = Vec::with_capacity(cells);
-        r.runner.world_mut().void_fraction(&grid, &mut v);
-        o.copy_from_slice(&v);
         Ok(())
     })
 }

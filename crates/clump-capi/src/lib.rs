@@ -18,9 +18,11 @@
 //! The order changes only when bodies are inserted or removed.
 
 mod arrays;
+mod fields;
 mod handle;
 
 pub use arrays::*;
+pub use fields::*;
 pub use handle::*;
 
 /// Success.

@@ -94,6 +94,12 @@ fn body_field(sim: *mut ClumpSim, field: i32, n: usize) -> Vec<f64> {
     v
 }
 
+/// A call answered `CLUMP_ERR_VALUE` with a message holding `text`.
+fn refused(sim: *mut ClumpSim, status: i32, text: &str) {
+    assert_eq!(status, CLUMP_ERR_VALUE, "{}", message(sim));
+    assert!(message(sim).contains(text), "{}", message(sim));
+}
+
 fn step(sim: *mut ClumpSim, n: u64) {
     let mut taken = 0;
     assert_eq!(
@@ -482,5 +488,148 @@ fn stepping_in_pieces_gives_the_bits_of_one_run() {
             assert_eq!(v[3 * k + a].to_bits(), q[a].to_bits(), "body {k}");
         }
     }
+    unsafe { clump_sim_free(sim) };
+}
+
+/// After one step (the grid set at a boundary acts from the force
+/// evaluation at the end of the step, at the half-step velocity, whose z
+/// component is still 0: nothing pushed along z before): a Stokes ball in
+/// a grid field `u_z = a + b x` feels `3π μ d u_z(x)` along z (Stokes
+/// 1851), the linear field interpolated exactly.
+#[test]
+fn fluid_velocity_grid_from_the_host_gives_stokes_drag() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mu = 1e-3;
+    let sim = open(
+        tmp.path(),
+        "[fluid]\ndensity = 1000\nviscosity = 1e-3\ndrag = \"stokes\"\n",
+    );
+    let (a, b) = (2e-3, 0.05);
+    let (o, h, n) = ([-0.02, -0.02, 0.0], [0.01, 0.04, 0.02], [5usize, 2, 2]);
+    let mut u = Vec::new();
+    for _k in 0..n[2] {
+        for _j in 0..n[1] {
+            for i in 0..n[0] {
+                u.extend([0.0, 0.0, a + b * (o[0] + i as f64 * h[0])]);
+            }
+        }
+    }
+    let s = unsafe {
+        clump_sim_set_fluid_velocity_grid(
+            sim,
+            o.as_ptr(),
+            h.as_ptr(),
+            n.as_ptr(),
+            u.as_ptr(),
+            u.len(),
+        )
+    };
+    assert_eq!(s, CLUMP_OK, "{}", message(sim));
+    step(sim, 1);
+    let f = body_field(sim, CLUMP_BODY_FLUID_FORCE, 3);
+    let x = body_field(sim, CLUMP_BODY_POSITION, 3);
+    let beta = 3.0 * std::f64::consts::PI * mu * 2.0 * R;
+    for k in [1, 2] {
+        let fz = beta * (a + b * x[3 * k]);
+        assert!(
+            (f[3 * k + 2] - fz).abs() < 1e-12 * fz,
+            "{} vs {fz}",
+            f[3 * k + 2]
+        );
+    }
+    // removed (NULL velocity): the uniform velocity again, zero, so the
+    // drag now opposes the rise the grid gave (it pushed up before)
+    let s = unsafe { clump_sim_set_fluid_velocity_grid(sim, null(), null(), null(), null(), 0) };
+    assert_eq!(s, CLUMP_OK, "{}", message(sim));
+    step(sim, 1);
+    let v = body_field(sim, CLUMP_BODY_VELOCITY, 3);
+    let f = body_field(sim, CLUMP_BODY_FLUID_FORCE, 3);
+    assert!(v[5] > 0.0 && f[5] < 0.0, "v_z {} F_z {}", v[5], f[5]);
+    // refused: a short array, a zero spacing, a grid without a fluid
+    let bad = |sim, h: [f64; 3], len: usize| unsafe {
+        clump_sim_set_fluid_velocity_grid(sim, o.as_ptr(), h.as_ptr(), n.as_ptr(), u.as_ptr(), len)
+    };
+    refused(sim, bad(sim, h, u.len() - 3), "60 are needed");
+    refused(
+        sim,
+        bad(sim, [0.01, 0.0, 0.02], u.len()),
+        "spacing along y must be > 0",
+    );
+    let tmp2 = tempfile::tempdir().unwrap();
+    let dry = open(tmp2.path(), "");
+    refused(dry, bad(dry, h, u.len()), "no fluid is set");
+    unsafe {
+        clump_sim_free(sim);
+        clump_sim_free(dry);
+    }
+}
+
+/// A void-fraction field from the host, read at each body: the Di Felice
+/// (1994) drag at slip `w` = 5 cm/s at the field's ε, against the law's
+/// closed form (Dallavalle's `C_d`). The scenario's fluid moves with the
+/// bodies (no slip, no load before the step), the host then sets a flow
+/// `w` faster along z: the slip at the end of the first step is `w` exactly.
+#[test]
+fn void_fraction_field_from_the_host_sets_the_hindered_drag() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (rho, mu, w, d) = (1000.0, 1e-3, 0.05, 2.0 * R);
+    let sim = open(
+        tmp.path(),
+        "[fluid]\ndensity = 1000\nviscosity = 1e-3\ndrag = \"di_felice\"\nvelocity = [0.0, 0.05, 0.0]\n",
+    );
+    let flow = [0.0, 0.05, w];
+    assert_eq!(
+        unsafe { clump_sim_set_uniform_fluid_velocity(sim, flow.as_ptr()) },
+        CLUMP_OK
+    );
+    // two cells along x: ball 2 (x = -10 mm) in the first, ball 1 (x = 10
+    // mm) in the second; the dimer at x = 0 is in the second
+    let (lo, cell, n) = ([-0.02, -0.02, 0.0], [0.02, 0.04, 0.02], [2usize, 1, 1]);
+    let eps = [0.6, 0.85];
+    let s = unsafe {
+        clump_sim_set_void_fraction_field(
+            sim,
+            lo.as_ptr(),
+            cell.as_ptr(),
+            n.as_ptr(),
+            eps.as_ptr(),
+            2,
+        )
+    };
+    assert_eq!(s, CLUMP_OK, "{}", message(sim));
+    step(sim, 1);
+    let f = body_field(sim, CLUMP_BODY_FLUID_FORCE, 3);
+    let di_felice = |e: f64| {
+        let re = rho * e * w * d / mu;
+        let cd = (0.63 + 4.8 / re.sqrt()).powi(2);
+        let chi = 3.7 - 0.65 * (-(1.5 - re.log10()).powi(2) / 2.0).exp();
+        std::f64::consts::PI / 8.0 * rho * d * d * cd * (e * w).powi(2) * e.powf(-chi)
+    };
+    for (k, e) in [(1, eps[1]), (2, eps[0])] {
+        let expect = di_felice(e);
+        assert!(
+            (f[3 * k + 2] - expect).abs() < 1e-12 * expect,
+            "ε = {e}: {} vs {expect}",
+            f[3 * k + 2]
+        );
+        assert_eq!(f[3 * k + 1], 0.0);
+    }
+    // refused: a value outside (0, 1], a NULL count array
+    let bad = [0.6, 1.5];
+    let s = unsafe {
+        clump_sim_set_void_fraction_field(
+            sim,
+            lo.as_ptr(),
+            cell.as_ptr(),
+            n.as_ptr(),
+            bad.as_ptr(),
+            2,
+        )
+    };
+    refused(sim, s, "cell 1 must be in (0, 1]");
+    let s = unsafe {
+        clump_sim_set_void_fraction_field(sim, lo.as_ptr(), cell.as_ptr(), null(), eps.as_ptr(), 2)
+    };
+    assert_eq!(s, CLUMP_ERR_NULL);
     unsafe { clump_sim_free(sim) };
 }

@@ -47,7 +47,10 @@ fn c_example_compiles_and_runs_its_coupling_loop() {
         "the C example does not compile:\n{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    // the library of this build, not an older one that cargo's library
+    // path (which comes before the rpath) may list first
     let run = Command::new(&exe)
+        .env("LD_LIBRARY_PATH", &lib)
         .arg(root.join("examples/c/settling.toml"))
         .output()
         .expect("run the C example");

@@ -14,7 +14,8 @@ use glam::DVec3;
 
 impl World {
     /// Sets the fluid (validated), or with `None` removes it; either way
-    /// without a velocity grid ([`World::set_fluid_velocity_grid`]).
+    /// without a velocity grid ([`World::set_fluid_velocity_grid`]) or a
+    /// void-fraction field ([`World::set_void_fraction_field`]).
     pub fn set_fluid(&mut self, fluid: Option<Fluid>) -> Result<(), WorldError> {
         let n = self.bodies.len();
         match fluid {
@@ -29,6 +30,7 @@ impl World {
                     fluid: f,
                     templates,
                     grid: None,
+                    void_field: None,
                 });
                 in_use(&mut self.bodies.coupling.fluid_force, n, DVec3::ZERO);
             }
@@ -69,6 +71,30 @@ impl World {
     ) -> Result<(), WorldError> {
         self.fluid.as_mut().ok_or_else(no_fluid)?.grid = grid;
         Ok(())
+    }
+
+    /// The fluid velocity grid, if one is set.
+    pub fn fluid_velocity_grid(&self) -> Option<&crate::fluid::VelocityGrid> {
+        self.fluid.as_ref().and_then(|f| f.grid.as_deref())
+    }
+
+    /// Sets (or with `None` removes) a void-fraction field computed by a
+    /// coupled CFD code: each step a body without a per-body void fraction
+    /// ([`World::set_body_void_fractions`]) takes the value of the field's
+    /// cell that holds its centre of mass (1 outside the field's grid), and
+    /// the drag laws read it instead of 1. Not kept in checkpoints (the
+    /// driver sets it again after a resume). Needs a fluid.
+    pub fn set_void_fraction_field(
+        &mut self,
+        field: Option<std::sync::Arc<crate::fluid::void::VoidField>>,
+    ) -> Result<(), WorldError> {
+        self.fluid.as_mut().ok_or_else(no_fluid)?.void_field = field;
+        Ok(())
+    }
+
+    /// The void-fraction field a driver set, if any.
+    pub fn void_fraction_field(&self) -> Option<&crate::fluid::void::VoidField> {
+        self.fluid.as_ref().and_then(|f| f.void_field.as_deref())
     }
 
     /// Sets the interstitial fluid velocity at each body (storage order,

@@ -9,6 +9,7 @@
 mod common;
 use clump_core::body::BodyInit;
 use clump_core::contact::{Material, PairProperties};
+use clump_core::fluid::void::{VoidField, VoidGrid};
 use clump_core::fluid::{DragLaw, Fluid, VelocityGrid};
 use clump_core::shape::{ClumpTemplate, Sphere};
 use clump_core::world::World;
@@ -213,10 +214,16 @@ fn hindered_settling_richardson_zaki() {
 }
 
 fn settle_hindered(d: f64, eps: f64) -> f64 {
+    settle_hindered_in(d, eps, |w| w.set_body_void_fractions(&[eps]).unwrap())
+}
+
+/// The steady settling speed at void fraction `eps` (given to the world
+/// by `set_eps`), the fluid moving up to conserve volume.
+fn settle_hindered_in(d: f64, eps: f64, set_eps: impl Fn(&mut World)) -> f64 {
     let mut fluid = water(DragLaw::DiFelice);
     fluid.pressure_gradient = DVec3::new(0.0, 0.0, -(1.0 - eps) * (RHO_P - RHO_F) * G);
     let mut w = settling(sphere(d), fluid, 2e-5);
-    w.set_body_void_fractions(&[eps]).unwrap();
+    set_eps(&mut w);
     let mut last = f64::INFINITY;
     for k in 0..100_000 {
         let v = w.bodies().velocity[0];
@@ -367,7 +374,6 @@ fn bad_fluid_values_are_refused() {
 /// solid volume is its union's closed form to the lattice's resolution.
 #[test]
 fn void_fraction_on_a_grid() {
-    use clump_core::fluid::void::VoidGrid;
     let h: f64 = 0.01;
     let grid = VoidGrid {
         lo: DVec3::splat(-h),
@@ -491,4 +497,110 @@ fn settling_in_a_uniform_grid_field_matches_the_uniform_velocity() {
     );
     let v = b.velocity[0].z;
     assert!((v - (up - vt)).abs() < 1e-9 * vt, "{v} vs {}", up - vt);
+}
+
+/// A 1 × 1 × 2 void-fraction field around the origin: `eps` in the upper
+/// cell (z in [−5, 5) mm, holding a body near the origin), 0.3 below it.
+fn two_cell_field(eps: f64, shift: DVec3) -> std::sync::Arc<VoidField> {
+    let grid = VoidGrid {
+        lo: DVec3::new(-0.005, -0.005, -0.015) + shift,
+        cell: DVec3::splat(0.01),
+        n: [1, 1, 2],
+        periodic: [false; 3],
+    };
+    std::sync::Arc::new(VoidField::new(grid, vec![0.3, eps]).unwrap())
+}
+
+#[test]
+fn void_fraction_field_gives_hindered_settling() {
+    // a field set by a CFD code is read at the body: Richardson & Zaki
+    // (1954), n ≈ 4.65 at low Re, and the same bits as the value set per body
+    let d = 10e-6;
+    let v1 = settle_hindered(d, 1.0);
+    let eps = 0.8;
+    let v = settle_hindered_in(d, eps, |w| {
+        w.set_void_fraction_field(Some(two_cell_field(eps, DVec3::ZERO)))
+            .unwrap()
+    });
+    let n = (v / v1).ln() / f64::ln(eps);
+    println!(
+        "field ε = {eps}: v/v_t = {:.4}, n = {n:.3} (Richardson–Zaki 4.65)",
+        v / v1
+    );
+    assert!((n - 4.65).abs() < 0.1, "n = {n}");
+    assert_eq!(v.to_bits(), settle_hindered(d, eps).to_bits());
+}
+
+#[test]
+fn void_fraction_field_outside_the_body_or_overridden_reads_as_set() {
+    // a body outside the field's grid settles as at ε = 1, bit for bit; a
+    // per-body value takes precedence over the field
+    let d = 10e-6;
+    let run = |set: &dyn Fn(&mut World)| {
+        let mut w = settling(sphere(d), water(DragLaw::DiFelice), 2e-5);
+        set(&mut w);
+        for _ in 0..500 {
+            w.step().unwrap();
+        }
+        w.bodies().velocity[0].to_array().map(f64::to_bits)
+    };
+    let plain = run(&|_| {});
+    let outside = run(&|w| {
+        w.set_void_fraction_field(Some(two_cell_field(0.5, DVec3::X)))
+            .unwrap()
+    });
+    assert_eq!(plain, outside);
+    let per_body = run(&|w| w.set_body_void_fractions(&[0.7]).unwrap());
+    let both = run(&|w| {
+        w.set_void_fraction_field(Some(two_cell_field(0.5, DVec3::ZERO)))
+            .unwrap();
+        w.set_body_void_fractions(&[0.7]).unwrap();
+    });
+    assert_eq!(per_body, both);
+    assert_ne!(plain, per_body);
+    // refused fields
+    let g = two_cell_field(0.5, DVec3::ZERO).grid().clone();
+    let e = VoidField::new(g, vec![0.5]).unwrap_err();
+    assert!(e.contains("need 2 void fractions, found 1"), "{e}");
+    let e = VoidField::new(g, vec![0.5, 1.5]).unwrap_err();
+    assert!(e.contains("cell 1 must be in (0, 1]"), "{e}");
+    let mut w = settling(sphere(d), water(DragLaw::DiFelice), 2e-5);
+    w.set_fluid(None).unwrap();
+    assert!(w
+        .set_void_fraction_field(Some(two_cell_field(0.5, DVec3::ZERO)))
+        .is_err());
+}
+
+#[test]
+fn velocity_grid_from_arrays_interpolates_a_linear_field_exactly() {
+    // the grid a CFD code hands over (origin, spacing, counts, x fastest)
+    // reproduces a linear field; the same grid given as nodes samples alike
+    let u = |p: DVec3| DVec3::new(2.0 * p.y - p.z, 0.5 * p.x, 4.0 * p.x + p.y);
+    let (o, h, n) = (
+        DVec3::new(0.1, -0.3, 0.0),
+        DVec3::new(0.02, 0.05, 0.1),
+        [4, 6, 3],
+    );
+    let mut vals = Vec::new();
+    for k in 0..n[2] {
+        for j in 0..n[1] {
+            for i in 0..n[0] {
+                vals.push(u(o + DVec3::new(i as f64, j as f64, k as f64) * h));
+            }
+        }
+    }
+    let g = VelocityGrid::regular(o, h, n, vals.clone()).unwrap();
+    assert_eq!(g.counts(), n);
+    let (lo, hi) = g.bounds();
+    for t in [0.0, 0.13, 0.5, 0.77, 1.0] {
+        let p = lo + DVec3::new(t, 1.0 - t, t * t) * (hi - lo);
+        assert!((g.sample(p) - u(p)).length() < 1e-14, "at {p}");
+    }
+    let e = VelocityGrid::regular(o, h, n, vals[1..].to_vec()).unwrap_err();
+    assert!(e.contains("need 72 velocities, found 71"), "{e}");
+    let e = VelocityGrid::regular(o, DVec3::new(0.02, 0.0, 0.1), n, vals.clone()).unwrap_err();
+    assert!(e.contains("spacing along y must be > 0"), "{e}");
+    vals[5].x = f64::NAN;
+    let e = VelocityGrid::regular(o, h, n, vals).unwrap_err();
+    assert!(e.contains("node 5 is not finite"), "{e}");
 }

@@ -14,6 +14,7 @@ pub mod template_file;
 pub mod template_json;
 pub mod thermo_csv;
 pub mod trajectory;
+pub mod vti_grid;
 pub mod vtk;
 pub mod vtk_contacts;
 pub(crate) mod vtp;

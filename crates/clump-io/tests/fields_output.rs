@@ -42,6 +42,18 @@ fields = { every = 0.1, axes = ["z"], cells = [60], lo = [-0.004], hi = [0.026],
     let csv = std::fs::read_to_string(run.join(format!("fields_{step:06}.csv"))).unwrap();
     assert_eq!(csv, csv_1d(&grid, &engine));
     assert!(run.join("fields_mean.csv").exists());
+    // one solid density (2500 kg/m³, mass = ρ_p × union volume): the void
+    // fraction column is 1 − ρ/ρ_p of the density column
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    let col = |name: &str| rows[0].iter().position(|c| c.starts_with(name)).unwrap();
+    let (kr, ke) = (col("density["), col("void_fraction"));
+    for r in &rows[1..] {
+        let (rho, eps): (f64, f64) = (r[kr].parse().unwrap(), r[ke].parse().unwrap());
+        assert!((eps - (1.0 - rho / 2500.0)).abs() < 1e-12, "{r:?}");
+    }
+    assert!(rows[1..]
+        .iter()
+        .any(|r| r[ke].parse::<f64>().unwrap() < 0.9));
     // the .vti, read by vtk
     let vti = run.join(format!("fields_{step:06}.vti"));
     let Some(j) = post::read_vtk(&[vti.clone()]) else {

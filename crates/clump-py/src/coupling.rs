@@ -2,18 +2,22 @@
 //! run between steps, as numpy arrays in body-id order (the order of
 //! `sim.bodies`): external forces and torques (persistent or for the next
 //! step), the fluid velocity and void fraction at each body, the fluid
-//! force of the last step, the void fraction on a grid. It goes through
+//! force of the last step, the void fraction on a grid; and fields on
+//! grids a CFD code computed (the fluid velocity at the nodes of a regular
+//! grid, a void fraction per cell), read at each body. It goes through
 //! the engine's coupling methods (`clump_core::couple`), which check every
 //! array before anything changes.
 
 use crate::arrays::{rows_in, vec3_in, vec3s};
 use crate::errors::{value_error, SimulationError};
 use crate::simulation::Simulation;
-use clump_core::fluid::void::VoidGrid;
+use clump_core::fluid::void::{VoidField, VoidGrid};
+use clump_core::fluid::VelocityGrid;
 use clump_core::world::{World, WorldError};
 use glam::DVec3;
 use numpy::ndarray::Array3;
-use numpy::{IntoPyArray, PyArray2, PyArray3};
+use numpy::{AllowTypeChange, IntoPyArray, PyArray2, PyArray3, PyArrayLikeDyn};
+use std::sync::Arc;
 use pyo3::prelude::*;
 
 /// The coupling arrays of a simulation (see the stub for units and timing).
@@ -33,6 +37,38 @@ fn storage_vectors(order: &[usize], rows: &[f64]) -> Vec<DVec3> {
         out[i] = DVec3::from_slice(&rows[3 * k..3 * k + 3]);
     }
     out
+}
+
+/// An array of `ndim` dimensions (any array-like of finite numbers), its
+/// shape and its values in the order x fastest (index [i, j, k, …] of an
+/// (n0, n1, n2, …) array at `i + n0 (j + n1 k)`, the trailing axis of a
+/// vector field innermost).
+fn grid_values(value: &Bound<'_, PyAny>, ndim: usize, what: &str) -> PyResult<(Vec<usize>, Vec<f64>)> {
+    let shape_text = if ndim == 4 { "(n0, n1, n2, 3)" } else { "(n0, n1, n2)" };
+    let arr: PyArrayLikeDyn<f64, AllowTypeChange> = value
+        .extract()
+        .map_err(|_| value_error(format!("{what} must be an array of numbers of shape {shape_text}")))?;
+    let a = arr.as_array();
+    let shape = a.shape().to_vec();
+    if shape.len() != ndim || (ndim == 4 && shape[3] != 3) || shape.contains(&0) {
+        return Err(value_error(format!("{what} must have shape {shape_text}, got {shape:?}")));
+    }
+    let mut out = Vec::with_capacity(a.len());
+    for k in 0..shape[2] {
+        for j in 0..shape[1] {
+            for i in 0..shape[0] {
+                if ndim == 4 {
+                    out.extend((0..3).map(|c| a[[i, j, k, c].as_slice()]));
+                } else {
+                    out.push(a[[i, j, k].as_slice()]);
+                }
+            }
+        }
+    }
+    if let Some(p) = out.iter().position(|x| !x.is_finite()) {
+        return Err(value_error(format!("{what}: value {p} is not finite ({})", out[p])));
+    }
+    Ok((shape, out))
 }
 
 impl Coupling {
@@ -122,6 +158,73 @@ impl Coupling {
             }
             w.set_body_void_fractions(&stored)
                 .map_err(engine_error("void fractions"))
+        })
+    }
+
+    /// Sets the fluid velocity field on a regular grid of nodes: node
+    /// [i, j, k] of `velocity` (an (n0, n1, n2, 3) array, m/s, world frame)
+    /// at `origin + (i, j, k) * spacing` (m). Each step a body without a
+    /// per-body velocity gets the trilinear interpolation at its centre of
+    /// mass (outside the grid, the value at its nearest point). None
+    /// removes the grid. Needs a `[fluid]`; not kept in checkpoints.
+    #[pyo3(signature = (origin, spacing, velocity))]
+    fn set_fluid_velocity_grid(
+        &self,
+        py: Python<'_>,
+        origin: &Bound<'_, PyAny>,
+        spacing: &Bound<'_, PyAny>,
+        velocity: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let grid = match velocity {
+            None => None,
+            Some(v) => {
+                let o = vec3_in(origin, "origin")?;
+                let h = vec3_in(spacing, "spacing")?;
+                let (shape, vals) = grid_values(v, 4, "velocity")?;
+                let u = vals.chunks_exact(3).map(DVec3::from_slice).collect();
+                let g = VelocityGrid::regular(o, h, [shape[0], shape[1], shape[2]], u)
+                    .map_err(|e| value_error(format!("velocity grid: {e}")))?;
+                Some(Arc::new(g))
+            }
+        };
+        self.with_world(py, |w, _| {
+            w.set_fluid_velocity_grid(grid)
+                .map_err(engine_error("velocity grid"))
+        })
+    }
+
+    /// Sets a void-fraction field computed by a CFD code: `eps` an (n0,
+    /// n1, n2) array of values in (0, 1], cell [i, j, k] of edges `cell`
+    /// (m) from the corner `lo` (m, world frame), as `void_fraction` lays
+    /// them out. Each step a body without a per-body void fraction takes
+    /// the value of the cell holding its centre of mass (1 outside the
+    /// grid). None removes the field. Needs a `[fluid]`; not kept in checkpoints.
+    #[pyo3(signature = (lo, cell, eps))]
+    fn set_void_fraction_field(
+        &self,
+        py: Python<'_>,
+        lo: &Bound<'_, PyAny>,
+        cell: &Bound<'_, PyAny>,
+        eps: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let field = match eps {
+            None => None,
+            Some(e) => {
+                let (shape, vals) = grid_values(e, 3, "void fractions")?;
+                let grid = VoidGrid {
+                    lo: vec3_in(lo, "lo")?,
+                    cell: vec3_in(cell, "cell")?,
+                    n: [shape[0], shape[1], shape[2]],
+                    periodic: [false; 3],
+                };
+                let f = VoidField::new(grid, vals)
+                    .map_err(|e| value_error(format!("void-fraction field: {e}")))?;
+                Some(Arc::new(f))
+            }
+        };
+        self.with_world(py, |w, _| {
+            w.set_void_fraction_field(field)
+                .map_err(engine_error("void-fraction field"))
         })
     }
 

@@ -1,8 +1,9 @@
 """sim.coupling: external loads against Newton's second law for a velocity
 Verlet step, the fluid force at a per-body fluid velocity against Stokes'
 law, at a per-body void fraction against Di Felice's (1994) law written
-out here, the void fraction on a grid against the sphere's volume, and bad
-arrays refused with a message."""
+out here, the void fraction on a grid against the sphere's volume, fields
+on grids (a linear velocity field interpolated exactly, a void fraction per
+cell) read at each body, and bad arrays refused with a message."""
 
 import math
 
@@ -155,3 +156,64 @@ def test_bad_arrays_are_refused_and_change_nothing(tmp_path):
     sim.run(steps=5)
     np.testing.assert_array_equal(sim.bodies.velocity[:, 0], 0.0)
     np.testing.assert_array_equal(sim.coupling.fluid_force, 0.0)
+
+
+def test_fluid_velocity_grid_is_interpolated_at_each_body(tmp_path):
+    # a field linear in x, y, z on a regular grid: trilinear interpolation
+    # gives it exactly at each held ball, and Stokes' drag 3 pi mu d u
+    fluid = f'[fluid]\ndensity = {RHO_F}\nviscosity = {MU}\ndrag = "stokes"\nbuoyancy = false\n'
+    sim = balls(tmp_path, FIXED, fluid)
+
+    def u(p):
+        x, y, z = p
+        return np.array([1e-3 + 0.1 * x, -0.05 * z, 0.2 * y + 0.03 * x + 1e-3])
+
+    origin, spacing, n = np.array([-0.02, -0.02, 0.0]), np.array([0.015, 0.02, 0.007]), (4, 3, 4)
+    grid = np.zeros(n + (3,))
+    for i, j, k in np.ndindex(*n):
+        grid[i, j, k] = u(origin + np.array([i, j, k]) * spacing)
+    sim.coupling.set_fluid_velocity_grid(origin, spacing, grid)
+    sim.step()
+    x = sim.bodies.position
+    expect = np.array([3 * math.pi * MU * 2 * R * u(p) for p in x])
+    np.testing.assert_allclose(sim.coupling.fluid_force, expect, rtol=1e-12, atol=1e-22)
+    # removed: the uniform velocity (0) again
+    sim.coupling.set_fluid_velocity_grid(None, None, None)
+    sim.step()
+    np.testing.assert_array_equal(sim.coupling.fluid_force, 0.0)
+
+
+def test_void_fraction_field_is_read_at_each_body(tmp_path):
+    fluid = (f'[fluid]\ndensity = {RHO_F}\nviscosity = {MU}\ndrag = "di_felice"\n'
+             'buoyancy = false\nvelocity = [0.0, 0.0, 0.02]\n')
+    sim = balls(tmp_path, FIXED, fluid)
+    # two cells along x: the ball at x = -10 mm in the first, x = 10 mm in the second
+    eps = np.array([0.45, 0.8]).reshape(2, 1, 1)
+    sim.coupling.set_void_fraction_field([-0.02, -0.02, 0.0], [0.02, 0.04, 0.02], eps)
+    sim.step()
+    fz = sim.coupling.fluid_force[:, 2]
+    assert fz[0] == pytest.approx(di_felice(0.8, 0.02, 2 * R), rel=1e-12)
+    assert fz[1] == pytest.approx(di_felice(0.45, 0.02, 2 * R), rel=1e-12)
+    # a per-body value takes precedence; removed, the field gives way to 1
+    sim.coupling.set_void_fractions([0.6, 0.6])
+    sim.step()
+    np.testing.assert_allclose(sim.coupling.fluid_force[:, 2], di_felice(0.6, 0.02, 2 * R), rtol=1e-12)
+    sim.coupling.clear()
+    sim.coupling.set_void_fraction_field(None, None, None)
+    sim.step()
+    np.testing.assert_allclose(sim.coupling.fluid_force[:, 2], di_felice(1.0, 0.02, 2 * R), rtol=1e-12)
+
+
+def test_bad_fields_are_refused(tmp_path):
+    dry = balls(tmp_path, FIXED)
+    with pytest.raises(ValueError, match="no fluid"):
+        dry.coupling.set_void_fraction_field([0, 0, 0], [1, 1, 1], np.full((1, 1, 1), 0.5))
+    sim = balls(tmp_path, FIXED, f'[fluid]\ndensity = {RHO_F}\nviscosity = {MU}\n')
+    with pytest.raises(ValueError, match=r"shape \(n0, n1, n2, 3\), got \[2, 2, 2\]"):
+        sim.coupling.set_fluid_velocity_grid([0, 0, 0], [1, 1, 1], np.zeros((2, 2, 2)))
+    with pytest.raises(ValueError, match="spacing along x must be > 0"):
+        sim.coupling.set_fluid_velocity_grid([0, 0, 0], [0, 1, 1], np.zeros((2, 2, 2, 3)))
+    with pytest.raises(ValueError, match="not finite"):
+        sim.coupling.set_fluid_velocity_grid([0, 0, 0], [1, 1, 1], np.full((2, 2, 2, 3), np.inf))
+    with pytest.raises(ValueError, match=r"cell 1 must be in \(0, 1\]"):
+        sim.coupling.set_void_fraction_field([0, 0, 0], [1, 1, 1], np.array([[[0.5], [1.5]]]))

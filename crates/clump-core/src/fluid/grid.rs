@@ -94,6 +94,72 @@ impl VelocityGrid {
         })
     }
 
+    /// The grid of `n` nodes along x, y, z from `origin` (world frame, m)
+    /// at `spacing` (m), with the velocities `u` (world frame, m/s) of
+    /// node (i, j, k) at `i + n_x (j + n_y k)`, as a coupled CFD code
+    /// hands over a regular grid. Needs at least one node along each axis,
+    /// finite values, a positive spacing along an axis of more than one
+    /// node, and `n_x n_y n_z` velocities; the error says what is wrong.
+    pub fn regular(
+        origin: DVec3,
+        spacing: DVec3,
+        n: [usize; 3],
+        u: Vec<DVec3>,
+    ) -> Result<Self, String> {
+        if !(origin.is_finite() && spacing.is_finite()) {
+            return Err(format!(
+                "origin {origin} and spacing {spacing} must be finite"
+            ));
+        }
+        if n.contains(&0) {
+            return Err(format!("every axis needs at least one node, got {n:?}"));
+        }
+        if let Some(a) = (0..3).find(|&a| n[a] > 1 && spacing[a] <= 0.0) {
+            return Err(format!(
+                "the spacing along {} must be > 0 m, got {}",
+                ["x", "y", "z"][a],
+                spacing[a]
+            ));
+        }
+        let total = n
+            .iter()
+            .try_fold(1usize, |a, &b| a.checked_mul(b))
+            .ok_or_else(|| format!("{n:?} nodes are too many"))?;
+        if u.len() != total {
+            return Err(format!(
+                "{} x {} x {} nodes need {total} velocities, found {}",
+                n[0],
+                n[1],
+                n[2],
+                u.len()
+            ));
+        }
+        if let Some(k) = u.iter().position(|v| !v.is_finite()) {
+            return Err(format!("the velocity of node {k} is not finite: {}", u[k]));
+        }
+        let mut spacing = spacing;
+        let mut top = origin;
+        for a in 0..3 {
+            if n[a] == 1 {
+                spacing[a] = 1.0;
+            } else {
+                top[a] = origin[a] + (n[a] - 1) as f64 * spacing[a];
+            }
+        }
+        Ok(VelocityGrid {
+            origin,
+            spacing,
+            top,
+            n,
+            u,
+        })
+    }
+
+    /// Nodes along x, y, z.
+    pub fn counts(&self) -> [usize; 3] {
+        self.n
+    }
+
     /// The lower and upper corners of the grid, world frame, m.
     pub fn bounds(&self) -> (DVec3, DVec3) {
         (self.origin, self.top)

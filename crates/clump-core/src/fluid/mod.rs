@@ -214,4 +214,7 @@ pub struct FluidState {
     /// The velocity field on a grid, sampled at each body's centre of
     /// mass (where no per-body velocity is set); None: the uniform velocity.
     pub grid: Option<std::sync::Arc<VelocityGrid>>,
+    /// A void-fraction field set by a coupled CFD code, read at each
+    /// body's centre of mass (where no per-body value is set); None: 1.
+    pub void_field: Option<std::sync::Arc<void::VoidField>>,
 }

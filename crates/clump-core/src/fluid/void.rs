@@ -91,6 +91,71 @@ impl VoidGrid {
     }
 }
 
+/// A void-fraction field given by a coupled CFD code: one value per cell
+/// of a [`VoidGrid`], each in (0, 1]. A body whose centre of mass is in a
+/// cell takes that cell's value (the cell-centred value of a finite-volume
+/// code, not interpolated); a body outside the grid takes 1.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VoidField {
+    grid: VoidGrid,
+    values: Vec<f64>,
+}
+
+impl VoidField {
+    /// The field `values` (cell `(i, j, k)` at `i + n₀ (j + n₁ k)`) on
+    /// `grid`: positive finite cell edges, at least one cell an axis, one
+    /// value per cell, each in (0, 1]; the error says what is wrong.
+    pub fn new(grid: VoidGrid, values: Vec<f64>) -> Result<Self, String> {
+        if !(grid.lo.is_finite() && grid.cell.is_finite())
+            || grid.cell.min_element() <= 0.0
+            || grid.n.contains(&0)
+        {
+            return Err(format!(
+                "grid cells must have finite positive edges and counts, got corner {} m, edges {} m, counts {:?}",
+                grid.lo, grid.cell, grid.n
+            ));
+        }
+        let cells = grid
+            .n
+            .iter()
+            .try_fold(1usize, |a, &b| a.checked_mul(b))
+            .ok_or_else(|| format!("{:?} cells are too many", grid.n))?;
+        if values.len() != cells {
+            return Err(format!(
+                "{} x {} x {} cells need {cells} void fractions, found {}",
+                grid.n[0],
+                grid.n[1],
+                grid.n[2],
+                values.len()
+            ));
+        }
+        if let Some(k) = values.iter().position(|&e| !(e > 0.0 && e <= 1.0)) {
+            return Err(format!(
+                "the void fraction of cell {k} must be in (0, 1], got {}",
+                values[k]
+            ));
+        }
+        Ok(VoidField { grid, values })
+    }
+
+    /// The void fraction at `p` (world frame, m): that of the cell
+    /// holding it, 1 outside the grid.
+    #[inline]
+    pub fn at(&self, p: DVec3) -> f64 {
+        self.grid.cell_of(p).map_or(1.0, |c| self.values[c])
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &VoidGrid {
+        &self.grid
+    }
+
+    /// The values, one per cell.
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+}
+
 /// The lattice points inside the unit ball: cell centres of a `SUB`³ grid
 /// on [−1, 1]³.
 fn unit_lattice() -> Vec<DVec3> {

@@ -93,7 +93,7 @@ impl<'a> CouplingPass<'a> {
     /// Body `bi`'s load `(f, m)` (N, N m, world frame) with its external
     /// and fluid loads, at its velocity `v` (m/s) and kicked mass `m_eff`
     /// (kg, with the added-mass factor); `x` its centre of mass (world
-    /// frame, m), where a velocity grid is sampled.
+    /// frame, m), where a velocity grid and a void-fraction field are read.
     ///
     /// # Safety
     /// Body `bi` is the calling chunk's.
@@ -132,7 +132,11 @@ impl<'a> CouplingPass<'a> {
             (None, Some(g)) => g.sample(x),
             (None, None) => fs.fluid.velocity,
         };
-        let eps = self.void_fraction.get(bi).copied().unwrap_or(1.0);
+        let eps = match (self.void_fraction.get(bi), &fs.void_field) {
+            (Some(&e), _) => e,
+            (None, Some(v)) => v.at(x),
+            (None, None) => 1.0,
+        };
         let t = &fs.templates[self.template[bi] as usize];
         let (beta, other) = body_load(&fs.fluid, t, self.gravity, v, u, eps);
         let fluid = other + beta * (u - v);

@@ -1,8 +1,9 @@
 //! Coarse-grained continuum fields of one frame, clump-aware (Weinhart et
 //! al. 2012; Goldhirsch 2010; docs/theory.md "Coarse-grained fields"):
 //! density, momentum, velocity, kinetic, contact and total stress, fabric,
-//! the orientation order tensor of the bodies' long axes and the
-//! coordination number, as cell averages on a 1D, 2D or 3D grid.
+//! the orientation order tensor of the bodies' long axes, the
+//! coordination number and the void fraction, as cell averages on a 1D,
+//! 2D or 3D grid.
 //!
 //! Each body deposits at its centre of mass. The contact stress takes, for
 //! every contact and each body on it, the force on that body and the
@@ -39,6 +40,10 @@ pub struct Fields {
     pub order_density: Vec<DMat3>,
     /// `Σ_a z_a φ_a` with the coordination number `z_a`, 1/m³.
     pub coordination_density: Vec<f64>,
+    /// Solid volume fraction `Σ_a V_a φ_a` with the volume `V_a` of body
+    /// `a`'s sphere union (the coarse-graining kernel's void fraction,
+    /// T-84: `ε = 1 − Σ_a V_a φ_a`).
+    pub solid_fraction: Vec<f64>,
 }
 
 impl Fields {
@@ -54,7 +59,14 @@ impl Fields {
             number_density: vec![0.0; n],
             order_density: vec![DMat3::ZERO; n],
             coordination_density: vec![0.0; n],
+            solid_fraction: vec![0.0; n],
         }
+    }
+
+    /// Void fraction `1 − Σ_a V_a φ_a` (T-84); below 0 only where the
+    /// kernel is narrower than the bodies' overlap allows.
+    pub fn void_fraction(&self) -> Vec<f64> {
+        self.solid_fraction.iter().map(|&s| 1.0 - s).collect()
     }
 
     /// Velocity `p/ρ` per cell (zero where the density is zero), m/s.
@@ -127,6 +139,7 @@ impl Fields {
             &other.coordination_density,
             k,
         );
+        add(&mut self.solid_fraction, &other.solid_fraction, k);
     }
 }
 
@@ -161,6 +174,7 @@ pub fn coarse_grain(frame: &Frame, grid: &Grid) -> Fields {
             f.number_density[cell] += p;
             f.order_density[cell] += q * p;
             f.coordination_density[cell] += z * p;
+            f.solid_fraction[cell] += b.volume * p;
         }
     }
     // kinetic stress about the local mean velocity

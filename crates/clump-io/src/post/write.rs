@@ -101,6 +101,12 @@ fn columns(f: &Fields) -> Vec<Column> {
             values: f.number_density.clone(),
             components: 1,
         },
+        Column {
+            name: "void_fraction",
+            unit: "",
+            values: f.void_fraction(),
+            components: 1,
+        },
     ]
 }
 

@@ -79,9 +79,9 @@ table! {
         /// Dynamic viscosity, Pa s.
         pub viscosity: Option<f64>,
         /// Interstitial velocity, world frame, m/s: `[ux, uy, uz]` (uniform,
-        /// default 0) or a CSV file `x,y,z,ux,uy,uz` on a regular grid
-        /// covering the domain, interpolated at each body (a driver may
-        /// set it per body).
+        /// default 0) or a grid file covering the domain, CSV
+        /// `x,y,z,ux,uy,uz` on a regular grid or VTK image data (`.vti`),
+        /// interpolated at each body (a driver may set it per body).
         pub velocity: Option<RawVelocity>,
         /// Pressure gradient beyond the hydrostatic one, world frame, Pa/m (default 0).
         #[serde(default, deserialize_with = "super::exact::array")]

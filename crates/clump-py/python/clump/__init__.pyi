@@ -315,8 +315,26 @@ class Coupling:
     def set_void_fractions(self, eps: _ArrayLike) -> None:
         """The void fraction at each body (N values in (0, 1]), read by the
         hindered drag laws (di_felice, beetstra, gidaspow)."""
+    def set_fluid_velocity_grid(self, origin: Optional[_ArrayLike], spacing: Optional[_ArrayLike],
+                                velocity: Optional[_ArrayLike]) -> None:
+        """The fluid velocity on a regular grid of nodes: ``velocity`` an
+        (n0, n1, n2, 3) array, m/s, node [i, j, k] at ``origin + (i, j, k)
+        * spacing`` (m). Each step a body without a per-body velocity gets
+        the trilinear interpolation at its centre of mass (outside the
+        grid, the value at its nearest point). ``velocity`` None removes
+        the grid. Needs ``[fluid]``; not kept in checkpoints."""
+    def set_void_fraction_field(self, lo: Optional[_ArrayLike], cell: Optional[_ArrayLike],
+                                eps: Optional[_ArrayLike]) -> None:
+        """A void-fraction field computed by a CFD code: ``eps`` an (n0, n1,
+        n2) array of values in (0, 1], cell [i, j, k] of edges ``cell`` (m)
+        from the corner ``lo`` (m), laid out as ``void_fraction`` returns
+        it. Each step a body without a per-body void fraction takes the
+        value of the cell holding its centre of mass (1 outside the grid);
+        the drag laws read it. ``eps`` None removes the field. Needs
+        ``[fluid]``; not kept in checkpoints."""
     def clear(self) -> None:
-        """Removes every external load and per-body fluid value."""
+        """Removes every external load and per-body fluid value (not the
+        fields on grids)."""
     @property
     def fluid_force(self) -> _F64:
         """Fluid force of the last step per body (N×3, N): drag, buoyancy,

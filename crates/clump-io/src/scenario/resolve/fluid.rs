@@ -84,11 +84,43 @@ pub(super) fn fluid(cx: &mut Cx, raw: &RawScenario, domain: Option<&Domain>) -> 
     Ok((Some(fluid), grid))
 }
 
-/// Reads the velocity grid file `name`: the header `x,y,z,ux,uy,uz`, then
-/// one node a line (m, m/s, world frame), on a regular grid.
+/// Reads the velocity grid file `name`: VTK image data (`.vti`, a
+/// 3-component point-data array, [`crate::vti_grid`]) or CSV (the header
+/// `x,y,z,ux,uy,uz`, then one node a line, m, m/s, world frame), on a
+/// regular grid.
 fn grid_file(cx: &mut Cx, name: &str) -> R<VelocityGrid> {
     let at = [K("fluid"), K("velocity")];
     let bytes = cx.read_file(&at, "velocity grid", name)?;
+    let nodes = if name.to_ascii_lowercase().ends_with(".vti") {
+        vti_nodes(cx, name, &bytes)?
+    } else {
+        csv_nodes(cx, name, &bytes)?
+    };
+    VelocityGrid::from_nodes(&nodes).map_err(|e| {
+        cx.err(&at, format!("velocity grid file '{name}': {e}"))
+            .note("help: the nodes must fill a regular grid: every combination of the x, y and z values, each axis equally spaced")
+    })
+}
+
+/// The nodes of a `.vti` file's image data.
+fn vti_nodes(cx: &Cx, name: &str, bytes: &[u8]) -> R<Vec<(DVec3, DVec3)>> {
+    let at = [K("fluid"), K("velocity")];
+    let text = std::str::from_utf8(bytes).map_err(|_| {
+        cx.err(
+            &at,
+            format!("velocity grid file '{name}': not UTF-8 text (a VTK XML file is)"),
+        )
+    })?;
+    crate::vti_grid::read_vti(text).map_err(|e| {
+        let line = e.line.map_or(String::new(), |l| format!(", line {l}"));
+        cx.err(&at, format!("velocity grid file '{name}'{line}: {}", e.message))
+            .note("help: a .vti is VTK XML image data (one piece, uncompressed ascii or binary) with a 3-component point-data array of the fluid velocity, m/s, world frame")
+    })
+}
+
+/// The nodes of a CSV velocity grid file.
+fn csv_nodes(cx: &Cx, name: &str, bytes: &[u8]) -> R<Vec<(DVec3, DVec3)>> {
+    let at = [K("fluid"), K("velocity")];
     let bad = |cx: &Cx, line: usize, what: String| {
         cx.err(
             &at,
@@ -96,7 +128,7 @@ fn grid_file(cx: &mut Cx, name: &str) -> R<VelocityGrid> {
         )
         .note("help: the file is CSV with the header x,y,z,ux,uy,uz and one grid node a line (m, m/s, world frame)")
     };
-    let text = String::from_utf8_lossy(&bytes);
+    let text = String::from_utf8_lossy(bytes);
     let mut lines = text
         .lines()
         .enumerate()
@@ -138,10 +170,7 @@ fn grid_file(cx: &mut Cx, name: &str) -> R<VelocityGrid> {
         }
         nodes.push((DVec3::new(x, y, z), DVec3::new(ux, uy, uz)));
     }
-    VelocityGrid::from_nodes(&nodes).map_err(|e| {
-        cx.err(&at, format!("velocity grid file '{name}': {e}"))
-            .note("help: the nodes must fill a regular grid: every combination of the x, y and z values, each axis equally spaced")
-    })
+    Ok(nodes)
 }
 
 /// Refuses a grid whose bounding box does not contain the domain box,
