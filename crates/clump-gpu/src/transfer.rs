@@ -289,7 +289,8 @@ impl DeviceStepper {
     /// Takes `world` from its step to step `to` on the device, checking
     /// `stop` between submissions; returns the steps taken (fewer than
     /// asked when `stop` answered true). `world` holds the device's state
-    /// afterwards.
+    /// afterwards. While a body is still before its start step (a stream's
+    /// ballistic entry), the CPU path takes the steps.
     pub fn advance(
         &mut self,
         world: &mut World,
@@ -297,6 +298,18 @@ impl DeviceStepper {
         stop: &mut dyn FnMut() -> bool,
     ) -> Result<u64, DeviceError> {
         const SUBMISSIONS: u64 = 256;
+        // bodies of a stream move ballistically to their start step (the
+        // CPU path's `start_step`), which the device does not do: those
+        // steps run on the CPU path
+        let first = world.step;
+        let late = world.bodies().start_step.iter().copied().max().unwrap_or(0);
+        if late > world.step {
+            let k = late.min(to) - world.step;
+            world.run(k).map_err(bad_state)?;
+            if world.step >= to || stop() {
+                return Ok(world.step - first);
+            }
+        }
         let mut dev = match (self.parts.take(), self.gpu.take()) {
             (Some(d), _) => d.reload(world)?,
             (None, Some(g)) => DeviceWorld::continue_from(g, world)?,
@@ -306,7 +319,6 @@ impl DeviceStepper {
                 ))
             }
         };
-        let first = dev.step;
         while dev.step < to {
             dev.run((to - dev.step).min(SUBMISSIONS))?;
             if stop() {
