@@ -27,13 +27,13 @@ fn check_names_the_adapter_and_refuses_at_the_key() {
     let (ok, out, err) = clump(&["check", "--device", "gpu", scenario]);
     assert!(
         !ok,
-        "the exact Richardson rotation must be refused:\n{out}\n{err}"
+        "Zhao and van Wachem's rotation must be refused:\n{out}\n{err}"
     );
     assert!(out.contains("  adapter "), "no adapter named in:\n{out}");
     for want in [
         "error: 'integrator.rotation' is not on the GPU path yet",
         "crates/clump-cli/tests/fixtures/gpu_refused.toml:15:1",
-        "allowed on the GPU path: \"no_squish\" (the default) or \"richardson_liggghts\"",
+        "allowed on the GPU path: \"no_squish\" (the default), \"richardson\" or \"richardson_liggghts\"",
     ] {
         assert!(err.contains(want), "{want:?} missing from:\n{err}");
     }

@@ -586,6 +586,7 @@ impl HostArrays {
         // common.wgsl PU_ROT (support.rs refuses the other schemes)
         pu[12] = match c.rotation {
             clump_core::rotation::RotationScheme::NoSquish => 1,
+            clump_core::rotation::RotationScheme::Richardson => 2,
             _ => 0,
         };
         // PU_STALE: the first step builds the table

@@ -92,11 +92,11 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
     let c = &world.config;
     if !matches!(
         c.rotation,
-        RotationScheme::NoSquish | RotationScheme::RichardsonLiggghts
+        RotationScheme::NoSquish | RotationScheme::Richardson | RotationScheme::RichardsonLiggghts
     ) {
         no(
             keys("integrator.rotation"),
-            "\"no_squish\" (the default) or \"richardson_liggghts\"",
+            "\"no_squish\" (the default), \"richardson\" or \"richardson_liggghts\"",
         );
     }
     if c.domain.periodic.iter().any(|&p| p) {

@@ -82,6 +82,15 @@ fn device_step_agrees_with_the_cpu_path_richardson_liggghts() {
 }
 
 #[test]
+fn device_step_agrees_with_the_cpu_path_richardson() {
+    let worst = compare(RotationScheme::Richardson);
+    assert!(
+        worst < 1e-9,
+        "device and CPU positions differ by {worst:e} of the domain size"
+    );
+}
+
+#[test]
 fn device_runs_are_bit_reproducible() {
     let w = box_bed(4, 3, RotationScheme::NoSquish);
     let run = || {

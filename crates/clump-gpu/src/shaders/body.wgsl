@@ -83,8 +83,12 @@ fn first_half(@builtin(global_invocation_id) gid: vec3<u32>) {
         qn = qw.q;
         w = qw.w;
     } else {
-        qn = no_squish_drift(ldq(i), l, inertia, dt);
         let inv = vec3<f64>(bm[8u * i + 4u], bm[8u * i + 5u], bm[8u * i + 6u]);
+        if (pu[PU_ROT] == 2u) {
+            qn = richardson_drift(ldq(i), l, inertia, inv, dt);
+        } else {
+            qn = no_squish_drift(ldq(i), l, inertia, dt);
+        }
         w = omega_world(mat_from_quat(qn), l, inv);
     }
     st_bv(i, v);
