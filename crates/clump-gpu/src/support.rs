@@ -131,7 +131,12 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
         }
     }
     let b = world.bodies();
-    let free = (0..b.len()).all(|i| b.force_flag[i] == [true; 3] && b.torque_flag[i] == [true; 3]);
+    // a driven (or fixed) body never starts (`dof::DRIVEN`)
+    let free = (0..b.len()).all(|i| {
+        b.force_flag[i] == [true; 3]
+            && b.torque_flag[i] == [true; 3]
+            && b.start_step[i] != clump_core::dof::DRIVEN
+    });
     if !free {
         no(
             keys("template.force_flags"),
