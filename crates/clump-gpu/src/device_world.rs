@@ -491,6 +491,14 @@ pub(crate) fn by_id(world: &World) -> clump_core::body::Bodies {
     out
 }
 
+/// The force flags (bits 0-2) and torque flags (bits 3-5) per world axis
+/// (common.wgsl `dof_flags`), as an f64 of `bm`.
+fn dof_bits(force: [bool; 3], torque: [bool; 3]) -> f64 {
+    (0..3)
+        .map(|k| (force[k] as u32) << k | (torque[k] as u32) << (k + 3))
+        .sum::<u32>() as f64
+}
+
 /// Entries of the device pair table for `world`.
 pub(crate) fn table_capacity(world: &World) -> usize {
     let b = world.bodies();
@@ -618,7 +626,7 @@ impl HostArrays {
                 ]);
             }
         }
-        let mut bm = Vec::with_capacity(8 * nb);
+        let mut bm = Vec::with_capacity(9 * nb);
         let mut load = Vec::with_capacity(6 * nb);
         for i in 0..nb {
             let (m, inertia) = (b.mass[i], b.inertia[i]);
@@ -633,6 +641,7 @@ impl HostArrays {
                 inv.y,
                 inv.z,
                 (0.5 * c.dt) / (m * 1.0),
+                dof_bits(b.force_flag[i], b.torque_flag[i]),
             ]);
             load.extend([
                 b.force[i].x,

@@ -132,15 +132,10 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
     }
     let b = world.bodies();
     // a driven (or fixed) body never starts (`dof::DRIVEN`)
-    let free = (0..b.len()).all(|i| {
-        b.force_flag[i] == [true; 3]
-            && b.torque_flag[i] == [true; 3]
-            && b.start_step[i] != clump_core::dof::DRIVEN
-    });
-    if !free {
+    if (0..b.len()).any(|i| b.start_step[i] == clump_core::dof::DRIVEN) {
         no(
-            keys("template.force_flags"),
-            "every axis free (force_flags and torque_flags all true, no fixed or driven bodies)",
+            keys("insert"),
+            "no fixed or driven bodies (`fixed`, `driven`; force and torque flags are allowed)",
         );
     }
     if world.heat.is_some() {
