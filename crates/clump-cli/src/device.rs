@@ -144,23 +144,34 @@ pub fn check(_sc: &clump_io::scenario::Scenario) -> bool {
     false
 }
 
-/// `clump bench --device gpu`: the clumps of `clump_gpu::bed` in a closed
-/// box (the shared tetra bed uses the exact Richardson rotation, which the
-/// GPU path does not run yet), about `n` clumps, `steps` steps on the
+/// `clump bench --device gpu`: the world of `scenario` (`--scenario`, e.g.
+/// the shared tetra bed), else the clumps of `clump_gpu::bed` in a closed
+/// box, about `n` clumps; `steps` steps on the
 /// device and on the CPU path with `threads` threads; sphere-steps/s of
 /// both and the largest position difference between them.
 #[cfg(feature = "gpu")]
-pub fn bench(n: usize, steps: u64, threads: usize) -> anyhow::Result<()> {
+pub fn bench(
+    n: usize,
+    steps: u64,
+    threads: usize,
+    scenario: Option<clump_core::world::World>,
+) -> anyhow::Result<()> {
     use std::time::Instant;
     let side = ((n as f64).cbrt().round() as usize).max(1);
-    let world = clump_gpu::bed::box_bed(side, side, clump_core::rotation::RotationScheme::NoSquish);
+    let what = match &scenario {
+        Some(w) => format!("the scenario's world ({} bodies)", w.bodies().len()),
+        None => format!("box bed of {side}x{side}x{side} clumps (tetra and 3-sphere rods in turn)"),
+    };
+    let world = scenario.unwrap_or_else(|| {
+        clump_gpu::bed::box_bed(side, side, clump_core::rotation::RotationScheme::NoSquish)
+    });
     let gpu = clump_gpu::Gpu::new()?;
     outln!("device: {}", gpu.describe());
     let t = Instant::now();
     let mut dev = clump_gpu::DeviceWorld::upload(gpu, &world)?;
     let ns = dev.spheres() as f64;
     outln!(
-        "box bed of {side}x{side}x{side} clumps (tetra and 3-sphere rods in turn, {ns} spheres), {steps} steps; upload and first forces {:.3} s",
+        "{what}, {ns} spheres, {steps} steps; upload and first forces {:.3} s",
         t.elapsed().as_secs_f64()
     );
     let t = Instant::now();
@@ -204,6 +215,11 @@ pub fn bench(n: usize, steps: u64, threads: usize) -> anyhow::Result<()> {
 }
 
 #[cfg(not(feature = "gpu"))]
-pub fn bench(_n: usize, _steps: u64, _threads: usize) -> anyhow::Result<()> {
+pub fn bench(
+    _n: usize,
+    _steps: u64,
+    _threads: usize,
+    _scenario: Option<clump_core::world::World>,
+) -> anyhow::Result<()> {
     anyhow::bail!("--device gpu: {NOT_BUILT}")
 }
