@@ -258,7 +258,7 @@ impl DeviceWorld {
         gpu: Gpu,
         kernels: Kernels,
         world: &World,
-        springs: Option<crate::transfer::Springs>,
+        springs: Option<Springs>,
     ) -> Result<DeviceWorld, DeviceError> {
         let (host, n) = HostArrays::new(world);
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
@@ -478,6 +478,16 @@ impl DeviceWorld {
     }
 }
 
+/// The springs of a world in the device's layout: the pair table's
+/// owning entries (offsets per sphere, neighbour, spring) and the wall
+/// slots (3 per (sphere, wall)).
+pub(crate) struct Springs {
+    pub noff: Vec<u32>,
+    pub nbr: Vec<u32>,
+    pub hist: Vec<f64>,
+    pub whist: Vec<f64>,
+}
+
 /// The bodies of `world` in ascending id: the device's order, whatever
 /// the host's storage order (which the CPU path changes at its rebuilds),
 /// so that a download and an upload keep each sphere's neighbour order
@@ -682,12 +692,7 @@ impl HostArrays {
     }
 
     /// The storage buffers of group 0, by binding.
-    fn buffers(
-        &self,
-        gpu: &Gpu,
-        n: Sizes,
-        springs: Option<crate::transfer::Springs>,
-    ) -> Vec<wgpu::Buffer> {
+    fn buffers(&self, gpu: &Gpu, n: Sizes, springs: Option<Springs>) -> Vec<wgpu::Buffer> {
         let nw = (self.walls.len() / 7).max(1);
         let mut out = vec![gpu.buffer("pf", &self.pf), gpu.buffer("pu", &self.pu)];
         for (k, a) in self.bodies.iter().enumerate() {

@@ -13,7 +13,7 @@
 //! (sphere, wall).
 
 use crate::context::Gpu;
-use crate::device_world::{DeviceError, DeviceWorld, Kernels};
+use crate::device_world::{DeviceError, DeviceWorld, Kernels, Springs};
 use crate::support::unsupported;
 use clump_core::contact::ContactHistory;
 use clump_core::neighbor::walls::WALL_SLOTS;
@@ -21,16 +21,6 @@ use clump_core::sphere::sphere_gid;
 use clump_core::world::World;
 use glam::{DQuat, DVec3};
 use std::collections::HashMap;
-
-/// The springs of a world in the device's layout: the pair table's
-/// owning entries (offsets per sphere, neighbour, spring) and the wall
-/// slots (3 per (sphere, wall)).
-pub(crate) struct Springs {
-    pub noff: Vec<u32>,
-    pub nbr: Vec<u32>,
-    pub hist: Vec<f64>,
-    pub whist: Vec<f64>,
-}
 
 /// Global sphere id of each device sphere (bodies in ascending id,
 /// spheres in template order, as `HostArrays::new` lays them out).
