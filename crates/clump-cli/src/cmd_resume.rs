@@ -29,6 +29,10 @@ pub struct ResumeArgs {
     /// rows, frames, manifest and final state are replaced).
     #[arg(long)]
     pub rewind: bool,
+    /// Where the steps run (see `clump run --device`); a checkpoint of
+    /// either device resumes on either.
+    #[arg(long, value_enum, default_value_t = crate::device::Device::Cpu)]
+    pub device: crate::device::Device,
 }
 
 /// Runs `clump resume`.
@@ -42,6 +46,17 @@ pub fn run(args: &ResumeArgs) -> ExitCode {
         outdir_given: scratch.is_some() || args.outdir.is_some(),
         rewind: args.rewind,
         max_steps: args.steps,
+    };
+    let device = match args.device {
+        crate::device::Device::Cpu => None,
+        crate::device::Device::Gpu => match device_for(&args.checkpoint, ranks.size()) {
+            Ok(d) => Some(d),
+            Err(e) => {
+                errln!("error: {e}");
+                ranks.fail(2);
+                return ExitCode::from(2);
+            }
+        },
     };
     let mut runner = match Runner::resume_with(
         &args.checkpoint,
@@ -60,9 +75,26 @@ pub fn run(args: &ResumeArgs) -> ExitCode {
         ranks.fail(2);
         return ExitCode::from(2);
     }
+    if let Some(d) = device {
+        tracing::info!("steps between events on the GPU: {}", d.describe());
+        runner.set_device(d);
+    }
     let code = drive(runner, args.threads, args.steps, &ranks);
     if let Some(d) = &scratch {
         ranks.finish(d);
     }
     code
+}
+
+/// The GPU for resuming `checkpoint`, its settings checked first (nothing
+/// is written when they are refused).
+fn device_for(
+    checkpoint: &std::path::Path,
+    ranks: usize,
+) -> Result<Box<dyn clump_io::run::device::StepDevice>, String> {
+    let bytes = std::fs::read(checkpoint)
+        .map_err(|e| format!("cannot read checkpoint {}: {e}", checkpoint.display()))?;
+    let (sc, world, _, _) =
+        clump_io::run::load_checkpoint_with_id(&bytes, checkpoint).map_err(|e| e.to_string())?;
+    crate::device::stepper(&sc, &world, ranks)
 }

@@ -29,6 +29,11 @@ pub struct RunArgs {
     /// (without it, such a directory is refused).
     #[arg(long)]
     pub overwrite: bool,
+    /// Where the steps run: `gpu` hands the steps between events to the
+    /// GPU path (built with the `gpu` feature; `clump check --device gpu`
+    /// lists what it runs). Outputs and checkpoints are the CPU path's.
+    #[arg(long, value_enum, default_value_t = crate::device::Device::Cpu)]
+    pub device: crate::device::Device,
 }
 
 /// Exit status for a run error.
@@ -259,6 +264,21 @@ pub fn run(args: &RunArgs) -> ExitCode {
         .clone()
         .unwrap_or_else(|| default_outdir(&sc, &args.scenario));
     let ranks = Ranks::start();
+    let device = match args.device {
+        crate::device::Device::Cpu => None,
+        crate::device::Device::Gpu => match sc
+            .build_world()
+            .map_err(|e| format!("cannot set up the simulation: {e}"))
+            .and_then(|w| crate::device::stepper(&sc, &w, ranks.size()))
+        {
+            Ok(d) => Some(d),
+            Err(e) => {
+                errln!("error: {e}");
+                ranks.fail(2);
+                return ExitCode::from(2);
+            }
+        },
+    };
     let mine = ranks.outdir(&outdir);
     let mut runner = match Runner::new_in(sc, &mine, args.overwrite || !ranks.is_root()) {
         Ok(r) => r,
@@ -272,6 +292,10 @@ pub fn run(args: &RunArgs) -> ExitCode {
         errln!("error: {e}");
         ranks.fail(2);
         return ExitCode::from(2);
+    }
+    if let Some(d) = device {
+        tracing::info!("steps between events on the GPU: {}", d.describe());
+        runner.set_device(d);
     }
     let code = drive(runner, args.threads, args.steps, &ranks);
     ranks.finish(&mine);

@@ -1,5 +1,5 @@
-//! `--device gpu` of `clump check` and `clump bench`: the device path
-//! (crate clump-gpu, Cargo feature `gpu`). Without the feature the option
+//! `--device gpu` of `clump check`, `run`, `resume` and `bench`: the device
+//! path (crate clump-gpu, Cargo feature `gpu`). Without the feature the option
 //! is refused with how to build it.
 
 use clap::ValueEnum;
@@ -24,8 +24,6 @@ const NOT_BUILT: &str = "this clump was built without the GPU path: build it wit
 /// the scenario cannot run on the device.
 #[cfg(feature = "gpu")]
 pub fn check(sc: &clump_io::scenario::Scenario) -> bool {
-    use clump_gpu::support::KeySeg;
-    use clump_io::scenario::{Seg, Source};
     outln!("\ndevice (--device gpu):");
     let mut ok = match clump_gpu::Gpu::new() {
         Ok(g) => {
@@ -44,7 +42,22 @@ pub fn check(sc: &clump_io::scenario::Scenario) -> bool {
             return false;
         }
     };
-    let mut refused = clump_gpu::support::unsupported(&world);
+    if refuse(sc, &world) {
+        ok = false;
+    }
+    if ok {
+        outln!("  the scenario's settings run on the GPU path");
+    }
+    ok
+}
+
+/// Prints a diagnostic at the scenario's key for each setting of `world`
+/// (built from `sc`) that the GPU path does not run; true when any.
+#[cfg(feature = "gpu")]
+fn refuse(sc: &clump_io::scenario::Scenario, world: &clump_core::world::World) -> bool {
+    use clump_gpu::support::KeySeg;
+    use clump_io::scenario::{Seg, Source};
+    let mut refused = clump_gpu::support::unsupported_settings(world);
     if sc.fluid.is_some() {
         refused.push(clump_gpu::support::Unsupported {
             path: vec![KeySeg::Key("fluid")],
@@ -66,12 +79,63 @@ pub fn check(sc: &clump_io::scenario::Scenario) -> bool {
             "{}",
             d.note(format!("allowed on the GPU path: {}", u.allowed))
         );
-        ok = false;
     }
-    if ok {
-        outln!("  the scenario's settings run on the GPU path");
+    !refused.is_empty()
+}
+
+/// The steps between events on the GPU (`clump_gpu::DeviceStepper`).
+#[cfg(feature = "gpu")]
+struct GpuSteps(clump_gpu::DeviceStepper, String);
+
+#[cfg(feature = "gpu")]
+impl clump_io::run::device::StepDevice for GpuSteps {
+    fn advance(
+        &mut self,
+        world: &mut clump_core::world::World,
+        to: u64,
+        stop: &mut dyn FnMut() -> bool,
+    ) -> Result<u64, String> {
+        self.0.advance(world, to, stop).map_err(|e| e.to_string())
     }
-    ok
+
+    fn describe(&self) -> String {
+        self.1.clone()
+    }
+}
+
+/// `clump run|resume --device gpu`: the device for the runner of `world`
+/// (built from, or resumed with, `sc`), or an error message (the
+/// settings the GPU path refuses are printed at their keys) before
+/// anything is written. `ranks`: the run's MPI ranks.
+#[cfg(feature = "gpu")]
+pub fn stepper(
+    sc: &clump_io::scenario::Scenario,
+    world: &clump_core::world::World,
+    ranks: usize,
+) -> Result<Box<dyn clump_io::run::device::StepDevice>, String> {
+    if ranks > 1 {
+        return Err(format!(
+            "--device gpu runs on one process; this run has {ranks} MPI ranks"
+        ));
+    }
+    if refuse(sc, world) {
+        return Err(
+            "the scenario has settings the GPU path does not run (above); nothing was written"
+                .into(),
+        );
+    }
+    let gpu = clump_gpu::Gpu::new().map_err(|e| e.to_string())?;
+    let name = gpu.describe();
+    Ok(Box::new(GpuSteps(clump_gpu::DeviceStepper::new(gpu), name)))
+}
+
+#[cfg(not(feature = "gpu"))]
+pub fn stepper(
+    _sc: &clump_io::scenario::Scenario,
+    _world: &clump_core::world::World,
+    _ranks: usize,
+) -> Result<Box<dyn clump_io::run::device::StepDevice>, String> {
+    Err(format!("--device gpu: {NOT_BUILT}"))
 }
 
 #[cfg(not(feature = "gpu"))]
@@ -80,23 +144,34 @@ pub fn check(_sc: &clump_io::scenario::Scenario) -> bool {
     false
 }
 
-/// `clump bench --device gpu`: the clumps of `clump_gpu::bed` in a closed
-/// box (the shared tetra bed uses the exact Richardson rotation, which the
-/// GPU path does not run yet), about `n` clumps, `steps` steps on the
+/// `clump bench --device gpu`: the world of `scenario` (`--scenario`, e.g.
+/// the shared tetra bed), else the clumps of `clump_gpu::bed` in a closed
+/// box, about `n` clumps; `steps` steps on the
 /// device and on the CPU path with `threads` threads; sphere-steps/s of
 /// both and the largest position difference between them.
 #[cfg(feature = "gpu")]
-pub fn bench(n: usize, steps: u64, threads: usize) -> anyhow::Result<()> {
+pub fn bench(
+    n: usize,
+    steps: u64,
+    threads: usize,
+    scenario: Option<clump_core::world::World>,
+) -> anyhow::Result<()> {
     use std::time::Instant;
     let side = ((n as f64).cbrt().round() as usize).max(1);
-    let world = clump_gpu::bed::box_bed(side, side, clump_core::rotation::RotationScheme::NoSquish);
+    let what = match &scenario {
+        Some(w) => format!("the scenario's world ({} bodies)", w.bodies().len()),
+        None => format!("box bed of {side}x{side}x{side} clumps (tetra and 3-sphere rods in turn)"),
+    };
+    let world = scenario.unwrap_or_else(|| {
+        clump_gpu::bed::box_bed(side, side, clump_core::rotation::RotationScheme::NoSquish)
+    });
     let gpu = clump_gpu::Gpu::new()?;
     outln!("device: {}", gpu.describe());
     let t = Instant::now();
     let mut dev = clump_gpu::DeviceWorld::upload(gpu, &world)?;
     let ns = dev.spheres() as f64;
     outln!(
-        "box bed of {side}x{side}x{side} clumps (tetra and 3-sphere rods in turn, {ns} spheres), {steps} steps; upload and first forces {:.3} s",
+        "{what}, {ns} spheres, {steps} steps; upload and first forces {:.3} s",
         t.elapsed().as_secs_f64()
     );
     let t = Instant::now();
@@ -140,6 +215,11 @@ pub fn bench(n: usize, steps: u64, threads: usize) -> anyhow::Result<()> {
 }
 
 #[cfg(not(feature = "gpu"))]
-pub fn bench(_n: usize, _steps: u64, _threads: usize) -> anyhow::Result<()> {
+pub fn bench(
+    _n: usize,
+    _steps: u64,
+    _threads: usize,
+    _scenario: Option<clump_core::world::World>,
+) -> anyhow::Result<()> {
     anyhow::bail!("--device gpu: {NOT_BUILT}")
 }

@@ -24,6 +24,18 @@ const PITCH: f64 = clump_core::testbed::LATTICE_PITCH;
 /// that clump-clump and wall contacts form, slide and end within a few
 /// thousand steps. Everything in it runs on the device.
 pub fn box_bed(n: usize, layers: usize, rotation: RotationScheme) -> World {
+    box_bed_dof(n, layers, rotation, |_| ([true; 3], [true; 3]))
+}
+
+/// [`box_bed`] with the force and torque flags per world axis of the
+/// `k`-th clump (from 1) given by `flags(k)`; a clump's velocity is zero
+/// along the axes its force flags lock.
+pub fn box_bed_dof(
+    n: usize,
+    layers: usize,
+    rotation: RotationScheme,
+    flags: impl Fn(u64) -> ([bool; 3], [bool; 3]),
+) -> World {
     let mats = vec![tetra_material()];
     let table =
         ContactTable::new(&mats, |_, _| PairProperties::default()).expect("a valid test bed");
@@ -84,6 +96,10 @@ pub fn box_bed(n: usize, layers: usize, rotation: RotationScheme) -> World {
                 b.velocity = 0.2 * DVec3::new((kf * 1.7).sin(), (kf * 2.3).sin(), (kf * 3.1).sin());
                 b.angular_velocity =
                     100.0 * DVec3::new((kf * 0.9).cos(), (kf * 1.1).cos(), (kf * 1.9).cos());
+                (b.force_flag, b.torque_flag) = flags(k);
+                // a locked axis starts at rest (it would never stop)
+                b.velocity =
+                    DVec3::select(glam::BVec3::from(b.force_flag), b.velocity, DVec3::ZERO);
                 w.add_body(&b).expect("a valid test bed");
             }
         }

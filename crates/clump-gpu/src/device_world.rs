@@ -128,10 +128,8 @@ pub struct DeviceWorld {
     /// table build, which the build's dispatches read as their sizes.
     args_group: wgpu::BindGroup,
     args: wgpu::Buffer,
-    pipelines: Vec<wgpu::ComputePipeline>,
-    /// Global id of each body, in device order (the world's storage order
-    /// at upload; the CPU path reorders its bodies at rebuilds, the device
-    /// keeps this order).
+    kernels: Kernels,
+    /// Global id of each body, in device order (ascending id, see [`by_id`]).
     pub ids: Vec<u64>,
     /// Steps taken (the world's count at upload plus the device's).
     pub step: u64,
@@ -143,36 +141,18 @@ pub struct DeviceWorld {
     dt: f64,
 }
 
-/// A read-write storage buffer at `binding`, seen by compute shaders.
-fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: false },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
+/// The step's compiled kernels and their layouts: made once per device,
+/// kept across uploads (a re-upload at an event binds new buffers only).
+pub(crate) struct Kernels {
+    layout: wgpu::BindGroupLayout,
+    args_layout: wgpu::BindGroupLayout,
+    pipelines: Vec<wgpu::ComputePipeline>,
 }
 
-fn flat3(v: &[DVec3]) -> Vec<f64> {
-    v.iter().flat_map(|a| [a.x, a.y, a.z]).collect()
-}
-
-impl DeviceWorld {
-    /// Copies `world` to the device (bodies, spheres from the templates,
-    /// walls, the contact laws) and computes the forces of its state, as
-    /// `World::prepare` does. Tangential springs start at zero.
-    pub fn upload(gpu: Gpu, world: &World) -> Result<DeviceWorld, DeviceError> {
-        let refused = unsupported(world);
-        if !refused.is_empty() {
-            return Err(DeviceError::Unsupported(refused));
-        }
-        let (host, n) = HostArrays::new(world);
+impl Kernels {
+    /// Compiles the module and makes one pipeline per entry point.
+    pub(crate) fn new(gpu: &Gpu) -> Result<Kernels, DeviceError> {
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let buffers = host.buffers(&gpu, n);
         let layout = gpu
             .device
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -219,6 +199,70 @@ impl DeviceWorld {
                     })
             })
             .collect();
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Device(format!("compiling the device step: {e}")).into());
+        }
+        Ok(Kernels {
+            layout,
+            args_layout,
+            pipelines,
+        })
+    }
+}
+
+/// A read-write storage buffer at `binding`, seen by compute shaders.
+fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// `v` followed by zeros up to `len` entries (at least one: a buffer is
+/// never empty).
+fn padded<T: Copy + Default>(v: &[T], len: usize) -> Vec<T> {
+    let mut out = v.to_vec();
+    out.resize(len.max(v.len()).max(1), T::default());
+    out
+}
+
+fn flat3(v: &[DVec3]) -> Vec<f64> {
+    v.iter().flat_map(|a| [a.x, a.y, a.z]).collect()
+}
+
+impl DeviceWorld {
+    /// Copies `world` to the device (bodies, spheres from the templates,
+    /// walls, the contact laws) and computes the forces of its state, as
+    /// `World::prepare` does. Tangential springs start at zero.
+    pub fn upload(gpu: Gpu, world: &World) -> Result<DeviceWorld, DeviceError> {
+        let refused = unsupported(world);
+        if !refused.is_empty() {
+            return Err(DeviceError::Unsupported(refused));
+        }
+        let kernels = Kernels::new(&gpu)?;
+        let mut dw = DeviceWorld::bind(gpu, kernels, world, None)?;
+        dw.submit(0, true)?;
+        Ok(dw)
+    }
+
+    /// The buffers of `world` bound to `kernels`; with `springs`, the
+    /// world's contact springs in the pair table and the wall slots (its
+    /// forces then come from the world, not from the device).
+    pub(crate) fn bind(
+        gpu: Gpu,
+        kernels: Kernels,
+        world: &World,
+        springs: Option<Springs>,
+    ) -> Result<DeviceWorld, DeviceError> {
+        let (host, n) = HostArrays::new(world);
+        let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let buffers = host.buffers(&gpu, n, springs);
         let entries: Vec<wgpu::BindGroupEntry> = (0..N_BINDINGS as usize)
             .map(|b| wgpu::BindGroupEntry {
                 binding: b as u32,
@@ -227,7 +271,7 @@ impl DeviceWorld {
             .collect();
         let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
-            layout: &layout,
+            layout: &kernels.layout,
             entries: &entries,
         });
         let args = gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -238,7 +282,7 @@ impl DeviceWorld {
         });
         let args_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
-            layout: &args_layout,
+            layout: &kernels.args_layout,
             entries: &[wgpu::BindGroupEntry {
                 binding: 0,
                 resource: args.as_entire_binding(),
@@ -247,22 +291,25 @@ impl DeviceWorld {
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Device(format!("setting up the device step: {e}")).into());
         }
-        let mut dw = DeviceWorld {
+        Ok(DeviceWorld {
             gpu,
+            kernels,
             n,
             buffers,
             group,
             args_group,
             args,
-            pipelines,
-            ids: world.bodies().id.clone(),
+            ids: by_id(world).id,
             step: world.step,
             time: world.time,
             builds: 0,
             dt: world.config.dt,
-        };
-        dw.submit(0, true)?;
-        Ok(dw)
+        })
+    }
+
+    /// The device and the compiled kernels, for the next upload.
+    pub(crate) fn into_parts(self) -> (Gpu, Kernels) {
+        (self.gpu, self.kernels)
     }
 
     /// Takes `steps` steps on the device, in batches of one submission
@@ -308,7 +355,7 @@ impl DeviceWorld {
     }
 
     fn dispatch(&self, pass: &mut wgpu::ComputePass<'_>, k: usize, n: usize) {
-        pass.set_pipeline(&self.pipelines[k]);
+        pass.set_pipeline(&self.kernels.pipelines[k]);
         pass.set_bind_group(0, &self.group, &[]);
         pass.dispatch_workgroups(n.div_ceil(64).max(1) as u32, 1, 1);
     }
@@ -316,7 +363,7 @@ impl DeviceWorld {
     /// A kernel of the table build, its size from `rebuild_args` (zero
     /// groups while the table is good).
     fn dispatch_build(&self, pass: &mut wgpu::ComputePass<'_>, k: usize, size: u64) {
-        pass.set_pipeline(&self.pipelines[k]);
+        pass.set_pipeline(&self.kernels.pipelines[k]);
         pass.set_bind_group(0, &self.group, &[]);
         pass.dispatch_workgroups_indirect(&self.args, 12 * size);
     }
@@ -332,7 +379,7 @@ impl DeviceWorld {
             self.dispatch(&mut pass, K_FIRST_HALF, n.nb);
         }
         self.dispatch(&mut pass, K_SPHERES, n.npow2);
-        pass.set_pipeline(&self.pipelines[K_REBUILD_ARGS]);
+        pass.set_pipeline(&self.kernels.pipelines[K_REBUILD_ARGS]);
         pass.set_bind_group(0, &self.group, &[]);
         pass.set_bind_group(1, &self.args_group, &[]);
         pass.dispatch_workgroups(1, 1, 1);
@@ -410,10 +457,65 @@ impl DeviceWorld {
         Ok(())
     }
 
+    /// The f64 array at `binding` (common.wgsl), whole.
+    pub(crate) fn read_f64(&self, binding: usize) -> Result<Vec<f64>, GpuError> {
+        self.gpu.read(&self.buffers[binding])
+    }
+
+    /// The current pair table: offsets per sphere, neighbour and spring
+    /// per entry.
+    pub(crate) fn table(&self) -> Result<(Vec<u32>, Vec<u32>, Vec<f64>), GpuError> {
+        Ok((
+            self.gpu.read(&self.buffers[17])?,
+            self.gpu.read(&self.buffers[18])?,
+            self.gpu.read(&self.buffers[19])?,
+        ))
+    }
+
     /// Number of spheres on the device.
     pub fn spheres(&self) -> usize {
         self.n.ns
     }
+}
+
+/// The springs of a world in the device's layout: the pair table's
+/// owning entries (offsets per sphere, neighbour, spring) and the wall
+/// slots (3 per (sphere, wall)).
+pub(crate) struct Springs {
+    pub noff: Vec<u32>,
+    pub nbr: Vec<u32>,
+    pub hist: Vec<f64>,
+    pub whist: Vec<f64>,
+}
+
+/// The bodies of `world` in ascending id: the device's order, whatever
+/// the host's storage order (which the CPU path changes at its rebuilds),
+/// so that a download and an upload keep each sphere's neighbour order
+/// and with it the order of its force sums.
+pub(crate) fn by_id(world: &World) -> clump_core::body::Bodies {
+    let b = world.bodies();
+    let mut perm: Vec<u32> = (0..b.len() as u32).collect();
+    perm.sort_by_key(|&k| b.id[k as usize]);
+    let mut out = b.clone();
+    out.permute(&perm);
+    out
+}
+
+/// The force flags (bits 0-2) and torque flags (bits 3-5) per world axis
+/// (common.wgsl `dof_flags`), as an f64 of `bm`.
+fn dof_bits(force: [bool; 3], torque: [bool; 3]) -> f64 {
+    (0..3)
+        .map(|k| (force[k] as u32) << k | (torque[k] as u32) << (k + 3))
+        .sum::<u32>() as f64
+}
+
+/// Entries of the device pair table for `world`.
+pub(crate) fn table_capacity(world: &World) -> usize {
+    let b = world.bodies();
+    (0..b.len())
+        .map(|i| world.templates[b.template[i] as usize].spheres.len())
+        .sum::<usize>()
+        * ENTRIES_PER_SPHERE
 }
 
 /// The host's copy of what goes to the device at upload.
@@ -431,7 +533,7 @@ struct HostArrays {
 impl HostArrays {
     /// The device arrays of `world` (see common.wgsl for each layout).
     fn new(world: &World) -> (HostArrays, Sizes) {
-        let b = world.bodies();
+        let b = &by_id(world);
         let c = &world.config;
         let nb = b.len();
         let mut bfirst = vec![0u32];
@@ -502,6 +604,7 @@ impl HostArrays {
         // common.wgsl PU_ROT (support.rs refuses the other schemes)
         pu[12] = match c.rotation {
             clump_core::rotation::RotationScheme::NoSquish => 1,
+            clump_core::rotation::RotationScheme::Richardson => 2,
             _ => 0,
         };
         // PU_STALE: the first step builds the table
@@ -533,7 +636,7 @@ impl HostArrays {
                 ]);
             }
         }
-        let mut bm = Vec::with_capacity(8 * nb);
+        let mut bm = Vec::with_capacity(9 * nb);
         let mut load = Vec::with_capacity(6 * nb);
         for i in 0..nb {
             let (m, inertia) = (b.mass[i], b.inertia[i]);
@@ -548,6 +651,7 @@ impl HostArrays {
                 inv.y,
                 inv.z,
                 (0.5 * c.dt) / (m * 1.0),
+                dof_bits(b.force_flag[i], b.torque_flag[i]),
             ]);
             load.extend([
                 b.force[i].x,
@@ -588,7 +692,7 @@ impl HostArrays {
     }
 
     /// The storage buffers of group 0, by binding.
-    fn buffers(&self, gpu: &Gpu, n: Sizes) -> Vec<wgpu::Buffer> {
+    fn buffers(&self, gpu: &Gpu, n: Sizes, springs: Option<Springs>) -> Vec<wgpu::Buffer> {
         let nw = (self.walls.len() / 7).max(1);
         let mut out = vec![gpu.buffer("pf", &self.pf), gpu.buffer("pu", &self.pu)];
         for (k, a) in self.bodies.iter().enumerate() {
@@ -602,17 +706,31 @@ impl HostArrays {
         out.push(gpu.zeroed::<u32>("keys", n.npow2));
         out.push(gpu.zeroed::<u32>("idx", n.npow2));
         out.push(gpu.zeroed::<u32>("cells", 2 * n.cells));
-        for _ in 0..2 {
-            // the table, then its copy at the last build (old_*)
-            out.push(gpu.zeroed::<u32>("noff", n.ns + 1));
-            out.push(gpu.zeroed::<u32>("nbr", n.cap));
-            out.push(gpu.zeroed::<f64>("hist", 3 * n.cap));
+        // the table (the carried springs, if any, which the first build
+        // looks up), then its copy at the last build (old_*)
+        match &springs {
+            Some(sp) => {
+                out.push(gpu.buffer("noff", &sp.noff));
+                out.push(gpu.buffer("nbr", &padded(&sp.nbr, n.cap)));
+                out.push(gpu.buffer("hist", &padded(&sp.hist, 3 * n.cap)));
+            }
+            None => {
+                out.push(gpu.zeroed::<u32>("noff", n.ns + 1));
+                out.push(gpu.zeroed::<u32>("nbr", n.cap));
+                out.push(gpu.zeroed::<f64>("hist", 3 * n.cap));
+            }
         }
+        out.push(gpu.zeroed::<u32>("old_off", n.ns + 1));
+        out.push(gpu.zeroed::<u32>("old_nbr", n.cap));
+        out.push(gpu.zeroed::<f64>("old_hist", 3 * n.cap));
         out.push(gpu.zeroed::<u32>("mirror", n.cap));
         out.push(gpu.zeroed::<f64>("pout", 9 * n.cap));
         out.push(gpu.zeroed::<f64>("sft", 12 * n.ns));
         out.push(gpu.buffer("walls", &self.walls));
-        out.push(gpu.zeroed::<f64>("whist", 3 * n.ns * nw));
+        match &springs {
+            Some(sp) => out.push(gpu.buffer("whist", &padded(&sp.whist, 3 * n.ns * nw))),
+            None => out.push(gpu.zeroed::<f64>("whist", 3 * n.ns * nw)),
+        }
         out.push(gpu.buffer("laws", &self.laws));
         out.push(gpu.zeroed::<f64>("sx0", 3 * n.ns));
         out

@@ -5,7 +5,9 @@
 //! - `bed`: a bed of tetra clumps in a closed box, all of it on the device;
 //! - `support`: what the device step runs, refused by scenario key;
 //! - `device_world`: a world's arrays on the device, the step's kernels in
-//!   order (`shaders/*.wgsl`), the copies in and out at events.
+//!   order (`shaders/*.wgsl`);
+//! - `transfer`: the copies in and out at events, springs included, and
+//!   the stepper a runner hands the steps between its events to.
 //!
 //! ARCHITECTURE.md ("The device path") describes the device data layout,
 //! the kernels in step order and what crosses the bus and when.
@@ -14,6 +16,8 @@ pub mod bed;
 pub mod context;
 pub mod device_world;
 pub mod support;
+pub mod transfer;
 
 pub use context::{Gpu, GpuError};
 pub use device_world::{DeviceError, DeviceWorld};
+pub use transfer::DeviceStepper;

@@ -63,8 +63,25 @@ fn wall_key(k: usize, key: Option<&'static str>) -> Vec<KeySeg> {
     p
 }
 
-/// Everything in `world` the device step does not do (empty: it runs).
+/// Everything in `world` the device step does not do (empty: it runs):
+/// [`unsupported_settings`] and bodies before their start step (a
+/// stream's ballistic entry; [`crate::DeviceStepper`] takes those steps on
+/// the CPU path).
 pub fn unsupported(world: &World) -> Vec<Unsupported> {
+    let mut out = unsupported_settings(world);
+    let b = world.bodies();
+    if (0..b.len()).any(|i| b.start_step[i] > world.step) {
+        out.push(Unsupported {
+            path: keys("insert"),
+            allowed: "bodies present from the start of the device run".into(),
+        });
+    }
+    out
+}
+
+/// The settings of `world` (its scenario's keys) that the device step
+/// does not run: what `clump check|run|resume --device gpu` refuse.
+pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
     let mut out = Vec::new();
     let mut no = |path: Vec<KeySeg>, allowed: &str| {
         out.push(Unsupported {
@@ -75,11 +92,11 @@ pub fn unsupported(world: &World) -> Vec<Unsupported> {
     let c = &world.config;
     if !matches!(
         c.rotation,
-        RotationScheme::NoSquish | RotationScheme::RichardsonLiggghts
+        RotationScheme::NoSquish | RotationScheme::Richardson | RotationScheme::RichardsonLiggghts
     ) {
         no(
             keys("integrator.rotation"),
-            "\"no_squish\" (the default) or \"richardson_liggghts\"",
+            "\"no_squish\" (the default), \"richardson\" or \"richardson_liggghts\"",
         );
     }
     if c.domain.periodic.iter().any(|&p| p) {
@@ -114,17 +131,11 @@ pub fn unsupported(world: &World) -> Vec<Unsupported> {
         }
     }
     let b = world.bodies();
-    let free = (0..b.len()).all(|i| b.force_flag[i] == [true; 3] && b.torque_flag[i] == [true; 3]);
-    if !free {
-        no(
-            keys("template.force_flags"),
-            "every axis free (force_flags and torque_flags all true, no fixed or driven bodies)",
-        );
-    }
-    if (0..b.len()).any(|i| b.start_step[i] > world.step) {
+    // a driven (or fixed) body never starts (`dof::DRIVEN`)
+    if (0..b.len()).any(|i| b.start_step[i] == clump_core::dof::DRIVEN) {
         no(
             keys("insert"),
-            "bodies present from the start of the device run",
+            "no fixed or driven bodies (`fixed`, `driven`; force and torque flags are allowed)",
         );
     }
     if world.heat.is_some() {

@@ -92,10 +92,11 @@ pub struct BenchArgs {
     /// Steps of phase B, dense bed, timed on its own (default: the second stage).
     #[arg(long)]
     pub nb: Option<u64>,
-    /// Where Clump's step runs. `gpu`: a box bed of about `--n` tetra clumps
-    /// that the GPU path runs whole, `--nb` steps (default 1000) on the
-    /// device and on the CPU path, sphere-steps/s of both and their largest
-    /// position difference (needs the `gpu` feature).
+    /// Where Clump's step runs. `gpu`: the world of `--scenario` (e.g.
+    /// benches/tetra_bed_2000.toml), else a box bed of about `--n` tetra
+    /// clumps, `--nb` steps (default 1000) on the device and on the CPU
+    /// path, sphere-steps/s of both and their largest position difference
+    /// (needs the `gpu` feature).
     #[arg(long, value_enum, default_value_t = crate::device::Device::Cpu)]
     pub device: crate::device::Device,
     /// Threads for Clump (rayon).
@@ -156,7 +157,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         return scaling::scaling(args);
     }
     if args.device == crate::device::Device::Gpu {
-        return crate::device::bench(args.n, args.nb.unwrap_or(1000), args.threads);
+        // with --scenario, its world (e.g. the shared tetra bed); else the
+        // box bed of clump_gpu::bed with about --n clumps
+        let world = match &args.scenario {
+            Some(_) => Some(build_world(&scenario_path(args), args.skin)?.0),
+            None => None,
+        };
+        return crate::device::bench(args.n, args.nb.unwrap_or(1000), args.threads, world);
     }
     match args.case {
         Case::Tetra => {}

@@ -68,14 +68,16 @@ fn first_half(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
     if (i >= pu[PU_NB]) { return; }
     let dt = pf[PF_DT];
-    let dtfm = bm[8u * i + 7u];
+    let dtfm = bm[9u * i + 7u];
     let dtt = 0.5lf * dt;
     let f = vec3<f64>(bft[6u * i], bft[6u * i + 1u], bft[6u * i + 2u]);
     let m = vec3<f64>(bft[6u * i + 3u], bft[6u * i + 4u], bft[6u * i + 5u]);
-    let v = ld_bv(i) + dtfm * f;
-    let l = ld_bl(i) + dtt * m;
+    // kick::HalfKick::apply: a locked axis keeps its value
+    let fl = dof_flags(i);
+    let v = select(ld_bv(i), ld_bv(i) + dtfm * f, fl[0]);
+    let l = select(ld_bl(i), ld_bl(i) + dtt * m, fl[1]);
     let x = ld_bx(i) + v * dt;
-    let inertia = vec3<f64>(bm[8u * i + 1u], bm[8u * i + 2u], bm[8u * i + 3u]);
+    let inertia = vec3<f64>(bm[9u * i + 1u], bm[9u * i + 2u], bm[9u * i + 3u]);
     var qn: vec4<f64>;
     var w: vec3<f64>;
     if (pu[PU_ROT] == 0u) {
@@ -83,8 +85,12 @@ fn first_half(@builtin(global_invocation_id) gid: vec3<u32>) {
         qn = qw.q;
         w = qw.w;
     } else {
-        qn = no_squish_drift(ldq(i), l, inertia, dt);
-        let inv = vec3<f64>(bm[8u * i + 4u], bm[8u * i + 5u], bm[8u * i + 6u]);
+        let inv = vec3<f64>(bm[9u * i + 4u], bm[9u * i + 5u], bm[9u * i + 6u]);
+        if (pu[PU_ROT] == 2u) {
+            qn = richardson_drift(ldq(i), l, inertia, inv, dt);
+        } else {
+            qn = no_squish_drift(ldq(i), l, inertia, dt);
+        }
         w = omega_world(mat_from_quat(qn), l, inv);
     }
     st_bv(i, v);
@@ -152,7 +158,7 @@ fn body_load(b: u32) -> array<vec3<f64>, 2> {
         wtor += vec3<f64>(sft[12u * s + 9u], sft[12u * s + 10u], sft[12u * s + 11u]);
     }
     let g = vec3<f64>(pf[PF_G], pf[PF_G + 1u], pf[PF_G + 2u]);
-    let f = (bm[8u * b] * g + pfor) + wfor;
+    let f = (bm[9u * b] * g + pfor) + wfor;
     let m = ptor + wtor;
     return array<vec3<f64>, 2>(f, m);
 }
@@ -180,11 +186,12 @@ fn gather_kick(@builtin(global_invocation_id) gid: vec3<u32>) {
     let fm = body_load(b);
     store_load(b, fm[0], fm[1]);
     let dtt = 0.5lf * pf[PF_DT];
-    let v = ld_bv(b) + bm[8u * b + 7u] * fm[0];
-    let l = ld_bl(b) + dtt * fm[1];
+    let fl = dof_flags(b);
+    let v = select(ld_bv(b), ld_bv(b) + bm[9u * b + 7u] * fm[0], fl[0]);
+    let l = select(ld_bl(b), ld_bl(b) + dtt * fm[1], fl[1]);
     st_bv(b, v);
     st_bl(b, l);
-    let inv = vec3<f64>(bm[8u * b + 4u], bm[8u * b + 5u], bm[8u * b + 6u]);
+    let inv = vec3<f64>(bm[9u * b + 4u], bm[9u * b + 5u], bm[9u * b + 6u]);
     // rotation::omega_world_inv
     st_bw(b, omega_world(mat_from_quat(ldq(b)), l, inv));
 }

@@ -13,7 +13,7 @@
 @group(0) @binding(5) var<storage, read_write> bl: array<f64>;    // angular momentum, world, kg m^2/s (3/body)
 @group(0) @binding(6) var<storage, read_write> bw: array<f64>;    // angular velocity, world, rad/s (3/body)
 @group(0) @binding(7) var<storage, read_write> bft: array<f64>;   // force N, torque N m, world (6/body)
-@group(0) @binding(8) var<storage, read_write> bm: array<f64>;    // mass, I (3), 1/I (3), dt/(2m) (8/body)
+@group(0) @binding(8) var<storage, read_write> bm: array<f64>;    // mass, I (3), 1/I (3), dt/(2m), DOF flag bits (9/body)
 @group(0) @binding(9) var<storage, read_write> bfirst: array<u32>; // first sphere of each body (nb+1)
 @group(0) @binding(10) var<storage, read_write> sown: array<u32>; // owner body, material (2/sphere)
 @group(0) @binding(11) var<storage, read_write> sref: array<f64>; // body-frame offset (3), radius (4/sphere)
@@ -51,7 +51,7 @@ const PU_NMAT: u32 = 8u;
 const PU_SORT_K: u32 = 9u;
 const PU_SORT_J: u32 = 10u;
 const PU_OVERFLOW: u32 = 11u; // 1: a sphere had more than MAXN neighbours, 2: the table exceeded cap
-const PU_ROT: u32 = 12u;      // rotation scheme: 0 richardson_liggghts, 1 no_squish
+const PU_ROT: u32 = 12u;      // rotation scheme: 0 richardson_liggghts, 1 no_squish, 2 richardson
 const PU_STALE: u32 = 13u;    // 1: a sphere moved more than half the skin since the last build
 const PU_BUILDS: u32 = 14u;   // table builds so far
 const MAXN: u32 = 32u;
@@ -109,6 +109,13 @@ fn mat_from_quat(q: vec4<f64>) -> Mat3 {
 // glam DMat3 * DVec3: ((x_axis v.x) + (y_axis v.y)) + z_axis v.z
 fn mat_mul(m: Mat3, v: vec3<f64>) -> vec3<f64> {
     return (m.x * v.x + m.y * v.y) + m.z * v.z;
+}
+// body b's force flags (bits 0-2) and torque flags (bits 3-5) per world
+// axis (dof.rs, T-15): false freezes that component of v or L
+fn dof_flags(b: u32) -> array<vec3<bool>, 2> {
+    let f = u32(bm[9u * b + 8u]);
+    return array<vec3<bool>, 2>(vec3<bool>((f & 1u) != 0u, (f & 2u) != 0u, (f & 4u) != 0u),
+                                vec3<bool>((f & 8u) != 0u, (f & 16u) != 0u, (f & 32u) != 0u));
 }
 fn ldq(i: u32) -> vec4<f64> {
     return vec4<f64>(bq[4u * i], bq[4u * i + 1u], bq[4u * i + 2u], bq[4u * i + 3u]);

@@ -87,8 +87,8 @@ fn pair_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         let lever_i = ld_sarm(i) - nrm * ai;
         let lever_j = ld_sarm(j) + nrm * aj;
         let vrel = (ld_bv(bi) + cross3(ld_bw(bi), lever_i)) - (ld_bv(bj) + cross3(ld_bw(bj), lever_j));
-        let mi = bm[8u * bi];
-        let mj = bm[8u * bj];
+        let mi = bm[9u * bi];
+        let mj = bm[9u * bj];
         let law = law_of(sown[2u * i + 1u], sown[2u * j + 1u]);
         let out = sliding(law, nrm, overlap, vrel, ri * rj / (ri + rj), mi * mj / (mi + mj), ld_hist(e));
         st_hist(e, out.xi);
@@ -122,7 +122,7 @@ fn wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<functi
     let lever = xc - com;
     let vrel = ld_bv(b) + cross3(ld_bw(b), lever);
     let law = law_of(sown[2u * i + 1u], u32(walls[7u * w + 6u]));
-    let out = sliding(law, n, overlap, vrel, r, bm[8u * b], ld_whist(slot));
+    let out = sliding(law, n, overlap, vrel, r, bm[9u * b], ld_whist(slot));
     st_whist(slot, out.xi);
     *fsum += out.force;
     *tsum += cross3(lever, out.force);

@@ -1,4 +1,5 @@
-// The free-rotation drift of NO_SQUISH (docs/theory.md T-18) and of the
+// The free-rotation drift of NO_SQUISH (docs/theory.md T-18), of the
+// exact Richardson scheme (rotation/richardson.rs) and of the
 // spherical top (T-17), as crates/clump-core/src/rotation/no_squish.rs,
 // rotation/mod.rs (RotationScheme::drift) and math/quat.rs: the same
 // series for the small angles of a DEM step (bit for bit the CPU's), and
@@ -133,4 +134,29 @@ fn no_squish_drift(q0: vec4<f64>, l: vec3<f64>, inertia: vec3<f64>, dt: f64) -> 
     nsq_rotate(&q, &lb, inertia, 1u, half);
     nsq_rotate(&q, &lb, inertia, 2u, half);
     return qnormalize_glam(q);
+}
+
+// rotation/richardson.rs omega_at: w = q ((q* L) I^-1), world frame
+fn omega_at(q: vec4<f64>, l: vec3<f64>, inv: vec3<f64>) -> vec3<f64> {
+    return qrot(q, qrot(vec4<f64>(-q.x, -q.y, -q.z, q.w), l) * inv);
+}
+
+// RotationScheme::Richardson.drift (docs/theory.md, rotation/richardson.rs
+// drift_by): the spherical top's exact turn, else one full and two half
+// exponential sub-steps with w frozen over each, extrapolated to
+// normalise(2 q_half2 - q_full); the full step and the first half share
+// w(q) and one exponential
+fn richardson_drift(q0: vec4<f64>, l: vec3<f64>, inertia: vec3<f64>, inv: vec3<f64>, dt: f64) -> vec4<f64> {
+    if (inertia.x == inertia.y && inertia.y == inertia.z && inertia.x > 0.0lf) {
+        return renormalize(qmul(quat_from_rotation_vector(l * (dt / inertia.x)), q0));
+    }
+    let half = 0.5lf * dt;
+    let w0 = omega_at(q0, l, inv);
+    let e_half = quat_from_rotation_vector(w0 * half);
+    let q_full = qmul(qmul(e_half, e_half), q0);
+    let q_half1 = qmul(e_half, q0);
+    let w1 = omega_at(q_half1, l, inv);
+    let e1 = quat_from_rotation_vector(w1 * half);
+    let q_half2 = qmul(e1, q_half1);
+    return qnormalize_glam(q_half2 * 2.0lf - q_full);
 }

@@ -28,6 +28,7 @@
 #![allow(clippy::manual_is_multiple_of, clippy::result_large_err)]
 
 mod checkpoint;
+pub mod device;
 mod error;
 mod manifest;
 pub mod outdir;
@@ -357,6 +358,9 @@ pub struct Runner {
     /// here, taken before any stage change or insertion (which would make
     /// the records stale); `None` where no contacts were recorded.
     snap: Option<post::frame::Frame>,
+    /// The device that takes the steps between events, if any
+    /// ([`device::StepDevice`]); `None`: the CPU path takes them all.
+    device: Option<Box<dyn device::StepDevice>>,
 }
 
 impl Runner {
@@ -445,6 +449,7 @@ impl Runner {
             out,
             n_scenario_templates: n,
             snap: None,
+            device: None,
         }
     }
 
@@ -462,6 +467,12 @@ impl Runner {
     /// scenario; see `clump_core::partition`).
     pub fn partition(&mut self, comm: Box<dyn clump_core::partition::Comm>) {
         self.world.partition(comm);
+    }
+
+    /// Hands the steps between events, but the last before each event,
+    /// to `device` ([`device::StepDevice`]).
+    pub fn set_device(&mut self, device: Box<dyn device::StepDevice>) {
+        self.device = Some(device);
     }
 
     /// The output directory.
@@ -618,6 +629,24 @@ impl Runner {
             pace,
             tripped: None,
         };
+        let at = self.world.step;
+        if let Some(dev) = self.device.as_mut() {
+            // the steps before the event's last on the device
+            let to = event.step - 1;
+            if to > at {
+                let done = dev
+                    .advance(&mut self.world, to, &mut || hook.stop_requested())
+                    .map_err(|e| RunError::Runtime(format!("step {at}: device: {e}")))?;
+                *hook.step_in_stage += done;
+                *hook.pace.sphere_steps += done as f64 * self.world.spheres().len() as f64;
+                if done > 0 {
+                    *hook.pre_step_done = false;
+                }
+                if self.world.step < to {
+                    return Ok((Advance::Interrupted, None));
+                }
+            }
+        }
         let at = self.world.step;
         let how = self
             .world

@@ -1,0 +1,323 @@
+//! The copies between a host world and the device at events, springs
+//! included, so that a download followed by an upload continues the run
+//! as if it had stayed on the device, and a world downloaded from the
+//! device continues on the CPU path (or is checkpointed) with its contact
+//! history.
+//!
+//! Both directions go through the checkpoint form of the state
+//! ([`clump_core::state::WorldState`]): pair springs keyed by (lower,
+//! higher) global sphere id and oriented from the lower to the higher id,
+//! wall springs per sphere in slots keyed by wall. On the device a pair's
+//! spring lives in its owning entry (i, j > i by device sphere index) and
+//! is the spring of the force on i; a wall spring lives in slot
+//! (sphere, wall).
+
+use crate::context::Gpu;
+use crate::device_world::{DeviceError, DeviceWorld, Kernels, Springs};
+use crate::support::unsupported;
+use clump_core::contact::ContactHistory;
+use clump_core::neighbor::walls::WALL_SLOTS;
+use clump_core::sphere::sphere_gid;
+use clump_core::world::World;
+use glam::{DQuat, DVec3};
+use std::collections::HashMap;
+
+/// Global sphere id of each device sphere (bodies in ascending id,
+/// spheres in template order, as `HostArrays::new` lays them out).
+fn device_gids(world: &World) -> Vec<u64> {
+    let b = &crate::device_world::by_id(world);
+    let mut out = Vec::new();
+    for i in 0..b.len() {
+        let t = b.template[i] as usize;
+        for k in 0..world.templates[t].spheres.len() {
+            out.push(sphere_gid(b.id[i], k as u32));
+        }
+    }
+    out
+}
+
+/// The wall of a wall slot's key (`step/wall_contacts.rs` `slot_key`:
+/// `(wall << 16 | patch) + 1`, patch 0 for a plane).
+fn slot_key(wall: usize) -> u32 {
+    ((wall as u32) << 16) + 1
+}
+
+fn slot_wall(key: u32) -> usize {
+    ((key - 1) >> 16) as usize
+}
+
+fn bad_state(e: impl std::fmt::Display) -> DeviceError {
+    DeviceError::Overflow(format!("device state: {e}"))
+}
+
+impl Springs {
+    /// The springs of `state`, saved from `world` just before.
+    fn of(
+        world: &World,
+        state: &clump_core::state::WorldState,
+        cap: usize,
+    ) -> Result<Springs, DeviceError> {
+        let gids = device_gids(world);
+        let ns = gids.len();
+        let at: HashMap<u64, u32> = gids
+            .iter()
+            .enumerate()
+            .map(|(d, &g)| (g, d as u32))
+            .collect();
+        let find = |g: u64| {
+            at.get(&g)
+                .copied()
+                .ok_or_else(|| bad_state(format!("sphere {g} has a spring but no body")))
+        };
+        let mut rows: Vec<Vec<(u32, DVec3)>> = vec![Vec::new(); ns];
+        for &((gi, gj), h) in &state.pair_history {
+            let (di, dj) = (find(gi)?, find(gj)?);
+            if di < dj {
+                rows[di as usize].push((dj, h.tangential));
+            } else {
+                rows[dj as usize].push((di, -h.tangential));
+            }
+        }
+        let mut noff = Vec::with_capacity(ns + 1);
+        let (mut nbr, mut hist) = (Vec::new(), Vec::new());
+        for row in &mut rows {
+            row.sort_by_key(|e| e.0);
+            noff.push(nbr.len() as u32);
+            for &(j, t) in row.iter() {
+                nbr.push(j);
+                hist.extend([t.x, t.y, t.z]);
+            }
+        }
+        noff.push(nbr.len() as u32);
+        if nbr.len() > cap {
+            return Err(DeviceError::Overflow(format!(
+                "{} pair springs do not fit the device table of {cap} entries",
+                nbr.len()
+            )));
+        }
+        let nw = world.walls.len();
+        let mut whist = vec![0.0; 3 * ns * nw];
+        let cpu_gid = &world.spheres().gid;
+        for (s, (keys, hs)) in state.wall_key.iter().zip(&state.wall_hist).enumerate() {
+            for (&key, h) in keys.iter().zip(hs) {
+                if key == 0 || slot_wall(key) >= nw {
+                    continue;
+                }
+                let slot = find(cpu_gid[s])? as usize * nw + slot_wall(key);
+                whist[3 * slot..3 * slot + 3].copy_from_slice(&h.tangential.to_array());
+            }
+        }
+        Ok(Springs {
+            noff,
+            nbr,
+            hist,
+            whist,
+        })
+    }
+}
+
+impl DeviceWorld {
+    /// Continues `world` on the device: its bodies with the forces of its
+    /// last evaluation (the CPU path evaluates them first if it has none)
+    /// and its contact springs. The device evaluates nothing at upload, so
+    /// its next step is the step the CPU path would take.
+    pub fn continue_from(gpu: Gpu, world: &mut World) -> Result<DeviceWorld, DeviceError> {
+        let refused = unsupported(world);
+        if !refused.is_empty() {
+            return Err(DeviceError::Unsupported(refused));
+        }
+        let kernels = Kernels::new(&gpu)?;
+        DeviceWorld::load(gpu, kernels, world)
+    }
+
+    /// [`Self::continue_from`] on this device with its compiled kernels
+    /// (an event changed the world on the host).
+    pub fn reload(self, world: &mut World) -> Result<DeviceWorld, DeviceError> {
+        let refused = unsupported(world);
+        if !refused.is_empty() {
+            return Err(DeviceError::Unsupported(refused));
+        }
+        let (gpu, kernels) = self.into_parts();
+        DeviceWorld::load(gpu, kernels, world)
+    }
+
+    fn load(gpu: Gpu, kernels: Kernels, world: &mut World) -> Result<DeviceWorld, DeviceError> {
+        let state = world.save_state().map_err(bad_state)?;
+        let cap = crate::device_world::table_capacity(world);
+        let springs = Springs::of(world, &state, cap)?;
+        DeviceWorld::bind(gpu, kernels, world, Some(springs))
+    }
+
+    /// Copies the device's state into `world` (an event: output,
+    /// checkpoint, insertion): every body's pose, velocities, angular
+    /// momentum and the forces and torques of the last evaluation, the
+    /// pair and wall springs, the step count and time, matched by body and
+    /// sphere id. The world's neighbour list is rebuilt around the new
+    /// poses. Its contact statistics and wall loads stay those of its own
+    /// last evaluation (the runner's step at the event renews them).
+    pub fn download_state(&self, world: &mut World) -> Result<(), DeviceError> {
+        let mut s = world.save_state().map_err(bad_state)?;
+        let read = |b: usize| -> Result<Vec<f64>, DeviceError> { Ok(self.read_f64(b)?) };
+        let (x, v, q, l, w, ft) = (read(2)?, read(3)?, read(4)?, read(5)?, read(6)?, read(7)?);
+        let at: HashMap<u64, usize> = s
+            .bodies
+            .id
+            .iter()
+            .enumerate()
+            .map(|(k, &id)| (id, k))
+            .collect();
+        let b = &mut s.bodies;
+        for (i, id) in self.ids.iter().enumerate() {
+            let k = *at.get(id).ok_or_else(|| {
+                bad_state(format!("body {id} left the world while on the device"))
+            })?;
+            let d3 = |a: &[f64], n: usize, o: usize| {
+                DVec3::new(a[n * i + o], a[n * i + o + 1], a[n * i + o + 2])
+            };
+            b.position[k] = d3(&x, 3, 0);
+            b.velocity[k] = d3(&v, 3, 0);
+            b.orientation[k] = DQuat::from_xyzw(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
+            b.angular_momentum[k] = d3(&l, 3, 0);
+            b.angular_velocity[k] = d3(&w, 3, 0);
+            b.force[k] = d3(&ft, 6, 0);
+            b.torque[k] = d3(&ft, 6, 3);
+        }
+        s.reference_pose = (0..b.len())
+            .map(|k| (b.position[k], b.orientation[k]))
+            .collect();
+        let gids = device_gids(world);
+        s.pair_history = self.pair_springs(&gids)?;
+        (s.wall_key, s.wall_hist) = self.wall_springs(world, &gids)?;
+        s.step = self.step;
+        s.time = self.time;
+        s.built_step = self.step;
+        world.restore_state(s).map_err(bad_state)
+    }
+
+    /// The springs of the pair table's owning entries that are not zero,
+    /// keyed and oriented as in a checkpoint.
+    fn pair_springs(&self, gids: &[u64]) -> Result<Vec<((u64, u64), ContactHistory)>, DeviceError> {
+        let (noff, nbr, hist) = self.table()?;
+        let cap = nbr.len();
+        let mut out = Vec::new();
+        for i in 0..gids.len() {
+            for e in noff[i] as usize..(noff[i + 1] as usize).min(cap) {
+                let j = nbr[e] as usize;
+                let t = DVec3::new(hist[3 * e], hist[3 * e + 1], hist[3 * e + 2]);
+                if j <= i || t == DVec3::ZERO {
+                    continue;
+                }
+                let (gi, gj) = (gids[i], gids[j]);
+                let (key, t) = if gi < gj {
+                    ((gi, gj), t)
+                } else {
+                    ((gj, gi), -t)
+                };
+                out.push((
+                    key,
+                    ContactHistory {
+                        tangential: t,
+                        rolling: DVec3::ZERO,
+                    },
+                ));
+            }
+        }
+        out.sort_by_key(|e| e.0);
+        Ok(out)
+    }
+
+    /// The wall springs that are not zero, per sphere of `world` in its
+    /// storage order, in slots by ascending wall.
+    #[allow(clippy::type_complexity)]
+    fn wall_springs(
+        &self,
+        world: &World,
+        gids: &[u64],
+    ) -> Result<(Vec<[u32; WALL_SLOTS]>, Vec<[ContactHistory; WALL_SLOTS]>), DeviceError> {
+        let whist = self.read_f64(27)?;
+        let nw = world.walls.len();
+        let at: HashMap<u64, usize> = gids.iter().enumerate().map(|(d, &g)| (g, d)).collect();
+        let cpu_gid = &world.spheres().gid;
+        let mut keys = vec![[0u32; WALL_SLOTS]; cpu_gid.len()];
+        let mut hists = vec![[ContactHistory::default(); WALL_SLOTS]; cpu_gid.len()];
+        for (s, g) in cpu_gid.iter().enumerate() {
+            let d = *at
+                .get(g)
+                .ok_or_else(|| bad_state(format!("sphere {g} is not on the device")))?;
+            let mut used = 0;
+            for w in 0..nw {
+                let o = 3 * (d * nw + w);
+                let t = DVec3::new(whist[o], whist[o + 1], whist[o + 2]);
+                if t != DVec3::ZERO && used < WALL_SLOTS {
+                    keys[s][used] = slot_key(w);
+                    hists[s][used].tangential = t;
+                    used += 1;
+                }
+            }
+        }
+        Ok((keys, hists))
+    }
+}
+
+/// A device that takes the steps between a runner's events: the world is
+/// uploaded at the start of each stretch and downloaded at its end (both
+/// with the springs), the compiled kernels are kept.
+pub struct DeviceStepper {
+    parts: Option<DeviceWorld>,
+    gpu: Option<Gpu>,
+}
+
+impl DeviceStepper {
+    /// A stepper on `gpu`; nothing is compiled until the first stretch.
+    pub fn new(gpu: Gpu) -> DeviceStepper {
+        DeviceStepper {
+            parts: None,
+            gpu: Some(gpu),
+        }
+    }
+
+    /// Takes `world` from its step to step `to` on the device, checking
+    /// `stop` between submissions; returns the steps taken (fewer than
+    /// asked when `stop` answered true). `world` holds the device's state
+    /// afterwards. While a body is still before its start step (a stream's
+    /// ballistic entry), the CPU path takes the steps.
+    pub fn advance(
+        &mut self,
+        world: &mut World,
+        to: u64,
+        stop: &mut dyn FnMut() -> bool,
+    ) -> Result<u64, DeviceError> {
+        const SUBMISSIONS: u64 = 256;
+        // bodies of a stream move ballistically to their start step (the
+        // CPU path's `start_step`), which the device does not do: those
+        // steps run on the CPU path
+        let first = world.step;
+        let late = world.bodies().start_step.iter().copied().max().unwrap_or(0);
+        if late > world.step {
+            let k = late.min(to) - world.step;
+            world.run(k).map_err(bad_state)?;
+            if world.step >= to || stop() {
+                return Ok(world.step - first);
+            }
+        }
+        let mut dev = match (self.parts.take(), self.gpu.take()) {
+            (Some(d), _) => d.reload(world)?,
+            (None, Some(g)) => DeviceWorld::continue_from(g, world)?,
+            (None, None) => {
+                return Err(DeviceError::Overflow(
+                    "the device was lost at an earlier error".into(),
+                ))
+            }
+        };
+        while dev.step < to {
+            dev.run((to - dev.step).min(SUBMISSIONS))?;
+            if stop() {
+                break;
+            }
+        }
+        dev.download_state(world)?;
+        let done = dev.step - first;
+        self.parts = Some(dev);
+        Ok(done)
+    }
+}
