@@ -6,6 +6,8 @@
 //! sides (also with heat and convection, at 2 and 3 ranks), a restart at
 //! 3 ranks from a checkpoint written in pieces at 2, and SIGTERM on 2 ranks
 //! (one checkpoint of the whole world, which resumes bit for bit).
+//! Spheres and bodies frames are written in pieces on ranks (`.pvtp`):
+//! the union of the pieces, ordered by body id, is one process's frame.
 //! Built only with the `mpi` feature (scripts/test-all.sh runs it).
 #![cfg(feature = "mpi")]
 
@@ -112,8 +114,53 @@ fn differing(a: &Path, b: &Path) -> Vec<&'static str> {
         .collect()
 }
 
-/// Every file of `a` but the manifest (wall times, paths) equals `b`'s;
-/// checkpoints compare by their world.
+/// A frame's arrays (`clump_io::post::read::read_vtp`, a `.pvtp` as its
+/// pieces one after another) with every point in the order of its
+/// `body_id`, points of one body in their order (a stable sort), as bits.
+fn frame_by_body(path: &Path) -> Vec<(String, Vec<u64>)> {
+    let a = clump_io::post::read::read_vtp(path).unwrap();
+    let ids = &a["body_id"];
+    let mut order: Vec<usize> = (0..ids.len()).collect();
+    order.sort_by_key(|&i| ids[i] as u64);
+    let mut out: Vec<(String, Vec<u64>)> = a
+        .iter()
+        .map(|(k, v)| {
+            let comps = v.len() / ids.len().max(1);
+            let bits = order
+                .iter()
+                .flat_map(|&i| v[comps * i..comps * (i + 1)].iter().map(|x| x.to_bits()))
+                .collect();
+            (k.clone(), bits)
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+/// The frame `s` of one process's run `a` and of the run on ranks `b`:
+/// `b` holds it in pieces (`.pvtp`); the union of the pieces, ordered by
+/// body id, is one process's frame value for value, bit for bit.
+fn assert_same_frame(a: &Path, b: &Path, s: &str, what: &str) {
+    let pvtp = b.join(s.replace(".vtp", ".pvtp"));
+    assert!(pvtp.exists(), "{what}: {s} is not written in pieces");
+    let (x, y) = (frame_by_body(&a.join(s)), frame_by_body(&pvtp));
+    assert_eq!(
+        x.iter().map(|e| &e.0).collect::<Vec<_>>(),
+        y.iter().map(|e| &e.0).collect::<Vec<_>>(),
+        "{what}: {s}: the arrays differ"
+    );
+    for ((name, u), (_, v)) in x.iter().zip(&y) {
+        assert!(
+            u == v,
+            "{what}: {s}: array {name} differs from one process's"
+        );
+    }
+}
+
+/// Every file of `a` (one process's run) but the manifest (wall times,
+/// paths) equals `b`'s; checkpoints compare by their world, spheres and
+/// bodies frames by their values ([`assert_same_frame`]; `b`'s `.pvd`
+/// lists the `.pvtp` where `a`'s lists the `.vtp`).
 fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
     let mut names: Vec<_> = std::fs::read_dir(a)
         .unwrap()
@@ -127,8 +174,20 @@ fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
             continue;
         }
         let (fa, fb) = (a.join(&n), b.join(&n));
+        let piece = (s.starts_with("spheres_") || s.starts_with("bodies_")) && s.ends_with(".vtp");
+        if piece {
+            assert_same_frame(a, b, &s, what);
+            checked += 1;
+            continue;
+        }
         assert!(fb.exists(), "{what}: {s} is missing");
-        if s.ends_with(".ckpt") {
+        if s == "spheres.pvd" || s == "bodies.pvd" {
+            let text = std::fs::read_to_string(&fb).unwrap();
+            assert!(
+                std::fs::read_to_string(&fa).unwrap() == text.replace(".pvtp\"", ".vtp\""),
+                "{what}: {s} does not list one process's frames"
+            );
+        } else if s.ends_with(".ckpt") {
             let d = differing(&fa, &fb);
             assert!(
                 d.is_empty(),
@@ -193,6 +252,59 @@ fn clumps_crossing_periodic_sides_have_the_same_bits() {
         "crates/clump-cli/tests/fixtures/periodic_straddle.toml",
         "1000",
     );
+}
+
+/// Frames where nothing else is due are written in pieces from the world
+/// split over the ranks (no gather of the world before or after them):
+/// the pieces' union is one process's frame, contact counts included.
+#[test]
+fn frames_of_a_split_world_are_one_process_s() {
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_frames.toml";
+    same_bits_at("frames", scenario, "1000", &[3]);
+    // the frames did not gather the world: one gather at the first split
+    // of the world is all a run needs without events that gather it
+    let d = out_dir("frames-gathers");
+    let out = Command::new("mpirun")
+        .args(["--oversubscribe", "--allow-run-as-root", "-np", "2"])
+        .arg(env!("CARGO_BIN_EXE_clump"))
+        .args([
+            "run",
+            scenario,
+            "-o",
+            d.to_str().unwrap(),
+            "--steps",
+            "1000",
+        ])
+        .args(["--threads", "1"])
+        .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+        .current_dir(repo())
+        .output()
+        .unwrap();
+    let text =
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    let frames = std::fs::read_dir(&d)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .file_name()
+                .to_string_lossy()
+                .ends_with(".pvtp")
+        })
+        .count()
+        / 2;
+    let gathers: usize = text
+        .split(" whole-world gathers")
+        .next()
+        .and_then(|s| s.rsplit(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no gather count in the output:\n{text}"));
+    assert!(frames > 10, "only {frames} frames");
+    assert!(
+        gathers < frames / 2,
+        "{gathers} whole-world gathers for {frames} frames written in pieces"
+    );
+    let _ = std::fs::remove_dir_all(&d);
 }
 
 /// Heat on ranks: conduction through contacts and the floor, and

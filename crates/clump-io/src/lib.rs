@@ -16,5 +16,6 @@ pub mod thermo_csv;
 pub mod trajectory;
 pub mod vtk;
 pub mod vtk_contacts;
+pub mod vtk_pieces;
 pub(crate) mod vtp;
 pub mod vtu;

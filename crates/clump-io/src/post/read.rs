@@ -21,8 +21,45 @@ fn attr<'a>(line: &'a str, name: &str) -> Option<&'a str> {
 }
 
 /// The arrays of a `.vtp` written by Clump: point data and `Points` under
-/// their names, cell data under `cell:<name>`.
+/// their names, cell data under `cell:<name>`. A `.pvtp` (a frame of a run
+/// on MPI ranks, [`crate::vtk_pieces`]) reads as its pieces one after
+/// another, in the order it lists them; every piece must hold the same
+/// arrays.
 pub fn read_vtp(path: &Path) -> Result<Arrays, String> {
+    if path.extension().is_some_and(|e| e == "pvtp") {
+        return read_pvtp(path);
+    }
+    read_one_vtp(path)
+}
+
+fn read_pvtp(path: &Path) -> Result<Arrays, String> {
+    let mut out: Option<Arrays> = None;
+    for piece in crate::vtk_pieces::sources(path)? {
+        let a = read_one_vtp(&piece)?;
+        match out.as_mut() {
+            None => out = Some(a),
+            Some(o) => {
+                let mut names: Vec<&String> = o.keys().collect();
+                let mut theirs: Vec<&String> = a.keys().collect();
+                names.sort();
+                theirs.sort();
+                if names != theirs {
+                    return Err(format!(
+                        "{}: its arrays differ from the first piece's ({} lists both)",
+                        piece.display(),
+                        path.display()
+                    ));
+                }
+                for (k, v) in a {
+                    o.get_mut(&k).expect("same names").extend(v);
+                }
+            }
+        }
+    }
+    Ok(out.unwrap_or_default())
+}
+
+fn read_one_vtp(path: &Path) -> Result<Arrays, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let start = bytes
         .windows(DATA_START.len())
@@ -128,7 +165,13 @@ pub fn read_frame(run: &Path, step: u64, time: f64) -> Result<Frame, String> {
         std::fs::read_to_string(&dj).map_err(|e| format!("cannot read {}: {e}", dj.display()))?;
     let domain: Domain =
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", dj.display()))?;
-    let b = read_vtp(&run.join(format!("bodies_{step:06}.vtp")))?;
+    // a run on MPI ranks writes its frames in pieces
+    let plain = run.join(format!("bodies_{step:06}.vtp"));
+    let b = read_vtp(&if plain.exists() {
+        plain
+    } else {
+        run.join(format!("bodies_{step:06}.pvtp"))
+    })?;
     let need = |a: &Arrays, k: &str| -> Result<Vec<f64>, String> {
         a.get(k)
             .cloned()

@@ -47,6 +47,27 @@ impl World {
         }
     }
 
+    /// Per body of this world, whether this rank writes it to a frame in
+    /// pieces (one piece per rank, every body in exactly one): its owned
+    /// bodies while the world is split; while it is whole, the bodies
+    /// whose wrapped centre of mass lies in this rank's region of the last
+    /// balance (the same function of the same bits on every rank). `None`
+    /// without a partition.
+    pub fn piece_mask(&self) -> Option<Vec<bool>> {
+        let p = self.part.as_ref()?;
+        if p.local {
+            return Some(p.owned.clone());
+        }
+        let (me, d) = (p.comm.rank(), &self.config.domain);
+        Some(
+            self.bodies
+                .position
+                .iter()
+                .map(|&x| p.regions.owner(d.wrap(x)) == me)
+                .collect(),
+        )
+    }
+
     /// This rank's owned bodies with everything that travels with them.
     pub(crate) fn owned_part(&self) -> join::Owned {
         join::owned(self)
