@@ -537,10 +537,9 @@ impl Runner {
             }
         };
         let wall_time = t_start.elapsed().as_secs_f64();
-        // final_state.json holds every body
-        self.world
-            .make_whole()
-            .map_err(rt("cannot gather the world for the final state"))?;
+        // over MPI ranks the world stays split at the end (each rank holds
+        // its part): final_state.json is gathered to rank 0 only
+        let (bodies, spheres) = manifest::whole_counts(&mut self.world);
         if let Some(f) = &self.out.fields {
             f.finish()
                 .map_err(rt("cannot write the time-averaged fields"))?;
@@ -554,8 +553,8 @@ impl Runner {
             time: self.world.time,
             wall_time,
             sphere_steps,
-            bodies: self.world.bodies().len(),
-            spheres: self.world.spheres().len(),
+            bodies,
+            spheres,
             checkpoint: self.out.last_checkpoint.clone(),
         };
         self.write_manifest(&summary, opts.threads)
