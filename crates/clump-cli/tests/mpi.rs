@@ -5,7 +5,8 @@
 //! drum: a rotating mesh wall), a periodic box with clumps crossing its
 //! sides (also with heat and convection, at 2 and 3 ranks), a restart at
 //! 3 ranks from a checkpoint written in pieces at 2, and SIGTERM on 2 ranks
-//! (one checkpoint of the whole world, which resumes bit for bit).
+//! (one checkpoint of the whole world, which resumes bit for bit); 2 ranks
+//! of 2 threads each.
 //! Spheres and bodies frames are written in pieces on ranks (`.pvtp`):
 //! the union of the pieces, ordered by body id, is one process's frame.
 //! Built only with the `mpi` feature (scripts/test-all.sh runs it).
@@ -26,6 +27,11 @@ fn out_dir(name: &str) -> PathBuf {
 
 /// `clump ARGS` on `np` ranks (`np = 0`: without mpirun), one thread each.
 fn clump(np: usize, args: &[&str]) {
+    clump_threads(np, 1, args);
+}
+
+/// [`clump`] with `threads` threads per rank.
+fn clump_threads(np: usize, threads: usize, args: &[&str]) {
     let bin = env!("CARGO_BIN_EXE_clump");
     let mut c = if np == 0 {
         Command::new(bin)
@@ -42,7 +48,9 @@ fn clump(np: usize, args: &[&str]) {
     };
     // shared memory without cross-memory attach (containers may forbid it)
     c.env("OMPI_MCA_btl_vader_single_copy_mechanism", "none");
-    c.args(args).args(["--threads", "1"]).current_dir(repo());
+    c.args(args)
+        .args(["--threads", &threads.to_string()])
+        .current_dir(repo());
     let out = c
         .output()
         .expect("mpirun (Debian: openmpi-bin) must be installed for the MPI tests");
@@ -305,6 +313,21 @@ fn frames_of_a_split_world_are_one_process_s() {
         "{gathers} whole-world gathers for {frames} frames written in pieces"
     );
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Ranks × threads: 2 ranks of 2 threads each give one process's files
+/// with one thread.
+#[test]
+fn two_ranks_of_two_threads_have_the_same_bits() {
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_straddle.toml";
+    let serial = out_dir("threads-1");
+    let two = out_dir("threads-2x2");
+    let (s, t) = (serial.to_str().unwrap(), two.to_str().unwrap());
+    clump(0, &["run", scenario, "-o", s, "--steps", "1000"]);
+    clump_threads(2, 2, &["run", scenario, "-o", t, "--steps", "1000"]);
+    assert_same_outputs(&serial, &two, "2 ranks × 2 threads");
+    let _ = std::fs::remove_dir_all(&serial);
+    let _ = std::fs::remove_dir_all(&two);
 }
 
 /// Heat on ranks: conduction through contacts and the floor, and
