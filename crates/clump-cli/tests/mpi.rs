@@ -122,27 +122,15 @@ fn differing(a: &Path, b: &Path) -> Vec<&'static str> {
         .collect()
 }
 
-/// A frame's arrays (`clump_io::post::read::read_vtp`, a `.pvtp` as its
-/// pieces one after another) with every point in the order of its
-/// `body_id`, points of one body in their order (a stable sort), as bits.
+/// A frame's arrays with every point in the order of its `body_id`
+/// (`clump_io::post::read::arrays_by_body`: a `.pvtp` reads as its
+/// pieces), as bits.
 fn frame_by_body(path: &Path) -> Vec<(String, Vec<u64>)> {
-    let a = clump_io::post::read::read_vtp(path).unwrap();
-    let ids = &a["body_id"];
-    let mut order: Vec<usize> = (0..ids.len()).collect();
-    order.sort_by_key(|&i| ids[i] as u64);
-    let mut out: Vec<(String, Vec<u64>)> = a
-        .iter()
-        .map(|(k, v)| {
-            let comps = v.len() / ids.len().max(1);
-            let bits = order
-                .iter()
-                .flat_map(|&i| v[comps * i..comps * (i + 1)].iter().map(|x| x.to_bits()))
-                .collect();
-            (k.clone(), bits)
-        })
-        .collect();
-    out.sort();
-    out
+    clump_io::post::read::arrays_by_body(path)
+        .unwrap()
+        .into_iter()
+        .map(|(k, v)| (k, v.iter().map(|x| x.to_bits()).collect()))
+        .collect()
 }
 
 /// The frame `s` of one process's run `a` and of the run on ranks `b`:

@@ -32,6 +32,33 @@ pub fn read_vtp(path: &Path) -> Result<Arrays, String> {
     read_one_vtp(path)
 }
 
+/// The point arrays of a spheres or bodies frame ([`read_vtp`], so also a
+/// `.pvtp` in pieces) with the points in the order of their `body_id`
+/// (stable: a body's spheres stay in their order), sorted by name: the
+/// same for a frame of one process and the pieces of any rank count.
+pub fn arrays_by_body(path: &Path) -> Result<Vec<(String, Vec<f64>)>, String> {
+    let a = read_vtp(path)?;
+    let ids = a
+        .get("body_id")
+        .ok_or_else(|| format!("{}: no array body_id", path.display()))?;
+    let mut order: Vec<usize> = (0..ids.len()).collect();
+    order.sort_by_key(|&i| ids[i] as u64);
+    let mut out: Vec<(String, Vec<f64>)> = a
+        .iter()
+        .filter(|(k, _)| !k.starts_with("cell:"))
+        .map(|(k, v)| {
+            let c = v.len() / ids.len().max(1);
+            let sorted = order
+                .iter()
+                .flat_map(|&i| v[c * i..c * (i + 1)].iter().copied())
+                .collect();
+            (k.clone(), sorted)
+        })
+        .collect();
+    out.sort_by(|x, y| x.0.cmp(&y.0));
+    Ok(out)
+}
+
 fn read_pvtp(path: &Path) -> Result<Arrays, String> {
     let mut out: Option<Arrays> = None;
     for piece in crate::vtk_pieces::sources(path)? {
