@@ -303,6 +303,40 @@ fn frames_of_a_split_world_are_one_process_s() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
+/// VTK's own readers and ParaView see every sphere and body of a 4-rank
+/// run's frames once, with one process's values
+/// (`scripts/check_pvtp.py` under ParaView's `pvpython`; skipped with a
+/// note where it is not installed).
+#[test]
+fn paraview_reads_a_4_rank_run_s_frames_as_one_process_s() {
+    let have = Command::new("sh")
+        .args(["-c", "command -v pvpython"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !have {
+        eprintln!("SKIPPED: pvpython not found (Debian: apt-get install paraview)");
+        return;
+    }
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_frames.toml";
+    let (one, four) = (out_dir("pv-1"), out_dir("pv-4"));
+    let (a, b) = (one.to_str().unwrap(), four.to_str().unwrap());
+    clump(0, &["run", scenario, "-o", a, "--steps", "600"]);
+    clump(4, &["run", scenario, "-o", b, "--steps", "600"]);
+    let out = Command::new("pvpython")
+        .arg(repo().join("scripts/check_pvtp.py"))
+        .args([a, b])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && text.contains("ParaView (OpenDataFile spheres.pvd)"),
+        "{text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&one);
+    let _ = std::fs::remove_dir_all(&four);
+}
+
 /// Ranks × threads: 2 ranks of 2 threads each give one process's files
 /// with one thread.
 #[test]
