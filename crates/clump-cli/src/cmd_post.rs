@@ -481,7 +481,7 @@ fn particles(a: &PostArgs, out: &Path, made: &mut Vec<PathBuf>) -> Result<(), St
     let Some(f) = last_spheres_frame(&a.run_dir) else {
         return Ok(()); // no VTK output: nothing to draw
     };
-    if f.extension().is_some_and(|e| e != "vtp") {
+    if f.extension().is_some_and(|e| e != "vtp" && e != "pvtp") {
         outln!(
             "note: particles.png is drawn from .vtp frames only (this run wrote {})",
             f.display()

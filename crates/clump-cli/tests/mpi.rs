@@ -5,8 +5,11 @@
 //! drum: a rotating mesh wall), a periodic box with clumps crossing its
 //! sides (also with heat and convection, at 2 and 3 ranks), a restart at
 //! 3 ranks from a checkpoint written in pieces at 2, and SIGTERM on 2 ranks
-//! (one checkpoint of the whole world, which resumes bit for bit), and a
-//! rank killed mid-run (the run stops; its last checkpoint resumes).
+//! (one checkpoint of the whole world, which resumes bit for bit); a rank
+//! killed mid-run (the run stops; its last checkpoint resumes); 2 ranks of
+//! 2 threads each.
+//! Spheres and bodies frames are written in pieces on ranks (`.pvtp`):
+//! the union of the pieces, ordered by body id, is one process's frame.
 //! Built only with the `mpi` feature (scripts/test-all.sh runs it).
 #![cfg(feature = "mpi")]
 
@@ -25,6 +28,11 @@ fn out_dir(name: &str) -> PathBuf {
 
 /// `clump ARGS` on `np` ranks (`np = 0`: without mpirun), one thread each.
 fn clump(np: usize, args: &[&str]) {
+    clump_threads(np, 1, args);
+}
+
+/// [`clump`] with `threads` threads per rank.
+fn clump_threads(np: usize, threads: usize, args: &[&str]) {
     let bin = env!("CARGO_BIN_EXE_clump");
     let mut c = if np == 0 {
         Command::new(bin)
@@ -41,7 +49,9 @@ fn clump(np: usize, args: &[&str]) {
     };
     // shared memory without cross-memory attach (containers may forbid it)
     c.env("OMPI_MCA_btl_vader_single_copy_mechanism", "none");
-    c.args(args).args(["--threads", "1"]).current_dir(repo());
+    c.args(args)
+        .args(["--threads", &threads.to_string()])
+        .current_dir(repo());
     let out = c
         .output()
         .expect("mpirun (Debian: openmpi-bin) must be installed for the MPI tests");
@@ -113,8 +123,41 @@ fn differing(a: &Path, b: &Path) -> Vec<&'static str> {
         .collect()
 }
 
-/// Every file of `a` but the manifest (wall times, paths) equals `b`'s;
-/// checkpoints compare by their world.
+/// A frame's arrays with every point in the order of its `body_id`
+/// (`clump_io::post::read::arrays_by_body`: a `.pvtp` reads as its
+/// pieces), as bits.
+fn frame_by_body(path: &Path) -> Vec<(String, Vec<u64>)> {
+    clump_io::post::read::arrays_by_body(path)
+        .unwrap()
+        .into_iter()
+        .map(|(k, v)| (k, v.iter().map(|x| x.to_bits()).collect()))
+        .collect()
+}
+
+/// The frame `s` of one process's run `a` and of the run on ranks `b`:
+/// `b` holds it in pieces (`.pvtp`); the union of the pieces, ordered by
+/// body id, is one process's frame value for value, bit for bit.
+fn assert_same_frame(a: &Path, b: &Path, s: &str, what: &str) {
+    let pvtp = b.join(s.replace(".vtp", ".pvtp"));
+    assert!(pvtp.exists(), "{what}: {s} is not written in pieces");
+    let (x, y) = (frame_by_body(&a.join(s)), frame_by_body(&pvtp));
+    assert_eq!(
+        x.iter().map(|e| &e.0).collect::<Vec<_>>(),
+        y.iter().map(|e| &e.0).collect::<Vec<_>>(),
+        "{what}: {s}: the arrays differ"
+    );
+    for ((name, u), (_, v)) in x.iter().zip(&y) {
+        assert!(
+            u == v,
+            "{what}: {s}: array {name} differs from one process's"
+        );
+    }
+}
+
+/// Every file of `a` (one process's run) but the manifest (wall times,
+/// paths) equals `b`'s; checkpoints compare by their world, spheres and
+/// bodies frames by their values ([`assert_same_frame`]; `b`'s `.pvd`
+/// lists the `.pvtp` where `a`'s lists the `.vtp`).
 fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
     let mut names: Vec<_> = std::fs::read_dir(a)
         .unwrap()
@@ -128,8 +171,20 @@ fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
             continue;
         }
         let (fa, fb) = (a.join(&n), b.join(&n));
+        let piece = (s.starts_with("spheres_") || s.starts_with("bodies_")) && s.ends_with(".vtp");
+        if piece {
+            assert_same_frame(a, b, &s, what);
+            checked += 1;
+            continue;
+        }
         assert!(fb.exists(), "{what}: {s} is missing");
-        if s.ends_with(".ckpt") {
+        if s == "spheres.pvd" || s == "bodies.pvd" {
+            let text = std::fs::read_to_string(&fb).unwrap();
+            assert!(
+                std::fs::read_to_string(&fa).unwrap() == text.replace(".pvtp\"", ".vtp\""),
+                "{what}: {s} does not list one process's frames"
+            );
+        } else if s.ends_with(".ckpt") {
             let d = differing(&fa, &fb);
             assert!(
                 d.is_empty(),
@@ -194,6 +249,108 @@ fn clumps_crossing_periodic_sides_have_the_same_bits() {
         "crates/clump-cli/tests/fixtures/periodic_straddle.toml",
         "1000",
     );
+}
+
+/// Frames where nothing else is due are written in pieces from the world
+/// split over the ranks (no gather of the world before or after them):
+/// the pieces' union is one process's frame, contact counts included.
+#[test]
+fn frames_of_a_split_world_are_one_process_s() {
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_frames.toml";
+    same_bits_at("frames", scenario, "1000", &[3]);
+    // the frames did not gather the world: one gather at the first split
+    // of the world is all a run needs without events that gather it
+    let d = out_dir("frames-gathers");
+    let out = Command::new("mpirun")
+        .args(["--oversubscribe", "--allow-run-as-root", "-np", "2"])
+        .arg(env!("CARGO_BIN_EXE_clump"))
+        .args([
+            "run",
+            scenario,
+            "-o",
+            d.to_str().unwrap(),
+            "--steps",
+            "1000",
+        ])
+        .args(["--threads", "1"])
+        .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+        .current_dir(repo())
+        .output()
+        .unwrap();
+    let text =
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    let frames = std::fs::read_dir(&d)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .file_name()
+                .to_string_lossy()
+                .ends_with(".pvtp")
+        })
+        .count()
+        / 2;
+    let gathers: usize = text
+        .split(" whole-world gathers")
+        .next()
+        .and_then(|s| s.rsplit(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no gather count in the output:\n{text}"));
+    assert!(frames > 10, "only {frames} frames");
+    assert!(
+        gathers < frames / 2,
+        "{gathers} whole-world gathers for {frames} frames written in pieces"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// VTK's own readers and ParaView see every sphere and body of a 4-rank
+/// run's frames once, with one process's values
+/// (`scripts/check_pvtp.py` under ParaView's `pvpython`; skipped with a
+/// note where it is not installed).
+#[test]
+fn paraview_reads_a_4_rank_run_s_frames_as_one_process_s() {
+    let have = Command::new("sh")
+        .args(["-c", "command -v pvpython"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !have {
+        eprintln!("SKIPPED: pvpython not found (Debian: apt-get install paraview)");
+        return;
+    }
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_frames.toml";
+    let (one, four) = (out_dir("pv-1"), out_dir("pv-4"));
+    let (a, b) = (one.to_str().unwrap(), four.to_str().unwrap());
+    clump(0, &["run", scenario, "-o", a, "--steps", "600"]);
+    clump(4, &["run", scenario, "-o", b, "--steps", "600"]);
+    let out = Command::new("pvpython")
+        .arg(repo().join("scripts/check_pvtp.py"))
+        .args([a, b])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && text.contains("ParaView (OpenDataFile spheres.pvd)"),
+        "{text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&one);
+    let _ = std::fs::remove_dir_all(&four);
+}
+
+/// Ranks × threads: 2 ranks of 2 threads each give one process's files
+/// with one thread.
+#[test]
+fn two_ranks_of_two_threads_have_the_same_bits() {
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_straddle.toml";
+    let serial = out_dir("threads-1");
+    let two = out_dir("threads-2x2");
+    let (s, t) = (serial.to_str().unwrap(), two.to_str().unwrap());
+    clump(0, &["run", scenario, "-o", s, "--steps", "1000"]);
+    clump_threads(2, 2, &["run", scenario, "-o", t, "--steps", "1000"]);
+    assert_same_outputs(&serial, &two, "2 ranks × 2 threads");
+    let _ = std::fs::remove_dir_all(&serial);
+    let _ = std::fs::remove_dir_all(&two);
 }
 
 /// Heat on ranks: conduction through contacts and the floor, and

@@ -17,5 +17,6 @@ pub mod trajectory;
 pub mod vti_grid;
 pub mod vtk;
 pub mod vtk_contacts;
+pub mod vtk_pieces;
 pub(crate) mod vtp;
 pub mod vtu;

@@ -53,12 +53,24 @@ pub const CYLINDER_SEGMENTS: usize = 64;
 
 /// The spheres file (see the [module docs](self)) as bytes.
 pub fn spheres_vtp(world: &World) -> Vec<u8> {
+    spheres_vtp_of(world, None)
+}
+
+/// The indices of the bodies that `keep` keeps (all when `None`), in
+/// storage order.
+fn kept(n: usize, keep: Option<&[bool]>) -> Vec<usize> {
+    (0..n).filter(|&i| keep.map_or(true, |k| k[i])).collect()
+}
+
+/// The spheres file of the bodies that `keep` (per body, storage order)
+/// keeps, all when `None`: a rank's piece of a frame ([`crate::vtk_pieces`]).
+pub fn spheres_vtp_of(world: &World, keep: Option<&[bool]>) -> Vec<u8> {
     let b = &world.bodies();
     let mut pos = Vec::new();
     let mut vel = Vec::new();
     let mut rad = Vec::new();
     let mut ids = Vec::new();
-    for i in 0..b.len() {
+    for i in kept(b.len(), keep) {
         let t = &world.templates[b.template[i] as usize];
         let (x, q, v, w) = (
             b.position[i],
@@ -96,7 +108,23 @@ pub type BodyCounts = std::collections::HashMap<u64, [u32; 3]>;
 /// The bodies file with the contact counts of `counts` (bodies missing
 /// there, or all when `None`, get −1: no force evaluation recorded).
 pub fn bodies_vtp_counted(world: &World, counts: Option<&BodyCounts>) -> Vec<u8> {
+    bodies_vtp_of(world, counts, None)
+}
+
+/// [`bodies_vtp_counted`] of the bodies that `keep` (per body, storage
+/// order) keeps, all when `None`: a rank's piece of a frame.
+pub fn bodies_vtp_of(world: &World, counts: Option<&BodyCounts>, keep: Option<&[bool]>) -> Vec<u8> {
     let b = &world.bodies();
+    let idx = kept(b.len(), keep);
+    // the kept entries of a per-body slice
+    fn pick<T: Copy>(v: &[T], idx: &[usize]) -> Vec<T> {
+        idx.iter().map(|&i| v[i]).collect()
+    }
+    let (id, orientation, template) = (
+        pick(&b.id, &idx),
+        pick(&b.orientation, &idx),
+        pick(&b.template, &idx),
+    );
     let mut f = Vtp::default();
     let base = base_templates(world);
     let names: Vec<String> = (0..base.len())
@@ -104,40 +132,40 @@ pub fn bodies_vtp_counted(world: &World, counts: Option<&BodyCounts>) -> Vec<u8>
         .map(|k| world.templates[k].name.clone())
         .collect();
     f.field_strings("template_names", &names);
-    f.set_points(&b.position);
-    f.point_u64("body_id", b.id.iter().copied());
+    f.set_points(&pick(&b.position, &idx));
+    f.point_u64("body_id", id.iter().copied());
     f.point_f64(
         "quaternion",
         4,
-        b.orientation.iter().flat_map(|q| [q.w, q.x, q.y, q.z]),
+        orientation.iter().flat_map(|q| [q.w, q.x, q.y, q.z]),
     );
     for (name, axis) in [("ex", DVec3::X), ("ey", DVec3::Y), ("ez", DVec3::Z)] {
-        let v: Vec<DVec3> = b.orientation.iter().map(|q| *q * axis).collect();
+        let v: Vec<DVec3> = orientation.iter().map(|q| *q * axis).collect();
         f.point_vec3(name, &v);
     }
     f.point_f64(
         "euler",
         3,
-        b.orientation.iter().flat_map(|&q| {
+        orientation.iter().flat_map(|&q| {
             let (phi, theta, psi) = clump_core::math::quat_to_euler(q);
             [phi, theta, psi]
         }),
     );
-    f.point_vec3("velocity", &b.velocity);
-    f.point_vec3("angular_velocity", &b.angular_velocity);
+    f.point_vec3("velocity", &pick(&b.velocity, &idx));
+    f.point_vec3("angular_velocity", &pick(&b.angular_velocity, &idx));
     // with a fluid: its force on each body at the last step (drag,
     // buoyancy, pressure gradient), N, world frame
     if world.fluid().is_some() && world.fluid_forces().len() == b.len() {
-        f.point_vec3("fluid_force", world.fluid_forces());
+        f.point_vec3("fluid_force", &pick(world.fluid_forces(), &idx));
     }
     f.point_i32(
         "template",
-        b.template.iter().map(|&t| base[t as usize] as i32),
+        template.iter().map(|&t| base[t as usize] as i32),
     );
     f.point_f64(
         "scale",
         1,
-        b.template.iter().map(|&t| {
+        template.iter().map(|&t| {
             let (own, of_base) = (
                 &world.templates[t as usize],
                 &world.templates[base[t as usize]],
@@ -145,30 +173,28 @@ pub fn bodies_vtp_counted(world: &World, counts: Option<&BodyCounts>) -> Vec<u8>
             own.max_radius / of_base.max_radius
         }),
     );
-    f.point_f64("mass", 1, b.mass.iter().copied());
+    f.point_f64("mass", 1, idx.iter().map(|&i| b.mass[i]));
     f.point_f64(
         "volume",
         1,
-        b.template
-            .iter()
-            .map(|&t| world.templates[t as usize].volume),
+        template.iter().map(|&t| world.templates[t as usize].volume),
     );
-    f.point_vec3("inertia", &b.inertia);
-    f.point_vec3("force", &b.force);
-    f.point_vec3("torque", &b.torque);
+    f.point_vec3("inertia", &pick(&b.inertia, &idx));
+    f.point_vec3("force", &pick(&b.force, &idx));
+    f.point_vec3("torque", &pick(&b.torque, &idx));
     for (k, name) in ["coordination", "contacts", "wall_contacts"]
         .into_iter()
         .enumerate()
     {
         f.point_i32(
             name,
-            b.id.iter()
+            id.iter()
                 .map(|id| counts.and_then(|c| c.get(id)).map_or(-1, |n| n[k] as i32)),
         );
     }
     if world.heat.is_some() {
-        f.point_f64("temperature", 1, b.temperature.iter().copied());
-        f.point_f64("heat_source", 1, b.heat_source.iter().copied());
+        f.point_f64("temperature", 1, idx.iter().map(|&i| b.temperature[i]));
+        f.point_f64("heat_source", 1, idx.iter().map(|&i| b.heat_source[i]));
     }
     f.vertex_cells();
     f.finish()
@@ -380,6 +406,13 @@ impl PvdWriter {
                     } else if let (Some(dir), false) = (path.parent(), f.contains(['/', '\\'])) {
                         // a frame after the restart belongs to the run that is
                         // being rewound: delete it rather than leave it orphaned
+                        if f.ends_with(".pvtp") {
+                            for piece in
+                                crate::vtk_pieces::sources(&dir.join(&f)).unwrap_or_default()
+                            {
+                                let _ = std::fs::remove_file(piece);
+                            }
+                        }
                         let _ = std::fs::remove_file(dir.join(&f));
                     }
                 }
@@ -505,6 +538,57 @@ impl VtkSeries {
     /// The output directory.
     pub fn dir(&self) -> &Path {
         &self.dir
+    }
+
+    /// The format of the frames.
+    pub fn format(&self) -> crate::vtu::VtkFormat {
+        self.format
+    }
+
+    /// Rank 0's part of a frame written in pieces ([`crate::vtk_pieces`]),
+    /// once every rank's piece is on disk: `spheres_<label>.pvtp` and
+    /// `bodies_<label>.pvtp` listing the pieces of the ranks `listed` (of
+    /// `n`), with the arrays declared in rank 0's pieces `headers`
+    /// (spheres, bodies), appended to the collections; the walls frame
+    /// whole. `bodies`: the frame's bodies over all ranks (the spheres and
+    /// bodies series start at the first frame with bodies, as in
+    /// [`Self::write_frame`]).
+    pub fn write_parallel_frame(
+        &mut self,
+        world: &World,
+        label: u64,
+        headers: [&[u8]; 2],
+        listed: &[usize],
+        n: usize,
+        bodies: usize,
+    ) -> io::Result<()> {
+        if bodies > 0 || !self.spheres.entries().is_empty() {
+            for (k, (kind, head)) in ["spheres", "bodies"].into_iter().zip(headers).enumerate() {
+                let sources: Vec<String> = listed
+                    .iter()
+                    .map(|&r| crate::vtk_pieces::piece_name(kind, label, r, n))
+                    .collect();
+                let x = crate::vtk_pieces::pvtp(head, &sources)
+                    .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))?;
+                let name = format!("{kind}_{label:06}.pvtp");
+                write_atomic(self.dir.join(&name), &x)?;
+                let pvd = if k == 0 {
+                    &mut self.spheres
+                } else {
+                    &mut self.bodies
+                };
+                pvd.append(world.time, &name)?;
+            }
+        }
+        let name = format!("walls_{label:06}.vtp");
+        write_atomic(self.dir.join(&name), &walls_vtp(world))?;
+        self.walls.append(world.time, &name)
+    }
+
+    /// Whether the spheres and bodies series have started (see
+    /// [`Self::write_frame`]).
+    pub fn started(&self) -> bool {
+        !self.spheres.entries().is_empty()
     }
 
     /// Writes `spheres_<label>.vtp`, `bodies_<label>.vtp`, `walls_<label>.vtp`

@@ -203,3 +203,57 @@ fn a_missing_truncated_or_foreign_piece_is_a_clear_error() {
     assert_eq!(w.bodies().len(), 150);
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// A frame's arrays in the order of the points' body ids, as bits.
+fn frame_bits(path: &Path) -> Vec<(String, Vec<u64>)> {
+    clump_io::post::read::arrays_by_body(path)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .into_iter()
+        .map(|(k, v)| (k, v.iter().map(|x| x.to_bits()).collect()))
+        .collect()
+}
+
+/// VTK frames of 3 ranks are written in pieces (`.pvtp` and one `.vtp`
+/// per rank), also where nothing else is due (the world stays split): the
+/// pieces' union, ordered by body id, is one process's frame bit for bit,
+/// contact counts included; the walls frame and `final_state.json` are
+/// one process's bytes.
+#[test]
+fn frames_in_pieces_hold_one_process_s_frames() {
+    let d = dir("frames");
+    let base = scenario_file(&d);
+    let text = std::fs::read_to_string(&base).unwrap();
+    let sc = d.join("frames.toml");
+    std::fs::write(
+        &sc,
+        text.replace(
+            "vtk = { every_steps = 1000 }",
+            "vtk = { every_steps = 137 }",
+        ),
+    )
+    .unwrap();
+    let (one, three) = (d.join("one"), d.join("three"));
+    run(&sc, &one, 700);
+    run_ranks(&sc, &three, 3, 700);
+    let read = |p: PathBuf| std::fs::read(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+    assert!(read(one.join("final_state.json")) == read(three.join("final_state.json")));
+    for step in [0u64, 137, 274, 411, 548, 685] {
+        for kind in ["spheres", "bodies"] {
+            let plain = one.join(format!("{kind}_{step:06}.vtp"));
+            let pieces = three.join(format!("{kind}_{step:06}.pvtp"));
+            assert!(!three.join(format!("{kind}_{step:06}.vtp")).exists());
+            let (a, b) = (frame_bits(&plain), frame_bits(&pieces));
+            assert_eq!(a.len(), b.len(), "{kind} {step}: the arrays differ");
+            for (x, y) in a.iter().zip(&b) {
+                assert!(x == y, "{kind} {step}: array {} differs", x.0);
+            }
+        }
+        let walls = format!("walls_{step:06}.vtp");
+        assert!(
+            read(one.join(&walls)) == read(three.join(&walls)),
+            "{walls}"
+        );
+    }
+    let pvd = std::fs::read_to_string(three.join("bodies.pvd")).unwrap();
+    assert_eq!(pvd.matches(".pvtp\"").count(), 6, "{pvd}");
+}

@@ -257,6 +257,9 @@ impl World {
                 self.neighbors.records.set_recording(event.contacts);
                 super::partition::join::whole_step(self)?;
             } else {
+                // a split event's last step records its part's contacts
+                // (the frame's contact counts of the owned bodies)
+                self.neighbors.records.set_recording(last && event.contacts);
                 self.take_step(false)?;
             }
             let report = self.report();

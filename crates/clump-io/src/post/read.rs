@@ -21,8 +21,72 @@ fn attr<'a>(line: &'a str, name: &str) -> Option<&'a str> {
 }
 
 /// The arrays of a `.vtp` written by Clump: point data and `Points` under
-/// their names, cell data under `cell:<name>`.
+/// their names, cell data under `cell:<name>`. A `.pvtp` (a frame of a run
+/// on MPI ranks, [`crate::vtk_pieces`]) reads as its pieces one after
+/// another, in the order it lists them; every piece must hold the same
+/// arrays.
 pub fn read_vtp(path: &Path) -> Result<Arrays, String> {
+    if path.extension().is_some_and(|e| e == "pvtp") {
+        return read_pvtp(path);
+    }
+    read_one_vtp(path)
+}
+
+/// The point arrays of a spheres or bodies frame ([`read_vtp`], so also a
+/// `.pvtp` in pieces) with the points in the order of their `body_id`
+/// (stable: a body's spheres stay in their order), sorted by name: the
+/// same for a frame of one process and the pieces of any rank count.
+pub fn arrays_by_body(path: &Path) -> Result<Vec<(String, Vec<f64>)>, String> {
+    let a = read_vtp(path)?;
+    let ids = a
+        .get("body_id")
+        .ok_or_else(|| format!("{}: no array body_id", path.display()))?;
+    let mut order: Vec<usize> = (0..ids.len()).collect();
+    order.sort_by_key(|&i| ids[i] as u64);
+    let mut out: Vec<(String, Vec<f64>)> = a
+        .iter()
+        .filter(|(k, _)| !k.starts_with("cell:"))
+        .map(|(k, v)| {
+            let c = v.len() / ids.len().max(1);
+            let sorted = order
+                .iter()
+                .flat_map(|&i| v[c * i..c * (i + 1)].iter().copied())
+                .collect();
+            (k.clone(), sorted)
+        })
+        .collect();
+    out.sort_by(|x, y| x.0.cmp(&y.0));
+    Ok(out)
+}
+
+fn read_pvtp(path: &Path) -> Result<Arrays, String> {
+    let mut out: Option<Arrays> = None;
+    for piece in crate::vtk_pieces::sources(path)? {
+        let a = read_one_vtp(&piece)?;
+        match out.as_mut() {
+            None => out = Some(a),
+            Some(o) => {
+                let mut names: Vec<&String> = o.keys().collect();
+                let mut theirs: Vec<&String> = a.keys().collect();
+                names.sort();
+                theirs.sort();
+                if names != theirs {
+                    return Err(format!(
+                        "{}: its arrays differ from the first piece's ({} lists both)",
+                        piece.display(),
+                        path.display()
+                    ));
+                }
+                for (k, v) in a {
+                    o.get_mut(&k).expect("same names").extend(v);
+                }
+            }
+        }
+    }
+    Ok(out.unwrap_or_default())
+}
+
+fn read_one_vtp(path: &Path) -> Result<Arrays, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let start = bytes
         .windows(DATA_START.len())
@@ -128,7 +192,13 @@ pub fn read_frame(run: &Path, step: u64, time: f64) -> Result<Frame, String> {
         std::fs::read_to_string(&dj).map_err(|e| format!("cannot read {}: {e}", dj.display()))?;
     let domain: Domain =
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", dj.display()))?;
-    let b = read_vtp(&run.join(format!("bodies_{step:06}.vtp")))?;
+    // a run on MPI ranks writes its frames in pieces
+    let plain = run.join(format!("bodies_{step:06}.vtp"));
+    let b = read_vtp(&if plain.exists() {
+        plain
+    } else {
+        run.join(format!("bodies_{step:06}.pvtp"))
+    })?;
     let need = |a: &Arrays, k: &str| -> Result<Vec<f64>, String> {
         a.get(k)
             .cloned()

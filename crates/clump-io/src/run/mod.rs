@@ -37,6 +37,7 @@ mod pieces;
 mod report;
 mod session;
 mod stages;
+mod vtk_ranks;
 
 pub use checkpoint::{load_checkpoint, load_checkpoint_with_id, Checkpoint};
 pub use error::{RunError, UnstableRun};
@@ -528,7 +529,8 @@ impl Runner {
             // --- the steps to the next event
             let event = self.next_event(opts.max_steps);
             // over MPI ranks, an event with no boundary work but a
-            // checkpoint (written in pieces) keeps the world split
+            // checkpoint or a VTK frame (written in pieces) keeps the world
+            // split
             let split = event.step < self.next_whole_step();
             self.world.keep_split_at_next_event(split);
             let pace = Pace {
@@ -546,10 +548,9 @@ impl Runner {
             }
         };
         let wall_time = t_start.elapsed().as_secs_f64();
-        // final_state.json holds every body
-        self.world
-            .make_whole()
-            .map_err(rt("cannot gather the world for the final state"))?;
+        // over MPI ranks the world stays split at the end (each rank holds
+        // its part): final_state.json is gathered to rank 0 only
+        let (bodies, spheres) = manifest::whole_counts(&mut self.world);
         if let Some(f) = &self.out.fields {
             f.finish()
                 .map_err(rt("cannot write the time-averaged fields"))?;
@@ -563,8 +564,8 @@ impl Runner {
             time: self.world.time,
             wall_time,
             sphere_steps,
-            bodies: self.world.bodies().len(),
-            spheres: self.world.spheres().len(),
+            bodies,
+            spheres,
             checkpoint: self.out.last_checkpoint.clone(),
         };
         self.write_manifest(&summary, opts.threads)
@@ -682,13 +683,17 @@ impl Runner {
 
     /// The step of the next event (see [`Self::next_event`]).
     fn next_event_step(&self, max_steps: Option<u64>) -> u64 {
-        let e = max_steps.unwrap_or(u64::MAX).min(self.st.next_checkpoint);
+        let mut e = max_steps.unwrap_or(u64::MAX).min(self.st.next_checkpoint);
+        if self.vtk_in_pieces() {
+            e = e.min(self.st.next_vtk);
+        }
         e.min(self.next_whole_step()).max(self.world.step + 1)
     }
 
     /// The next step whose boundary work needs the whole world: the end of
     /// the current stage, an insertion, an output row or frame (every
-    /// event but a checkpoint and the step limit).
+    /// event but a checkpoint, the step limit and a VTK frame written in
+    /// pieces).
     fn next_whole_step(&self) -> u64 {
         let (st, step) = (&self.st, self.world.step);
         let o = &self.scenario.output;
@@ -700,7 +705,7 @@ impl Runner {
         for s in st.streams.iter().flatten() {
             e = e.min(s.next_due_step(step, dt));
         }
-        if o.vtk.is_some() && self.out.vtk.is_some() {
+        if o.vtk.is_some() && self.out.vtk.is_some() && !self.vtk_in_pieces() {
             e = e.min(st.next_vtk);
         }
         if o.thermo.is_some() && self.out.thermo.is_some() {

@@ -44,6 +44,7 @@ pub fn is_run_file(name: &str) -> bool {
         || numbered("traj_", ".csv")
         || numbered("checkpoint_", ".ckpt")
         || is_piece_file(name)
+        || crate::vtk_pieces::is_piece_file(name)
         // temporary files of crate::atomic (`.<name>.tmp.<pid>.<n>`)
         || (name.starts_with('.') && name.contains(".tmp."))
 }

@@ -265,6 +265,7 @@ impl Runner {
                 self.st.next_flow = step + every;
             }
         }
+        let vtk_in_pieces = self.vtk_in_pieces();
         if let (Some(every), Some(vtk)) = (o.vtk, self.out.vtk.as_mut()) {
             if step >= self.st.next_vtk
                 || contact_frame
@@ -274,8 +275,17 @@ impl Runner {
                     let n = crate::post::network::body_counts(f)?;
                     Some(f.bodies.iter().map(|b| b.id).zip(n).collect())
                 });
-                vtk.write_frame_counted(&self.world, step, counts.as_ref())
-                    .map_err(rt("cannot write VTK output"))?;
+                if vtk_in_pieces {
+                    super::vtk_ranks::write_frame_in_pieces(
+                        &mut self.world,
+                        vtk,
+                        step,
+                        counts.as_ref(),
+                    )?;
+                } else {
+                    vtk.write_frame_counted(&self.world, step, counts.as_ref())
+                        .map_err(rt("cannot write VTK output"))?;
+                }
                 self.st.last_vtk = Some(step);
                 if step >= self.st.next_vtk {
                     self.st.next_vtk = step + every;

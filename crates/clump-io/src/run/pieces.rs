@@ -50,9 +50,38 @@ fn piece_name(manifest: &Path, r: usize, n: usize) -> String {
 }
 
 /// Rank 0's value of `mine` on every rank (a collective call).
-fn from_root(w: &mut World, mine: &str) -> String {
+pub(super) fn from_root(w: &mut World, mine: &str) -> String {
     let all = w.gather_from_ranks(mine.as_bytes());
     String::from_utf8_lossy(&all[0]).into_owned()
+}
+
+/// Every rank's report of writing its piece of `what` (`mine` here), in
+/// rank order (a collective call). A rank that could not write its piece,
+/// or whose report is unreadable, is an error on every rank.
+pub(super) fn gather_reports<T: Serialize + for<'de> Deserialize<'de>>(
+    w: &mut World,
+    mine: &Result<T, String>,
+    what: &str,
+) -> Result<Vec<T>, RunError> {
+    let bytes = serde_json::to_vec(mine).unwrap_or_default();
+    let all = w.gather_from_ranks(&bytes);
+    let mut out = Vec::with_capacity(all.len());
+    for (r, bytes) in all.iter().enumerate() {
+        match serde_json::from_slice::<Result<T, String>>(bytes) {
+            Ok(Ok(p)) => out.push(p),
+            Ok(Err(e)) => {
+                return Err(RunError::Runtime(format!(
+                    "cannot write {what}: rank {r} could not write its piece: {e}"
+                )))
+            }
+            Err(e) => {
+                return Err(RunError::Runtime(format!(
+                    "cannot write {what}: rank {r}'s report is unreadable: {e}"
+                )))
+            }
+        }
+    }
+    Ok(out)
 }
 
 impl Runner {
@@ -101,28 +130,8 @@ impl Runner {
                     crc32: crc32fast::hash(&bytes),
                 })
             });
-        let mine = match &written {
-            Ok(r) => serde_json::to_vec(&Ok::<_, String>(r)),
-            Err(e) => serde_json::to_vec(&Err::<PieceRef, _>(e)),
-        }
-        .unwrap_or_default();
-        let all = self.world.gather_from_ranks(&mine);
-        let mut refs = Vec::with_capacity(n);
-        for (r, bytes) in all.iter().enumerate() {
-            match serde_json::from_slice::<Result<PieceRef, String>>(bytes) {
-                Ok(Ok(p)) => refs.push(p),
-                Ok(Err(e)) => {
-                    return Err(RunError::Runtime(format!(
-                        "cannot write the checkpoint of step {step}: rank {r} could not write its piece: {e}"
-                    )))
-                }
-                Err(e) => {
-                    return Err(RunError::Runtime(format!(
-                        "cannot write the checkpoint of step {step}: rank {r}'s report is unreadable: {e}"
-                    )))
-                }
-            }
-        }
+        let what = format!("the checkpoint of step {step}");
+        let refs = gather_reports(&mut self.world, &written, &what)?;
         if me != 0 {
             return Ok(());
         }

@@ -47,6 +47,47 @@ impl World {
         }
     }
 
+    /// Per body of this world, whether this rank writes it to a frame in
+    /// pieces (one piece per rank, every body in exactly one): its owned
+    /// bodies while the world is split; while it is whole, the bodies
+    /// whose wrapped centre of mass lies in this rank's region of the last
+    /// balance (the same function of the same bits on every rank). `None`
+    /// without a partition.
+    pub fn piece_mask(&self) -> Option<Vec<bool>> {
+        let p = self.part.as_ref()?;
+        if p.local {
+            return Some(p.owned.clone());
+        }
+        let (me, d) = (p.comm.rank(), &self.config.domain);
+        Some(
+            self.bodies
+                .position
+                .iter()
+                .map(|&x| p.regions.owner(d.wrap(x)) == me)
+                .collect(),
+        )
+    }
+
+    /// Every rank's `mine` on rank 0, in rank order (a collective call,
+    /// point to point: the other ranks receive nothing); `None` on the
+    /// other ranks; `[mine]` without a partition.
+    pub fn gather_to_root(&mut self, mine: Vec<u8>) -> Option<Vec<Vec<u8>>> {
+        let Some(p) = self.part.as_mut() else {
+            return Some(vec![mine]);
+        };
+        p.traffic.reductions += 1;
+        let (me, n) = (p.comm.rank(), p.comm.size());
+        if me == 0 {
+            let from: Vec<usize> = (1..n).collect();
+            let mut all = vec![mine];
+            all.extend(p.comm.exchange(&[], &from));
+            Some(all)
+        } else {
+            p.comm.exchange(&[(0, mine)], &[]);
+            None
+        }
+    }
+
     /// This rank's owned bodies with everything that travels with them.
     pub(crate) fn owned_part(&self) -> join::Owned {
         join::owned(self)
