@@ -186,7 +186,9 @@ pub(super) fn scaling(args: &BenchArgs) -> Result<()> {
             cpu.join(", ")
         );
         let split = stage_costs.last().map_or(Vec::new(), |rounds| {
-            (0..4).map(|s| format!("{:.1}", median_of(rounds.iter().map(|r| r[s])))).collect()
+            (0..4)
+                .map(|s| format!("{:.1}", median_of(rounds.iter().map(|r| r[s]))))
+                .collect()
         });
         outln!(
             "{:>9} CPU ns/sph-step by stage (each round's CPU time split as its stage wall times), median over rounds: {}",
@@ -223,7 +225,13 @@ fn cpu_by_stage(
         .map(|((_, times), c)| {
             let rows = times.rows().map(|(_, t)| t);
             let total: f64 = rows.iter().sum();
-            rows.map(|t| if total > 0.0 { c * per * t / total } else { 0.0 })
+            rows.map(|t| {
+                if total > 0.0 {
+                    c * per * t / total
+                } else {
+                    0.0
+                }
+            })
         })
         .collect()
 }
