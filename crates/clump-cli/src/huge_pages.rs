@@ -1,71 +1,116 @@
 //! Transparent huge pages for the large arrays: the program's allocator is
-//! the system's, and every block of [`HUGE_FROM`] bytes or more it hands
-//! out (or grows) is marked `MADV_HUGEPAGE` on Linux, before the first
-//! touch of a fresh mapping, so that the kernel backs it with 2 MiB pages
-//! where `/sys/kernel/mm/transparent_hugepage/enabled` is `madvise` (or
-//! `always`). A 10⁶-sphere bed keeps about 330 MB in such arrays; with
-//! 4 KiB pages the pair stage's partner reads and the gather's per-body
-//! streams walk far more pages than the TLB holds (docs/performance.md,
-//! section 3). The advice changes where memory comes from, never what is
-//! computed.
+//! the system's, and every block of [`HUGE_FROM`] bytes or more is taken
+//! aligned to a huge page and padded to whole huge pages, and marked
+//! `MADV_HUGEPAGE` on Linux before its first touch, so that the kernel
+//! backs all of it with 2 MiB pages where
+//! `/sys/kernel/mm/transparent_hugepage/enabled` is `madvise` (or
+//! `always`). A 10⁶-sphere bed keeps about 330 MB in such arrays, a
+//! 10⁵-sphere bed about 30 MB in arrays of 2–4 MB; with 4 KiB pages the
+//! pair stage's partner reads and the gather's per-body streams walk far
+//! more pages than the TLB holds (docs/performance.md, section 3). The
+//! advice changes where memory comes from, never what is computed.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 
 /// A huge page, bytes.
 const HUGE_PAGE: usize = 2 << 20;
 
-/// Smallest block given the advice, bytes: four huge pages, so that the
-/// rounding inwards to whole huge pages leaves most of the block covered,
-/// and small blocks keep the allocator's ordinary pages.
-const HUGE_FROM: usize = 4 * HUGE_PAGE;
+/// Smallest block given huge pages, bytes: one huge page. Smaller blocks
+/// keep the allocator's ordinary pages (padding them would waste up to
+/// half a huge page each); a block from here on wastes less than a third
+/// of its size in padding, and nothing at the sizes where it matters.
+const HUGE_FROM: usize = HUGE_PAGE;
 
-/// The system allocator, with huge-page advice for large blocks.
+/// The system allocator, with huge pages for large blocks.
 pub struct HugePages;
 
-/// Marks the whole huge pages inside `len` bytes from `p` `MADV_HUGEPAGE`.
-/// Failure (a kernel without transparent huge pages) leaves the ordinary
-/// pages, which is no error.
+/// Whether a block of `size` bytes is taken on huge pages.
+#[inline]
+fn huge(size: usize) -> bool {
+    size >= HUGE_FROM
+}
+
+/// The layout a huge block of `layout` is taken with: aligned to a huge
+/// page and padded to whole huge pages, so that every page of it can be a
+/// huge one.
+#[inline]
+fn padded(layout: Layout) -> Layout {
+    let size = layout.size().next_multiple_of(HUGE_PAGE);
+    // SAFETY: a power-of-two alignment, and a size rounded up to a
+    // multiple of it that does not overflow (sizes stay below isize::MAX
+    // less a huge page for any block the system could hand out)
+    unsafe { Layout::from_size_align_unchecked(size, layout.align().max(HUGE_PAGE)) }
+}
+
+/// Marks the `len` bytes from `p` (whole, aligned huge pages)
+/// `MADV_HUGEPAGE`. Failure (a kernel without transparent huge pages)
+/// leaves the ordinary pages, which is no error.
 #[inline]
 fn advise(p: *mut u8, len: usize) {
-    if p.is_null() || len < HUGE_FROM {
-        return;
-    }
-    let start = (p as usize).next_multiple_of(HUGE_PAGE);
-    let end = (p as usize + len) & !(HUGE_PAGE - 1);
     #[cfg(target_os = "linux")]
-    if end > start {
-        // SAFETY: the range lies inside a block this allocator just handed
-        // out; the advice moves no data and frees nothing.
+    if !p.is_null() {
+        // SAFETY: the range is a block this allocator just took; the advice
+        // moves no data and frees nothing.
         unsafe {
-            libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE);
+            libc::madvise(p as *mut libc::c_void, len, libc::MADV_HUGEPAGE);
         }
     }
     #[cfg(not(target_os = "linux"))]
-    let _ = (start, end);
+    let _ = (p, len);
 }
 
-// SAFETY: every call is passed to the system allocator unchanged; the
-// advice only tells the kernel how to back the pages of the block.
+// SAFETY: small blocks are passed to the system allocator unchanged; a huge
+// block is taken from it with the padded layout, given back with the same
+// (`padded` of the caller's layout, which the size decides), and its bytes
+// are the caller's as for any block.
 unsafe impl GlobalAlloc for HugePages {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = System.alloc(layout);
-        advise(p, layout.size());
+        if !huge(layout.size()) {
+            return System.alloc(layout);
+        }
+        let big = padded(layout);
+        let p = System.alloc(big);
+        advise(p, big.size());
         p
     }
 
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        let p = System.alloc_zeroed(layout);
-        advise(p, layout.size());
+        if !huge(layout.size()) {
+            return System.alloc_zeroed(layout);
+        }
+        // advised before the zeroing touches it
+        let p = self.alloc(layout);
+        if !p.is_null() {
+            std::ptr::write_bytes(p, 0, layout.size());
+        }
         p
     }
 
     unsafe fn dealloc(&self, p: *mut u8, layout: Layout) {
-        System.dealloc(p, layout)
+        if huge(layout.size()) {
+            System.dealloc(p, padded(layout))
+        } else {
+            System.dealloc(p, layout)
+        }
     }
 
     unsafe fn realloc(&self, p: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let q = System.realloc(p, layout, new_size);
-        advise(q, new_size);
+        if !huge(layout.size()) && !huge(new_size) {
+            return System.realloc(p, layout, new_size);
+        }
+        // within the padding: the block stays where it is
+        if huge(layout.size()) && huge(new_size) && new_size <= padded(layout).size() {
+            let same = Layout::from_size_align_unchecked(new_size, layout.align());
+            if padded(same).size() == padded(layout).size() {
+                return p;
+            }
+        }
+        let new = Layout::from_size_align_unchecked(new_size, layout.align());
+        let q = self.alloc(new);
+        if !q.is_null() {
+            std::ptr::copy_nonoverlapping(p, q, layout.size().min(new_size));
+            self.dealloc(p, layout);
+        }
         q
     }
 }
@@ -75,24 +120,40 @@ mod tests {
     use super::*;
 
     /// A large block from the allocator is usable end to end, zeroed when
-    /// asked, and keeps its bytes when grown.
+    /// asked, aligned to a huge page, and keeps its bytes when grown (past
+    /// its padding and within it) and when shrunk to a small block.
     #[test]
     fn large_blocks_are_ordinary_memory() {
         let a = HugePages;
-        let n = 3 * HUGE_FROM + 12345;
+        let n = 3 * HUGE_PAGE + 12345;
         let layout = Layout::from_size_align(n, 64).unwrap();
+        let kept = |q: *mut u8, len: usize| {
+            let s = unsafe { std::slice::from_raw_parts(q, len) };
+            s.iter().enumerate().all(|(i, &b)| b == (i % 251) as u8)
+        };
         unsafe {
             let p = a.alloc_zeroed(layout);
             assert!(!p.is_null());
+            assert_eq!(p as usize % HUGE_PAGE, 0);
             let s = std::slice::from_raw_parts_mut(p, n);
             assert!(s.iter().all(|&b| b == 0));
             s.iter_mut()
                 .enumerate()
                 .for_each(|(i, b)| *b = (i % 251) as u8);
-            let q = a.realloc(p, layout, 2 * n);
-            let s = std::slice::from_raw_parts(q, n);
-            assert!(s.iter().enumerate().all(|(i, &b)| b == (i % 251) as u8));
-            a.dealloc(q, Layout::from_size_align(2 * n, 64).unwrap());
+            // within the padding to 4 huge pages: in place
+            let m = 4 * HUGE_PAGE - 8;
+            let q = a.realloc(p, layout, m);
+            assert_eq!(q, p);
+            assert!(kept(q, n));
+            // past it: moved, the bytes with it
+            let r = a.realloc(q, Layout::from_size_align(m, 64).unwrap(), 2 * n);
+            assert_eq!(r as usize % HUGE_PAGE, 0);
+            assert!(kept(r, n));
+            // shrunk to a small block
+            let small = 1000;
+            let t = a.realloc(r, Layout::from_size_align(2 * n, 64).unwrap(), small);
+            assert!(kept(t, small));
+            a.dealloc(t, Layout::from_size_align(small, 64).unwrap());
         }
     }
 }

@@ -145,7 +145,7 @@ pub(super) fn scaling(args: &BenchArgs) -> Result<()> {
         "RSS B/sphere"
     );
     // ns per sphere-step of each round of each bed
-    let (mut costs, mut cpu_costs) = (Vec::new(), Vec::new());
+    let (mut costs, mut cpu_costs, mut stage_costs) = (Vec::new(), Vec::new(), Vec::new());
     for bed in beds.iter_mut() {
         let w = &bed.world;
         let ns = w.spheres().len();
@@ -153,6 +153,7 @@ pub(super) fn scaling(args: &BenchArgs) -> Result<()> {
         let per = 1e9 / (ns as f64 * steps as f64);
         costs.push(bed.rounds.iter().map(|r| r.0 * per).collect::<Vec<_>>());
         cpu_costs.push(bed.cpu.iter().map(|c| c * per).collect::<Vec<_>>());
+        stage_costs.push(cpu_by_stage(&bed.rounds, &bed.cpu, per));
         bed.rounds.sort_by(|a, b| a.0.total_cmp(&b.0));
         let (best, times) = bed.rounds[0];
         let median = bed.rounds[bed.rounds.len() / 2].0;
@@ -184,11 +185,62 @@ pub(super) fn scaling(args: &BenchArgs) -> Result<()> {
             "",
             cpu.join(", ")
         );
+        let split = stage_costs.last().map_or(Vec::new(), |rounds| {
+            (0..4)
+                .map(|s| format!("{:.1}", median_of(rounds.iter().map(|r| r[s]))))
+                .collect()
+        });
+        outln!(
+            "{:>9} CPU ns/sph-step by stage (each round's CPU time split as its stage wall times), median over rounds: {}",
+            "",
+            split.join(", ")
+        );
     }
     ratio_line("wall", &costs);
     ratio_line("CPU", &cpu_costs);
+    for (s, name) in [(2, "pair stage"), (3, "gather")] {
+        let of_stage: Vec<Vec<f64>> = stage_costs
+            .iter()
+            .map(|rounds| rounds.iter().map(|r| r[s]).collect())
+            .collect();
+        ratio_line(&format!("CPU ({name})"), &of_stage);
+    }
     outln!("process peak RSS {:.0} MB", peak_rss_mb());
     Ok(())
+}
+
+/// Each round's CPU ns per sphere-step split over the four stages (initial,
+/// neighbour, pair, gather) in the proportions of the round's stage wall
+/// times: the stages keep their own CPU clock only at a syscall per lap, and
+/// the other tenants' turns on a shared core fall on the stages in
+/// proportion to their length, so the split estimates each stage's CPU time.
+fn cpu_by_stage(
+    rounds: &[(f64, clump_core::stats::StageTimes)],
+    cpu: &[f64],
+    per: f64,
+) -> Vec<[f64; 4]> {
+    rounds
+        .iter()
+        .zip(cpu)
+        .map(|((_, times), c)| {
+            let rows = times.rows().map(|(_, t)| t);
+            let total: f64 = rows.iter().sum();
+            rows.map(|t| {
+                if total > 0.0 {
+                    c * per * t / total
+                } else {
+                    0.0
+                }
+            })
+        })
+        .collect()
+}
+
+/// The median of `xs` (the upper one of an even count); 0 when empty.
+fn median_of(xs: impl Iterator<Item = f64>) -> f64 {
+    let mut v: Vec<f64> = xs.collect();
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(0.0)
 }
 
 /// The cost per sphere-step of the largest bed over the smallest's, round
