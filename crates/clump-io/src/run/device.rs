@@ -9,8 +9,9 @@
 
 use clump_core::world::World;
 
-/// The steps between events on another device.
-pub trait StepDevice: Send {
+/// The steps between events on another device. `Sync` because a runner
+/// lives in a Python object (PyO3 classes are shared between threads).
+pub trait StepDevice: Send + Sync {
     /// Takes `world` from its step to step `to` (> its step), polling
     /// `stop` between batches of steps; returns the steps taken (fewer
     /// when `stop` answered true). Afterwards `world` holds the state the
