@@ -444,20 +444,69 @@ fn children(pid: u32) -> Vec<u32> {
     out
 }
 
-#[test]
-fn sigterm_on_two_ranks_checkpoints_the_whole_world_at_one_step() {
-    let bin = env!("CARGO_BIN_EXE_clump");
-    let d = out_dir("sigterm");
-    let mut child = Command::new("mpirun")
-        .args(["--oversubscribe", "--allow-run-as-root", "-np", "2", bin])
+/// `examples/stones.toml` on 2 ranks of one thread into `d`, started.
+fn stones_on_two_ranks(d: &Path, stderr: std::process::Stdio) -> std::process::Child {
+    Command::new("mpirun")
+        .args(["--oversubscribe", "--allow-run-as-root", "-np", "2"])
+        .arg(env!("CARGO_BIN_EXE_clump"))
         .args(["run", "examples/stones.toml", "-o", d.to_str().unwrap()])
         .args(["--threads", "1"])
         .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
         .current_dir(repo())
         .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
+        .stderr(stderr)
         .spawn()
-        .expect("mpirun must be installed");
+        .expect("mpirun must be installed")
+}
+
+/// Sends `signal` (`kill`'s option) to the second of mpirun's two rank
+/// processes and waits up to 60 s for mpirun to end; on a hang kills every
+/// rank and mpirun. Returns whether it hung.
+fn signal_rank_1_and_wait(child: &mut std::process::Child, signal: &str) -> bool {
+    let ranks = children(child.id());
+    assert_eq!(ranks.len(), 2, "mpirun's children: {ranks:?}");
+    let st = Command::new("kill")
+        .args([signal, &ranks[1].to_string()])
+        .status()
+        .unwrap();
+    assert!(st.success());
+    let t = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if t.elapsed().as_secs() > 60 {
+            for r in &ranks {
+                let _ = Command::new("kill")
+                    .args(["-KILL", &r.to_string()])
+                    .status();
+            }
+            let _ = child.kill();
+            return true;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    false
+}
+
+/// One process's uninterrupted stones run to step `steps`, in a new folder.
+fn stones_straight_to(name: &str, steps: &str) -> PathBuf {
+    let d = out_dir(name);
+    clump(
+        0,
+        &[
+            "run",
+            "examples/stones.toml",
+            "-o",
+            d.to_str().unwrap(),
+            "--steps",
+            steps,
+        ],
+    );
+    d
+}
+
+#[test]
+fn sigterm_on_two_ranks_checkpoints_the_whole_world_at_one_step() {
+    let d = out_dir("sigterm");
+    let mut child = stones_on_two_ranks(&d, std::process::Stdio::null());
     // the handlers are installed before the first thermo row is written
     let t0 = std::time::Instant::now();
     while std::fs::read_to_string(d.join("thermo.csv")).map_or(0, |s| s.lines().count()) < 10 {
@@ -469,31 +518,10 @@ fn sigterm_on_two_ranks_checkpoints_the_whole_world_at_one_step() {
     // the ranks a second later, which lost the checkpoint about one time in
     // ten here): every rank must stop at the same step, also the one
     // without a signal of its own
-    let ranks = children(child.id());
-    assert_eq!(ranks.len(), 2, "mpirun's children: {ranks:?}");
-    let st = Command::new("kill")
-        .args(["-TERM", &ranks[1].to_string()])
-        .status()
-        .unwrap();
-    assert!(st.success());
     // mpirun's own exit status is Open MPI's, the run's is in the manifest;
     // ranks that disagree on the stop hang (one waits in the step's
     // reduction, the other in MPI_Finalize)
-    let t1 = std::time::Instant::now();
-    let mut hung = false;
-    while child.try_wait().unwrap().is_none() {
-        if t1.elapsed().as_secs() > 60 {
-            hung = true;
-            for r in &ranks {
-                let _ = Command::new("kill")
-                    .args(["-KILL", &r.to_string()])
-                    .status();
-            }
-            let _ = child.kill();
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(100));
-    }
+    let hung = signal_rank_1_and_wait(&mut child, "-TERM");
     let _ = child.wait();
     assert!(!hung, "the ranks were still running 60 s after the signal");
     let m: serde_json::Value =
@@ -508,18 +536,7 @@ fn sigterm_on_two_ranks_checkpoints_the_whole_world_at_one_step() {
     // one process, resumed from it, repeats an uninterrupted run
     let target = (step + 200).to_string();
     clump(0, &["resume", ckpt.to_str().unwrap(), "--steps", &target]);
-    let straight = out_dir("sigterm-straight");
-    clump(
-        0,
-        &[
-            "run",
-            "examples/stones.toml",
-            "-o",
-            straight.to_str().unwrap(),
-            "--steps",
-            &target,
-        ],
-    );
+    let straight = stones_straight_to("sigterm-straight", &target);
     let d2 = differing(
         &d.join(format!("checkpoint_{:09}.ckpt", step + 200)),
         &straight.join(format!("checkpoint_{:09}.ckpt", step + 200)),
@@ -538,18 +555,8 @@ fn sigterm_on_two_ranks_checkpoints_the_whole_world_at_one_step() {
 /// process resumes from it and repeats an uninterrupted run bit for bit.
 #[test]
 fn a_rank_killed_mid_run_stops_the_run_and_the_last_checkpoint_resumes() {
-    let bin = env!("CARGO_BIN_EXE_clump");
     let d = out_dir("killed");
-    let mut child = Command::new("mpirun")
-        .args(["--oversubscribe", "--allow-run-as-root", "-np", "2", bin])
-        .args(["run", "examples/stones.toml", "-o", d.to_str().unwrap()])
-        .args(["--threads", "1"])
-        .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
-        .current_dir(repo())
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("mpirun must be installed");
+    let mut child = stones_on_two_ranks(&d, std::process::Stdio::piped());
     // wait for the first periodic checkpoint (0.2 s of simulated time) to
     // be listed in the manifest
     let listed = || -> Option<PathBuf> {
@@ -572,26 +579,8 @@ fn a_rank_killed_mid_run_stops_the_run_and_the_last_checkpoint_resumes() {
         "checkpoint listed after {:.1} s",
         t0.elapsed().as_secs_f64()
     );
-    let ranks = children(child.id());
-    assert_eq!(ranks.len(), 2, "mpirun's children: {ranks:?}");
-    let st = Command::new("kill")
-        .args(["-KILL", &ranks[1].to_string()])
-        .status()
-        .unwrap();
-    assert!(st.success());
     let t1 = std::time::Instant::now();
-    let mut hung = false;
-    while child.try_wait().unwrap().is_none() {
-        if t1.elapsed().as_secs() > 60 {
-            hung = true;
-            let _ = Command::new("kill")
-                .args(["-KILL", &ranks[0].to_string()])
-                .status();
-            let _ = child.kill();
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(100));
-    }
+    let hung = signal_rank_1_and_wait(&mut child, "-KILL");
     let out = child.wait_with_output().unwrap();
     eprintln!(
         "mpirun exited {:.1} s after the kill",
@@ -627,18 +616,7 @@ fn a_rank_killed_mid_run_stops_the_run_and_the_last_checkpoint_resumes() {
             &target,
         ],
     );
-    let straight = out_dir("killed-straight");
-    clump(
-        0,
-        &[
-            "run",
-            "examples/stones.toml",
-            "-o",
-            straight.to_str().unwrap(),
-            "--steps",
-            &target,
-        ],
-    );
+    let straight = stones_straight_to("killed-straight", &target);
     let name = format!("checkpoint_{:09}.ckpt", step + 200);
     let diff = differing(&resumed.join(&name), &straight.join(&name));
     assert!(diff.is_empty(), "resumed after the kill: {diff:?} differ");
