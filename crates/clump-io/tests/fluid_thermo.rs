@@ -117,13 +117,7 @@ fn thermo_has_the_total_fluid_force() {
 
     drop(run);
     // resumed from the checkpoint at step 10: the same file, the same rows
-    let ck = out.join("checkpoint_000000010.ckpt");
-    let mut again = Runner::resume(&ck, Some(&out)).unwrap();
-    again.run(RunOptions::default()).unwrap();
-    assert_eq!(
-        std::fs::read_to_string(out.join("thermo.csv")).unwrap(),
-        text
-    );
+    resume_gives_the_same_thermo(&out, &text);
 }
 
 #[test]
@@ -155,8 +149,14 @@ fn thermo_fluid_force_in_a_grid_velocity_field() {
     assert!((fz - want).abs() < 1e-12 * want, "{fz} vs {want}");
     drop(run);
     // the resumed run reads the grid from the scenario again: same rows
+    resume_gives_the_same_thermo(&out, &text);
+}
+
+/// Resumes the run in `out` from its checkpoint at step 10 to its end and
+/// checks that thermo.csv is `text` again.
+fn resume_gives_the_same_thermo(out: &std::path::Path, text: &str) {
     let ck = out.join("checkpoint_000000010.ckpt");
-    let mut again = Runner::resume(&ck, Some(&out)).unwrap();
+    let mut again = Runner::resume(&ck, Some(out)).unwrap();
     again.run(RunOptions::default()).unwrap();
     assert_eq!(
         std::fs::read_to_string(out.join("thermo.csv")).unwrap(),
