@@ -201,11 +201,17 @@ pub fn bench(
     let b = cpu.bodies();
     let at: std::collections::HashMap<u64, usize> =
         b.id.iter().enumerate().map(|(k, &id)| (id, k)).collect();
+    // the nearest image in a periodic box (the paths wrap at different steps)
+    let domain = cpu.config.domain;
     let dev_max = dev
         .ids
         .iter()
         .zip(&x_dev)
-        .map(|(id, x)| (*x - b.position[at[id]]).abs().max_element())
+        .map(|(id, x)| {
+            clump_gpu::periodic::nearest_image(&domain, *x - b.position[at[id]])
+                .abs()
+                .max_element()
+        })
         .fold(0.0, f64::max);
     outln!(
         "largest |x_gpu - x_cpu| / domain size after {steps} steps: {:.3e}",

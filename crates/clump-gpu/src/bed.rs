@@ -36,6 +36,22 @@ pub fn box_bed_dof(
     rotation: RotationScheme,
     flags: impl Fn(u64) -> ([bool; 3], [bool; 3]),
 ) -> World {
+    bed(n, layers, rotation, flags, false)
+}
+
+/// [`box_bed`] periodic in x and y, with the floor as its only wall: the
+/// clumps cross the periodic faces and touch across them.
+pub fn periodic_bed(n: usize, layers: usize, rotation: RotationScheme) -> World {
+    bed(n, layers, rotation, |_| ([true; 3], [true; 3]), true)
+}
+
+fn bed(
+    n: usize,
+    layers: usize,
+    rotation: RotationScheme,
+    flags: impl Fn(u64) -> ([bool; 3], [bool; 3]),
+    periodic: bool,
+) -> World {
     let mats = vec![tetra_material()];
     let table =
         ContactTable::new(&mats, |_, _| PairProperties::default()).expect("a valid test bed");
@@ -45,7 +61,7 @@ pub fn box_bed_dof(
         domain: Domain {
             lo: DVec3::ZERO,
             hi: DVec3::new(l, l, h),
-            periodic: [false; 3],
+            periodic: [periodic, periodic, false],
         },
         gravity: DVec3::new(0.0, 0.0, -9.81),
         dt: 1e-5,
@@ -73,7 +89,8 @@ pub fn box_bed_dof(
         (DVec3::new(l, l, 0.0), -DVec3::X),
         (DVec3::new(l, l, 0.0), -DVec3::Y),
     ];
-    for (k, (point, normal)) in planes.into_iter().enumerate() {
+    let walls = if periodic { 1 } else { planes.len() };
+    for (k, (point, normal)) in planes.into_iter().take(walls).enumerate() {
         w.add_wall(Wall {
             name: format!("wall{k}"),
             shape: WallShape::Plane { point, normal },

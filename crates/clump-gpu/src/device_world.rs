@@ -8,8 +8,9 @@ use clump_core::world::World;
 use glam::{DQuat, DVec3};
 
 /// The kernels, one WGSL module.
-const SHADER: [&str; 5] = [
+const SHADER: [&str; 6] = [
     include_str!("shaders/common.wgsl"),
+    include_str!("shaders/periodic.wgsl"),
     include_str!("shaders/rotation.wgsl"),
     include_str!("shaders/body.wgsl"),
     include_str!("shaders/pairs.wgsl"),
@@ -79,6 +80,8 @@ pub enum DeviceError {
     Unsupported(Vec<crate::support::Unsupported>),
     /// The pair table or a sphere's neighbour list ran full.
     Overflow(String),
+    /// The box cannot be binned (a periodic axis shorter than three cells).
+    Grid(String),
 }
 
 impl std::fmt::Display for DeviceError {
@@ -93,7 +96,7 @@ impl std::fmt::Display for DeviceError {
                     lines.join("\n  ")
                 )
             }
-            DeviceError::Overflow(e) => write!(f, "{e}"),
+            DeviceError::Overflow(e) | DeviceError::Grid(e) => write!(f, "{e}"),
         }
     }
 }
@@ -260,7 +263,7 @@ impl DeviceWorld {
         world: &World,
         springs: Option<Springs>,
     ) -> Result<DeviceWorld, DeviceError> {
-        let (host, n) = HostArrays::new(world);
+        let (host, n) = HostArrays::new(world)?;
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let buffers = host.buffers(&gpu, n, springs);
         let entries: Vec<wgpu::BindGroupEntry> = (0..N_BINDINGS as usize)
@@ -532,7 +535,7 @@ struct HostArrays {
 
 impl HostArrays {
     /// The device arrays of `world` (see common.wgsl for each layout).
-    fn new(world: &World) -> (HostArrays, Sizes) {
+    fn new(world: &World) -> Result<(HostArrays, Sizes), DeviceError> {
         let b = &by_id(world);
         let c = &world.config;
         let nb = b.len();
@@ -572,7 +575,7 @@ impl HostArrays {
             cap: ns * ENTRIES_PER_SPHERE,
         };
         let lo = c.domain.lo;
-        let pf = vec![
+        let mut pf = vec![
             c.dt,
             c.gravity.x,
             c.gravity.y,
@@ -583,6 +586,8 @@ impl HostArrays {
             cell_size,
             skin,
         ];
+        // periodic boxes (periodic.rs, periodic.wgsl): PF_LEN, PF_HI
+        let periodic_axes = crate::periodic::params(&c.domain, dims, cell_size, &mut pf)?;
         let nmat = world.materials.len();
         let walls: Vec<f64> = world
             .walls
@@ -609,6 +614,8 @@ impl HostArrays {
         };
         // PU_STALE: the first step builds the table
         pu[13] = 1;
+        // PU_PERIODIC (periodic.wgsl)
+        pu[15] = periodic_axes;
         pu[..9].copy_from_slice(&[
             nb as u32,
             ns as u32,
@@ -676,7 +683,7 @@ impl HostArrays {
             load,
             bm,
         ];
-        (
+        Ok((
             HostArrays {
                 pf,
                 pu,
@@ -688,7 +695,7 @@ impl HostArrays {
                 laws,
             },
             n,
-        )
+        ))
     }
 
     /// The storage buffers of group 0, by binding.

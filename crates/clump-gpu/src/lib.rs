@@ -6,6 +6,7 @@
 //! - `support`: what the device step runs, refused by scenario key;
 //! - `device_world`: a world's arrays on the device, the step's kernels in
 //!   order (`shaders/*.wgsl`);
+//! - `periodic`: periodic boxes, the host's half (`shaders/periodic.wgsl`);
 //! - `transfer`: the copies in and out at events, springs included, and
 //!   the stepper a runner hands the steps between its events to.
 //!
@@ -15,6 +16,7 @@
 pub mod bed;
 pub mod context;
 pub mod device_world;
+pub mod periodic;
 pub mod support;
 pub mod transfer;
 

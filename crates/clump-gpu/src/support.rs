@@ -99,9 +99,6 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
             "\"no_squish\" (the default), \"richardson\" or \"richardson_liggghts\"",
         );
     }
-    if c.domain.periodic.iter().any(|&p| p) {
-        no(keys("domain.periodic"), "false on every axis");
-    }
     if c.added_mass.coefficient != 0.0 {
         no(keys("integrator.added_mass"), "none");
     }

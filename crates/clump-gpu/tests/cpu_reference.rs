@@ -9,20 +9,29 @@
 
 use clump_core::rotation::RotationScheme;
 use clump_core::world::World;
-use clump_gpu::bed::box_bed;
+use clump_gpu::bed::{box_bed, periodic_bed};
+use clump_gpu::periodic::nearest_image;
 use clump_gpu::{DeviceWorld, Gpu};
 use glam::DVec3;
 
 /// Largest coordinate difference, m, between the device's bodies and the
-/// CPU world's, matched by id (the CPU path reorders its bodies).
+/// CPU world's, matched by id (the CPU path reorders its bodies), the
+/// nearest image along periodic axes (the two paths wrap a body into the
+/// box at different steps: the device when it leaves, the CPU path at its
+/// next list rebuild).
 fn max_dev(dev: &DeviceWorld, x: &[DVec3], cpu: &World) -> f64 {
     let b = cpu.bodies();
+    let domain = cpu.config.domain;
     let at: std::collections::HashMap<u64, usize> =
         b.id.iter().enumerate().map(|(k, &id)| (id, k)).collect();
     dev.ids
         .iter()
         .zip(x)
-        .map(|(id, p)| (*p - b.position[at[id]]).abs().max_element())
+        .map(|(id, p)| {
+            nearest_image(&domain, *p - b.position[at[id]])
+                .abs()
+                .max_element()
+        })
         .fold(0.0, f64::max)
 }
 
@@ -126,6 +135,73 @@ fn device_step_agrees_with_the_cpu_path_with_dof_flags() {
             "body {id}: v_x moved"
         );
     }
+}
+
+/// Periodic boxes (T-22, minimum image): the jostling bed periodic in x and y, its
+/// clumps crossing the periodic faces and touching across them (both
+/// counted on the CPU path and asserted), and the shared tetra lattice bed
+/// (`clump_core::testbed`), falling onto its floor.
+#[test]
+fn device_step_agrees_with_the_cpu_path_in_a_periodic_box() {
+    let (crossings, across) = periodic_traffic(periodic_bed(4, 2, RotationScheme::NoSquish));
+    eprintln!("periodic bed on the CPU path: {crossings} face crossings, {across} contacts across a face at the checkpoints");
+    assert!(
+        crossings > 0 && across > 0,
+        "the bed must use its periodic faces"
+    );
+    let worst = compare_world(periodic_bed(4, 2, RotationScheme::NoSquish));
+    assert!(worst < 1e-9, "periodic bed: {worst:e} of the domain size");
+    let worst = compare_world(clump_core::testbed::tetra_lattice_bed(4, 4, 2, None));
+    assert!(
+        worst < 1e-9,
+        "tetra lattice bed: {worst:e} of the domain size"
+    );
+}
+
+/// On the CPU path over the checkpoints of [`compare_world`]: how often a
+/// body crossed a periodic face (its centre moved by more than half the
+/// box between checkpoints along a periodic axis, where it moves a few mm
+/// at most), and the touching sphere pairs whose nearest image lies
+/// across a face, summed over the checkpoints.
+fn periodic_traffic(mut w: World) -> (usize, usize) {
+    let domain = w.config.domain;
+    let half = 0.5 * domain.size();
+    let by_id = |w: &World| -> std::collections::BTreeMap<u64, DVec3> {
+        let b = w.bodies();
+        b.id.iter()
+            .copied()
+            .zip(b.position.iter().copied())
+            .collect()
+    };
+    w.prepare().unwrap();
+    let (mut crossings, mut across) = (0, 0);
+    let mut last = by_id(&w);
+    let mut done = 0;
+    for &at in &[1u64, 10, 100, 1000, 2000, 3000] {
+        w.run(at - done).unwrap();
+        done = at;
+        let now = by_id(&w);
+        crossings += now
+            .iter()
+            .filter(|(id, x)| {
+                let d = (**x - last[id]).abs();
+                (0..2).any(|a| domain.periodic[a] && d[a] > half[a])
+            })
+            .count();
+        last = now;
+        let s = w.spheres();
+        for i in 0..s.len() {
+            for j in i + 1..s.len() {
+                let d = s.position(i) - s.position(j);
+                let near = nearest_image(&domain, d);
+                let r = s.radius[i] + s.radius[j];
+                if s.body[i] != s.body[j] && near != d && near.length() < r {
+                    across += 1;
+                }
+            }
+        }
+    }
+    (crossings, across)
 }
 
 #[test]

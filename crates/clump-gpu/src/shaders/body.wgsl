@@ -76,7 +76,8 @@ fn first_half(@builtin(global_invocation_id) gid: vec3<u32>) {
     let fl = dof_flags(i);
     let v = select(ld_bv(i), ld_bv(i) + dtfm * f, fl[0]);
     let l = select(ld_bl(i), ld_bl(i) + dtt * m, fl[1]);
-    let x = ld_bx(i) + v * dt;
+    // the drift, wrapped into a periodic box (periodic.wgsl)
+    let x = wrap_point(ld_bx(i) + v * dt);
     let inertia = vec3<f64>(bm[9u * i + 1u], bm[9u * i + 2u], bm[9u * i + 3u]);
     var qn: vec4<f64>;
     var w: vec3<f64>;
@@ -126,14 +127,15 @@ fn spheres(@builtin(global_invocation_id) gid: vec3<u32>) {
     // the radius sum plus the skin at its build, so it is good until a
     // sphere has moved half the skin. Every invocation that finds one
     // stores the same 1: the flag does not depend on which does.
-    let d = x - ld_sx0(s);
+    let d = moved_since_build(s, x);
     let h = 0.5lf * pf[PF_SKIN];
     if (dot3(d, d) > h * h) { pu[PU_STALE] = 1u; }
 }
 
 fn cell_of(x: vec3<f64>) -> vec3<i32> {
     let lo = vec3<f64>(pf[PF_LO], pf[PF_LO + 1u], pf[PF_LO + 2u]);
-    let c = (x - lo) / pf[PF_CELL];
+    // a periodic axis bins the sphere's image in the box (periodic.wgsl)
+    let c = (wrap_point(x) - lo) / pf[PF_CELL];
     let n = vec3<i32>(i32(pu[PU_GRID]), i32(pu[PU_GRID + 1u]), i32(pu[PU_GRID + 2u]));
     // clamp in f64 first: a far-away sphere must not overflow the i32
     let cc = clamp(floor(c), vec3<f64>(0.0lf), vec3<f64>(n - vec3<i32>(1)));

@@ -69,7 +69,8 @@ fn pair_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         if (j < i) { continue; }
         let bj = sown[2u * j];
         let rj = sref[4u * j + 3u];
-        let dv = ld_sx(i) - ld_sx(j);
+        // j's nearest image across a periodic face (periodic.wgsl)
+        let dv = ld_sx(i) - partner_of(i, j);
         // the pair kernel's test (step/pair_kernel): a pair of the table
         // that does not touch exerts nothing and loses its spring
         let rsum = ri + rj;

@@ -98,7 +98,7 @@ fn cells_bounds(@builtin(global_invocation_id) gid: vec3<u32>) {
 // radius sum plus the skin: a pair of the table.
 fn near(i: u32, j: u32) -> bool {
     if (sown[2u * i] == sown[2u * j]) { return false; }
-    let d = ld_sx(i) - ld_sx(j);
+    let d = ld_sx(i) - partner_of(i, j);
     let cut = sref[4u * i + 3u] + sref[4u * j + 3u] + pf[PF_SKIN];
     return dot3(d, d) < cut * cut;
 }
@@ -112,8 +112,10 @@ fn neighbours(i: u32, out: ptr<function, array<u32, 32>>) -> u32 {
     for (var dz = -1; dz <= 1; dz++) {
         for (var dy = -1; dy <= 1; dy++) {
             for (var dx = -1; dx <= 1; dx++) {
-                let cc = c + vec3<i32>(dx, dy, dz);
-                if (any(cc < vec3<i32>(0)) || any(cc >= n)) { continue; }
+                // across a periodic face: the cell on the other side
+                let cc = vec3<i32>(cell_wrap(c.x + dx, 0u, n.x), cell_wrap(c.y + dy, 1u, n.y),
+                                   cell_wrap(c.z + dz, 2u, n.z));
+                if (any(cc < vec3<i32>(0))) { continue; }
                 let key = cell_key(cc);
                 for (var k = cells[2u * key]; k < cells[2u * key + 1u]; k++) {
                     let j = idx[k];

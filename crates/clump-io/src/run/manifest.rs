@@ -65,9 +65,52 @@ impl Runner {
             "sphere_steps_per_s": s.throughput(),
             "steps_per_s": if s.wall_time > 0.0 { s.steps() as f64 / s.wall_time } else { 0.0 },
             "checkpoint": s.checkpoint.as_ref().map(|p| p.display().to_string()),
+            "device": self.device_name(),
+            "adapter": self.device.as_ref().map(|d| d.describe()),
+            "segments": self.segments(s),
         });
         let text = serde_json::to_string_pretty(&m).map_err(std::io::Error::other)?;
         crate::atomic::write_atomic(self.out.dir.join("manifest.json"), text.as_bytes())
+    }
+}
+
+impl Runner {
+    /// Where the steps between events ran: `cpu`, or `gpu` with a device
+    /// ([`super::device::StepDevice`]).
+    fn device_name(&self) -> &'static str {
+        if self.device.is_some() {
+            "gpu"
+        } else {
+            "cpu"
+        }
+    }
+
+    /// The run's segments (a fresh run, then one per resume) with the
+    /// device and adapter of each: the earlier segments from the folder's
+    /// manifest.json (those that start before this one: a resume that went
+    /// back to an earlier checkpoint replaces the later ones), then this.
+    fn segments(&self, s: &RunSummary) -> Vec<serde_json::Value> {
+        let earlier: Vec<serde_json::Value> =
+            std::fs::read_to_string(self.out.dir.join("manifest.json"))
+                .ok()
+                .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+                .and_then(|m| m.get("segments").and_then(|v| v.as_array()).cloned())
+                .unwrap_or_default();
+        let mut out: Vec<serde_json::Value> = earlier
+            .into_iter()
+            .filter(|g| {
+                g.get("first_step")
+                    .and_then(|v| v.as_u64())
+                    .is_some_and(|f| f < s.first_step)
+            })
+            .collect();
+        out.push(serde_json::json!({
+            "first_step": s.first_step,
+            "final_step": s.final_step,
+            "device": self.device_name(),
+            "adapter": self.device.as_ref().map(|d| d.describe()),
+        }));
+        out
     }
 }
 
