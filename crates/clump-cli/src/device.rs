@@ -83,26 +83,6 @@ fn refuse(sc: &clump_io::scenario::Scenario, world: &clump_core::world::World) -
     !refused.is_empty()
 }
 
-/// The steps between events on the GPU (`clump_gpu::DeviceStepper`).
-#[cfg(feature = "gpu")]
-struct GpuSteps(clump_gpu::DeviceStepper, String);
-
-#[cfg(feature = "gpu")]
-impl clump_io::run::device::StepDevice for GpuSteps {
-    fn advance(
-        &mut self,
-        world: &mut clump_core::world::World,
-        to: u64,
-        stop: &mut dyn FnMut() -> bool,
-    ) -> Result<u64, String> {
-        self.0.advance(world, to, stop).map_err(|e| e.to_string())
-    }
-
-    fn describe(&self) -> String {
-        self.1.clone()
-    }
-}
-
 /// `clump run|resume --device gpu`: the device for the runner of `world`
 /// (built from, or resumed with, `sc`), or an error message (the
 /// settings the GPU path refuses are printed at their keys) before
@@ -124,9 +104,7 @@ pub fn stepper(
                 .into(),
         );
     }
-    let gpu = clump_gpu::Gpu::new().map_err(|e| e.to_string())?;
-    let name = gpu.describe();
-    Ok(Box::new(GpuSteps(clump_gpu::DeviceStepper::new(gpu), name)))
+    clump_gpu::steps::gpu_steps(world)
 }
 
 #[cfg(not(feature = "gpu"))]

@@ -171,6 +171,50 @@ fn run_and_resume_on_the_gpu_agree_with_the_cpu_path() {
             }
         }
     }
+    // the manifest names the device of the run and of each resume segment
+    let manifest = |n: &str| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(dir(n).join("manifest.json")).unwrap())
+            .unwrap()
+    };
+    let adapter = manifest("gpu")["adapter"]
+        .as_str()
+        .unwrap_or("")
+        .to_string();
+    assert!(
+        !adapter.is_empty(),
+        "the GPU run's manifest names no adapter"
+    );
+    assert_eq!(manifest("cpu")["device"], "cpu");
+    assert_eq!(manifest("cpu")["adapter"], serde_json::Value::Null);
+    for (name, first, then) in [
+        ("gpu_then_cpu", "gpu", "cpu"),
+        ("cpu_then_gpu", "cpu", "gpu"),
+    ] {
+        let m = manifest(name);
+        assert_eq!(m["device"], then, "{name}: {m}");
+        let segs: Vec<(u64, u64, &str, &str)> = m["segments"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|g| {
+                (
+                    g["first_step"].as_u64().unwrap(),
+                    g["final_step"].as_u64().unwrap(),
+                    g["device"].as_str().unwrap(),
+                    g["adapter"].as_str().unwrap_or(""),
+                )
+            })
+            .collect();
+        let named = |d: &str| if d == "gpu" { adapter.as_str() } else { "" };
+        assert_eq!(
+            segs,
+            vec![
+                (0, 500, first, named(first)),
+                (500, 1000, then, named(then))
+            ],
+            "{name}"
+        );
+    }
     let frames = std::fs::read_dir(dir("gpu"))
         .unwrap()
         .filter(|e| {

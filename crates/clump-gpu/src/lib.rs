@@ -3,6 +3,7 @@
 //!
 //! - `context`: the adapter and device, buffer and pipeline helpers;
 //! - `bed`: a bed of tetra clumps in a closed box, all of it on the device;
+//! - `steps`: the device as the runner's `StepDevice` (clump-io);
 //! - `support`: what the device step runs, refused by scenario key;
 //! - `device_world`: a world's arrays on the device, the step's kernels in
 //!   order (`shaders/*.wgsl`);
@@ -17,6 +18,7 @@ pub mod bed;
 pub mod context;
 pub mod device_world;
 pub mod periodic;
+pub mod steps;
 pub mod support;
 pub mod transfer;
 

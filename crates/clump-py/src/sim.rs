@@ -20,21 +20,29 @@ impl Simulation {
     /// `output_dir` the scenario's outputs are written there as by `clump run -o`.
     /// Raises ScenarioError.
     #[staticmethod]
-    #[pyo3(signature = (path, output_dir=None, overwrite=false))]
+    #[pyo3(signature = (path, output_dir=None, overwrite=false, device="cpu"))]
     fn from_file(
         py: Python<'_>,
         path: PathBuf,
         output_dir: Option<PathBuf>,
         overwrite: bool,
+        device: &str,
     ) -> PyResult<Self> {
         let text = std::fs::read_to_string(&path).unwrap_or_default();
-        Self::open(py, scenario::load(&path), &text, output_dir, overwrite)
+        Self::open(
+            py,
+            scenario::load(&path),
+            &text,
+            output_dir,
+            overwrite,
+            device,
+        )
     }
 
     /// A scenario from TOML text; files it names are relative to `base_dir`.
     /// Raises ScenarioError.
     #[staticmethod]
-    #[pyo3(signature = (text, base_dir=PathBuf::from("."), output_dir=None, overwrite=false, name="<string>"))]
+    #[pyo3(signature = (text, base_dir=PathBuf::from("."), output_dir=None, overwrite=false, name="<string>", device="cpu"))]
     fn from_toml(
         py: Python<'_>,
         text: String,
@@ -42,40 +50,55 @@ impl Simulation {
         output_dir: Option<PathBuf>,
         overwrite: bool,
         name: &str,
+        device: &str,
     ) -> PyResult<Self> {
         let sc = scenario::parse(&base_dir.join(name), text.clone(), Files::disk(&base_dir));
-        Self::open(py, sc, &text, output_dir, overwrite)
+        Self::open(py, sc, &text, output_dir, overwrite, device)
     }
 
     /// A scenario from a dict shaped like the TOML file (read like a file:
     /// same validation and messages). Raises ScenarioError.
     #[staticmethod]
-    #[pyo3(signature = (d, base_dir=PathBuf::from("."), output_dir=None, overwrite=false))]
+    #[pyo3(signature = (d, base_dir=PathBuf::from("."), output_dir=None, overwrite=false, device="cpu"))]
     fn from_dict(
         py: Python<'_>,
         d: &Bound<'_, PyDict>,
         base_dir: PathBuf,
         output_dir: Option<PathBuf>,
         overwrite: bool,
+        device: &str,
     ) -> PyResult<Self> {
         let text = crate::dict::to_toml(d)?;
-        Self::from_toml(py, text, base_dir, output_dir, overwrite, "<dict>")
+        Self::from_toml(py, text, base_dir, output_dir, overwrite, "<dict>", device)
     }
 
     /// The run saved in a checkpoint (`save_checkpoint` or `clump run`);
     /// it continues bit for bit. Raises ScenarioError.
     #[staticmethod]
-    #[pyo3(signature = (path, output_dir=None))]
+    #[pyo3(signature = (path, output_dir=None, device="cpu"))]
     fn from_checkpoint(
         py: Python<'_>,
         path: PathBuf,
         output_dir: Option<PathBuf>,
+        device: &str,
     ) -> PyResult<Self> {
-        let runner = match output_dir {
+        // the device's settings are checked on the checkpoint's world
+        // before the output folder is touched
+        let device = crate::simulation::device_for(device, || {
+            let bytes = std::fs::read(&path)
+                .map_err(|e| format!("cannot read checkpoint {}: {e}", path.display()))?;
+            clump_io::run::load_checkpoint_with_id(&bytes, &path)
+                .map(|(_, w, _, _)| w)
+                .map_err(|e| e.to_string())
+        })?;
+        let mut runner = match output_dir {
             Some(d) => Runner::resume(&path, Some(&d)),
             None => Runner::detached_resume(&path),
         }
         .map_err(|e| from_run(py, e, None))?;
+        if let Some(d) = device {
+            runner.set_device(d);
+        }
         Simulation::new(py, runner)
     }
 

@@ -4,6 +4,7 @@
 //! (`access.rs`, `walls.rs`) hold a reference to it.
 
 use crate::errors::{self, from_run, value_error};
+use clump_io::run::device::StepDevice;
 use clump_io::run::{Runner, Tally};
 use clump_io::scenario;
 use clump_io::vtk::VtkSeries;
@@ -60,26 +61,69 @@ impl Simulation {
         &self.sphere_order
     }
 
-    /// The run of a parsed scenario, with an output folder or without.
+    /// The run of a parsed scenario, with an output folder or without,
+    /// its steps between events on `device` ([`device_for`]).
     pub(crate) fn open(
         py: Python<'_>,
         sc: Result<scenario::Scenario, scenario::ScenarioError>,
         text: &str,
         output_dir: Option<PathBuf>,
         overwrite: bool,
+        device: &str,
     ) -> PyResult<Self> {
         let sc = sc.map_err(|e| errors::from_scenario(py, &e, Some(text)))?;
-        let runner = match output_dir {
+        let device = device_for(device, || sc.build_world().map_err(|e| e.to_string()))?;
+        let mut runner = match output_dir {
             Some(d) => Runner::new_in(sc, &d, overwrite),
             None => Runner::detached(sc),
         }
         .map_err(|e| from_run(py, e, Some(text)))?;
+        if let Some(d) = device {
+            runner.set_device(d);
+        }
         Simulation::new(py, runner)
     }
 
     pub(crate) fn text(&self) -> String {
         self.runner.scenario().text.clone()
     }
+}
+
+/// `device="cpu"` (None: the CPU path takes every step) or `"gpu"`: the
+/// GPU path takes the steps between events (crate clump-gpu, the `gpu`
+/// feature), refused before anything is written when it does not run a
+/// setting of the world that `world` builds.
+pub(crate) fn device_for(
+    device: &str,
+    world: impl FnOnce() -> Result<clump_core::world::World, String>,
+) -> PyResult<Option<Box<dyn StepDevice>>> {
+    match device {
+        "cpu" => Ok(None),
+        "gpu" => gpu_steps(world).map(Some),
+        other => Err(value_error(format!(
+            "device must be \"cpu\" or \"gpu\", got {other:?}"
+        ))),
+    }
+}
+
+#[cfg(feature = "gpu")]
+fn gpu_steps(
+    world: impl FnOnce() -> Result<clump_core::world::World, String>,
+) -> PyResult<Box<dyn StepDevice>> {
+    let w = world().map_err(value_error)?;
+    clump_gpu::steps::gpu_steps(&w).map_err(|e| value_error(format!("device=\"gpu\": {e}")))
+}
+
+#[cfg(not(feature = "gpu"))]
+fn gpu_steps(
+    _world: impl FnOnce() -> Result<clump_core::world::World, String>,
+) -> PyResult<Box<dyn StepDevice>> {
+    Err(value_error(
+        "device=\"gpu\": this clump package was built without the GPU path; build it with \
+         `MATURIN_PEP517_ARGS=\"--features gpu\" pip install ./crates/clump-py` (needs a Vulkan, \
+         Metal or DX12 driver with f64 shaders; on Linux without a GPU, Mesa's lavapipe: \
+         package mesa-vulkan-drivers)",
+    ))
 }
 
 /// Steps for `time` seconds at `dt`: the smallest whole number of steps

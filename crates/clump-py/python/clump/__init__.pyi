@@ -54,23 +54,29 @@ class Simulation:
 
     @staticmethod
     def from_file(path: _Path, output_dir: Optional[_Path] = None,
-                  overwrite: bool = False) -> "Simulation":
+                  overwrite: bool = False, device: str = "cpu") -> "Simulation":
         """Reads and validates a scenario TOML file (as ``clump run``; files it
         refers to are relative to it). With ``output_dir``, the run writes
         the scenario's outputs there as ``clump run -o`` does (VTK, thermo.csv,
         trajectories, periodic checkpoints, final_state.json and manifest.json
         when the stages end); a folder holding another run's files is refused
-        unless ``overwrite``. Raises ScenarioError."""
+        unless ``overwrite``. ``device="gpu"`` hands the steps between
+        events to the GPU path, as ``clump run --device gpu`` (a package
+        built with the ``gpu`` feature: ``MATURIN_PEP517_ARGS="--features
+        gpu" pip install ./crates/clump-py``); settings it does not run, or
+        a package built without it, raise ValueError before anything is
+        written. Raises ScenarioError."""
 
     @staticmethod
     def from_toml(text: str, base_dir: _Path = ".", output_dir: Optional[_Path] = None,
-                  overwrite: bool = False, name: str = "<string>") -> "Simulation":
+                  overwrite: bool = False, name: str = "<string>",
+                  device: str = "cpu") -> "Simulation":
         """A scenario from TOML text; files it refers to are relative to
         ``base_dir``; ``name`` names it in messages. Raises ScenarioError."""
 
     @staticmethod
     def from_dict(d: dict, base_dir: _Path = ".", output_dir: Optional[_Path] = None,
-                  overwrite: bool = False) -> "Simulation":
+                  overwrite: bool = False, device: str = "cpu") -> "Simulation":
         """A scenario from a dict shaped like the TOML file (tables are dicts,
         arrays of tables lists of dicts; numpy arrays and scalars allowed).
         It is written as TOML and read like a file: same validation, same
@@ -78,11 +84,13 @@ class Simulation:
         Raises ScenarioError."""
 
     @staticmethod
-    def from_checkpoint(path: _Path, output_dir: Optional[_Path] = None) -> "Simulation":
+    def from_checkpoint(path: _Path, output_dir: Optional[_Path] = None,
+                        device: str = "cpu") -> "Simulation":
         """The run saved in a checkpoint (by ``save_checkpoint`` or by
         ``clump run``); it continues bit for bit as the uninterrupted run.
-        With ``output_dir`` the outputs continue there (as ``clump resume``).
-        Raises ScenarioError."""
+        With ``output_dir`` the outputs continue there (as ``clump resume``);
+        ``device`` as in ``from_file`` (a checkpoint of either device
+        resumes on either). Raises ScenarioError."""
 
     def run(self, steps: Optional[int] = None, time: Optional[float] = None,
             callback: Optional[Callable[["Simulation"], Optional[bool]]] = None,
