@@ -5,9 +5,10 @@
 #      and clump-core's API docs built without a warning;
 #   2. the Python package: a virtual environment (.venv-test, or $CLUMP_VENV)
 #      with maturin, numpy, pytest and matplotlib, `pip install
-#      ./crates/clump-py` (the same `ci` build) and its pytest suite, which also
-#      runs the examples in examples/python in their short form and compares
-#      against the `clump` binary built by step 1;
+#      ./crates/clump-py` (the same `ci` build, with the `gpu` feature:
+#      device="gpu", tested on the machine's Vulkan adapter) and its pytest
+#      suite, which also runs the examples in examples/python in their short
+#      form and compares against the `clump` binary built by step 1;
 #   3. the MPI suite: `clump` built with the `mpi` feature (OpenMPI), run by
 #      `mpirun -np 2, 3, 4` against one process (crates/clump-cli/tests/mpi.rs);
 #   4. the GPU suite: `clump` built with the `gpu` feature, `clump check|bench
@@ -42,8 +43,10 @@ python -m pip install -q --upgrade pip
 # is built without build isolation, so pip would not enforce it
 python -m pip install -q "maturin>=1.5,<2" numpy pytest matplotlib
 # maturin from the venv builds the extension with the `ci` profile, as
-# `clump` above (a failed build fails the suite, and the MPI suite still runs)
-if MATURIN_PEP517_ARGS="--profile ci" python -m pip install -q --no-build-isolation --force-reinstall --no-deps ./crates/clump-py; then
+# `clump` above (a failed build fails the suite, and the MPI suite still runs);
+# with the `gpu` feature, so that test_gpu.py runs device="gpu" on lavapipe
+# (about doubles the package's build: wgpu, and clump-core with `testbed`)
+if MATURIN_PEP517_ARGS="--profile ci --features gpu" python -m pip install -q --no-build-isolation --force-reinstall --no-deps ./crates/clump-py; then
   export CLUMP_BIN="$PWD/target/ci/clump"
   if [ ! -x "$CLUMP_BIN" ]; then
     cargo build --profile ci -p clump-cli

@@ -87,8 +87,9 @@ impl Runner {
 
     /// The run's segments (a fresh run, then one per resume) with the
     /// device and adapter of each: the earlier segments from the folder's
-    /// manifest.json (those that start before this one: a resume that went
-    /// back to an earlier checkpoint replaces the later ones), then this.
+    /// manifest.json (those that start before this one, ending where it
+    /// starts at the latest: a resume that went back to an earlier
+    /// checkpoint replaces the steps after it), then this.
     fn segments(&self, s: &RunSummary) -> Vec<serde_json::Value> {
         let earlier: Vec<serde_json::Value> =
             std::fs::read_to_string(self.out.dir.join("manifest.json"))
@@ -104,6 +105,11 @@ impl Runner {
                     .is_some_and(|f| f < s.first_step)
             })
             .collect();
+        for g in &mut out {
+            if g["final_step"].as_u64().is_some_and(|f| f > s.first_step) {
+                g["final_step"] = s.first_step.into();
+            }
+        }
         out.push(serde_json::json!({
             "first_step": s.first_step,
             "final_step": s.final_step,
