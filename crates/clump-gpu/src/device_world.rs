@@ -587,7 +587,8 @@ impl HostArrays {
             skin,
         ];
         // periodic boxes (periodic.rs, periodic.wgsl): PF_LEN, PF_HI
-        let periodic_axes = crate::periodic::params(&c.domain, dims, cell_size, &mut pf)?;
+        let periodic_axes = crate::periodic::params(&c.domain, dims, cell_size, &mut pf)
+            .map_err(DeviceError::Grid)?;
         let nmat = world.materials.len();
         let walls: Vec<f64> = world
             .walls

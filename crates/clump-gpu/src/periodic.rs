@@ -3,7 +3,6 @@
 //! (`shaders/periodic.wgsl`), and the grid's check that the nearest image
 //! of a near pair is the only one.
 
-use crate::device_world::DeviceError;
 use clump_core::boundary::Domain;
 
 /// Index of the box edges in the float parameters (periodic.wgsl PF_LEN),
@@ -12,16 +11,17 @@ const PF_LEN: usize = 9;
 
 /// Appends the box edges and upper corner to the float parameters `pf`
 /// (which end at `PF_LEN`) and returns the periodic axes as bits 0-2
-/// (periodic.wgsl PU_PERIODIC). A periodic axis needs at least three
-/// cells of the grid `dims` (cells of edge `cell` m): the neighbour search
-/// then visits each cell once, and the nearest image of a pair within a
-/// cell's edge is unique (the CPU path's grid asks the same).
+/// (periodic.wgsl PU_PERIODIC), or why the box cannot be binned. A
+/// periodic axis needs at least three cells of the grid `dims` (cells of
+/// edge `cell` m): the neighbour search then visits each cell once, and
+/// the nearest image of a pair within a cell's edge is unique (the CPU
+/// path's grid asks the same).
 pub(crate) fn params(
     domain: &Domain,
     dims: [usize; 3],
     cell: f64,
     pf: &mut Vec<f64>,
-) -> Result<u32, DeviceError> {
+) -> Result<u32, String> {
     debug_assert_eq!(pf.len(), PF_LEN);
     let (l, hi) = (domain.size(), domain.hi);
     pf.extend([l.x, l.y, l.z, hi.x, hi.y, hi.z]);
@@ -31,12 +31,12 @@ pub(crate) fn params(
             continue;
         }
         if dims[a] < 3 {
-            return Err(DeviceError::Grid(format!(
+            return Err(format!(
                 "the periodic axis {} of the box is {} m long, shorter than three cells of {cell} m \
                  (the largest sphere diameter plus the skin)",
                 ["x", "y", "z"][a],
                 l[a]
-            )));
+            ));
         }
         bits |= 1 << a;
     }

@@ -1,8 +1,9 @@
 //! The device as a runner's [`StepDevice`] (crate clump-io): the GPU path
 //! of `clump run|resume --device gpu` and of Python's `device="gpu"`.
 
+use crate::context::Gpu;
 use crate::support::unsupported_settings;
-use crate::{DeviceStepper, Gpu};
+use crate::transfer::DeviceStepper;
 use clump_core::world::World;
 use clump_io::run::device::StepDevice;
 

@@ -158,6 +158,22 @@ fn device_step_agrees_with_the_cpu_path_in_a_periodic_box() {
     );
 }
 
+/// A periodic axis shorter than three cells (here one lattice pitch) is
+/// refused at upload, naming the axis, as the CPU path's grid refuses it.
+#[test]
+fn a_periodic_axis_of_fewer_than_three_cells_is_refused() {
+    let w = clump_core::testbed::tetra_lattice_bed(1, 1, 1, None);
+    match DeviceWorld::upload(Gpu::new().unwrap(), &w) {
+        Err(e) => assert!(
+            e.to_string().contains(
+                "the periodic axis x of the box is 0.0036 m long, shorter than three cells"
+            ),
+            "{e}"
+        ),
+        Ok(_) => panic!("a periodic axis of one cell was accepted"),
+    }
+}
+
 /// On the CPU path over the checkpoints of [`compare_world`]: how often a
 /// body crossed a periodic face (its centre moved by more than half the
 /// box between checkpoints along a periodic axis, where it moves a few mm

@@ -22,10 +22,24 @@ use clump_gpu::bed::periodic_bed;
 use clump_gpu::{DeviceWorld, Gpu};
 
 const STEPS: u64 = 20_000;
-const CPU_RUNS: u32 = 12;
+const CPU_RUNS: u32 = 24;
+
 /// The device runs: their initial velocities scaled by 1 + k 1e-9 for
-/// these k (between the CPU runs').
-const GPU_RUNS: [f64; 2] = [0.0, 0.5];
+/// these k (between the CPU runs'): 0 and 0.5, or the comma-separated
+/// list in CLUMP_STATISTICS_GPU_RUNS (more samples, on demand).
+fn gpu_runs() -> Vec<f64> {
+    match std::env::var("CLUMP_STATISTICS_GPU_RUNS") {
+        Ok(list) => list
+            .split(',')
+            .map(|k| {
+                k.trim()
+                    .parse()
+                    .expect("CLUMP_STATISTICS_GPU_RUNS: numbers")
+            })
+            .collect(),
+        Err(_) => vec![0.0, 0.5],
+    }
+}
 
 /// The bed with every initial velocity scaled by 1 + k 1e-9.
 fn bed(k: f64) -> World {
@@ -67,7 +81,7 @@ fn a_bed_poured_on_the_device_is_within_the_spread_of_cpu_runs() {
         cpu.push(measure(w));
     }
     let mut gpu = Vec::new();
-    for k in GPU_RUNS {
+    for k in gpu_runs() {
         let mut w = bed(k);
         let t = std::time::Instant::now();
         let mut dev = DeviceWorld::upload(Gpu::new().unwrap(), &w).unwrap();
