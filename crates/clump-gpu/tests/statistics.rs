@@ -71,7 +71,7 @@ fn measure(mut w: World) -> [f64; 4] {
 }
 
 #[test]
-#[ignore = "about 8 min on lavapipe; run with --ignored (open finding: docs/testing.md)"]
+#[ignore = "about 8 min on lavapipe; run with --ignored"]
 fn a_bed_poured_on_the_device_is_within_the_spread_of_cpu_runs() {
     let mut cpu = Vec::new();
     for k in 0..CPU_RUNS {
