@@ -40,6 +40,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         record,
         w.part.as_deref(),
         chunk,
+        None,
     );
     let balance = &mut w.scratch.balance[PAIR_LOOP];
     // SAFETY: every run is run once, on one thread.
@@ -100,6 +101,7 @@ pub(super) fn row_ctx<'a>(
     record: Option<SharedMut<crate::contact::record::PairRecord>>,
     part: Option<&'a crate::partition::Part>,
     body_chunk: usize,
+    sums: Option<&'a crate::contact::step_sums::StepSums>,
 ) -> (RowCtx<'a>, &'a crate::neighbor::PairList) {
     let topo = SharedMut::new(&mut pairs.topo);
     let tangential = SharedMut::new(&mut pairs.tangential);
@@ -129,6 +131,7 @@ pub(super) fn row_ctx<'a>(
         prefetch: sp.len() >= super::pair_kernel::PREFETCH_MIN_SPHERES,
         counted: part.map(|p| &p.owned[..]),
         body_chunk,
+        sums,
     };
     (rows, pairs)
 }

@@ -65,6 +65,8 @@ pub(super) struct WallPass<'a> {
     records: SharedMut<Vec<WallRecord>>,
     /// The vector instructions the law loop may use.
     simd: Simd,
+    /// The exact sums of the owned contacts, when this step makes them.
+    sums: Option<&'a crate::contact::step_sums::StepSums>,
 }
 
 /// A touch collected for the law, summed at the next [`WallPass::flush`];
@@ -164,6 +166,7 @@ impl<'a> WallPass<'a> {
         loads: SharedMut<WallLoad>,
         records: &'a mut [Vec<WallRecord>],
         recording: bool,
+        sums: Option<&'a crate::contact::step_sums::StepSums>,
     ) -> Self {
         let mut active_lo = 0u64;
         for (wi, wall) in walls.iter().enumerate().take(64) {
@@ -201,6 +204,7 @@ impl<'a> WallPass<'a> {
             recording,
             records: SharedMut::new(records),
             simd: simd(),
+            sums,
         }
     }
 
@@ -525,6 +529,10 @@ impl<'a> WallPass<'a> {
                 let stat = &mut *sums.stat;
                 stat.wall_contacts += 1;
                 stat.elastic_energy += out.elastic_energy * scale;
+                if let Some(s) = self.sums {
+                    s.add_elastic(out.elastic_energy * scale);
+                    s.add_wall(wi, -(fw * scale), -(tw * scale));
+                }
                 let ratio = l.overlap[t] / l.radius[t];
                 if ratio > stat.max_overlap_ratio {
                     stat.max_overlap_ratio = ratio;

@@ -117,6 +117,8 @@ pub(super) struct RowCtx<'a> {
     pub counted: Option<&'a [bool]>,
     /// Bodies per statistics chunk ([`crate::par::affinity::body_chunk`]).
     pub body_chunk: usize,
+    /// The exact sums of the counted contacts, when this step makes them.
+    pub sums: Option<&'a crate::contact::step_sums::StepSums>,
 }
 
 impl RowCtx<'_> {
@@ -447,6 +449,9 @@ impl RowCtx<'_> {
             // the statistics of the pair's chunk (a batch may span chunks)
             stat.pair_contacts += 1;
             stat.elastic_energy += l.energy[k] * l.scale[k];
+            if let Some(s) = self.sums {
+                s.add_elastic(l.energy[k] * l.scale[k]);
+            }
             let rmin = l.radius_i[k].min(l.radius_j[k]);
             if overlap > stat.max_overlap_ratio * rmin {
                 stat.max_overlap_ratio = overlap / rmin;
