@@ -270,17 +270,21 @@ fn frames_of_a_split_world_are_one_process_s() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// Thermo rows come from exact sums reduced over the ranks (T-73): a row
-/// where nothing else is due keeps the world split, and `thermo.csv` is
-/// one process's, byte for byte (`same_bits_at` compares every file).
+/// Thermo rows come from exact sums reduced over the ranks (T-73) and
+/// trajectory rows from the tracked bodies' owners: a row where nothing
+/// else is due keeps the world split, and `thermo.csv` and every
+/// `traj_<id>.csv` are one process's, byte for byte (`same_bits_at`
+/// compares every file).
 #[test]
-fn thermo_rows_of_a_split_world_are_one_process_s() {
+fn thermo_and_trajectory_rows_of_a_split_world_are_one_process_s() {
     let scenario = "crates/clump-cli/tests/fixtures/periodic_thermo.toml";
     same_bits_at("thermo", scenario, "1000", &[2, 3]);
     let (d, gathers) = two_rank_gathers("thermo-gathers", scenario);
     let thermo = std::fs::read_to_string(d.join("thermo.csv")).unwrap();
     let rows = thermo.lines().count() - 1;
     assert!(rows > 15, "only {rows} thermo rows");
+    let traj = std::fs::read_to_string(d.join("traj_77.csv")).unwrap();
+    assert!(traj.lines().count() > 20, "{traj}");
     // before, every row gathered the world (and ran the step before it whole)
     assert!(
         gathers < rows / 4,
@@ -325,7 +329,13 @@ fn two_rank_gathers(name: &str, scenario: &str) -> (PathBuf, usize) {
 fn files_ending(d: &Path, suffix: &str) -> usize {
     std::fs::read_dir(d)
         .unwrap()
-        .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().ends_with(suffix))
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .file_name()
+                .to_string_lossy()
+                .ends_with(suffix)
+        })
         .count()
 }
 

@@ -49,7 +49,11 @@ fn digits(x: f64) -> Result<(usize, [i64; 3]), u8> {
         });
     }
     // x = m · 2^(p − 1074)
-    let (m, p) = if e == 0 { (f, 0) } else { (f | 1u64 << 52, e - 1) };
+    let (m, p) = if e == 0 {
+        (f, 0)
+    } else {
+        (f | 1u64 << 52, e - 1)
+    };
     let v = (m as u128) << (p % 32);
     let d = [
         (v & 0xffff_ffff) as i64,
@@ -214,7 +218,8 @@ impl ExactSum {
         let mut l = self.limb;
         carry(&mut l);
         let mut out = Vec::with_capacity(LIMBS * 8 + 1);
-        l.iter().for_each(|d| out.extend_from_slice(&d.to_le_bytes()));
+        l.iter()
+            .for_each(|d| out.extend_from_slice(&d.to_le_bytes()));
         out.push(self.special);
         out
     }
@@ -229,7 +234,10 @@ impl ExactSum {
         for (d, c) in s.limb.iter_mut().zip(b.chunks_exact(8)) {
             *d = i64::from_le_bytes(c.try_into().ok()?);
         }
-        if s.limb[..LIMBS - 1].iter().any(|&d| !(0..1 << 32).contains(&d)) {
+        if s.limb[..LIMBS - 1]
+            .iter()
+            .any(|&d| !(0..1 << 32).contains(&d))
+        {
             return None;
         }
         s.special = b[LIMBS * 8] & (POS_INF | NEG_INF | NAN);

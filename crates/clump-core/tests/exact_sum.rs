@@ -17,13 +17,22 @@ fn sum(xs: &[f64]) -> f64 {
 fn matches_exact_rational_sums_on_adversarial_terms() {
     let text = include_str!("fixtures/exact_sum_cases.txt");
     let mut n = 0;
-    for (line, l) in text.lines().enumerate().filter(|(_, l)| !l.starts_with('#')) {
+    for (line, l) in text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.starts_with('#'))
+    {
         let (terms, want) = l.split_once(';').expect("terms ; sum");
         let f = |h: &str| f64::from_bits(u64::from_str_radix(h, 16).expect("hex bits"));
         let xs: Vec<f64> = terms.split_whitespace().map(f).collect();
         let want = f(want.trim());
         let got = sum(&xs);
-        assert_eq!(got.to_bits(), want.to_bits(), "case on line {}: {got:e} against {want:e}", line + 1);
+        assert_eq!(
+            got.to_bits(),
+            want.to_bits(),
+            "case on line {}: {got:e} against {want:e}",
+            line + 1
+        );
         // the same terms backwards, and split in two merged halves
         let mut rev = xs.clone();
         rev.reverse();

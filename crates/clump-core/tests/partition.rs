@@ -256,7 +256,10 @@ fn thermo_rows_of_a_split_world_are_one_process_s_on_2_to_5_ranks() {
     let want = rows(&mut serial, false);
     let last = serial.thermo();
     assert!(last.pair_contacts > 50 && last.elastic > 0.0 && last.kinetic_translational > 0.0);
-    assert!(last.wall_loads.iter().any(|l| l.force.length() > 0.0), "{last:?}");
+    assert!(
+        last.wall_loads.iter().any(|l| l.force.length() > 0.0),
+        "{last:?}"
+    );
     for ranks in 2..=5 {
         let handles: Vec<_> = ThreadComm::group(ranks)
             .into_iter()
@@ -271,7 +274,10 @@ fn thermo_rows_of_a_split_world_are_one_process_s_on_2_to_5_ranks() {
             .collect();
         for (rank, h) in handles.into_iter().enumerate() {
             let (got, split, gathers) = h.join().unwrap();
-            assert!(split && gathers == 0, "{ranks} ranks: split {split}, {gathers} gathers");
+            assert!(
+                split && gathers == 0,
+                "{ranks} ranks: split {split}, {gathers} gathers"
+            );
             assert_eq!(got, want, "{ranks} ranks, rank {rank}");
         }
     }

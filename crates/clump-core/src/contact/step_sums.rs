@@ -55,7 +55,10 @@ impl StepSums {
             self.elastic.clear();
             self.wall.resize_with(walls, Default::default);
             self.wall.truncate(walls);
-            self.wall.iter_mut().flatten().for_each(AtomicExactSum::clear);
+            self.wall
+                .iter_mut()
+                .flatten()
+                .for_each(AtomicExactSum::clear);
         }
         on
     }
@@ -87,7 +90,10 @@ impl StepSums {
     /// world step `step`: the elastic energy and each wall's load.
     pub fn at_step(&self, step: u64) -> Option<(ExactSum, Vec<WallSums>)> {
         (self.made == Some(step)).then(|| {
-            let walls = self.wall.iter().map(|w| w.each_ref().map(AtomicExactSum::load));
+            let walls = self
+                .wall
+                .iter()
+                .map(|w| w.each_ref().map(AtomicExactSum::load));
             (self.elastic.load(), walls.collect())
         })
     }

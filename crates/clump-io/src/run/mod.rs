@@ -37,6 +37,7 @@ mod pieces;
 mod report;
 mod session;
 mod stages;
+mod traj_ranks;
 mod vtk_ranks;
 
 pub use checkpoint::{load_checkpoint, load_checkpoint_with_id, Checkpoint};
@@ -692,6 +693,10 @@ impl Runner {
         if self.thermo_in_pieces() {
             e = e.min(self.st.next_thermo);
         }
+        let o = &self.scenario.output;
+        if o.trajectory.is_some() && self.out.trajectory.is_some() && self.trajectory_in_pieces() {
+            e = e.min(self.st.next_trajectory);
+        }
         e.min(self.next_whole_step()).max(self.world.step + 1)
     }
 
@@ -710,7 +715,8 @@ impl Runner {
     /// The next step whose boundary work needs the whole world: the end of
     /// the current stage, an insertion, an output row or frame (every
     /// event but a checkpoint, the step limit, a VTK frame written in
-    /// pieces and a thermo row from reductions).
+    /// pieces, a thermo row from reductions and trajectory rows from the
+    /// bodies' owners).
     fn next_whole_step(&self) -> u64 {
         let (st, step) = (&self.st, self.world.step);
         let o = &self.scenario.output;
@@ -728,7 +734,7 @@ impl Runner {
         if o.thermo.is_some() && self.out.thermo.is_some() && !self.thermo_in_pieces() {
             e = e.min(st.next_thermo);
         }
-        if o.trajectory.is_some() && self.out.trajectory.is_some() {
+        if o.trajectory.is_some() && self.out.trajectory.is_some() && !self.trajectory_in_pieces() {
             e = e.min(st.next_trajectory);
         }
         if o.contacts.is_some() && self.out.contacts.is_some() {

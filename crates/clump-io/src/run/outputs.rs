@@ -318,8 +318,7 @@ impl Runner {
         }
         if let (Some(t), Some(tw)) = (&o.trajectory, self.out.trajectory.as_mut()) {
             if step >= self.st.next_trajectory {
-                tw.write(&self.world)
-                    .map_err(rt("cannot write trajectories"))?;
+                super::traj_ranks::write_rows(&mut self.world, tw)?;
                 self.st.next_trajectory = step + t.every;
             }
         }

@@ -24,7 +24,9 @@ impl World {
             return Ok(self.thermo());
         }
         if self.heat.is_some() || self.fluid().is_some() {
-            return Err("a thermo row of a world with heat or a fluid needs the whole world".into());
+            return Err(
+                "a thermo row of a world with heat or a fluid needs the whole world".into(),
+            );
         }
         let Some((elastic, walls)) = self.neighbors.records.sums.at_step(self.step) else {
             return Err(format!(
