@@ -36,9 +36,35 @@ pub fn box_bed_dof(
     rotation: RotationScheme,
     flags: impl Fn(u64) -> ([bool; 3], [bool; 3]),
 ) -> World {
+    box_bed_with(n, layers, rotation, |k, b| {
+        (b.force_flag, b.torque_flag) = flags(k);
+        // a locked axis starts at rest (it would never stop)
+        b.velocity = DVec3::select(glam::BVec3::from(b.force_flag), b.velocity, DVec3::ZERO);
+    })
+}
+
+/// [`box_bed`] with the `k`-th clump (from 1) changed by `each(k, init)`
+/// before it is added (its degrees of freedom, its motion).
+pub fn box_bed_with(
+    n: usize,
+    layers: usize,
+    rotation: RotationScheme,
+    each: impl Fn(u64, &mut BodyInit),
+) -> World {
+    box_bed_law(n, layers, rotation, PairProperties::default(), each)
+}
+
+/// [`box_bed_with`] with the pair law `law` for clump-clump and
+/// clump-wall contacts (rolling resistance, say).
+pub fn box_bed_law(
+    n: usize,
+    layers: usize,
+    rotation: RotationScheme,
+    law: PairProperties,
+    each: impl Fn(u64, &mut BodyInit),
+) -> World {
     let mats = vec![tetra_material()];
-    let table =
-        ContactTable::new(&mats, |_, _| PairProperties::default()).expect("a valid test bed");
+    let table = ContactTable::new(&mats, |_, _| law).expect("a valid test bed");
     let l = n as f64 * PITCH;
     let h = (layers as f64 + 2.0) * PITCH;
     let config = WorldConfig {
@@ -96,10 +122,7 @@ pub fn box_bed_dof(
                 b.velocity = 0.2 * DVec3::new((kf * 1.7).sin(), (kf * 2.3).sin(), (kf * 3.1).sin());
                 b.angular_velocity =
                     100.0 * DVec3::new((kf * 0.9).cos(), (kf * 1.1).cos(), (kf * 1.9).cos());
-                (b.force_flag, b.torque_flag) = flags(k);
-                // a locked axis starts at rest (it would never stop)
-                b.velocity =
-                    DVec3::select(glam::BVec3::from(b.force_flag), b.velocity, DVec3::ZERO);
+                each(k, &mut b);
                 w.add_body(&b).expect("a valid test bed");
             }
         }

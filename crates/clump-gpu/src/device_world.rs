@@ -8,15 +8,21 @@ use clump_core::world::World;
 use glam::{DQuat, DVec3};
 
 /// The kernels, one WGSL module.
-const SHADER: [&str; 5] = [
+const SHADER: [&str; 6] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/rotation.wgsl"),
     include_str!("shaders/body.wgsl"),
     include_str!("shaders/pairs.wgsl"),
+    include_str!("shaders/rolling.wgsl"),
     include_str!("shaders/contact.wgsl"),
 ];
 /// Storage bindings of the module (common.wgsl).
 const N_BINDINGS: u32 = 30;
+/// f64s per contact's springs: tangential (3), then rolling (3)
+/// (common.wgsl `ld_hist`, `ld_roll`).
+pub(crate) const HIST: usize = 6;
+/// f64s per material pair in `laws` (contact.wgsl LAW_ROW).
+const LAW_ROW: usize = 11;
 /// Pair-table entries reserved per sphere (each pair twice, one entry per side).
 const ENTRIES_PER_SPHERE: usize = 16;
 /// Index of the integer parameter holding the overflow bits (common.wgsl PU_OVERFLOW).
@@ -479,8 +485,9 @@ impl DeviceWorld {
 }
 
 /// The springs of a world in the device's layout: the pair table's
-/// owning entries (offsets per sphere, neighbour, spring) and the wall
-/// slots (3 per (sphere, wall)).
+/// owning entries (offsets per sphere, neighbour, springs) and the wall
+/// slots ([`HIST`] f64s per entry and per (sphere, wall): tangential,
+/// rolling).
 pub(crate) struct Springs {
     pub noff: Vec<u32>,
     pub nbr: Vec<u32>,
@@ -502,11 +509,14 @@ pub(crate) fn by_id(world: &World) -> clump_core::body::Bodies {
 }
 
 /// The force flags (bits 0-2) and torque flags (bits 3-5) per world axis
-/// (common.wgsl `dof_flags`), as an f64 of `bm`.
-fn dof_bits(force: [bool; 3], torque: [bool; 3]) -> f64 {
+/// (common.wgsl `dof_flags`) and whether the body is driven (bit 6,
+/// common.wgsl `driven`), as an f64 of `bm`.
+fn dof_bits(force: [bool; 3], torque: [bool; 3], start_step: u64) -> f64 {
+    let driven = ((start_step == clump_core::dof::DRIVEN) as u32) << 6;
     (0..3)
         .map(|k| (force[k] as u32) << k | (torque[k] as u32) << (k + 3))
         .sum::<u32>() as f64
+        + driven as f64
 }
 
 /// Entries of the device pair table for `world`.
@@ -620,10 +630,11 @@ impl HostArrays {
             world.walls.len() as u32,
             nmat as u32,
         ]);
-        let mut laws = Vec::with_capacity(8 * nmat * nmat);
+        let mut laws = Vec::with_capacity(LAW_ROW * nmat * nmat);
         for a in 0..nmat {
             for bm in 0..nmat {
-                let l = world.contact_table.get(a as u16, bm as u16).sliding_law();
+                let model = world.contact_table.get(a as u16, bm as u16);
+                let l = model.sliding_law();
                 laws.extend([
                     if l.hertz { 1.0 } else { 0.0 },
                     l.fn_floor,
@@ -633,6 +644,14 @@ impl HostArrays {
                     l.gt_coef,
                     l.energy_factor,
                     l.friction,
+                    // rolling.wgsl ROLL_*
+                    match model.properties().rolling {
+                        clump_core::contact::RollingLaw::None => 0.0,
+                        clump_core::contact::RollingLaw::Cdt => 1.0,
+                        clump_core::contact::RollingLaw::Epsd => 2.0,
+                    },
+                    model.properties().rolling_friction,
+                    model.rolling_damping(),
                 ]);
             }
         }
@@ -651,7 +670,7 @@ impl HostArrays {
                 inv.y,
                 inv.z,
                 (0.5 * c.dt) / (m * 1.0),
-                dof_bits(b.force_flag[i], b.torque_flag[i]),
+                dof_bits(b.force_flag[i], b.torque_flag[i], b.start_step[i]),
             ]);
             load.extend([
                 b.force[i].x,
@@ -712,24 +731,24 @@ impl HostArrays {
             Some(sp) => {
                 out.push(gpu.buffer("noff", &sp.noff));
                 out.push(gpu.buffer("nbr", &padded(&sp.nbr, n.cap)));
-                out.push(gpu.buffer("hist", &padded(&sp.hist, 3 * n.cap)));
+                out.push(gpu.buffer("hist", &padded(&sp.hist, HIST * n.cap)));
             }
             None => {
                 out.push(gpu.zeroed::<u32>("noff", n.ns + 1));
                 out.push(gpu.zeroed::<u32>("nbr", n.cap));
-                out.push(gpu.zeroed::<f64>("hist", 3 * n.cap));
+                out.push(gpu.zeroed::<f64>("hist", HIST * n.cap));
             }
         }
         out.push(gpu.zeroed::<u32>("old_off", n.ns + 1));
         out.push(gpu.zeroed::<u32>("old_nbr", n.cap));
-        out.push(gpu.zeroed::<f64>("old_hist", 3 * n.cap));
+        out.push(gpu.zeroed::<f64>("old_hist", HIST * n.cap));
         out.push(gpu.zeroed::<u32>("mirror", n.cap));
         out.push(gpu.zeroed::<f64>("pout", 9 * n.cap));
         out.push(gpu.zeroed::<f64>("sft", 12 * n.ns));
         out.push(gpu.buffer("walls", &self.walls));
         match &springs {
-            Some(sp) => out.push(gpu.buffer("whist", &padded(&sp.whist, 3 * n.ns * nw))),
-            None => out.push(gpu.zeroed::<f64>("whist", 3 * n.ns * nw)),
+            Some(sp) => out.push(gpu.buffer("whist", &padded(&sp.whist, HIST * n.ns * nw))),
+            None => out.push(gpu.zeroed::<f64>("whist", HIST * n.ns * nw)),
         }
         out.push(gpu.buffer("laws", &self.laws));
         out.push(gpu.zeroed::<f64>("sx0", 3 * n.ns));

@@ -69,14 +69,24 @@ fn wall_key(k: usize, key: Option<&'static str>) -> Vec<KeySeg> {
 /// the CPU path).
 pub fn unsupported(world: &World) -> Vec<Unsupported> {
     let mut out = unsupported_settings(world);
-    let b = world.bodies();
-    if (0..b.len()).any(|i| b.start_step[i] > world.step) {
+    if late_start(world) > world.step {
         out.push(Unsupported {
             path: keys("insert"),
             allowed: "bodies present from the start of the device run".into(),
         });
     }
     out
+}
+
+/// The last start step of a body that starts (a stream's; a driven or
+/// fixed body never starts and runs on the device), 0 without one.
+pub(crate) fn late_start(world: &World) -> u64 {
+    let b = world.bodies();
+    (0..b.len())
+        .map(|i| b.start_step[i])
+        .filter(|&s| s != clump_core::dof::DRIVEN)
+        .max()
+        .unwrap_or(0)
 }
 
 /// The settings of `world` (its scenario's keys) that the device step
@@ -109,10 +119,10 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
         no(keys("simulation.multi_contact"), "\"sum\"");
     }
     let t = &world.contact_table;
-    if t.any_extended() || t.any_rolling() || t.any_reach() {
+    if t.any_extended() || t.any_reach() {
         no(
             keys("pair"),
-            "Hertz-Mindlin or linear laws without rolling, twisting, cohesion or micro-slip",
+            "Hertz-Mindlin or linear laws, rolling resistance none, cdt or epsd, without twisting, cohesion or micro-slip",
         );
     }
     for (k, w) in world.walls.iter().enumerate() {
@@ -129,14 +139,6 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
         if w.multi_contact != clump_core::multi_contact::MultiContact::Sum || !w.active {
             no(wall_key(k, None), "active, multi_contact = \"sum\"");
         }
-    }
-    let b = world.bodies();
-    // a driven (or fixed) body never starts (`dof::DRIVEN`)
-    if (0..b.len()).any(|i| b.start_step[i] == clump_core::dof::DRIVEN) {
-        no(
-            keys("insert"),
-            "no fixed or driven bodies (`fixed`, `driven`; force and torque flags are allowed)",
-        );
     }
     if world.heat.is_some() {
         no(keys("heat"), "off");
