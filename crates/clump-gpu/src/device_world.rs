@@ -8,13 +8,14 @@ use clump_core::world::World;
 use glam::{DQuat, DVec3};
 
 /// The kernels, one WGSL module.
-const SHADER: [&str; 6] = [
+const SHADER: [&str; 7] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/rotation.wgsl"),
     include_str!("shaders/body.wgsl"),
     include_str!("shaders/pairs.wgsl"),
     include_str!("shaders/rolling.wgsl"),
     include_str!("shaders/contact.wgsl"),
+    include_str!("shaders/walls.wgsl"),
 ];
 /// Storage bindings of the module (common.wgsl).
 const N_BINDINGS: u32 = 30;
@@ -50,7 +51,8 @@ const K_BODY_GATHER: usize = 13;
 const K_GATHER_KICK: usize = 14;
 const K_REBUILD_ARGS: usize = 15;
 const K_TABLE_SAVE: usize = 16;
-const ENTRIES: [&str; 17] = [
+const K_WALL_STEP: usize = 17;
+const ENTRIES: [&str; 18] = [
     "first_half",
     "spheres",
     "sort_reset",
@@ -68,7 +70,12 @@ const ENTRIES: [&str; 17] = [
     "gather_kick",
     "rebuild_args",
     "table_save",
+    "wall_step",
 ];
+/// Index of the walls' row set of this step (common.wgsl PU_WSTEP).
+const PU_WSTEP: usize = 15;
+/// Steps per submission of [`DeviceWorld::run`] (row sets of moving walls: one more).
+const BATCH: u64 = 64;
 /// The indirect dispatch sizes `rebuild_args` writes (pairs.wgsl): one
 /// group per 64 sort slots, cells, spheres, table entries; or one group.
 const A_SLOTS: u64 = 0;
@@ -120,6 +127,8 @@ struct Sizes {
     npow2: usize,
     cells: usize,
     cap: usize,
+    /// Wall contact slots per sphere.
+    nwf: usize,
 }
 
 /// A world's state on the device and the step's pipelines.
@@ -145,6 +154,8 @@ pub struct DeviceWorld {
     /// last batch.
     pub builds: u64,
     dt: f64,
+    /// The walls at `step` (the host advances them, walls.rs).
+    pub(crate) walls: crate::walls::WallTable,
 }
 
 /// The step's compiled kernels and their layouts: made once per device,
@@ -310,6 +321,7 @@ impl DeviceWorld {
             time: world.time,
             builds: 0,
             dt: world.config.dt,
+            walls: crate::walls::WallTable::new(&world.walls, world.config.dt),
         })
     }
 
@@ -321,7 +333,6 @@ impl DeviceWorld {
     /// Takes `steps` steps on the device, in batches of one submission
     /// each; the host reads back only the overflow flags between batches.
     pub fn run(&mut self, steps: u64) -> Result<(), DeviceError> {
-        const BATCH: u64 = 64;
         let mut left = steps;
         while left > 0 {
             let k = left.min(BATCH);
@@ -334,6 +345,17 @@ impl DeviceWorld {
     /// One submission: with `prepare`, the forces of the current state;
     /// then `steps` whole steps. Checks the overflow flags after it.
     fn submit(&mut self, steps: u64, prepare: bool) -> Result<(), DeviceError> {
+        if self.walls.moving {
+            // the walls of each step of this submission, from row set 0
+            let rows = self.walls.advance(steps);
+            self.gpu
+                .queue
+                .write_buffer(&self.buffers[26], 0, bytemuck::cast_slice(&rows));
+            let at = (PU_WSTEP * 4) as u64;
+            self.gpu
+                .queue
+                .write_buffer(&self.buffers[1], at, bytemuck::bytes_of(&0u32));
+        }
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         if prepare {
             self.encode_positions(&mut enc, false);
@@ -383,6 +405,9 @@ impl DeviceWorld {
         let mut pass = enc.begin_compute_pass(&Default::default());
         if first_half {
             self.dispatch(&mut pass, K_FIRST_HALF, n.nb);
+            if self.walls.moving {
+                self.dispatch(&mut pass, K_WALL_STEP, 1);
+            }
         }
         self.dispatch(&mut pass, K_SPHERES, n.npow2);
         pass.set_pipeline(&self.kernels.pipelines[K_REBUILD_ARGS]);
@@ -458,6 +483,7 @@ impl DeviceWorld {
                 .set_body_angular_state_at(k, d3(&w), d3(&l))
                 .map_err(bad)?;
         }
+        world.walls.clone_from_slice(&self.walls.walls);
         world.step = self.step;
         world.time = self.time;
         Ok(())
@@ -580,6 +606,7 @@ impl HostArrays {
             npow2: ns.next_power_of_two().max(2),
             cells: dims[0] * dims[1] * dims[2],
             cap: ns * ENTRIES_PER_SPHERE,
+            nwf: crate::walls::face_bases(&world.walls).1,
         };
         let lo = c.domain.lo;
         let pf = vec![
@@ -594,23 +621,16 @@ impl HostArrays {
             skin,
         ];
         let nmat = world.materials.len();
-        let walls: Vec<f64> = world
-            .walls
-            .iter()
-            .flat_map(|w| match w.shape {
-                clump_core::wall::WallShape::Plane { point, normal } => [
-                    point.x,
-                    point.y,
-                    point.z,
-                    normal.x,
-                    normal.y,
-                    normal.z,
-                    w.material as f64,
-                ],
-                _ => unreachable!("refused by support::unsupported"),
-            })
-            .collect();
-        let mut pu = vec![0u32; 16];
+        // the walls' row sets (walls.rs): room for every step of a
+        // submission when one moves
+        let table = crate::walls::WallTable::new(&world.walls, c.dt);
+        let sets = if table.moving { BATCH as usize + 1 } else { 1 };
+        let mut walls = table.rows();
+        walls.resize(sets * walls.len(), 0.0);
+        let nwf = crate::walls::face_bases(&world.walls).1;
+        let mut pu = vec![0u32; 18];
+        // common.wgsl PU_NWF
+        pu[16] = nwf as u32;
         // common.wgsl PU_ROT (support.rs refuses the other schemes)
         pu[12] = match c.rotation {
             clump_core::rotation::RotationScheme::NoSquish => 1,
@@ -712,7 +732,7 @@ impl HostArrays {
 
     /// The storage buffers of group 0, by binding.
     fn buffers(&self, gpu: &Gpu, n: Sizes, springs: Option<Springs>) -> Vec<wgpu::Buffer> {
-        let nw = (self.walls.len() / 7).max(1);
+        let nw = n.nwf.max(1);
         let mut out = vec![gpu.buffer("pf", &self.pf), gpu.buffer("pu", &self.pu)];
         for (k, a) in self.bodies.iter().enumerate() {
             out.push(gpu.buffer(["bx", "bv", "bq", "bl", "bw", "bft", "bm"][k], a));

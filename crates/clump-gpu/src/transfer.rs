@@ -36,14 +36,15 @@ fn device_gids(world: &World) -> Vec<u64> {
     out
 }
 
-/// The wall of a wall slot's key (`step/wall_contacts.rs` `slot_key`:
-/// `(wall << 16 | patch) + 1`, patch 0 for a plane).
-fn slot_key(wall: usize) -> u32 {
-    ((wall as u32) << 16) + 1
+/// The key of a wall slot (`step/wall_contacts.rs` `slot_key`:
+/// `(wall << 16 | patch) + 1`, the patch of an analytic wall its face).
+fn slot_key(wall: usize, face: usize) -> u32 {
+    (((wall as u32) << 16) | face as u32) + 1
 }
 
-fn slot_wall(key: u32) -> usize {
-    ((key - 1) >> 16) as usize
+/// The wall and face of a slot key.
+fn slot_wall(key: u32) -> (usize, usize) {
+    (((key - 1) >> 16) as usize, ((key - 1) & 0xffff) as usize)
 }
 
 /// The tangential and rolling springs of contact `k` of a device spring
@@ -112,14 +113,16 @@ impl Springs {
             )));
         }
         let nw = world.walls.len();
-        let mut whist = vec![0.0; HIST * ns * nw];
+        let (base, nwf) = crate::walls::face_bases(&world.walls);
+        let mut whist = vec![0.0; HIST * ns * nwf];
         let cpu_gid = &world.spheres().gid;
         for (s, (keys, hs)) in state.wall_key.iter().zip(&state.wall_hist).enumerate() {
             for (&key, h) in keys.iter().zip(hs) {
-                if key == 0 || slot_wall(key) >= nw {
+                let (w, face) = if key == 0 { (nw, 0) } else { slot_wall(key) };
+                if w >= nw || face >= crate::walls::faces(&world.walls[w]) {
                     continue;
                 }
-                let slot = find(cpu_gid[s])? as usize * nw + slot_wall(key);
+                let slot = find(cpu_gid[s])? as usize * nwf + base[w] + face;
                 let o = HIST * slot;
                 whist[o..o + 3].copy_from_slice(&h.tangential.to_array());
                 whist[o + 3..o + 6].copy_from_slice(&h.rolling.to_array());
@@ -206,6 +209,7 @@ impl DeviceWorld {
         let gids = device_gids(world);
         s.pair_history = self.pair_springs(&gids)?;
         (s.wall_key, s.wall_hist) = self.wall_springs(world, &gids)?;
+        s.walls = self.walls.walls.clone();
         s.step = self.step;
         s.time = self.time;
         s.built_step = self.step;
@@ -253,7 +257,7 @@ impl DeviceWorld {
         gids: &[u64],
     ) -> Result<(Vec<[u32; WALL_SLOTS]>, Vec<[ContactHistory; WALL_SLOTS]>), DeviceError> {
         let whist = self.read_f64(27)?;
-        let nw = world.walls.len();
+        let (base, nwf) = crate::walls::face_bases(&world.walls);
         let at: HashMap<u64, usize> = gids.iter().enumerate().map(|(d, &g)| (g, d)).collect();
         let cpu_gid = &world.spheres().gid;
         let mut keys = vec![[0u32; WALL_SLOTS]; cpu_gid.len()];
@@ -263,10 +267,12 @@ impl DeviceWorld {
                 .get(g)
                 .ok_or_else(|| bad_state(format!("sphere {g} is not on the device")))?;
             let mut used = 0;
-            for w in 0..nw {
-                let (t, r) = springs_at(&whist, d * nw + w);
+            for (w, face) in (0..world.walls.len())
+                .flat_map(|w| (0..crate::walls::faces(&world.walls[w])).map(move |f| (w, f)))
+            {
+                let (t, r) = springs_at(&whist, d * nwf + base[w] + face);
                 if (t != DVec3::ZERO || r != DVec3::ZERO) && used < WALL_SLOTS {
-                    keys[s][used] = slot_key(w);
+                    keys[s][used] = slot_key(w, face);
                     hists[s][used] = ContactHistory {
                         tangential: t,
                         rolling: r,

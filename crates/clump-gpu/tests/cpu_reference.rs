@@ -298,3 +298,116 @@ fn device_step_agrees_with_the_cpu_path_with_cdt_rolling() {
 fn device_step_agrees_with_the_cpu_path_with_epsd_rolling() {
     rolling_agrees(clump_core::contact::RollingLaw::Epsd);
 }
+
+/// Which of `w`'s walls the clumps touch within `steps` steps of the CPU
+/// path (a wall load at some step).
+/// Also the most contacts one sphere had at once with one wall.
+fn walls_touched(mut w: World, steps: u64) -> (Vec<bool>, usize) {
+    let mut touched = vec![false; w.walls.len()];
+    let mut most = 0;
+    w.prepare().unwrap();
+    for _ in 0..steps {
+        w.step().unwrap();
+        for (t, l) in touched.iter_mut().zip(w.walls.loads()) {
+            *t |= l.force != DVec3::ZERO;
+        }
+        for keys in w.save_state().unwrap().wall_key {
+            for k in keys.iter().filter(|&&k| k != 0) {
+                let same = keys
+                    .iter()
+                    .filter(|&&o| o != 0 && (o - 1) >> 16 == (k - 1) >> 16);
+                most = most.max(same.count());
+            }
+        }
+    }
+    (touched, most)
+}
+
+/// Walls of `bed` against the CPU path: to the criterion, every
+/// wall touched along the way, and the walls handed back at the end where
+/// their prescribed motion puts them (`moved(walls, walls at the start,
+/// t)` checks them against the closed form of their motion). Returns the
+/// most contacts one sphere had at once with one wall.
+fn walls_agree(
+    bed: impl Fn() -> World,
+    moved: impl Fn(&[clump_core::wall::Wall], &[clump_core::wall::Wall], f64),
+) -> usize {
+    let (touched, most) = walls_touched(bed(), 3000);
+    eprintln!("walls touched in 3000 steps: {touched:?}; at most {most} faces of one wall at once");
+    assert!(
+        touched.iter().all(|&t| t),
+        "every wall must see contacts: {touched:?}"
+    );
+    let (worst, dev, cpu) = compare_keep(bed());
+    eprintln!("walls: worst {worst:.3e} of the box");
+    assert!(worst < 1e-9, "walls: {worst:e} of the domain size");
+    let mut after = bed();
+    dev.download_state(&mut after).unwrap();
+    assert_eq!(after.walls.len(), cpu.walls.len());
+    for (a, b) in after.walls.iter().zip(cpu.walls.iter()) {
+        assert_eq!(a, b, "the device's walls at the end are not the CPU path's");
+    }
+    moved(&after.walls, &bed().walls, after.time);
+    most
+}
+
+/// The round-off bound of a coordinate of size `x` (m) that 3000 steps
+/// each moved by one rounded addition: 3000 ε |x|.
+fn rounding(x: f64) -> f64 {
+    3000.0 * f64::EPSILON * x.abs()
+}
+
+/// The point (plane, cylinder) or lower corner (box) of a wall, m.
+fn wall_point(w: &clump_core::wall::Wall) -> DVec3 {
+    use clump_core::wall::WallShape;
+    match w.shape {
+        WallShape::Plane { point, .. } | WallShape::Cylinder { point, .. } => point,
+        WallShape::Box { lo, .. } => lo,
+        WallShape::Mesh { position, .. } => position,
+    }
+}
+
+/// Every wall at the end where its velocity takes it from the start,
+/// x0 + v t, to round-off.
+fn at_closed_form(walls: &[clump_core::wall::Wall], start: &[clump_core::wall::Wall], t: f64) {
+    for (w, w0) in walls.iter().zip(start) {
+        let (x, x0) = (wall_point(w), wall_point(w0));
+        let off = (x - (x0 + w0.motion.velocity * t)).abs().max_element();
+        eprintln!("wall {}: {off:.2e} m from x0 + v t", w.name);
+        assert!(
+            off <= rounding(x.abs().max_element()),
+            "wall {}: {off:e} m from x0 + v t",
+            w.name
+        );
+    }
+}
+
+/// A drum and a pin (cylinders seen from inside and from outside, both
+/// turning about their axes, the pin moving down into the bed) on a
+/// rising floor (`bed::drum_bed`).
+#[test]
+fn device_step_agrees_with_the_cpu_path_with_cylinder_and_moving_walls() {
+    walls_agree(clump_gpu::bed::drum_bed, |walls, start, t| {
+        at_closed_form(walls, start, t);
+        let axis = match walls[2].shape {
+            clump_core::wall::WallShape::Cylinder { axis, .. } => axis,
+            _ => unreachable!(),
+        };
+        assert!(
+            (axis - DVec3::X).length() < 1e-14,
+            "the pin's axis turned: {axis}"
+        );
+    });
+}
+
+/// A moving, turning container (a box seen from inside) with a conveyor
+/// post (a box seen from outside) in it (`bed::container_bed`); some
+/// sphere touches two of the container's faces at once.
+#[test]
+fn device_step_agrees_with_the_cpu_path_with_box_walls() {
+    let most = walls_agree(clump_gpu::bed::container_bed, at_closed_form);
+    assert!(
+        most >= 2,
+        "no sphere touched two faces of the container at once"
+    );
+}

@@ -31,8 +31,8 @@
 @group(0) @binding(23) var<storage, read_write> mirror: array<u32>; // entry (j,i) of entry (i,j), j < i
 @group(0) @binding(24) var<storage, read_write> pout: array<f64>; // force on i, torque on i's and j's body (9/entry)
 @group(0) @binding(25) var<storage, read_write> sft: array<f64>;  // pair force, torque, wall force, torque (12/sphere)
-@group(0) @binding(26) var<storage, read_write> walls: array<f64>; // plane point (3), unit normal (3), material (7/wall)
-@group(0) @binding(27) var<storage, read_write> whist: array<f64>; // wall tangential (3) and rolling (3) spring (6/(sphere, wall))
+@group(0) @binding(26) var<storage, read_write> walls: array<f64>; // per step of a submission, per wall: geometry, motion (walls.wgsl, WALL_ROW/wall)
+@group(0) @binding(27) var<storage, read_write> whist: array<f64>; // wall tangential (3) and rolling (3) spring (6/(sphere, wall face))
 @group(0) @binding(28) var<storage, read_write> laws: array<f64>; // SlidingLaw, rolling law per material pair (LAW_ROW/pair)
 @group(0) @binding(29) var<storage, read_write> sx0: array<f64>;  // sphere centre at the last table build (3/sphere)
 
@@ -54,6 +54,8 @@ const PU_OVERFLOW: u32 = 11u; // 1: a sphere had more than MAXN neighbours, 2: t
 const PU_ROT: u32 = 12u;      // rotation scheme: 0 richardson_liggghts, 1 no_squish, 2 richardson
 const PU_STALE: u32 = 13u;    // 1: a sphere moved more than half the skin since the last build
 const PU_BUILDS: u32 = 14u;   // table builds so far
+const PU_WSTEP: u32 = 15u;    // this step's row set of `walls` (walls.wgsl)
+const PU_NWF: u32 = 16u;      // wall contact slots per sphere (walls.rs faces)
 const MAXN: u32 = 32u;
 const WG: u32 = 64u;
 

@@ -1,7 +1,8 @@
 // Contact forces: Hertz-Mindlin with the tangential history spring and the
 // Coulomb limit, the CPU path's SlidingLaw (crates/clump-core/src/contact/
 // model.rs, normal.rs, damping.rs, tangential.rs; docs/theory.md), the same
-// equations in the same operation order; then the per-sphere gather.
+// equations in the same operation order; then the per-sphere gather (the
+// wall contacts are walls.wgsl's).
 
 // A row of `laws` (device_world.rs LAW_ROW): the SlidingLaw's constants,
 // then the rolling law (rolling.wgsl ROLL_*), mu_r and eta_r.
@@ -117,41 +118,6 @@ fn pair_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
             pout[9u * e + 3u + c] = ti[c];
             pout[9u * e + 6u + c] = tj[c];
         }
-    }
-}
-
-// Sphere i's contact force at plane wall w (step/wall_contacts.rs, static
-// plane: the wall's surface velocity is zero), its spring in whist.
-fn wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<function, vec3<f64>>) {
-    let slot = i * pu[PU_NW] + w;
-    let x = ld_sx(i);
-    let r = sref[4u * i + 3u];
-    let point = vec3<f64>(walls[7u * w], walls[7u * w + 1u], walls[7u * w + 2u]);
-    let n = vec3<f64>(walls[7u * w + 3u], walls[7u * w + 4u], walls[7u * w + 5u]);
-    let overlap = r - dot3(x - point, n);
-    if (!(overlap > 0.0lf)) {
-        st_whist(slot, vec3<f64>(0.0lf));
-        st_wroll(slot, vec3<f64>(0.0lf));
-        return;
-    }
-    let b = sown[2u * i];
-    let com = ld_bx(b);
-    let xc = x - n * (r - 0.5lf * overlap);
-    let lever = xc - com;
-    let vrel = ld_bv(b) + cross3(ld_bw(b), lever);
-    let law = law_of(sown[2u * i + 1u], u32(walls[7u * w + 6u]));
-    let out = sliding(law, n, overlap, vrel, r, bm[9u * b], ld_whist(slot));
-    st_whist(slot, out.xi);
-    *fsum += out.force;
-    if (law.roll != ROLL_NONE) {
-        // wall_contacts.rs: lever x F plus the couple; a static wall does
-        // not turn, so w_rel is the body's w
-        let rc = rolling_couple(law.roll, law.mu_r, law.eta_r, n, ld_bw(b), r, bm[9u * b],
-                                out.f_n, out.kn, ld_wroll(slot));
-        st_wroll(slot, rc.spring);
-        *tsum += cross3(lever, out.force) + rc.couple;
-    } else {
-        *tsum += cross3(lever, out.force);
     }
 }
 
