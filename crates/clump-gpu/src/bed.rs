@@ -216,7 +216,8 @@ pub fn drum_bed() -> World {
 /// translates), with a post (a box seen from outside, 0.4 × 0.4 × 1.2
 /// pitches) in its middle whose surface moves at 0.05 m/s along y like a
 /// conveyor; three layers of clumps, less those of the two lower layers
-/// around the post. Walls 0 (container), 1 (post).
+/// around the post. Walls 0 (container), 1 (post), 2 (an inactive plane
+/// through the bed, a gate removed: it must touch nothing).
 pub fn container_bed() -> World {
     let (l, h) = (4.0 * PITCH, 5.0 * PITCH);
     let mid = DVec3::new(2.0 * PITCH, 2.0 * PITCH, 0.0);
@@ -245,10 +246,19 @@ pub fn container_bed() -> World {
                 ..Default::default()
             },
         ),
+        (
+            WallShape::Plane {
+                point: DVec3::new(0.0, 0.0, 1.5 * PITCH),
+                normal: DVec3::Z,
+            },
+            WallMotion::default(),
+        ),
     ];
     let law = PairProperties::default();
-    bed_in(4, 3, RotationScheme::NoSquish, law, walls, |_, b| {
+    let mut w = bed_in(4, 3, RotationScheme::NoSquish, law, walls, |_, b| {
         let d = (b.position - mid).truncate().abs();
         !(d.max_element() < PITCH && b.position.z < 2.0 * PITCH)
-    })
+    });
+    w.walls[2].active = false;
+    w
 }

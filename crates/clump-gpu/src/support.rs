@@ -132,8 +132,8 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
                 "\"plane\", \"cylinder\" or \"box\"",
             );
         }
-        if w.multi_contact != clump_core::multi_contact::MultiContact::Sum || !w.active {
-            no(wall_key(k, None), "active, multi_contact = \"sum\"");
+        if w.multi_contact != clump_core::multi_contact::MultiContact::Sum {
+            no(wall_key(k, Some("multi_contact")), "\"sum\"");
         }
     }
     if world.heat.is_some() {

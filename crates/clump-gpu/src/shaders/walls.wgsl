@@ -7,7 +7,7 @@
 // The host computes the walls' geometry for every step of a submission
 // (walls.rs): row set PU_WSTEP of `walls` is this step's.
 
-const WALL_ROW: u32 = 23u;  // f64s per wall (walls.rs WALL_ROW)
+const WALL_ROW: u32 = 24u;  // f64s per wall (walls.rs WALL_ROW)
 const W_KIND: u32 = 7u;     // 0 plane (point, normal), 1 cylinder (point, axis, radius), 2 box (lo, hi)
 const W_INSIDE: u32 = 8u;
 const W_MAT: u32 = 9u;
@@ -16,6 +16,7 @@ const W_VEL: u32 = 11u;
 const W_OMEGA: u32 = 14u;
 const W_CENTER: u32 = 17u;
 const W_SURFACE: u32 = 20u;
+const W_ACTIVE: u32 = 23u;  // 0: the wall touches nothing (a gate removed at a stage)
 
 // the first f64 of wall w's row this step
 fn wall_at(w: u32) -> u32 {
@@ -116,7 +117,8 @@ fn wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<functi
     let row = i * pu[PU_NWF] + u32(wall_f(w, W_BASE));
     let faces = select(1u, 6u, u32(wall_f(w, W_KIND)) == 2u && wall_f(w, W_INSIDE) != 0.0lf);
     var touch: array<Touch, 4>;
-    let k = wall_touches(w, x, r, &touch);
+    var k = 0u;
+    if (wall_f(w, W_ACTIVE) != 0.0lf) { k = wall_touches(w, x, r, &touch); }
     var live = array<bool, 6>(false, false, false, false, false, false);
     let b = sown[2u * i];
     let com = ld_bx(b);
