@@ -17,6 +17,7 @@ pub mod context;
 pub mod device_world;
 pub mod support;
 pub mod transfer;
+mod walls;
 
 pub use context::{Gpu, GpuError};
 pub use device_world::{DeviceError, DeviceWorld};
