@@ -113,13 +113,10 @@ pub(super) struct WallScratch {
     /// Per touch whose law ran as it was collected: the result and the
     /// history after it.
     scalar: [(ContactOutput, ContactHistory); WALL_BATCH],
-    /// The current entry's histories before this step ([`WallPass::collect`]),
-    /// copied only when it held a contact (a slot is read only then).
+    /// The current entry's histories and MDR profiles before this step
+    /// ([`WallPass::old_slots`]; 520 bytes a profile: copied or cleared for
+    /// every entry, they were 5 % of the settled tetra bed's instructions).
     old_hist: [ContactHistory; WALL_SLOTS],
-    /// Its MDR profiles before this step, copied only when it held a
-    /// contact and some law keeps profiles (520 bytes a slot: copied or
-    /// cleared for every entry, they were 5 % of the settled tetra bed's
-    /// instructions).
     old_slip: [SlipProfile; WALL_SLOTS],
     /// Per body of the chunk, from its first: the force (N) and the torque
     /// about the body's centre of mass (N m), world frame. The gather
