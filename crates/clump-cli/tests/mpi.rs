@@ -260,7 +260,44 @@ fn frames_of_a_split_world_are_one_process_s() {
     same_bits_at("frames", scenario, "1000", &[3]);
     // the frames did not gather the world: one gather at the first split
     // of the world is all a run needs without events that gather it
-    let d = out_dir("frames-gathers");
+    let (d, gathers) = two_rank_gathers("frames-gathers", scenario);
+    let frames = files_ending(&d, ".pvtp") / 2;
+    assert!(frames > 10, "only {frames} frames");
+    assert!(
+        gathers < frames / 2,
+        "{gathers} whole-world gathers for {frames} frames written in pieces"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Thermo rows come from exact sums reduced over the ranks (T-73) and
+/// trajectory rows from the tracked bodies' owners: a row where nothing
+/// else is due keeps the world split, and `thermo.csv` and every
+/// `traj_<id>.csv` are one process's, byte for byte (`same_bits_at`
+/// compares every file).
+#[test]
+fn thermo_and_trajectory_rows_of_a_split_world_are_one_process_s() {
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_thermo.toml";
+    same_bits_at("thermo", scenario, "1000", &[2, 3]);
+    let (d, gathers) = two_rank_gathers("thermo-gathers", scenario);
+    let thermo = std::fs::read_to_string(d.join("thermo.csv")).unwrap();
+    let rows = thermo.lines().count() - 1;
+    assert!(rows > 15, "only {rows} thermo rows");
+    let traj = std::fs::read_to_string(d.join("traj_77.csv")).unwrap();
+    assert!(traj.lines().count() > 20, "{traj}");
+    // before, every row gathered the world (and ran the step before it whole)
+    assert!(
+        gathers < rows / 4,
+        "{gathers} whole-world gathers for {rows} thermo rows"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Runs `scenario` for 1 000 steps on 2 ranks into the folder `name`;
+/// returns the folder and the number of whole-world gathers rank 0
+/// reported.
+fn two_rank_gathers(name: &str, scenario: &str) -> (PathBuf, usize) {
+    let d = out_dir(name);
     let out = Command::new("mpirun")
         .args(["--oversubscribe", "--allow-run-as-root", "-np", "2"])
         .arg(env!("CARGO_BIN_EXE_clump"))
@@ -279,29 +316,27 @@ fn frames_of_a_split_world_are_one_process_s() {
         .unwrap();
     let text =
         String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
-    let frames = std::fs::read_dir(&d)
-        .unwrap()
-        .filter(|e| {
-            e.as_ref()
-                .unwrap()
-                .file_name()
-                .to_string_lossy()
-                .ends_with(".pvtp")
-        })
-        .count()
-        / 2;
     let gathers: usize = text
         .split(" whole-world gathers")
         .next()
         .and_then(|s| s.rsplit(' ').next())
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("no gather count in the output:\n{text}"));
-    assert!(frames > 10, "only {frames} frames");
-    assert!(
-        gathers < frames / 2,
-        "{gathers} whole-world gathers for {frames} frames written in pieces"
-    );
-    let _ = std::fs::remove_dir_all(&d);
+    (d, gathers)
+}
+
+/// Files in `d` whose names end with `suffix`.
+fn files_ending(d: &Path, suffix: &str) -> usize {
+    std::fs::read_dir(d)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .file_name()
+                .to_string_lossy()
+                .ends_with(suffix)
+        })
+        .count()
 }
 
 /// VTK's own readers and ParaView see every sphere and body of a 4-rank

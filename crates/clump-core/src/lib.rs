@@ -68,6 +68,7 @@ pub mod contact;
 pub mod convection;
 pub mod couple;
 pub mod dof;
+pub mod exact_sum;
 pub mod fluid;
 pub mod health;
 pub mod heat;

@@ -1,5 +1,7 @@
 //! Whole-system quantities for the thermo output.
 
+use crate::contact::step_sums::wall_loads;
+use crate::exact_sum::ExactSum;
 use crate::wall::WallLoad;
 use crate::world::World;
 use serde::{Deserialize, Serialize};
@@ -58,37 +60,62 @@ pub struct HeatThermo {
     pub stability: f64,
 }
 
+/// The bodies' energies as exact sums ([`crate::exact_sum`]): translational
+/// and rotational kinetic, gravitational potential.
+pub(crate) type BodyEnergySums = [ExactSum; 3];
+
 impl World {
-    /// Global quantities at the current step. Sums run in storage order.
+    /// Global quantities at the current step. The energies are exact sums
+    /// of the per-body and per-contact terms, correctly rounded (T-73):
+    /// the same bits in any order, on any number of threads or ranks. The
+    /// elastic energy and wall loads are exact when the step that ended
+    /// here made the exact sums (every step before an event of a run,
+    /// [`crate::contact::step_sums::StepSums::request`]); otherwise they
+    /// are the step's statistics, summed by chunk in storage order.
     pub fn thermo(&self) -> Thermo {
-        let b = &self.bodies;
-        let g = self.config.gravity;
-        let mut kt = 0.0;
-        let mut kr = 0.0;
-        let mut pe = 0.0;
-        for i in 0..b.len() {
-            kt += 0.5 * b.mass[i] * b.velocity[i].length_squared();
-            kr += 0.5 * b.angular_velocity[i].dot(b.angular_momentum[i]);
-            pe -= b.mass[i] * g.dot(b.position[i]);
-        }
+        let [kt, kr, pe] = self.body_energy_sums(None);
+        let sums = self.neighbors.records.sums.at_step(self.step);
         Thermo {
             time: self.time,
             step: self.step,
-            bodies: b.len(),
+            bodies: self.bodies.len(),
             pair_contacts: self.stats.pair_contacts,
             wall_contacts: self.stats.wall_contacts,
-            kinetic_translational: kt,
-            kinetic_rotational: kr,
-            elastic: self.stats.elastic_energy,
-            potential: pe,
+            kinetic_translational: kt.value(),
+            kinetic_rotational: kr.value(),
+            elastic: sums
+                .as_ref()
+                .map_or(self.stats.elastic_energy, |s| s.0.value()),
+            potential: pe.value(),
             max_overlap_ratio: self.stats.max_overlap_ratio,
             lost_bodies: self.lost.total(),
-            wall_loads: self.walls.loads.clone(),
+            wall_loads: sums.map_or_else(|| self.walls.loads.clone(), |s| wall_loads(&s.1)),
             heat: self.heat_thermo(),
             fluid_force: self
                 .fluid()
                 .map(|_| self.fluid_forces().iter().copied().sum()),
         }
+    }
+
+    /// Asks the step that ends at world step `at` (`None`: none) to make
+    /// the exact contact sums that [`World::thermo`] reports (a driver
+    /// asks it of the step before each event; it costs three integer
+    /// additions per contact term in that step only).
+    pub fn request_exact_sums(&mut self, at: Option<u64>) {
+        self.neighbors.records.sums.request(at);
+    }
+
+    /// The bodies' energy sums (of the bodies of `mask` only, when given).
+    pub(crate) fn body_energy_sums(&self, mask: Option<&[bool]>) -> BodyEnergySums {
+        let b = &self.bodies;
+        let g = self.config.gravity;
+        let mut s = BodyEnergySums::default();
+        for i in (0..b.len()).filter(|&i| mask.map_or(true, |m| m[i])) {
+            s[0].add(0.5 * b.mass[i] * b.velocity[i].length_squared());
+            s[1].add(0.5 * b.angular_velocity[i].dot(b.angular_momentum[i]));
+            s[2].add(-(b.mass[i] * g.dot(b.position[i])));
+        }
+        s
     }
 
     /// The thermal part of [`World::thermo`]; sums in storage order.

@@ -233,3 +233,52 @@ fn heat_has_the_same_bits_on_2_and_3_ranks() {
         }
     }
 }
+
+/// The thermo row of a world kept split through its events
+/// (`World::thermo_of_ranks`: exact sums reduced over the ranks, T-73) is
+/// one process's, bit for bit, on 2 to 5 ranks (5: a binomial tree with a
+/// rank that has no partner at the top level). The row's energies,
+/// contact count and floor load must be live.
+#[test]
+fn thermo_rows_of_a_split_world_are_one_process_s_on_2_to_5_ranks() {
+    /// Three rows 700 steps apart, each at an event (kept split on ranks).
+    fn rows(w: &mut World, split: bool) -> Vec<String> {
+        (0..3)
+            .map(|_| {
+                w.request_exact_sums(Some(w.step + 700));
+                w.keep_split_at_next_event(split);
+                w.run(700).unwrap();
+                format!("{:?}", w.thermo_of_ranks().unwrap())
+            })
+            .collect()
+    }
+    let mut serial = bed();
+    let want = rows(&mut serial, false);
+    let last = serial.thermo();
+    assert!(last.pair_contacts > 50 && last.elastic > 0.0 && last.kinetic_translational > 0.0);
+    assert!(
+        last.wall_loads.iter().any(|l| l.force.length() > 0.0),
+        "{last:?}"
+    );
+    for ranks in 2..=5 {
+        let handles: Vec<_> = ThreadComm::group(ranks)
+            .into_iter()
+            .map(|comm| {
+                std::thread::spawn(move || {
+                    let mut w = bed();
+                    w.partition(Box::new(comm));
+                    let got = rows(&mut w, true);
+                    (got, w.is_split(), w.part_info().unwrap().traffic.gathers)
+                })
+            })
+            .collect();
+        for (rank, h) in handles.into_iter().enumerate() {
+            let (got, split, gathers) = h.join().unwrap();
+            assert!(
+                split && gathers == 0,
+                "{ranks} ranks: split {split}, {gathers} gathers"
+            );
+            assert_eq!(got, want, "{ranks} ranks, rank {rank}");
+        }
+    }
+}

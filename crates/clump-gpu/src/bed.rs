@@ -36,32 +36,115 @@ pub fn box_bed_dof(
     rotation: RotationScheme,
     flags: impl Fn(u64) -> ([bool; 3], [bool; 3]),
 ) -> World {
-    bed(n, layers, rotation, flags, false)
+    box_bed_with(n, layers, rotation, |k, b| {
+        (b.force_flag, b.torque_flag) = flags(k);
+        // a locked axis starts at rest (it would never stop)
+        b.velocity = DVec3::select(glam::BVec3::from(b.force_flag), b.velocity, DVec3::ZERO);
+    })
+}
+
+/// [`box_bed`] with the `k`-th clump (from 1) changed by `each(k, init)`
+/// before it is added (its degrees of freedom, its motion).
+pub fn box_bed_with(
+    n: usize,
+    layers: usize,
+    rotation: RotationScheme,
+    each: impl Fn(u64, &mut BodyInit),
+) -> World {
+    box_bed_law(n, layers, rotation, PairProperties::default(), each)
+}
+
+/// [`box_bed_with`] with the pair law `law` for clump-clump and
+/// clump-wall contacts (rolling resistance, say).
+pub fn box_bed_law(
+    n: usize,
+    layers: usize,
+    rotation: RotationScheme,
+    law: PairProperties,
+    each: impl Fn(u64, &mut BodyInit),
+) -> World {
+    let l = n as f64 * PITCH;
+    let planes = [
+        (DVec3::ZERO, DVec3::Z),
+        (DVec3::ZERO, DVec3::X),
+        (DVec3::ZERO, DVec3::Y),
+        (DVec3::new(l, l, 0.0), -DVec3::X),
+        (DVec3::new(l, l, 0.0), -DVec3::Y),
+    ];
+    let walls = planes
+        .into_iter()
+        .map(|(point, normal)| (WallShape::Plane { point, normal }, WallMotion::default()))
+        .collect();
+    bed_in(n, layers, rotation, law, walls, |k, b| {
+        each(k, b);
+        true
+    })
+}
+
+/// The bed of [`box_bed_law`] in the walls `walls` (shape and motion
+/// each) instead of the five planes; the `k`-th clump is changed by
+/// `each(k, init)` and left out where it answers false (to make room for
+/// a wall). The domain is the five planes' box: the walls must keep the
+/// clumps in it.
+pub fn bed_in(
+    n: usize,
+    layers: usize,
+    rotation: RotationScheme,
+    law: PairProperties,
+    walls: Vec<(WallShape, WallMotion)>,
+    each: impl Fn(u64, &mut BodyInit) -> bool,
+) -> World {
+    bed_periodic(n, layers, rotation, law, walls, [false; 3], each)
 }
 
 /// [`box_bed`] periodic in x and y, with the floor as its only wall: the
 /// clumps cross the periodic faces and touch across them.
 pub fn periodic_bed(n: usize, layers: usize, rotation: RotationScheme) -> World {
-    bed(n, layers, rotation, |_| ([true; 3], [true; 3]), true)
+    periodic_bed_law(n, layers, rotation, PairProperties::default())
 }
 
-fn bed(
+/// [`periodic_bed`] with the pair law `law` for clump-clump and
+/// clump-wall contacts (rolling resistance, say).
+pub fn periodic_bed_law(
     n: usize,
     layers: usize,
     rotation: RotationScheme,
-    flags: impl Fn(u64) -> ([bool; 3], [bool; 3]),
-    periodic: bool,
+    law: PairProperties,
+) -> World {
+    let floor = WallShape::Plane {
+        point: DVec3::ZERO,
+        normal: DVec3::Z,
+    };
+    bed_periodic(
+        n,
+        layers,
+        rotation,
+        law,
+        vec![(floor, WallMotion::default())],
+        [true, true, false],
+        |_, _| true,
+    )
+}
+
+/// [`bed_in`] with the domain's periodic axes `periodic`.
+fn bed_periodic(
+    n: usize,
+    layers: usize,
+    rotation: RotationScheme,
+    law: PairProperties,
+    walls: Vec<(WallShape, WallMotion)>,
+    periodic: [bool; 3],
+    each: impl Fn(u64, &mut BodyInit) -> bool,
 ) -> World {
     let mats = vec![tetra_material()];
-    let table =
-        ContactTable::new(&mats, |_, _| PairProperties::default()).expect("a valid test bed");
+    let table = ContactTable::new(&mats, |_, _| law).expect("a valid test bed");
     let l = n as f64 * PITCH;
     let h = (layers as f64 + 2.0) * PITCH;
     let config = WorldConfig {
         domain: Domain {
             lo: DVec3::ZERO,
             hi: DVec3::new(l, l, h),
-            periodic: [periodic, periodic, false],
+            periodic,
         },
         gravity: DVec3::new(0.0, 0.0, -9.81),
         dt: 1e-5,
@@ -82,20 +165,12 @@ fn bed(
             .expect("a valid test bed"),
         w.add_template(rod, 0).expect("a valid test bed"),
     ];
-    let planes = [
-        (DVec3::ZERO, DVec3::Z),
-        (DVec3::ZERO, DVec3::X),
-        (DVec3::ZERO, DVec3::Y),
-        (DVec3::new(l, l, 0.0), -DVec3::X),
-        (DVec3::new(l, l, 0.0), -DVec3::Y),
-    ];
-    let walls = if periodic { 1 } else { planes.len() };
-    for (k, (point, normal)) in planes.into_iter().take(walls).enumerate() {
+    for (k, (shape, motion)) in walls.into_iter().enumerate() {
         w.add_wall(Wall {
             name: format!("wall{k}"),
-            shape: WallShape::Plane { point, normal },
+            shape,
             material: 0,
-            motion: WallMotion::default(),
+            motion,
             multi_contact: MultiContact::Sum,
             active: true,
         })
@@ -113,13 +188,119 @@ fn bed(
                 b.velocity = 0.2 * DVec3::new((kf * 1.7).sin(), (kf * 2.3).sin(), (kf * 3.1).sin());
                 b.angular_velocity =
                     100.0 * DVec3::new((kf * 0.9).cos(), (kf * 1.1).cos(), (kf * 1.9).cos());
-                (b.force_flag, b.torque_flag) = flags(k);
-                // a locked axis starts at rest (it would never stop)
-                b.velocity =
-                    DVec3::select(glam::BVec3::from(b.force_flag), b.velocity, DVec3::ZERO);
-                w.add_body(&b).expect("a valid test bed");
+                if each(k, &mut b) {
+                    w.add_body(&b).expect("a valid test bed");
+                }
             }
         }
     }
+    w
+}
+
+/// A drum (a cylinder seen from inside, along z through the middle of a
+/// 6 × 6 pitch box, radius 3 pitches, turning at 20 rad/s about its axis)
+/// on a floor rising at 0.01 m/s, with a pin (a cylinder seen from
+/// outside, along x, radius 0.25 pitch, turning at 30 rad/s about its
+/// axis) coming down at 0.1 m/s from 3.6 pitches into the bed; three
+/// layers of clumps within 2 pitches of the drum's axis. Walls 0 (floor),
+/// 1 (drum), 2 (pin).
+pub fn drum_bed() -> World {
+    let c = DVec3::new(3.0 * PITCH, 3.0 * PITCH, 0.0);
+    let pin = DVec3::new(0.0, 3.0 * PITCH, 3.6 * PITCH);
+    let walls = vec![
+        (
+            WallShape::Plane {
+                point: DVec3::ZERO,
+                normal: DVec3::Z,
+            },
+            WallMotion {
+                velocity: DVec3::new(0.0, 0.0, 0.01),
+                ..Default::default()
+            },
+        ),
+        (
+            WallShape::Cylinder {
+                point: c,
+                axis: DVec3::Z,
+                radius: 3.0 * PITCH,
+                inside: true,
+            },
+            WallMotion {
+                angular_velocity: DVec3::new(0.0, 0.0, 20.0),
+                center: c,
+                ..Default::default()
+            },
+        ),
+        (
+            WallShape::Cylinder {
+                point: pin,
+                axis: DVec3::X,
+                radius: 0.25 * PITCH,
+                inside: false,
+            },
+            WallMotion {
+                velocity: DVec3::new(0.0, 0.0, -0.1),
+                angular_velocity: DVec3::new(30.0, 0.0, 0.0),
+                center: pin,
+                ..Default::default()
+            },
+        ),
+    ];
+    let law = PairProperties::default();
+    bed_in(6, 3, RotationScheme::NoSquish, law, walls, |_, b| {
+        (b.position - c).truncate().length() < 2.0 * PITCH
+    })
+}
+
+/// A container (a box seen from inside, 4 × 4 × 5 pitches: six faces, a
+/// clump in a corner touches several) moving along x at 0.03 m/s and
+/// turning at 5 rad/s about z (a surface velocity: a box only
+/// translates), with a post (a box seen from outside, 0.4 × 0.4 × 1.2
+/// pitches) in its middle whose surface moves at 0.05 m/s along y like a
+/// conveyor; three layers of clumps, less those of the two lower layers
+/// around the post. Walls 0 (container), 1 (post), 2 (an inactive plane
+/// through the bed, a gate removed: it must touch nothing).
+pub fn container_bed() -> World {
+    let (l, h) = (4.0 * PITCH, 5.0 * PITCH);
+    let mid = DVec3::new(2.0 * PITCH, 2.0 * PITCH, 0.0);
+    let walls = vec![
+        (
+            WallShape::Box {
+                lo: DVec3::ZERO,
+                hi: DVec3::new(l, l, h),
+                inside: true,
+            },
+            WallMotion {
+                velocity: DVec3::new(0.03, 0.0, 0.0),
+                angular_velocity: DVec3::new(0.0, 0.0, 5.0),
+                center: mid,
+                ..Default::default()
+            },
+        ),
+        (
+            WallShape::Box {
+                lo: mid - DVec3::new(0.2 * PITCH, 0.2 * PITCH, 0.0),
+                hi: mid + DVec3::new(0.2 * PITCH, 0.2 * PITCH, 1.2 * PITCH),
+                inside: false,
+            },
+            WallMotion {
+                surface_velocity: DVec3::new(0.0, 0.05, 0.0),
+                ..Default::default()
+            },
+        ),
+        (
+            WallShape::Plane {
+                point: DVec3::new(0.0, 0.0, 1.5 * PITCH),
+                normal: DVec3::Z,
+            },
+            WallMotion::default(),
+        ),
+    ];
+    let law = PairProperties::default();
+    let mut w = bed_in(4, 3, RotationScheme::NoSquish, law, walls, |_, b| {
+        let d = (b.position - mid).truncate().abs();
+        !(d.max_element() < PITCH && b.position.z < 2.0 * PITCH)
+    });
+    w.walls[2].active = false;
     w
 }

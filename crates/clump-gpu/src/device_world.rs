@@ -8,16 +8,23 @@ use clump_core::world::World;
 use glam::{DQuat, DVec3};
 
 /// The kernels, one WGSL module.
-const SHADER: [&str; 6] = [
+const SHADER: [&str; 8] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/periodic.wgsl"),
     include_str!("shaders/rotation.wgsl"),
     include_str!("shaders/body.wgsl"),
     include_str!("shaders/pairs.wgsl"),
+    include_str!("shaders/rolling.wgsl"),
     include_str!("shaders/contact.wgsl"),
+    include_str!("shaders/walls.wgsl"),
 ];
 /// Storage bindings of the module (common.wgsl).
 const N_BINDINGS: u32 = 30;
+/// f64s per contact's springs: tangential (3), then rolling (3)
+/// (common.wgsl `ld_hist`, `ld_roll`).
+pub(crate) const HIST: usize = 6;
+/// f64s per material pair in `laws` (contact.wgsl LAW_ROW).
+const LAW_ROW: usize = 11;
 /// Pair-table entries reserved per sphere (each pair twice, one entry per side).
 const ENTRIES_PER_SPHERE: usize = 16;
 /// Index of the integer parameter holding the overflow bits (common.wgsl PU_OVERFLOW).
@@ -45,7 +52,8 @@ const K_BODY_GATHER: usize = 13;
 const K_GATHER_KICK: usize = 14;
 const K_REBUILD_ARGS: usize = 15;
 const K_TABLE_SAVE: usize = 16;
-const ENTRIES: [&str; 17] = [
+const K_WALL_STEP: usize = 17;
+const ENTRIES: [&str; 18] = [
     "first_half",
     "spheres",
     "sort_reset",
@@ -63,7 +71,12 @@ const ENTRIES: [&str; 17] = [
     "gather_kick",
     "rebuild_args",
     "table_save",
+    "wall_step",
 ];
+/// Index of the walls' row set of this step (common.wgsl PU_WSTEP).
+const PU_WSTEP: usize = 15;
+/// Steps per submission of [`DeviceWorld::run`] (row sets of moving walls: one more).
+const BATCH: u64 = 64;
 /// The indirect dispatch sizes `rebuild_args` writes (pairs.wgsl): one
 /// group per 64 sort slots, cells, spheres, table entries; or one group.
 const A_SLOTS: u64 = 0;
@@ -117,6 +130,8 @@ struct Sizes {
     npow2: usize,
     cells: usize,
     cap: usize,
+    /// Wall contact slots per sphere.
+    nwf: usize,
 }
 
 /// A world's state on the device and the step's pipelines.
@@ -142,6 +157,8 @@ pub struct DeviceWorld {
     /// last batch.
     pub builds: u64,
     dt: f64,
+    /// The walls at `step` (the host advances them, walls.rs).
+    pub(crate) walls: crate::walls::WallTable,
 }
 
 /// The step's compiled kernels and their layouts: made once per device,
@@ -307,6 +324,7 @@ impl DeviceWorld {
             time: world.time,
             builds: 0,
             dt: world.config.dt,
+            walls: crate::walls::WallTable::new(&world.walls, world.config.dt),
         })
     }
 
@@ -318,7 +336,6 @@ impl DeviceWorld {
     /// Takes `steps` steps on the device, in batches of one submission
     /// each; the host reads back only the overflow flags between batches.
     pub fn run(&mut self, steps: u64) -> Result<(), DeviceError> {
-        const BATCH: u64 = 64;
         let mut left = steps;
         while left > 0 {
             let k = left.min(BATCH);
@@ -331,6 +348,17 @@ impl DeviceWorld {
     /// One submission: with `prepare`, the forces of the current state;
     /// then `steps` whole steps. Checks the overflow flags after it.
     fn submit(&mut self, steps: u64, prepare: bool) -> Result<(), DeviceError> {
+        if self.walls.moving {
+            // the walls of each step of this submission, from row set 0
+            let rows = self.walls.advance(steps);
+            self.gpu
+                .queue
+                .write_buffer(&self.buffers[26], 0, bytemuck::cast_slice(&rows));
+            let at = (PU_WSTEP * 4) as u64;
+            self.gpu
+                .queue
+                .write_buffer(&self.buffers[1], at, bytemuck::bytes_of(&0u32));
+        }
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         if prepare {
             self.encode_positions(&mut enc, false);
@@ -380,6 +408,9 @@ impl DeviceWorld {
         let mut pass = enc.begin_compute_pass(&Default::default());
         if first_half {
             self.dispatch(&mut pass, K_FIRST_HALF, n.nb);
+            if self.walls.moving {
+                self.dispatch(&mut pass, K_WALL_STEP, 1);
+            }
         }
         self.dispatch(&mut pass, K_SPHERES, n.npow2);
         pass.set_pipeline(&self.kernels.pipelines[K_REBUILD_ARGS]);
@@ -455,6 +486,7 @@ impl DeviceWorld {
                 .set_body_angular_state_at(k, d3(&w), d3(&l))
                 .map_err(bad)?;
         }
+        world.walls.clone_from_slice(&self.walls.walls);
         world.step = self.step;
         world.time = self.time;
         Ok(())
@@ -482,8 +514,9 @@ impl DeviceWorld {
 }
 
 /// The springs of a world in the device's layout: the pair table's
-/// owning entries (offsets per sphere, neighbour, spring) and the wall
-/// slots (3 per (sphere, wall)).
+/// owning entries (offsets per sphere, neighbour, springs) and the wall
+/// slots ([`HIST`] f64s per entry and per (sphere, wall): tangential,
+/// rolling).
 pub(crate) struct Springs {
     pub noff: Vec<u32>,
     pub nbr: Vec<u32>,
@@ -505,11 +538,14 @@ pub(crate) fn by_id(world: &World) -> clump_core::body::Bodies {
 }
 
 /// The force flags (bits 0-2) and torque flags (bits 3-5) per world axis
-/// (common.wgsl `dof_flags`), as an f64 of `bm`.
-fn dof_bits(force: [bool; 3], torque: [bool; 3]) -> f64 {
+/// (common.wgsl `dof_flags`) and whether the body is driven (bit 6,
+/// common.wgsl `driven`), as an f64 of `bm`.
+fn dof_bits(force: [bool; 3], torque: [bool; 3], start_step: u64) -> f64 {
+    let driven = ((start_step == clump_core::dof::DRIVEN) as u32) << 6;
     (0..3)
         .map(|k| (force[k] as u32) << k | (torque[k] as u32) << (k + 3))
         .sum::<u32>() as f64
+        + driven as f64
 }
 
 /// Entries of the device pair table for `world`.
@@ -573,6 +609,7 @@ impl HostArrays {
             npow2: ns.next_power_of_two().max(2),
             cells: dims[0] * dims[1] * dims[2],
             cap: ns * ENTRIES_PER_SPHERE,
+            nwf: crate::walls::face_bases(&world.walls).1,
         };
         let lo = c.domain.lo;
         let mut pf = vec![
@@ -590,23 +627,17 @@ impl HostArrays {
         let periodic_axes = crate::periodic::params(&c.domain, dims, cell_size, &mut pf)
             .map_err(DeviceError::Grid)?;
         let nmat = world.materials.len();
-        let walls: Vec<f64> = world
-            .walls
-            .iter()
-            .flat_map(|w| match w.shape {
-                clump_core::wall::WallShape::Plane { point, normal } => [
-                    point.x,
-                    point.y,
-                    point.z,
-                    normal.x,
-                    normal.y,
-                    normal.z,
-                    w.material as f64,
-                ],
-                _ => unreachable!("refused by support::unsupported"),
-            })
-            .collect();
-        let mut pu = vec![0u32; 16];
+        // the walls' row sets (walls.rs): room for every step of a
+        // submission when one moves
+        let table = crate::walls::WallTable::new(&world.walls, c.dt);
+        let sets = if table.moving { BATCH as usize + 1 } else { 1 };
+        let mut walls = table.rows();
+        walls.resize(sets * walls.len(), 0.0);
+        let nwf = crate::walls::face_bases(&world.walls).1;
+        // indices 0-16 common.wgsl, 17 periodic.wgsl
+        let mut pu = vec![0u32; crate::periodic::PU_PERIODIC + 1];
+        // common.wgsl PU_NWF
+        pu[16] = nwf as u32;
         // common.wgsl PU_ROT (support.rs refuses the other schemes)
         pu[12] = match c.rotation {
             clump_core::rotation::RotationScheme::NoSquish => 1,
@@ -615,8 +646,7 @@ impl HostArrays {
         };
         // PU_STALE: the first step builds the table
         pu[13] = 1;
-        // PU_PERIODIC (periodic.wgsl)
-        pu[15] = periodic_axes;
+        pu[crate::periodic::PU_PERIODIC] = periodic_axes;
         pu[..9].copy_from_slice(&[
             nb as u32,
             ns as u32,
@@ -628,10 +658,11 @@ impl HostArrays {
             world.walls.len() as u32,
             nmat as u32,
         ]);
-        let mut laws = Vec::with_capacity(8 * nmat * nmat);
+        let mut laws = Vec::with_capacity(LAW_ROW * nmat * nmat);
         for a in 0..nmat {
             for bm in 0..nmat {
-                let l = world.contact_table.get(a as u16, bm as u16).sliding_law();
+                let model = world.contact_table.get(a as u16, bm as u16);
+                let l = model.sliding_law();
                 laws.extend([
                     if l.hertz { 1.0 } else { 0.0 },
                     l.fn_floor,
@@ -641,6 +672,14 @@ impl HostArrays {
                     l.gt_coef,
                     l.energy_factor,
                     l.friction,
+                    // rolling.wgsl ROLL_*
+                    match model.properties().rolling {
+                        clump_core::contact::RollingLaw::None => 0.0,
+                        clump_core::contact::RollingLaw::Cdt => 1.0,
+                        clump_core::contact::RollingLaw::Epsd => 2.0,
+                    },
+                    model.properties().rolling_friction,
+                    model.rolling_damping(),
                 ]);
             }
         }
@@ -659,7 +698,7 @@ impl HostArrays {
                 inv.y,
                 inv.z,
                 (0.5 * c.dt) / (m * 1.0),
-                dof_bits(b.force_flag[i], b.torque_flag[i]),
+                dof_bits(b.force_flag[i], b.torque_flag[i], b.start_step[i]),
             ]);
             load.extend([
                 b.force[i].x,
@@ -701,7 +740,7 @@ impl HostArrays {
 
     /// The storage buffers of group 0, by binding.
     fn buffers(&self, gpu: &Gpu, n: Sizes, springs: Option<Springs>) -> Vec<wgpu::Buffer> {
-        let nw = (self.walls.len() / 7).max(1);
+        let nw = n.nwf.max(1);
         let mut out = vec![gpu.buffer("pf", &self.pf), gpu.buffer("pu", &self.pu)];
         for (k, a) in self.bodies.iter().enumerate() {
             out.push(gpu.buffer(["bx", "bv", "bq", "bl", "bw", "bft", "bm"][k], a));
@@ -720,24 +759,24 @@ impl HostArrays {
             Some(sp) => {
                 out.push(gpu.buffer("noff", &sp.noff));
                 out.push(gpu.buffer("nbr", &padded(&sp.nbr, n.cap)));
-                out.push(gpu.buffer("hist", &padded(&sp.hist, 3 * n.cap)));
+                out.push(gpu.buffer("hist", &padded(&sp.hist, HIST * n.cap)));
             }
             None => {
                 out.push(gpu.zeroed::<u32>("noff", n.ns + 1));
                 out.push(gpu.zeroed::<u32>("nbr", n.cap));
-                out.push(gpu.zeroed::<f64>("hist", 3 * n.cap));
+                out.push(gpu.zeroed::<f64>("hist", HIST * n.cap));
             }
         }
         out.push(gpu.zeroed::<u32>("old_off", n.ns + 1));
         out.push(gpu.zeroed::<u32>("old_nbr", n.cap));
-        out.push(gpu.zeroed::<f64>("old_hist", 3 * n.cap));
+        out.push(gpu.zeroed::<f64>("old_hist", HIST * n.cap));
         out.push(gpu.zeroed::<u32>("mirror", n.cap));
         out.push(gpu.zeroed::<f64>("pout", 9 * n.cap));
         out.push(gpu.zeroed::<f64>("sft", 12 * n.ns));
         out.push(gpu.buffer("walls", &self.walls));
         match &springs {
-            Some(sp) => out.push(gpu.buffer("whist", &padded(&sp.whist, 3 * n.ns * nw))),
-            None => out.push(gpu.zeroed::<f64>("whist", 3 * n.ns * nw)),
+            Some(sp) => out.push(gpu.buffer("whist", &padded(&sp.whist, HIST * n.ns * nw))),
+            None => out.push(gpu.zeroed::<f64>("whist", HIST * n.ns * nw)),
         }
         out.push(gpu.buffer("laws", &self.laws));
         out.push(gpu.zeroed::<f64>("sx0", 3 * n.ns));

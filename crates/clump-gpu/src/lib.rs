@@ -21,6 +21,7 @@ pub mod periodic;
 pub mod steps;
 pub mod support;
 pub mod transfer;
+mod walls;
 
 pub use context::{Gpu, GpuError};
 pub use device_world::{DeviceError, DeviceWorld};

@@ -8,6 +8,9 @@ use clump_core::boundary::Domain;
 /// Index of the box edges in the float parameters (periodic.wgsl PF_LEN),
 /// followed by the upper corner (PF_HI).
 const PF_LEN: usize = 9;
+/// Index of the periodic axes in the integer parameters (periodic.wgsl
+/// PU_PERIODIC), after common.wgsl's last (PU_NWF = 16).
+pub(crate) const PU_PERIODIC: usize = 17;
 
 /// Appends the box edges and upper corner to the float parameters `pf`
 /// (which end at `PF_LEN`) and returns the periodic axes as bits 0-2

@@ -5,7 +5,6 @@
 use clump_core::rotation::RotationScheme;
 use clump_core::wall::WallShape;
 use clump_core::world::World;
-use glam::DVec3;
 
 /// One step of a scenario key's path: a table key or an array index.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,14 +68,24 @@ fn wall_key(k: usize, key: Option<&'static str>) -> Vec<KeySeg> {
 /// the CPU path).
 pub fn unsupported(world: &World) -> Vec<Unsupported> {
     let mut out = unsupported_settings(world);
-    let b = world.bodies();
-    if (0..b.len()).any(|i| b.start_step[i] > world.step) {
+    if late_start(world) > world.step {
         out.push(Unsupported {
             path: keys("insert"),
             allowed: "bodies present from the start of the device run".into(),
         });
     }
     out
+}
+
+/// The last start step of a body that starts (a stream's; a driven or
+/// fixed body never starts and runs on the device), 0 without one.
+pub(crate) fn late_start(world: &World) -> u64 {
+    let b = world.bodies();
+    (0..b.len())
+        .map(|i| b.start_step[i])
+        .filter(|&s| s != clump_core::dof::DRIVEN)
+        .max()
+        .unwrap_or(0)
 }
 
 /// The settings of `world` (its scenario's keys) that the device step
@@ -106,34 +115,23 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
         no(keys("simulation.multi_contact"), "\"sum\"");
     }
     let t = &world.contact_table;
-    if t.any_extended() || t.any_rolling() || t.any_reach() {
+    if t.any_extended() || t.any_reach() {
         no(
             keys("pair"),
-            "Hertz-Mindlin or linear laws without rolling, twisting, cohesion or micro-slip",
+            "Hertz-Mindlin or linear laws, rolling resistance none, cdt or epsd, without twisting, cohesion or micro-slip",
         );
     }
     for (k, w) in world.walls.iter().enumerate() {
-        if !matches!(w.shape, WallShape::Plane { .. }) {
-            no(wall_key(k, Some("type")), "\"plane\"");
+        // every motion the CPU path allows runs (walls.rs)
+        if matches!(w.shape, WallShape::Mesh { .. }) {
+            no(
+                wall_key(k, Some("type")),
+                "\"plane\", \"cylinder\" or \"box\"",
+            );
         }
-        let m = &w.motion;
-        if m.velocity != DVec3::ZERO
-            || m.angular_velocity != DVec3::ZERO
-            || m.surface_velocity != DVec3::ZERO
-        {
-            no(wall_key(k, None), "none (static walls)");
+        if w.multi_contact != clump_core::multi_contact::MultiContact::Sum {
+            no(wall_key(k, Some("multi_contact")), "\"sum\"");
         }
-        if w.multi_contact != clump_core::multi_contact::MultiContact::Sum || !w.active {
-            no(wall_key(k, None), "active, multi_contact = \"sum\"");
-        }
-    }
-    let b = world.bodies();
-    // a driven (or fixed) body never starts (`dof::DRIVEN`)
-    if (0..b.len()).any(|i| b.start_step[i] == clump_core::dof::DRIVEN) {
-        no(
-            keys("insert"),
-            "no fixed or driven bodies (`fixed`, `driven`; force and torque flags are allowed)",
-        );
     }
     if world.heat.is_some() {
         no(keys("heat"), "off");

@@ -13,7 +13,7 @@
 //! (sphere, wall).
 
 use crate::context::Gpu;
-use crate::device_world::{DeviceError, DeviceWorld, Kernels, Springs};
+use crate::device_world::{DeviceError, DeviceWorld, Kernels, Springs, HIST};
 use crate::support::unsupported;
 use clump_core::contact::ContactHistory;
 use clump_core::neighbor::walls::WALL_SLOTS;
@@ -36,14 +36,25 @@ fn device_gids(world: &World) -> Vec<u64> {
     out
 }
 
-/// The wall of a wall slot's key (`step/wall_contacts.rs` `slot_key`:
-/// `(wall << 16 | patch) + 1`, patch 0 for a plane).
-fn slot_key(wall: usize) -> u32 {
-    ((wall as u32) << 16) + 1
+/// The key of a wall slot (`step/wall_contacts.rs` `slot_key`:
+/// `(wall << 16 | patch) + 1`, the patch of an analytic wall its face).
+fn slot_key(wall: usize, face: usize) -> u32 {
+    (((wall as u32) << 16) | face as u32) + 1
 }
 
-fn slot_wall(key: u32) -> usize {
-    ((key - 1) >> 16) as usize
+/// The wall and face of a slot key.
+fn slot_wall(key: u32) -> (usize, usize) {
+    (((key - 1) >> 16) as usize, ((key - 1) & 0xffff) as usize)
+}
+
+/// The tangential and rolling springs of contact `k` of a device spring
+/// array (`HIST` f64s per contact).
+fn springs_at(a: &[f64], k: usize) -> (DVec3, DVec3) {
+    let o = HIST * k;
+    (
+        DVec3::new(a[o], a[o + 1], a[o + 2]),
+        DVec3::new(a[o + 3], a[o + 4], a[o + 5]),
+    )
 }
 
 fn bad_state(e: impl std::fmt::Display) -> DeviceError {
@@ -69,13 +80,18 @@ impl Springs {
                 .copied()
                 .ok_or_else(|| bad_state(format!("sphere {g} has a spring but no body")))
         };
-        let mut rows: Vec<Vec<(u32, DVec3)>> = vec![Vec::new(); ns];
+        let mut rows: Vec<Vec<(u32, ContactHistory)>> = vec![Vec::new(); ns];
         for &((gi, gj), h) in &state.pair_history {
             let (di, dj) = (find(gi)?, find(gj)?);
             if di < dj {
-                rows[di as usize].push((dj, h.tangential));
+                rows[di as usize].push((dj, h));
             } else {
-                rows[dj as usize].push((di, -h.tangential));
+                // the springs of the force on the other sphere (carry.rs)
+                let flip = ContactHistory {
+                    tangential: -h.tangential,
+                    rolling: -h.rolling,
+                };
+                rows[dj as usize].push((di, flip));
             }
         }
         let mut noff = Vec::with_capacity(ns + 1);
@@ -83,9 +99,10 @@ impl Springs {
         for row in &mut rows {
             row.sort_by_key(|e| e.0);
             noff.push(nbr.len() as u32);
-            for &(j, t) in row.iter() {
+            for &(j, h) in row.iter() {
                 nbr.push(j);
-                hist.extend([t.x, t.y, t.z]);
+                hist.extend(h.tangential.to_array());
+                hist.extend(h.rolling.to_array());
             }
         }
         noff.push(nbr.len() as u32);
@@ -96,15 +113,19 @@ impl Springs {
             )));
         }
         let nw = world.walls.len();
-        let mut whist = vec![0.0; 3 * ns * nw];
+        let (base, nwf) = crate::walls::face_bases(&world.walls);
+        let mut whist = vec![0.0; HIST * ns * nwf];
         let cpu_gid = &world.spheres().gid;
         for (s, (keys, hs)) in state.wall_key.iter().zip(&state.wall_hist).enumerate() {
             for (&key, h) in keys.iter().zip(hs) {
-                if key == 0 || slot_wall(key) >= nw {
+                let (w, face) = if key == 0 { (nw, 0) } else { slot_wall(key) };
+                if w >= nw || face >= crate::walls::faces(&world.walls[w]) {
                     continue;
                 }
-                let slot = find(cpu_gid[s])? as usize * nw + slot_wall(key);
-                whist[3 * slot..3 * slot + 3].copy_from_slice(&h.tangential.to_array());
+                let slot = find(cpu_gid[s])? as usize * nwf + base[w] + face;
+                let o = HIST * slot;
+                whist[o..o + 3].copy_from_slice(&h.tangential.to_array());
+                whist[o + 3..o + 6].copy_from_slice(&h.rolling.to_array());
             }
         }
         Ok(Springs {
@@ -188,6 +209,7 @@ impl DeviceWorld {
         let gids = device_gids(world);
         s.pair_history = self.pair_springs(&gids)?;
         (s.wall_key, s.wall_hist) = self.wall_springs(world, &gids)?;
+        s.walls = self.walls.walls.clone();
         s.step = self.step;
         s.time = self.time;
         s.built_step = self.step;
@@ -203,21 +225,21 @@ impl DeviceWorld {
         for i in 0..gids.len() {
             for e in noff[i] as usize..(noff[i + 1] as usize).min(cap) {
                 let j = nbr[e] as usize;
-                let t = DVec3::new(hist[3 * e], hist[3 * e + 1], hist[3 * e + 2]);
-                if j <= i || t == DVec3::ZERO {
+                let (t, r) = springs_at(&hist, e);
+                if j <= i || (t == DVec3::ZERO && r == DVec3::ZERO) {
                     continue;
                 }
                 let (gi, gj) = (gids[i], gids[j]);
-                let (key, t) = if gi < gj {
-                    ((gi, gj), t)
+                let (key, t, r) = if gi < gj {
+                    ((gi, gj), t, r)
                 } else {
-                    ((gj, gi), -t)
+                    ((gj, gi), -t, -r)
                 };
                 out.push((
                     key,
                     ContactHistory {
                         tangential: t,
-                        rolling: DVec3::ZERO,
+                        rolling: r,
                     },
                 ));
             }
@@ -235,7 +257,7 @@ impl DeviceWorld {
         gids: &[u64],
     ) -> Result<(Vec<[u32; WALL_SLOTS]>, Vec<[ContactHistory; WALL_SLOTS]>), DeviceError> {
         let whist = self.read_f64(27)?;
-        let nw = world.walls.len();
+        let (base, nwf) = crate::walls::face_bases(&world.walls);
         let at: HashMap<u64, usize> = gids.iter().enumerate().map(|(d, &g)| (g, d)).collect();
         let cpu_gid = &world.spheres().gid;
         let mut keys = vec![[0u32; WALL_SLOTS]; cpu_gid.len()];
@@ -245,12 +267,16 @@ impl DeviceWorld {
                 .get(g)
                 .ok_or_else(|| bad_state(format!("sphere {g} is not on the device")))?;
             let mut used = 0;
-            for w in 0..nw {
-                let o = 3 * (d * nw + w);
-                let t = DVec3::new(whist[o], whist[o + 1], whist[o + 2]);
-                if t != DVec3::ZERO && used < WALL_SLOTS {
-                    keys[s][used] = slot_key(w);
-                    hists[s][used].tangential = t;
+            for (w, face) in (0..world.walls.len())
+                .flat_map(|w| (0..crate::walls::faces(&world.walls[w])).map(move |f| (w, f)))
+            {
+                let (t, r) = springs_at(&whist, d * nwf + base[w] + face);
+                if (t != DVec3::ZERO || r != DVec3::ZERO) && used < WALL_SLOTS {
+                    keys[s][used] = slot_key(w, face);
+                    hists[s][used] = ContactHistory {
+                        tangential: t,
+                        rolling: r,
+                    };
                     used += 1;
                 }
             }
@@ -292,7 +318,7 @@ impl DeviceStepper {
         // CPU path's `start_step`), which the device does not do: those
         // steps run on the CPU path
         let first = world.step;
-        let late = world.bodies().start_step.iter().copied().max().unwrap_or(0);
+        let late = crate::support::late_start(world);
         if late > world.step {
             let k = late.min(to) - world.step;
             world.run(k).map_err(bad_state)?;

@@ -42,7 +42,13 @@ fn compare(rotation: RotationScheme) -> f64 {
 }
 
 /// [`compare`] on the bed `cpu`.
-fn compare_world(mut cpu: World) -> f64 {
+fn compare_world(cpu: World) -> f64 {
+    compare_keep(cpu).0
+}
+
+/// [`compare_world`], also returning the device and the CPU world at the
+/// end (step 3000).
+fn compare_keep(mut cpu: World) -> (f64, DeviceWorld, World) {
     let rotation = cpu.config.rotation;
     let size = cpu.config.domain.size().max_element();
     let mut dev = DeviceWorld::upload(Gpu::new().unwrap(), &cpu).unwrap_or_else(|e| panic!("{e}"));
@@ -74,7 +80,7 @@ fn compare_world(mut cpu: World) -> f64 {
         cpu.stats.pair_contacts > 0,
         "the bed must have contacts for the comparison to mean anything"
     );
-    worst
+    (worst, dev, cpu)
 }
 
 /// The criterion: 1e-9 of the domain size after 3000 steps.
@@ -158,6 +164,38 @@ fn device_step_agrees_with_the_cpu_path_in_a_periodic_box() {
     );
 }
 
+/// Both device features of the periodic bed and of EPSD rolling
+/// resistance at once: the periodic bed with EPSD (mu_r 0.3) on every
+/// contact agrees with the CPU path to the criterion, its
+/// periodic faces are used, and rolling springs are live at the end.
+#[test]
+fn device_step_agrees_with_the_cpu_path_in_a_periodic_box_with_epsd_rolling() {
+    let bed = || {
+        let law = clump_core::contact::PairProperties {
+            rolling: clump_core::contact::RollingLaw::Epsd,
+            rolling_friction: 0.3,
+            ..Default::default()
+        };
+        clump_gpu::bed::periodic_bed_law(4, 2, RotationScheme::NoSquish, law)
+    };
+    let (crossings, across) = periodic_traffic(bed());
+    eprintln!("periodic EPSD bed on the CPU path: {crossings} face crossings, {across} contacts across a face at the checkpoints");
+    assert!(
+        crossings > 0 && across > 0,
+        "the bed must use its periodic faces"
+    );
+    let (worst, dev, _) = compare_keep(bed());
+    assert!(
+        worst < 1e-9,
+        "periodic EPSD bed: {worst:e} of the domain size"
+    );
+    let mut w = bed();
+    dev.download_state(&mut w).unwrap();
+    let (rolling, _) = live_rolling_springs(&mut w);
+    eprintln!("device: {rolling} live pair rolling springs at the end");
+    assert!(rolling > 0, "no live pair rolling spring at the end");
+}
+
 /// A periodic axis shorter than three cells (here one lattice pitch) is
 /// refused at upload, naming the axis, as the CPU path's grid refuses it.
 #[test]
@@ -234,4 +272,273 @@ fn device_runs_are_bit_reproducible() {
         .zip(&b)
         .all(|(p, q)| p.to_array().map(f64::to_bits) == q.to_array().map(f64::to_bits));
     assert!(same, "two device runs of the same world differ");
+}
+
+/// Fixed and driven bodies (dof.rs): every sixth clump is fixed (at rest,
+/// never moves), every sixth from the third is driven at a constant
+/// velocity and world angular velocity through the bed. Both paths agree
+/// to the criterion; on the device a fixed body keeps its bits
+/// and a driven one follows the closed form x0 + v t, q = exp(w t) q0; the
+/// contacts on them are summed (a torque that gravity cannot give).
+#[test]
+fn device_step_agrees_with_the_cpu_path_with_fixed_and_driven_bodies() {
+    use clump_core::dof::Dof;
+    let bed = || {
+        clump_gpu::bed::box_bed_with(4, 3, RotationScheme::NoSquish, |k, b| {
+            let driven = Dof {
+                driven: true,
+                ..Dof::default()
+            };
+            match k % 6 {
+                0 => {
+                    b.velocity = DVec3::ZERO;
+                    b.angular_velocity = DVec3::ZERO;
+                    driven.apply(b);
+                }
+                3 => {
+                    b.velocity = DVec3::new(0.03, -0.02, 0.01);
+                    driven.apply(b);
+                }
+                _ => {}
+            }
+        })
+    };
+    let w = bed();
+    let b0 = w.bodies().clone();
+    let (worst, dev, _cpu) = compare_keep(bed());
+    assert!(
+        worst < 1e-9,
+        "fixed and driven: {worst:e} of the domain size"
+    );
+    // the device's own bits (`download` would renormalise orientations)
+    let mut after = w;
+    dev.download_state(&mut after).unwrap();
+    let b = after.bodies();
+    let t = 3000.0 * after.config.dt;
+    let at0: std::collections::HashMap<u64, usize> =
+        b0.id.iter().enumerate().map(|(k, &id)| (id, k)).collect();
+    let (mut fixed, mut driven, mut touched) = (0, 0, 0);
+    for i in (0..b.len()).filter(|&i| b.start_step[i] == clump_core::dof::DRIVEN) {
+        let j = at0[&b.id[i]];
+        if b0.velocity[j] == DVec3::ZERO && b0.angular_velocity[j] == DVec3::ZERO {
+            fixed += 1;
+            let bits =
+                |p: DVec3, q: glam::DQuat| [p.x, p.y, p.z, q.x, q.y, q.z, q.w].map(f64::to_bits);
+            assert_eq!(
+                bits(b.position[i], b.orientation[i]),
+                bits(b0.position[j], b0.orientation[j])
+            );
+        } else {
+            driven += 1;
+            let x = b0.position[j] + b0.velocity[j] * t;
+            // glam's exponential map: outside the code under test
+            let q = glam::DQuat::from_scaled_axis(b0.angular_velocity[j] * t) * b0.orientation[j];
+            let dx = (b.position[i] - x).abs().max_element();
+            let dq = (b.orientation[i] - q)
+                .length()
+                .min((b.orientation[i] + q).length());
+            eprintln!(
+                "driven body {}: |x - (x0 + v t)| = {dx:.2e} m, |q - exp(w t) q0| = {dq:.2e}",
+                b.id[i]
+            );
+            assert!(dx < 1e-13, "driven body {}: {dx:e} m off x0 + v t", b.id[i]);
+            assert!(
+                dq < 1e-11,
+                "driven body {}: {dq:e} off exp(w t) q0",
+                b.id[i]
+            );
+        }
+        touched += (b.torque[i] != DVec3::ZERO) as usize;
+    }
+    assert!(
+        fixed >= 8 && driven >= 8,
+        "{fixed} fixed, {driven} driven bodies"
+    );
+    assert!(
+        touched > 0,
+        "no contact on a fixed or driven body at the end"
+    );
+}
+
+/// The bed with the rolling law `rolling` (coefficient `mu_r`) on every
+/// contact, clump-clump and clump-wall.
+fn rolling_bed(rolling: clump_core::contact::RollingLaw, mu_r: f64) -> World {
+    let law = clump_core::contact::PairProperties {
+        rolling,
+        rolling_friction: mu_r,
+        ..Default::default()
+    };
+    clump_gpu::bed::box_bed_law(4, 3, RotationScheme::NoSquish, law, |_, _| {})
+}
+
+/// Rolling resistance (contact/rolling.rs) on the device against the CPU
+/// path, to the criterion; the rolling couple matters in this bed
+/// (the CPU run without it ends far away) and, for EPSD, rolling springs
+/// are live at the end on both paths (pair and wall).
+fn rolling_agrees(rolling: clump_core::contact::RollingLaw) {
+    let (worst, dev, cpu) = compare_keep(rolling_bed(rolling, 0.3));
+    eprintln!("{rolling:?}: worst {worst:.3e} of the box");
+    assert!(worst < 1e-9, "{rolling:?}: {worst:e} of the domain size");
+    let mut plain = rolling_bed(clump_core::contact::RollingLaw::None, 0.3);
+    plain.prepare().unwrap();
+    plain.run(cpu.step).unwrap();
+    let size = cpu.config.domain.size().max_element();
+    let x = dev.positions().unwrap();
+    let apart = max_dev(&dev, &x, &plain) / size;
+    eprintln!("{rolling:?}: the run without rolling resistance ends {apart:.3e} of the box away");
+    assert!(
+        apart > 1e-6,
+        "rolling resistance changed the run by only {apart:e}"
+    );
+    if rolling == clump_core::contact::RollingLaw::Epsd {
+        let mut w = rolling_bed(rolling, 0.3);
+        dev.download_state(&mut w).unwrap();
+        let mut cpu = cpu;
+        for (name, world) in [("device", &mut w), ("CPU", &mut cpu)] {
+            let (pairs, walls) = live_rolling_springs(world);
+            eprintln!("{name}: {pairs} pair and {walls} wall rolling springs at the end");
+            assert!(pairs > 0 && walls > 0, "{name}: no live rolling spring");
+        }
+    }
+}
+
+/// The rolling springs of `w`'s state that are not zero: (pair, wall).
+fn live_rolling_springs(w: &mut World) -> (usize, usize) {
+    let s = w.save_state().unwrap();
+    let pairs = s
+        .pair_history
+        .iter()
+        .filter(|e| e.1.rolling != DVec3::ZERO)
+        .count();
+    let walls = s
+        .wall_hist
+        .iter()
+        .flatten()
+        .filter(|h| h.rolling != DVec3::ZERO)
+        .count();
+    (pairs, walls)
+}
+
+#[test]
+fn device_step_agrees_with_the_cpu_path_with_cdt_rolling() {
+    rolling_agrees(clump_core::contact::RollingLaw::Cdt);
+}
+
+#[test]
+fn device_step_agrees_with_the_cpu_path_with_epsd_rolling() {
+    rolling_agrees(clump_core::contact::RollingLaw::Epsd);
+}
+
+/// Which of `w`'s walls the clumps touch within `steps` steps of the CPU
+/// path (a wall load at some step).
+/// Also the most contacts one sphere had at once with one wall.
+fn walls_touched(mut w: World, steps: u64) -> (Vec<bool>, usize) {
+    let mut touched = vec![false; w.walls.len()];
+    let mut most = 0;
+    w.prepare().unwrap();
+    for _ in 0..steps {
+        w.step().unwrap();
+        for (t, l) in touched.iter_mut().zip(w.walls.loads()) {
+            *t |= l.force != DVec3::ZERO;
+        }
+        for keys in w.save_state().unwrap().wall_key {
+            for k in keys.iter().filter(|&&k| k != 0) {
+                let same = keys
+                    .iter()
+                    .filter(|&&o| o != 0 && (o - 1) >> 16 == (k - 1) >> 16);
+                most = most.max(same.count());
+            }
+        }
+    }
+    (touched, most)
+}
+
+/// Walls of `bed` against the CPU path: to the criterion, every
+/// active wall touched along the way (and no inactive one), and the walls handed back at the end where
+/// their prescribed motion puts them (`moved(walls, walls at the start,
+/// t)` checks them against the closed form of their motion). Returns the
+/// most contacts one sphere had at once with one wall.
+fn walls_agree(
+    bed: impl Fn() -> World,
+    moved: impl Fn(&[clump_core::wall::Wall], &[clump_core::wall::Wall], f64),
+) -> usize {
+    let (touched, most) = walls_touched(bed(), 3000);
+    eprintln!("walls touched in 3000 steps: {touched:?}; at most {most} faces of one wall at once");
+    let active: Vec<bool> = bed().walls.iter().map(|w| w.active).collect();
+    assert_eq!(
+        touched, active,
+        "every active wall must see contacts, no inactive one"
+    );
+    let (worst, dev, cpu) = compare_keep(bed());
+    eprintln!("walls: worst {worst:.3e} of the box");
+    assert!(worst < 1e-9, "walls: {worst:e} of the domain size");
+    let mut after = bed();
+    dev.download_state(&mut after).unwrap();
+    assert_eq!(after.walls.len(), cpu.walls.len());
+    for (a, b) in after.walls.iter().zip(cpu.walls.iter()) {
+        assert_eq!(a, b, "the device's walls at the end are not the CPU path's");
+    }
+    moved(&after.walls, &bed().walls, after.time);
+    most
+}
+
+/// The round-off bound of a coordinate of size `x` (m) that 3000 steps
+/// each moved by one rounded addition: 3000 ε |x|.
+fn rounding(x: f64) -> f64 {
+    3000.0 * f64::EPSILON * x.abs()
+}
+
+/// The point (plane, cylinder) or lower corner (box) of a wall, m.
+fn wall_point(w: &clump_core::wall::Wall) -> DVec3 {
+    use clump_core::wall::WallShape;
+    match w.shape {
+        WallShape::Plane { point, .. } | WallShape::Cylinder { point, .. } => point,
+        WallShape::Box { lo, .. } => lo,
+        WallShape::Mesh { position, .. } => position,
+    }
+}
+
+/// Every wall at the end where its velocity takes it from the start,
+/// x0 + v t, to round-off.
+fn at_closed_form(walls: &[clump_core::wall::Wall], start: &[clump_core::wall::Wall], t: f64) {
+    for (w, w0) in walls.iter().zip(start) {
+        let (x, x0) = (wall_point(w), wall_point(w0));
+        let off = (x - (x0 + w0.motion.velocity * t)).abs().max_element();
+        eprintln!("wall {}: {off:.2e} m from x0 + v t", w.name);
+        assert!(
+            off <= rounding(x.abs().max_element()),
+            "wall {}: {off:e} m from x0 + v t",
+            w.name
+        );
+    }
+}
+
+/// A drum and a pin (cylinders seen from inside and from outside, both
+/// turning about their axes, the pin moving down into the bed) on a
+/// rising floor (`bed::drum_bed`).
+#[test]
+fn device_step_agrees_with_the_cpu_path_with_cylinder_and_moving_walls() {
+    walls_agree(clump_gpu::bed::drum_bed, |walls, start, t| {
+        at_closed_form(walls, start, t);
+        let axis = match walls[2].shape {
+            clump_core::wall::WallShape::Cylinder { axis, .. } => axis,
+            _ => unreachable!(),
+        };
+        assert!(
+            (axis - DVec3::X).length() < 1e-14,
+            "the pin's axis turned: {axis}"
+        );
+    });
+}
+
+/// A moving, turning container (a box seen from inside) with a conveyor
+/// post (a box seen from outside) in it (`bed::container_bed`); some
+/// sphere touches two of the container's faces at once.
+#[test]
+fn device_step_agrees_with_the_cpu_path_with_box_walls() {
+    let most = walls_agree(clump_gpu::bed::container_bed, at_closed_form);
+    assert!(
+        most >= 2,
+        "no sphere touched two faces of the container at once"
+    );
 }

@@ -87,14 +87,14 @@ fn springs(w: &mut World) -> (usize, usize) {
 
 #[test]
 fn a_hand_over_at_an_event_keeps_the_device_bits() {
-    hand_over_keeps_bits(bed, HALF, true);
+    hand_over_keeps_the_device_bits(bed, springs, HALF, true);
 }
 
 /// The same in a periodic box: bodies that wrapped on the device
 /// make the trip as they are.
 #[test]
 fn a_hand_over_in_a_periodic_box_keeps_the_device_bits() {
-    hand_over_keeps_bits(periodic, PERIODIC_HALF, false);
+    hand_over_keeps_the_device_bits(periodic, springs, PERIODIC_HALF, false);
 }
 
 /// The hand-over step of the periodic bed: its clumps touch by then
@@ -105,9 +105,16 @@ fn periodic() -> World {
     clump_gpu::bed::periodic_bed(4, 2, RotationScheme::NoSquish)
 }
 
-/// `bed` handed over at step `half` of `2 half`, with pair springs (and
-/// wall springs with `need_walls`) at the hand-over.
-fn hand_over_keeps_bits(bed: fn() -> World, half: u64, need_walls: bool) {
+/// A device run of `bed` handed to the host and back at step `half` of
+/// `2 half` ends with the bits of one that stayed on the device; the
+/// hand-over carries springs (`carried`: pair and wall springs counted at
+/// the hand-over; wall springs required with `need_walls`).
+fn hand_over_keeps_the_device_bits(
+    bed: fn() -> World,
+    carried: fn(&mut World) -> (usize, usize),
+    half: u64,
+    need_walls: bool,
+) {
     let mut stay = bed();
     let mut dev = DeviceStepper::new(Gpu::new().unwrap());
     on_device(&mut stay, &mut dev, 2 * half);
@@ -115,7 +122,7 @@ fn hand_over_keeps_bits(bed: fn() -> World, half: u64, need_walls: bool) {
     let mut moved = bed();
     let mut dev = DeviceStepper::new(Gpu::new().unwrap());
     on_device(&mut moved, &mut dev, half);
-    let (pairs, walls) = springs(&mut moved);
+    let (pairs, walls) = carried(&mut moved);
     eprintln!("at step {half}: {pairs} pair springs, {walls} wall springs");
     assert!(
         pairs > 0 && (walls > 0 || !need_walls),
@@ -131,15 +138,18 @@ fn hand_over_keeps_bits(bed: fn() -> World, half: u64, need_walls: bool) {
 
 #[test]
 fn device_to_cpu_and_cpu_to_device_agree_with_the_cpu_path() {
-    across_devices(bed, HALF, true);
+    both_ways_agree(bed, HALF, true);
 }
 
 #[test]
 fn device_to_cpu_and_cpu_to_device_agree_in_a_periodic_box() {
-    across_devices(periodic, PERIODIC_HALF, false);
+    both_ways_agree(periodic, PERIODIC_HALF, false);
 }
 
-fn across_devices(bed: fn() -> World, half: u64, need_walls: bool) {
+/// Device → CPU and CPU → device at step `half` of `bed` end within 1e-12
+/// of the box of a run that stayed on the CPU path after `2 half` steps;
+/// the hand-over carries pair springs (and wall springs with `need_walls`).
+fn both_ways_agree(bed: fn() -> World, half: u64, need_walls: bool) {
     let mut cpu = bed();
     cpu.prepare().unwrap();
     cpu.run(2 * half).unwrap();
@@ -194,5 +204,101 @@ fn dropping_the_springs_at_the_hand_over_shows() {
     assert!(
         d > 1e-9,
         "dropping the springs changed the run by only {d:e}"
+    );
+}
+
+/// The bed with EPSD rolling resistance (the rolling springs make the
+/// trip too).
+fn epsd_bed() -> World {
+    let law = clump_core::contact::PairProperties {
+        rolling: clump_core::contact::RollingLaw::Epsd,
+        rolling_friction: 0.3,
+        ..Default::default()
+    };
+    clump_gpu::bed::box_bed_law(4, 3, RotationScheme::NoSquish, law, |_, _| {})
+}
+
+/// Rolling springs of the world's state: (pair, wall) springs not zero.
+fn rolling_springs(w: &mut World) -> (usize, usize) {
+    let s = w.save_state().unwrap();
+    let live = |h: &clump_core::contact::ContactHistory| h.rolling != glam::DVec3::ZERO;
+    (
+        s.pair_history.iter().filter(|e| live(&e.1)).count(),
+        s.wall_hist.iter().flatten().filter(|h| live(h)).count(),
+    )
+}
+
+/// EPSD's rolling springs through the hand-over: device → host → device
+/// keeps the device's bits; device → CPU and CPU → device end within
+/// 1e-12 of the box of the CPU run, and with the rolling springs zeroed at
+/// the hand-over far from it (so a lost rolling spring would show).
+#[test]
+fn epsd_rolling_springs_make_the_trip() {
+    hand_over_keeps_the_device_bits(epsd_bed, rolling_springs, HALF, true);
+
+    let mut cpu = epsd_bed();
+    cpu.prepare().unwrap();
+    cpu.run(2 * HALF).unwrap();
+    let at_half = || {
+        let mut b = epsd_bed();
+        b.prepare().unwrap();
+        b.run(HALF).unwrap();
+        b
+    };
+    let mut b = at_half();
+    on_device(
+        &mut b,
+        &mut DeviceStepper::new(Gpu::new().unwrap()),
+        2 * HALF,
+    );
+    let mut lost = at_half();
+    let mut s = lost.save_state().unwrap();
+    s.pair_history
+        .iter_mut()
+        .for_each(|e| e.1.rolling = glam::DVec3::ZERO);
+    s.wall_hist
+        .iter_mut()
+        .flatten()
+        .for_each(|h| h.rolling = glam::DVec3::ZERO);
+    lost.restore_state(s).unwrap();
+    on_device(
+        &mut lost,
+        &mut DeviceStepper::new(Gpu::new().unwrap()),
+        2 * HALF,
+    );
+    let mut a = epsd_bed();
+    on_device(&mut a, &mut DeviceStepper::new(Gpu::new().unwrap()), HALF);
+    a.run(HALF).unwrap();
+    let (da, d, d_lost) = (max_rel(&a, &cpu), max_rel(&b, &cpu), max_rel(&lost, &cpu));
+    eprintln!(
+        "EPSD after {} steps: gpu→cpu {da:.3e}, cpu→gpu {d:.3e} of the box; rolling springs dropped: {d_lost:.3e}",
+        2 * HALF
+    );
+    assert!(
+        da < 1e-12 && d < 1e-12,
+        "EPSD gpu→cpu {da:e}, cpu→gpu {d:e} of the box"
+    );
+    assert!(
+        d_lost > 1e-9,
+        "dropping the rolling springs changed the run by only {d_lost:e}"
+    );
+}
+
+/// Moving walls and a box's faces through the hand-over (`bed::container_bed`:
+/// a moving, turning container, six face slots per sphere, and a conveyor
+/// post): the device's bits kept, both directions within round-off of the
+/// CPU path, the walls handed back where the CPU path has them.
+#[test]
+fn moving_box_walls_make_the_trip() {
+    hand_over_keeps_the_device_bits(clump_gpu::bed::container_bed, springs, HALF, true);
+    both_ways_agree(clump_gpu::bed::container_bed, HALF, true);
+    let mut cpu = clump_gpu::bed::container_bed();
+    cpu.prepare().unwrap();
+    cpu.run(HALF).unwrap();
+    let mut dev = clump_gpu::bed::container_bed();
+    on_device(&mut dev, &mut DeviceStepper::new(Gpu::new().unwrap()), HALF);
+    assert!(
+        dev.walls.iter().zip(cpu.walls.iter()).all(|(a, b)| a == b),
+        "the walls handed back are not the CPU path's"
     );
 }

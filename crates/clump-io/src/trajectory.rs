@@ -158,49 +158,78 @@ impl TrajectoryWriter {
     /// Appends one row per tracked body present in `world` at `world.time`,
     /// and flushes.
     pub fn write(&mut self, world: &World) -> io::Result<()> {
+        let rows = self.rows(world, None);
+        self.append_rows(&rows)
+    }
+
+    /// The rows at `world.time` of the tracked bodies present in `world`
+    /// (of those whose entry in `mask` is true, when given: a rank's owned
+    /// bodies), each with the index of its file, in file order.
+    pub fn rows(&self, world: &World, mask: Option<&[bool]>) -> Vec<(u32, String)> {
         let b = &world.bodies();
         let mut index = vec![None; self.ids.len()];
         for (i, id) in b.id.iter().enumerate() {
             if let Some(&k) = self.slot.get(id) {
-                index[k] = Some(i);
+                if mask.map_or(true, |m| m[i]) {
+                    index[k] = Some(i);
+                }
             }
         }
-        for (k, f) in self.files.iter_mut().enumerate() {
-            let Some(i) = index[k] else { continue };
-            let (x, v, q, w) = (
-                b.position[i],
-                b.velocity[i],
-                b.orientation[i],
-                b.angular_velocity[i],
-            );
-            let wb = q.inverse() * w;
-            let vals = [
-                world.time, x.x, x.y, x.z, v.x, v.y, v.z, q.w, q.x, q.y, q.z, w.x, w.y, w.z, wb.x,
-                wb.y, wb.z,
-            ];
-            let mut row: Vec<String> = vals.iter().map(|&v| fmt_f64(v)).collect();
-            if self.extras.euler {
-                row.extend(euler_columns(q).iter().map(|&v| fmt_f64(v)));
-            }
-            if self.extras.loads {
-                let (f, m) = (b.force[i], b.torque[i]);
-                row.extend([f.x, f.y, f.z, m.x, m.y, m.z].iter().map(|&v| fmt_f64(v)));
-            }
-            if self.extras.planar {
-                let mut theta = 2.0 * q.z.atan2(q.w);
-                if theta > std::f64::consts::PI {
-                    theta -= std::f64::consts::TAU;
-                } else if theta <= -std::f64::consts::PI {
-                    theta += std::f64::consts::TAU;
-                }
-                row.push(fmt_f64(theta));
-            }
-            if self.extras.temperature {
-                row.push(fmt_f64(b.temperature.get(i).copied().unwrap_or(f64::NAN)));
-            }
-            f.append(format!("{}\n", row.join(",")).as_bytes())?;
+        let rows = index.iter().enumerate();
+        rows.filter_map(|(k, i)| Some((k as u32, self.row(world, (*i)?))))
+            .collect()
+    }
+
+    /// Appends each `(file, row)` of [`Self::rows`] (from any rank) to its
+    /// file, and flushes; an error for a file index out of range.
+    pub fn append_rows(&mut self, rows: &[(u32, String)]) -> io::Result<()> {
+        for (k, row) in rows {
+            let f = self.files.get_mut(*k as usize).ok_or_else(|| {
+                io::Error::new(
+                    io::ErrorKind::InvalidData,
+                    format!("no trajectory file {k}"),
+                )
+            })?;
+            f.append(row.as_bytes())?;
         }
         Ok(())
+    }
+
+    /// The row (with its newline) of body `i` of `world`.
+    fn row(&self, world: &World, i: usize) -> String {
+        let b = &world.bodies();
+        let (x, v, q, w) = (
+            b.position[i],
+            b.velocity[i],
+            b.orientation[i],
+            b.angular_velocity[i],
+        );
+        let wb = q.inverse() * w;
+        let vals = [
+            world.time, x.x, x.y, x.z, v.x, v.y, v.z, q.w, q.x, q.y, q.z, w.x, w.y, w.z, wb.x,
+            wb.y, wb.z,
+        ];
+        let mut row: Vec<String> = vals.iter().map(|&v| fmt_f64(v)).collect();
+        if self.extras.euler {
+            row.extend(euler_columns(q).iter().map(|&v| fmt_f64(v)));
+        }
+        if self.extras.loads {
+            let (f, m) = (b.force[i], b.torque[i]);
+            row.extend([f.x, f.y, f.z, m.x, m.y, m.z].iter().map(|&v| fmt_f64(v)));
+        }
+        if self.extras.planar {
+            let mut theta = 2.0 * q.z.atan2(q.w);
+            if theta > std::f64::consts::PI {
+                theta -= std::f64::consts::TAU;
+            } else if theta <= -std::f64::consts::PI {
+                theta += std::f64::consts::TAU;
+            }
+            row.push(fmt_f64(theta));
+        }
+        if self.extras.temperature {
+            row.push(fmt_f64(b.temperature.get(i).copied().unwrap_or(f64::NAN)));
+        }
+        format!("{}\n", row.join(","))
     }
 }
 

@@ -81,6 +81,7 @@ pub mod normal;
 pub mod record;
 pub mod rolling;
 pub mod stability;
+pub mod step_sums;
 pub mod table;
 pub mod tangential;
 pub mod time_scale;

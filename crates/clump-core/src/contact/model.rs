@@ -424,6 +424,11 @@ impl ContactModel {
         }
     }
 
+    /// The EPSD rolling viscous ratio `η_r` ([`Self::with_rolling_damping`]).
+    pub fn rolling_damping(&self) -> f64 {
+        self.rolling_damping
+    }
+
     /// Whether the law has a rolling couple (a rolling law other than none).
     pub fn has_rolling(&self) -> bool {
         self.rolling != RollingLaw::None

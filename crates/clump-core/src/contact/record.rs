@@ -51,6 +51,8 @@ pub struct ContactRecords {
     pub pair: Vec<PairRecord>,
     /// Per gather chunk, its wall contacts in the gather's order.
     pub wall: Vec<Vec<WallRecord>>,
+    /// Exact sums of the requested step's contacts (thermo rows).
+    pub sums: super::step_sums::StepSums,
 }
 
 impl ContactRecords {

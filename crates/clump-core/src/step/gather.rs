@@ -162,6 +162,9 @@ fn gather_after(
     chunk_stats.resize(nchunks, ContactStats::default());
     chunk_wall_loads.resize(nchunks * nw, WallLoad::default());
     let recording = records.start_wall_chunks(nchunks);
+    // exact sums of the step's contacts, when a driver asked for them
+    let sums_step = *step + 1;
+    let sums = (records.sums.begin(sums_step, nw) && pairs_first).then_some(&records.sums);
     // inside a fused stretch the bodies' centres, velocities and angular
     // velocities are current in the packed copy only (StepPhase::bodies_lag);
     // lagging bodies are kicked here, and a first half fused into this
@@ -181,6 +184,7 @@ fn gather_after(
             record,
             part.as_deref(),
             chunk,
+            sums,
         );
         (Some(rows), pairs)
     } else {
@@ -239,6 +243,7 @@ fn gather_after(
             loads,
             &mut records.wall,
             recording,
+            sums,
         ),
     };
     let gather_cost = body_chunk_cost(body_cost, nb, chunk);
@@ -246,6 +251,9 @@ fn gather_after(
     let (any_stale, pair_time) =
         run_chunks(&g, rows.as_ref(), nchunks, gather_cost, balance, pair_stats);
     *stats = total_stats(chunk_pair_stats, chunk_stats, sp);
+    if sums.is_some() {
+        records.sums.end(sums_step);
+    }
     sum_wall_loads(wall_loads, chunk_wall_loads, nchunks);
     if !next.as_ref().is_some_and(FirstHalf::lags) {
         phase.bodies_caught_up();

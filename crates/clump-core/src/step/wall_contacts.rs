@@ -65,6 +65,8 @@ pub(super) struct WallPass<'a> {
     records: SharedMut<Vec<WallRecord>>,
     /// The vector instructions the law loop may use.
     simd: Simd,
+    /// The exact sums of the owned contacts, when this step makes them.
+    sums: Option<&'a crate::contact::step_sums::StepSums>,
 }
 
 /// A touch collected for the law, summed at the next [`WallPass::flush`];
@@ -113,6 +115,11 @@ pub(super) struct WallScratch {
     /// Per touch whose law ran as it was collected: the result and the
     /// history after it.
     scalar: [(ContactOutput, ContactHistory); WALL_BATCH],
+    /// The current entry's histories and MDR profiles before this step
+    /// ([`WallPass::old_slots`]; 520 bytes a profile: copied or cleared for
+    /// every entry, they were 5 % of the settled tetra bed's instructions).
+    old_hist: [ContactHistory; WALL_SLOTS],
+    old_slip: [SlipProfile; WALL_SLOTS],
     /// Per body of the chunk, from its first: the force (N) and the torque
     /// about the body's centre of mass (N m), world frame. The gather
     /// seeds a body's before its touches are collected; each touch adds to
@@ -132,6 +139,8 @@ impl WallScratch {
             model: [0; WALL_BATCH],
             spring0: [DVec3::ZERO; WALL_BATCH],
             scalar: [Default::default(); WALL_BATCH],
+            old_hist: [ContactHistory::default(); WALL_SLOTS],
+            old_slip: [SlipProfile::default(); WALL_SLOTS],
             load: [(DVec3::ZERO, DVec3::ZERO); MAX_BODY_CHUNK],
         }
     }
@@ -164,6 +173,7 @@ impl<'a> WallPass<'a> {
         loads: SharedMut<WallLoad>,
         records: &'a mut [Vec<WallRecord>],
         recording: bool,
+        sums: Option<&'a crate::contact::step_sums::StepSums>,
     ) -> Self {
         let mut active_lo = 0u64;
         for (wi, wall) in walls.iter().enumerate().take(64) {
@@ -201,6 +211,7 @@ impl<'a> WallPass<'a> {
             recording,
             records: SharedMut::new(records),
             simd: simd(),
+            sums,
         }
     }
 
@@ -270,7 +281,7 @@ impl<'a> WallPass<'a> {
             // the histories and profiles before this step: a flush may
             // write the new ones before this entry's last touch is matched
             // SAFETY: as above
-            let (old_hist, old_slip) = unsafe { self.old_slots(q, old_key, keep_slip) };
+            unsafe { self.old_slots(ws, q, old_key, keep_slip) };
             let mut new_key = [0u32; WALL_SLOTS];
             let mut n_new = 0;
             let mut used = [false; WALL_SLOTS];
@@ -300,12 +311,12 @@ impl<'a> WallPass<'a> {
                         // a near miss within the reach, not a live contact
                         continue;
                     }
-                    let (history, mut slip) = match old {
+                    let history = match old {
                         Some(o) => {
                             used[o] = true;
-                            (old_hist[o], old_slip[o])
+                            ws.old_hist[o]
                         }
-                        None => (ContactHistory::default(), SlipProfile::default()),
+                        None => ContactHistory::default(),
                     };
                     let slot = if n_new < WALL_SLOTS {
                         new_key[n_new] = slot_key(wi, patch);
@@ -334,6 +345,10 @@ impl<'a> WallPass<'a> {
                     let law = self.table.by_index(model);
                     let done = law.is_extended() || law.has_rolling() || scalar_only();
                     if done {
+                        let mut slip = match old {
+                            Some(o) if keep_slip => ws.old_slip[o],
+                            _ => SlipProfile::default(),
+                        };
                         let mut h = history;
                         let input = ContactInput {
                             normal: n,
@@ -383,29 +398,28 @@ impl<'a> WallPass<'a> {
         }
     }
 
-    /// Entry `q`'s histories and MDR profiles before this step (defaults
-    /// where it held no contact, or the law keeps no profiles).
+    /// Entry `q`'s histories and (where the law keeps them) MDR profiles
+    /// before this step, into `ws.old_hist` and `ws.old_slip`, when it held
+    /// a contact (`old_key`, its keys before this step). Else nothing is
+    /// copied: the keys are stored from the first slot on, so an entry
+    /// whose first key is empty has none, and no touch finds an old slot.
     ///
     /// # Safety
     /// Entry `q` is the calling chunk's, and no reference to its slots lives.
     #[inline(always)]
     unsafe fn old_slots(
         &self,
+        ws: &mut WallScratch,
         q: usize,
         old_key: [u32; WALL_SLOTS],
         keep_slip: bool,
-    ) -> ([ContactHistory; WALL_SLOTS], [SlipProfile; WALL_SLOTS]) {
-        let hist = if old_key[0] != 0 {
-            *self.hists.get(q)
-        } else {
-            [ContactHistory::default(); WALL_SLOTS]
-        };
-        let slip = if keep_slip && old_key[0] != 0 {
-            *self.slips.get(q)
-        } else {
-            [SlipProfile::default(); WALL_SLOTS]
-        };
-        (hist, slip)
+    ) {
+        if old_key[0] != 0 {
+            ws.old_hist = *self.hists.get(q);
+            if keep_slip {
+                ws.old_slip = *self.slips.get(q);
+            }
+        }
     }
 
     /// `average` walls: the number of touches of each wall with the
@@ -525,6 +539,10 @@ impl<'a> WallPass<'a> {
                 let stat = &mut *sums.stat;
                 stat.wall_contacts += 1;
                 stat.elastic_energy += out.elastic_energy * scale;
+                if let Some(s) = self.sums {
+                    s.add_elastic(out.elastic_energy * scale);
+                    s.add_wall(wi, -(fw * scale), -(tw * scale));
+                }
                 let ratio = l.overlap[t] / l.radius[t];
                 if ratio > stat.max_overlap_ratio {
                     stat.max_overlap_ratio = ratio;

@@ -63,11 +63,33 @@ fn omega_world(rot: Mat3, l: vec3<f64>, inv: vec3<f64>) -> vec3<f64> {
     return mat_mul(rot, lb * inv);
 }
 
+// A driven (or fixed) body's first half (dof.rs; step/first_half.rs, a
+// body before its start step, and driven_turn): no kick; x += v dt; it
+// turns at its prescribed world angular velocity, q <- exp(w dt) q, and
+// its L is the one that w gives at the new orientation, R (I (R^T w)).
+fn driven_first_half(i: u32, dt: f64) {
+    let w = ld_bw(i);
+    var q = ldq(i);
+    if (any(w != vec3<f64>(0.0lf))) {
+        q = renormalize(qmul(quat_from_rotation_vector(w * dt), q));
+    }
+    let rot = mat_from_quat(q);
+    let inertia = vec3<f64>(bm[9u * i + 1u], bm[9u * i + 2u], bm[9u * i + 3u]);
+    let wb = vec3<f64>(dot3(rot.x, w), dot3(rot.y, w), dot3(rot.z, w));
+    st_bl(i, mat_mul(rot, inertia * wb));
+    st_bx(i, ld_bx(i) + ld_bv(i) * dt);
+    bq[4u * i] = q.x; bq[4u * i + 1u] = q.y; bq[4u * i + 2u] = q.z; bq[4u * i + 3u] = q.w;
+}
+
 @compute @workgroup_size(64)
 fn first_half(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
     if (i >= pu[PU_NB]) { return; }
     let dt = pf[PF_DT];
+    if (driven(i)) {
+        driven_first_half(i, dt);
+        return;
+    }
     let dtfm = bm[9u * i + 7u];
     let dtt = 0.5lf * dt;
     let f = vec3<f64>(bft[6u * i], bft[6u * i + 1u], bft[6u * i + 2u]);
@@ -187,6 +209,8 @@ fn gather_kick(@builtin(global_invocation_id) gid: vec3<u32>) {
     if (b >= pu[PU_NB]) { return; }
     let fm = body_load(b);
     store_load(b, fm[0], fm[1]);
+    // a driven body keeps its prescribed v and w (its load is only summed)
+    if (driven(b)) { return; }
     let dtt = 0.5lf * pf[PF_DT];
     let fl = dof_flags(b);
     let v = select(ld_bv(b), ld_bv(b) + bm[9u * b + 7u] * fm[0], fl[0]);

@@ -1,12 +1,18 @@
 // Contact forces: Hertz-Mindlin with the tangential history spring and the
 // Coulomb limit, the CPU path's SlidingLaw (crates/clump-core/src/contact/
 // model.rs, normal.rs, damping.rs, tangential.rs; docs/theory.md), the same
-// equations in the same operation order; then the per-sphere gather.
+// equations in the same operation order; then the per-sphere gather (the
+// wall contacts are walls.wgsl's).
 
-struct Law { hertz: bool, fn_floor: f64, kn: f64, kt: f64, gn: f64, gt: f64, friction: f64 }
+// A row of `laws` (device_world.rs LAW_ROW): the SlidingLaw's constants,
+// then the rolling law (rolling.wgsl ROLL_*), mu_r and eta_r.
+const LAW_ROW: u32 = 11u;
+struct Law { hertz: bool, fn_floor: f64, kn: f64, kt: f64, gn: f64, gt: f64, friction: f64,
+             roll: u32, mu_r: f64, eta_r: f64 }
 fn law_of(mi: u32, mj: u32) -> Law {
-    let r = 8u * (mi * pu[PU_NMAT] + mj);
-    return Law(laws[r] != 0.0lf, laws[r + 1u], laws[r + 2u], laws[r + 3u], laws[r + 4u], laws[r + 5u], laws[r + 7u]);
+    let r = LAW_ROW * (mi * pu[PU_NMAT] + mj);
+    return Law(laws[r] != 0.0lf, laws[r + 1u], laws[r + 2u], laws[r + 3u], laws[r + 4u], laws[r + 5u], laws[r + 7u],
+               u32(laws[r + 8u]), laws[r + 9u], laws[r + 10u]);
 }
 
 // tangential::rotate_into_plane
@@ -19,7 +25,7 @@ fn rotate_into_plane(v: vec3<f64>, n: vec3<f64>) -> vec3<f64> {
     return p * scale;
 }
 
-struct Sliding { force: vec3<f64>, xi: vec3<f64> }
+struct Sliding { force: vec3<f64>, xi: vec3<f64>, f_n: f64, kn: f64 }
 // SlidingLaw::evaluate_as::<true>: the force on i (N, world) and the new
 // spring (m, world) of a contact with unit normal n (j to i), overlap d,
 // contact-point relative velocity vrel, R*, m*, spring xi.
@@ -52,7 +58,7 @@ fn sliding(law: Law, n: vec3<f64>, d: f64, vrel: vec3<f64>, radius: f64, mass: f
         xi_new = vec3<f64>(0.0lf);
         f_t = vec3<f64>(0.0lf);
     }
-    return Sliding(f_n * n + f_t, xi_new);
+    return Sliding(f_n * n + f_t, xi_new, f_n, kn);
 }
 
 // Each entry (i, j > i): the pair's force on i and the torques about the
@@ -76,6 +82,7 @@ fn pair_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         let rsum = ri + rj;
         if (!(dot3(dv, dv) < rsum * rsum)) {
             st_hist(e, vec3<f64>(0.0lf));
+            st_roll(e, vec3<f64>(0.0lf));
             for (var c = 0u; c < 9u; c++) { pout[9u * e + c] = 0.0lf; }
             continue;
         }
@@ -91,42 +98,28 @@ fn pair_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         let mi = bm[9u * bi];
         let mj = bm[9u * bj];
         let law = law_of(sown[2u * i + 1u], sown[2u * j + 1u]);
-        let out = sliding(law, nrm, overlap, vrel, ri * rj / (ri + rj), mi * mj / (mi + mj), ld_hist(e));
+        let r_star = ri * rj / (ri + rj);
+        let m_star = mi * mj / (mi + mj);
+        let out = sliding(law, nrm, overlap, vrel, r_star, m_star, ld_hist(e));
         st_hist(e, out.xi);
         let f = out.force;
-        let ti = cross3(lever_i, f);
-        let tj = cross3(f, lever_j);
+        var ti = cross3(lever_i, f);
+        var tj = cross3(f, lever_j);
+        if (law.roll != ROLL_NONE) {
+            // the rolling couple, on i and opposite on j (pair_kernel
+            // scalar_laws: after the torques of the force)
+            let rc = rolling_couple(law.roll, law.mu_r, law.eta_r, nrm, ld_bw(bi) - ld_bw(bj),
+                                    r_star, m_star, out.f_n, out.kn, ld_roll(e));
+            st_roll(e, rc.spring);
+            ti = ti + rc.couple;
+            tj = tj - rc.couple;
+        }
         for (var c = 0u; c < 3u; c++) {
             pout[9u * e + c] = f[c];
             pout[9u * e + 3u + c] = ti[c];
             pout[9u * e + 6u + c] = tj[c];
         }
     }
-}
-
-// Sphere i's contact force at plane wall w (step/wall_contacts.rs, static
-// plane: the wall's surface velocity is zero), its spring in whist.
-fn wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<function, vec3<f64>>) {
-    let slot = i * pu[PU_NW] + w;
-    let x = ld_sx(i);
-    let r = sref[4u * i + 3u];
-    let point = vec3<f64>(walls[7u * w], walls[7u * w + 1u], walls[7u * w + 2u]);
-    let n = vec3<f64>(walls[7u * w + 3u], walls[7u * w + 4u], walls[7u * w + 5u]);
-    let overlap = r - dot3(x - point, n);
-    if (!(overlap > 0.0lf)) {
-        st_whist(slot, vec3<f64>(0.0lf));
-        return;
-    }
-    let b = sown[2u * i];
-    let com = ld_bx(b);
-    let xc = x - n * (r - 0.5lf * overlap);
-    let lever = xc - com;
-    let vrel = ld_bv(b) + cross3(ld_bw(b), lever);
-    let law = law_of(sown[2u * i + 1u], u32(walls[7u * w + 6u]));
-    let out = sliding(law, n, overlap, vrel, r, bm[9u * b], ld_whist(slot));
-    st_whist(slot, out.xi);
-    *fsum += out.force;
-    *tsum += cross3(lever, out.force);
 }
 
 // Per sphere, in the order of its entries (sorted by neighbour): the pair

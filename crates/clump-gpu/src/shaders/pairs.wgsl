@@ -31,7 +31,7 @@ fn table_save(@builtin(global_invocation_id) gid: vec3<u32>) {
     if (e <= pu[PU_NS]) { old_off[e] = noff[e]; }
     if (e >= pu[PU_CAP]) { return; }
     old_nbr[e] = nbr[e];
-    st_old_hist(e, ld_hist(e));
+    st_old_springs(e, ld_hist(e), ld_roll(e));
 }
 
 // One compare-exchange step (k, j in PU_SORT_K, PU_SORT_J) of the bitonic
@@ -203,12 +203,14 @@ fn pairs_fill(@builtin(global_invocation_id) gid: vec3<u32>) {
         let j = list[a];
         nbr[e] = j;
         var h = vec3<f64>(0.0lf);
+        var r = vec3<f64>(0.0lf);
         if (j > i) {
             for (var q = old_off[i]; q < old_off[i + 1u]; q++) {
-                if (old_nbr[q] == j) { h = ld_old_hist(q); break; }
+                if (old_nbr[q] == j) { h = ld_old_hist(q); r = ld_old_roll(q); break; }
             }
         }
         st_hist(e, h);
+        st_roll(e, r);
     }
 }
 

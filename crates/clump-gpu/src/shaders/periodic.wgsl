@@ -11,7 +11,7 @@
 
 const PF_LEN: u32 = 9u;      // box edges hi - lo, 3
 const PF_HI: u32 = 12u;      // upper corner, 3
-const PU_PERIODIC: u32 = 15u; // periodic axes, bits 0-2 (x, y, z)
+const PU_PERIODIC: u32 = 17u; // periodic axes, bits 0-2 (x, y, z); after common.wgsl's PU_NWF
 
 fn is_periodic(a: u32) -> bool {
     return (pu[PU_PERIODIC] & (1u << a)) != 0u;

@@ -37,6 +37,7 @@ mod pieces;
 mod report;
 mod session;
 mod stages;
+mod traj_ranks;
 mod vtk_ranks;
 
 pub use checkpoint::{load_checkpoint, load_checkpoint_with_id, Checkpoint};
@@ -631,6 +632,8 @@ impl Runner {
             tripped: None,
         };
         let at = self.world.step;
+        // the step before every event makes the exact sums of its thermo row
+        self.world.request_exact_sums(Some(event.step));
         if let Some(dev) = self.device.as_mut() {
             // the steps before the event's last on the device
             let to = event.step - 1;
@@ -687,13 +690,33 @@ impl Runner {
         if self.vtk_in_pieces() {
             e = e.min(self.st.next_vtk);
         }
+        if self.thermo_in_pieces() {
+            e = e.min(self.st.next_thermo);
+        }
+        let o = &self.scenario.output;
+        if o.trajectory.is_some() && self.out.trajectory.is_some() && self.trajectory_in_pieces() {
+            e = e.min(self.st.next_trajectory);
+        }
         e.min(self.next_whole_step()).max(self.world.step + 1)
+    }
+
+    /// True when this run's thermo rows come from reductions over the ranks
+    /// ([`World::thermo_of_ranks`]): a world split over several ranks,
+    /// with a thermo output, without heat or a fluid (their columns need
+    /// the whole world).
+    fn thermo_in_pieces(&self) -> bool {
+        self.world.part_info().is_some_and(|p| p.size > 1)
+            && self.out.thermo.is_some()
+            && self.scenario.output.thermo.is_some()
+            && self.scenario.heat.is_none()
+            && self.scenario.fluid.is_none()
     }
 
     /// The next step whose boundary work needs the whole world: the end of
     /// the current stage, an insertion, an output row or frame (every
-    /// event but a checkpoint, the step limit and a VTK frame written in
-    /// pieces).
+    /// event but a checkpoint, the step limit, a VTK frame written in
+    /// pieces, a thermo row from reductions and trajectory rows from the
+    /// bodies' owners).
     fn next_whole_step(&self) -> u64 {
         let (st, step) = (&self.st, self.world.step);
         let o = &self.scenario.output;
@@ -708,10 +731,10 @@ impl Runner {
         if o.vtk.is_some() && self.out.vtk.is_some() && !self.vtk_in_pieces() {
             e = e.min(st.next_vtk);
         }
-        if o.thermo.is_some() && self.out.thermo.is_some() {
+        if o.thermo.is_some() && self.out.thermo.is_some() && !self.thermo_in_pieces() {
             e = e.min(st.next_thermo);
         }
-        if o.trajectory.is_some() && self.out.trajectory.is_some() {
+        if o.trajectory.is_some() && self.out.trajectory.is_some() && !self.trajectory_in_pieces() {
             e = e.min(st.next_trajectory);
         }
         if o.contacts.is_some() && self.out.contacts.is_some() {

@@ -44,7 +44,16 @@ fn wall_names(scenario: &Scenario) -> Vec<String> {
 /// point (`T_P = T_c + (c − P) × F`, world frame), and the power each wall's
 /// rigid motion delivers to the particles, `−(F·v + T_c·ω)` (W).
 pub(super) fn wall_thermo(world: &World, torque_points: &[Option<DVec3>]) -> (Thermo, Vec<f64>) {
-    let mut t = world.thermo();
+    with_wall_columns(world, world.thermo(), torque_points)
+}
+
+/// The thermo row `t` of `world` with each wall's torque taken about its
+/// torque point, and each wall's power.
+pub(super) fn with_wall_columns(
+    world: &World,
+    mut t: Thermo,
+    torque_points: &[Option<DVec3>],
+) -> (Thermo, Vec<f64>) {
     let mut power = Vec::with_capacity(t.wall_loads.len());
     for (i, (l, w)) in t.wall_loads.iter_mut().zip(&world.walls).enumerate() {
         let m = &w.motion;
@@ -294,7 +303,13 @@ impl Runner {
         }
         if let (Some(every), Some(th)) = (o.thermo, self.out.thermo.as_mut()) {
             if step >= self.st.next_thermo || (finished && self.st.last_thermo != Some(step)) {
-                let (thermo, power) = wall_thermo(&self.world, &self.scenario.torque_points);
+                // a split world's row from exact sums over the ranks
+                let t = self
+                    .world
+                    .thermo_of_ranks()
+                    .map_err(|e| RunError::Runtime(format!("step {step}: {e}")))?;
+                let (thermo, power) =
+                    with_wall_columns(&self.world, t, &self.scenario.torque_points);
                 th.write_row(&thermo, &power)
                     .map_err(rt("cannot write thermo.csv"))?;
                 self.st.last_thermo = Some(step);
@@ -303,8 +318,7 @@ impl Runner {
         }
         if let (Some(t), Some(tw)) = (&o.trajectory, self.out.trajectory.as_mut()) {
             if step >= self.st.next_trajectory {
-                tw.write(&self.world)
-                    .map_err(rt("cannot write trajectories"))?;
+                super::traj_ranks::write_rows(&mut self.world, tw)?;
                 self.st.next_trajectory = step + t.every;
             }
         }

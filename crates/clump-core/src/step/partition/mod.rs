@@ -11,6 +11,7 @@ pub(crate) mod join;
 pub(crate) mod migrate;
 pub(crate) mod restrict;
 pub(crate) mod split;
+pub(crate) mod thermo;
 
 use crate::partition::{Comm, Part, PartInfo, Regions, Traffic};
 use crate::world::World;

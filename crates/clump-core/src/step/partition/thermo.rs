@@ -1,0 +1,118 @@
+//! The thermo row of a world split over ranks, without the whole world:
+//! each rank's exact partial sums (its owned bodies' energies, its counted
+//! contacts' elastic energy and wall loads, [`crate::exact_sum`]) and body
+//! count are summed over the ranks by a binomial tree (2 ⌈log₂ P⌉ rounds
+//! of point-to-point messages of about 0.6 kB per sum), and every rank
+//! rounds the same exact totals: one process's row, bit for bit (T-73).
+//! The step's counts and largest overlap are already the ranks' sums and
+//! maximum (`super::ghosts::reduce`: integers and a maximum, exact in any
+//! order).
+
+use crate::exact_sum::ExactSum;
+use crate::partition::Comm;
+use crate::thermo::Thermo;
+use crate::world::World;
+
+impl World {
+    /// The thermo row of this rank's world (a collective call on a split
+    /// world: every rank makes it and gets the same row); [`World::thermo`]
+    /// on a whole one. An error when the split world's last step made no
+    /// exact sums, or the world has heat or a fluid (their columns need the
+    /// whole world).
+    pub fn thermo_of_ranks(&mut self) -> Result<Thermo, String> {
+        if !self.is_split() {
+            return Ok(self.thermo());
+        }
+        if self.heat.is_some() || self.fluid().is_some() {
+            return Err(
+                "a thermo row of a world with heat or a fluid needs the whole world".into(),
+            );
+        }
+        let Some((elastic, walls)) = self.neighbors.records.sums.at_step(self.step) else {
+            return Err(format!(
+                "the step that ended at {} made no exact sums for the thermo row",
+                self.step
+            ));
+        };
+        let owned = &self.part.as_ref().expect("a split world").owned;
+        let count = owned.iter().filter(|&&o| o).count() as u64;
+        let mut sums = self.body_energy_sums(Some(owned)).to_vec();
+        sums.push(elastic);
+        sums.extend(walls.iter().flatten());
+        let part = self.part.as_mut().expect("a split world");
+        part.traffic.reductions += 1;
+        let (sums, count) = all_sum(&mut *part.comm, sums, count)?;
+        let mut t = self.thermo();
+        t.bodies = count as usize;
+        t.kinetic_translational = sums[0].value();
+        t.kinetic_rotational = sums[1].value();
+        t.potential = sums[2].value();
+        t.elastic = sums[3].value();
+        let walls: Vec<_> = sums[4..]
+            .chunks_exact(6)
+            .map(|c| std::array::from_fn(|k| c[k]))
+            .collect();
+        t.wall_loads = crate::contact::step_sums::wall_loads(&walls);
+        Ok(t)
+    }
+}
+
+/// Bytes of a list of sums and a count.
+fn encode(sums: &[ExactSum], count: u64) -> Vec<u8> {
+    let mut b = count.to_le_bytes().to_vec();
+    sums.iter().for_each(|s| b.extend(s.to_bytes()));
+    b
+}
+
+/// The sums and count of [`encode`]'s bytes from rank `from`, `n` sums.
+fn decode(b: &[u8], n: usize, from: usize) -> Result<(Vec<ExactSum>, u64), String> {
+    let bad = || format!("rank {from} sent a thermo sum of {} bytes", b.len());
+    let size = (b.len().checked_sub(8).ok_or_else(bad)?) / n.max(1);
+    if b.len() != 8 + size * n {
+        return Err(bad());
+    }
+    let count = u64::from_le_bytes(b[..8].try_into().map_err(|_| bad())?);
+    let sums = b[8..]
+        .chunks_exact(size.max(1))
+        .take(n)
+        .map(|c| ExactSum::from_bytes(c).ok_or_else(bad))
+        .collect::<Result<_, _>>()?;
+    Ok((sums, count))
+}
+
+/// The element-wise total of every rank's `sums` and `count`, on every
+/// rank: summed up a binomial tree to rank 0, then sent back down it.
+/// Exact sums: the tree's shape changes no bit.
+fn all_sum(
+    comm: &mut dyn Comm,
+    mut sums: Vec<ExactSum>,
+    mut count: u64,
+) -> Result<(Vec<ExactSum>, u64), String> {
+    let (me, size, n) = (comm.rank(), comm.size(), sums.len());
+    let mut k = 1;
+    while k < size {
+        if me % (2 * k) == k {
+            comm.exchange(&[(me - k, encode(&sums, count))], &[]);
+            break;
+        }
+        if me % (2 * k) == 0 && me + k < size {
+            let got = comm.exchange(&[], &[me + k]);
+            let (theirs, c) = decode(&got[0], n, me + k)?;
+            sums.iter_mut().zip(&theirs).for_each(|(a, b)| a.merge(b));
+            count += c;
+        }
+        k *= 2;
+    }
+    // down the same tree: from the highest level each rank took part in
+    let mut k = size.next_power_of_two();
+    while k > 1 {
+        k /= 2;
+        if me % (2 * k) == k {
+            let got = comm.exchange(&[], &[me - k]);
+            (sums, count) = decode(&got[0], n, me - k)?;
+        } else if me % (2 * k) == 0 && me + k < size {
+            comm.exchange(&[(me + k, encode(&sums, count))], &[]);
+        }
+    }
+    Ok((sums, count))
+}
