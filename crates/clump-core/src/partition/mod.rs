@@ -110,6 +110,18 @@ pub struct Traffic {
     pub ghost_body_steps: u64,
     /// Sum over steps of the local bodies held.
     pub local_body_steps: u64,
+    /// Sum over steps of the candidate sphere pairs in this rank's list
+    /// (each evaluated once a step).
+    pub pair_steps: u64,
+    /// Sum over steps of the candidate pairs between two ghosts that this
+    /// rank's builds left out (their owners evaluate them).
+    pub ghost_pair_steps: u64,
+    /// Seconds in the ghosts' state exchange after each step, waiting for
+    /// the neighbours included.
+    pub ghost_seconds: f64,
+    /// Seconds in the reductions of each step (flags, statistics and wall
+    /// loads), waiting for every rank included.
+    pub reduce_seconds: f64,
 }
 
 /// A summary of a rank's part, for reports.

@@ -88,6 +88,8 @@ pub(crate) fn refresh(w: &mut World) {
     let ghosts = part.owned.iter().filter(|&&o| !o).count() as u64;
     part.traffic.ghost_body_steps += ghosts;
     part.traffic.local_body_steps += part.owned.len() as u64;
+    part.traffic.pair_steps += w.neighbors.pairs.topo.len() as u64;
+    part.traffic.ghost_pair_steps += w.neighbors.pairs.left_out as u64;
     part.traffic.steps += 1;
 }
 
