@@ -79,6 +79,11 @@ pub struct Part {
     /// The next event keeps the world split (set by the driver, taken by
     /// `World::advance`).
     pub(crate) stay_split: bool,
+    /// This rank's stop request, sent with the statistics of the step
+    /// about to be taken (`World::advance`), and the requests of every
+    /// rank or-ed, received with them: the stop flags ride on the step's
+    /// statistics reduction instead of a collective call of their own.
+    pub(crate) stop: (bool, Option<bool>),
     /// Bytes and messages this rank sent (ghost states, gathers).
     pub traffic: Traffic,
 }

@@ -35,6 +35,7 @@ impl World {
             recv: Vec::new(),
             halo: 0.0,
             stay_split: false,
+            stop: (false, None),
             traffic: Traffic::default(),
         }));
     }
