@@ -6,8 +6,10 @@
 # load average before the run, and whether final_state.json equals the
 # 1-thread run's (docs/scaling.md, "Measured").
 # usage: rank_speed.sh CHECKPOINT SPHERES ROUNDS OUTDIR BIN [BASE_BIN]
+# (STEPS=S in the environment: stop at step S, a part of phase B)
 set -u
 CK=$1; NS=$2; ROUNDS=$3; OUT=$4; BIN=$5; BASE=${6:-}
+LIMIT=${STEPS:+--steps $STEPS}
 MPI="mpirun --oversubscribe --allow-run-as-root -np 2"
 mkdir -p "$OUT"
 variants="t1 t2 r2"
@@ -17,10 +19,10 @@ for r in $(seq 1 "$ROUNDS"); do
     d="$OUT/$v-$r"; rm -rf "$d"
     load=$(cut -d' ' -f1 /proc/loadavg)
     case $v in
-      t1) cmd="$BIN resume $CK -o $d --threads 1" ;;
-      t2) cmd="$BIN resume $CK -o $d --threads 2" ;;
-      r2) cmd="$MPI $BIN resume $CK -o $d --threads 1" ;;
-      r2base) cmd="$MPI $BASE resume $CK -o $d --threads 1" ;;
+      t1) cmd="$BIN resume $CK -o $d $LIMIT --threads 1" ;;
+      t2) cmd="$BIN resume $CK -o $d $LIMIT --threads 2" ;;
+      r2) cmd="$MPI $BIN resume $CK -o $d $LIMIT --threads 1" ;;
+      r2base) cmd="$MPI $BASE resume $CK -o $d $LIMIT --threads 1" ;;
     esac
     /usr/bin/time -f "%e %U %S" -o "$d.time" $cmd > "$d.log" 2>&1
     read -r wall user sys < "$d.time"
