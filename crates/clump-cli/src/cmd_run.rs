@@ -134,6 +134,7 @@ pub fn drive(
             return code;
         }
     };
+    let rank_lines = crate::rank_work::rank_lines(&mut runner);
     if !ranks.is_root() {
         return match s.status {
             RunStatus::Interrupted(sig) => ExitCode::from((128 + sig).clamp(0, 255) as u8),
@@ -174,6 +175,9 @@ pub fn drive(
             t.gathers,
             t.gather_bytes as f64 / t.gathers.max(1) as f64,
         );
+        for line in &rank_lines {
+            outln!("{line}");
+        }
     }
     report_bodies(&runner);
     outln!("output: {}", runner.outdir().display());

@@ -23,6 +23,7 @@ mod core_latency;
 mod device;
 mod huge_pages;
 mod memory;
+mod rank_work;
 mod ranks;
 
 /// Large arrays on huge pages (`huge_pages`).

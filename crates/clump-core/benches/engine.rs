@@ -32,6 +32,7 @@ fn neighbor_build(c: &mut Criterion) {
         skin: 0.5e-3,
         rolling: false,
         slip: None,
+        owned: None,
     };
     let mut list = PairList::default();
     let hist = HistoryMap::default();

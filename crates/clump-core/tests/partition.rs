@@ -70,6 +70,12 @@ fn a_settling_periodic_bed_has_the_same_bits_on_1_to_4_ranks() {
                     "{ranks} ranks, rank {rank}: {traffic:?}"
                 );
                 assert!(traffic.ghost_body_steps < traffic.local_body_steps);
+                // the pairs between two ghosts were left to their owners
+                // (a halo two bodies deep holds such pairs every step)
+                assert!(
+                    traffic.ghost_pair_steps > 0 && traffic.pair_steps > 0,
+                    "{ranks} ranks, rank {rank}: {traffic:?}"
+                );
                 // rebuilds move bodies between neighbours: the whole world
                 // is gathered at events only (two per round at most)
                 assert!(

@@ -314,6 +314,7 @@ mod tests {
             skin,
             rolling: false,
             slip: None,
+            owned: None,
         };
         let expected = brute_force(&domain, &position, &radius, &body, skin);
         let pool = rayon::ThreadPoolBuilder::new()

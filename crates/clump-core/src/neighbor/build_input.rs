@@ -34,4 +34,8 @@ pub struct BuildInput<'a> {
     /// Keep MDR profiles (some law is `tangential = "mdr"`), with the
     /// profiles carried by global id (may be empty); `None`: keep none.
     pub slip: Option<&'a SlipMap>,
+    /// Per body: owned by this rank. A rank's part (ghosts among its
+    /// bodies) leaves out the pairs between two bodies it does not own;
+    /// `None`: every pair.
+    pub owned: Option<&'a [bool]>,
 }

@@ -263,6 +263,7 @@ mod tests {
                 skin: 2e-4,
                 rolling: true,
                 slip: Some(slips),
+                owned: None,
             };
             let grid = CellGrid::new(&domain, &position, 8e-4).unwrap();
             match carried {

@@ -5,7 +5,7 @@ pub use super::build_input::{BuildInput, HistoryMap, SlipMap};
 use super::carry::{reversed, HistoryCarry};
 use super::grid::CellGrid;
 use super::sort::counting_sort;
-use super::topo::{set_row_steps, PairTopo};
+use super::topo::{keep_owned_pairs, set_row_steps, PairTopo};
 use crate::boundary::Domain;
 use crate::contact::mdr::SlipProfile;
 use crate::contact::ContactHistory;
@@ -144,6 +144,9 @@ pub struct PairList {
     /// The column lists, `first_feed` and `load_j` are built for the
     /// current list ([`PairList::prepare_seams`]).
     seams_ready: bool,
+    /// Candidates the last build left out as between two bodies not owned
+    /// ([`BuildInput::owned`]).
+    pub left_out: usize,
 }
 
 /// The column sum of body `b` from the pairs' own records: the `j` sides
@@ -393,6 +396,12 @@ impl PairList {
         } else {
             self.search_by_sphere(grid, domain, inp, image);
         }
+        self.left_out = match inp.owned {
+            Some(owned) => {
+                keep_owned_pairs(&mut self.row_start[1..], &mut self.topo, inp.body, owned)
+            }
+            None => 0,
+        };
 
         // 2. row offsets, and the rows in order
         for i in 0..n {

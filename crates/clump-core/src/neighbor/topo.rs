@@ -119,6 +119,40 @@ impl<'a> RowWalk<'a> {
     }
 }
 
+/// Leaves out of a list being built the pairs between two bodies that are
+/// not `owned` (a rank's part: two ghosts, whose pair is evaluated by the
+/// ranks that own them). `topo` holds the rows in order, row `i`'s count at
+/// `counts[i]` (`body[i]` its body); both are compacted in place, the pairs
+/// kept in their order. Returns the number of pairs left out.
+pub(crate) fn keep_owned_pairs(
+    counts: &mut [u32],
+    topo: &mut Vec<PairTopo>,
+    body: &[u32],
+    owned: &[bool],
+) -> usize {
+    let (mut read, mut write) = (0usize, 0usize);
+    for (i, count) in counts.iter_mut().enumerate() {
+        let n = *count as usize;
+        if owned[body[i] as usize] {
+            topo.copy_within(read..read + n, write);
+            write += n;
+        } else {
+            let start = write;
+            for p in read..read + n {
+                let t = topo[p];
+                if owned[body[t.j as usize] as usize] {
+                    topo[write] = t;
+                    write += 1;
+                }
+            }
+            *count = (write - start) as u32;
+        }
+        read += n;
+    }
+    topo.truncate(write);
+    read - write
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -171,5 +205,26 @@ mod tests {
                 assert_eq!(walk.next(p, topo[p]), expected[p], "pair {p} from {p0}");
             }
         }
+    }
+
+    /// Of rows of bodies owned and not, only the pairs between two bodies
+    /// not owned go, the others keep their order.
+    #[test]
+    fn pairs_between_two_bodies_not_owned_are_left_out() {
+        // spheres 0..6, bodies 0 0 1 1 2 3; bodies 1 and 3 not owned
+        let body = [0u32, 0, 1, 1, 2, 3];
+        let owned = [true, false, true, false];
+        let rows: [&[u32]; 6] = [&[2, 4], &[3, 5], &[4, 5], &[4, 5], &[5], &[]];
+        let mut counts: Vec<u32> = rows.iter().map(|r| r.len() as u32).collect();
+        let mut topo: Vec<PairTopo> = rows
+            .iter()
+            .flat_map(|r| r.iter().map(|&j| PairTopo::new(j, [0; 3])))
+            .collect();
+        let out = keep_owned_pairs(&mut counts, &mut topo, &body, &owned);
+        // spheres 2 and 3 (body 1) to sphere 5 (body 3): both not owned
+        assert_eq!(out, 2);
+        assert_eq!(counts, [2, 2, 1, 1, 1, 0]);
+        let js: Vec<u32> = topo.iter().map(|t| t.j).collect();
+        assert_eq!(js, [2, 4, 3, 5, 4, 4, 5]);
     }
 }

@@ -79,6 +79,11 @@ pub struct Part {
     /// The next event keeps the world split (set by the driver, taken by
     /// `World::advance`).
     pub(crate) stay_split: bool,
+    /// This rank's stop request, sent with the statistics of the step
+    /// about to be taken (`World::advance`), and the requests of every
+    /// rank or-ed, received with them: the stop flags ride on the step's
+    /// statistics reduction instead of a collective call of their own.
+    pub(crate) stop: (bool, Option<bool>),
     /// Bytes and messages this rank sent (ghost states, gathers).
     pub traffic: Traffic,
 }
@@ -110,6 +115,18 @@ pub struct Traffic {
     pub ghost_body_steps: u64,
     /// Sum over steps of the local bodies held.
     pub local_body_steps: u64,
+    /// Sum over steps of the candidate sphere pairs in this rank's list
+    /// (each evaluated once a step).
+    pub pair_steps: u64,
+    /// Sum over steps of the candidate pairs between two ghosts that this
+    /// rank's builds left out (their owners evaluate them).
+    pub ghost_pair_steps: u64,
+    /// Seconds in the ghosts' state exchange after each step, waiting for
+    /// the neighbours included.
+    pub ghost_seconds: f64,
+    /// Seconds in the reductions of each step (flags, statistics and wall
+    /// loads), waiting for every rank included.
+    pub reduce_seconds: f64,
 }
 
 /// A summary of a rank's part, for reports.

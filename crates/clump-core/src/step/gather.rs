@@ -382,8 +382,10 @@ struct Gather<'a> {
     /// The centres, velocities and angular velocities are current in the
     /// packed pair records only (`StepPhase::bodies_lag`).
     lag: bool,
-    /// A partitioned world's own bodies (its ghosts are counted by their
-    /// owners in the statistics and wall loads).
+    /// A partitioned world's own bodies: its ghosts take their owners'
+    /// state after the step (`partition::ghosts::refresh`), so the gather
+    /// skips them, and their owners count them in the statistics and wall
+    /// loads.
     owned: Option<&'a [bool]>,
     sp: &'a Spheres,
     pairs: &'a PairList,
@@ -431,6 +433,10 @@ impl Gather<'_> {
                 if bi + BODY_PREFETCH < b1 {
                     self.prefetch_pair_load(bi + BODY_PREFETCH);
                 }
+                if self.ghost(bi) {
+                    self.skip_ghost(bi);
+                    continue;
+                }
                 let load = if walled >> (bi - b0) & 1 != 0 {
                     s.walls.load[bi - b0]
                 } else {
@@ -460,6 +466,29 @@ impl Gather<'_> {
         let stat = self.stats_out.get(c);
         *stat = ContactStats::default();
         ChunkSums { c, b0, stat }
+    }
+
+    /// Body `bi` is a ghost of a partitioned world.
+    ///
+    /// # Safety
+    /// `bi` is a body index.
+    #[inline(always)]
+    unsafe fn ghost(&self, bi: usize) -> bool {
+        self.owned.is_some_and(|o| !*o.get_unchecked(bi))
+    }
+
+    /// A ghost's turn: no load, walls, kick or tally (its owner's state
+    /// replaces it after the step, and its pair load here lacks the pairs
+    /// with other ghosts); only its pair load is set back to zero for the
+    /// next step. A split world's steps are never fused, so no first half
+    /// follows here.
+    ///
+    /// # Safety
+    /// Body `bi` is the calling chunk's.
+    #[inline(always)]
+    unsafe fn skip_ghost(&self, bi: usize) {
+        debug_assert!(self.next.is_none());
+        (*self.pair_body.ptr(bi)).col = Default::default();
     }
 
     /// Body `bi`'s centre of mass, m, world frame.
@@ -571,10 +600,13 @@ impl Gather<'_> {
                 prefetch(sp.state.as_ptr().add(at(wp.entry_sphere, e_pf) as usize));
                 e_pf += 1;
             }
+            if self.ghost(bi) {
+                // its owner meets the walls
+                continue;
+            }
             ws.load[bi - b0] = self.body_forces(bi, self.pair_load(bi));
             walled |= 1 << (bi - b0);
-            let owned = self.owned.map_or(true, |o| o[bi]);
-            wp.collect(ws, bi, self.centre(bi), e0..e, owned, sums);
+            wp.collect(ws, bi, self.centre(bi), e0..e, sums);
         }
         wp.flush(ws, sums);
         walled
@@ -613,15 +645,12 @@ impl Gather<'_> {
     /// Stage 5, tally: body `bi`'s kinetic energy at the end of the step,
     /// after the kick (a force that would fling a body out of the domain
     /// shows here, before the body is removed), its mass, and whether its
-    /// state is finite; a ghost is its owner's to count.
+    /// state is finite (a ghost never comes here: its owner counts it).
     ///
     /// # Safety
     /// `bi` is a body index.
     #[inline(always)]
     unsafe fn tally(&self, tally: &mut BodyTally, bi: usize, com: DVec3, h: &Held) {
-        if self.owned.is_some_and(|o| !o[bi]) {
-            return;
-        }
         let mass = self.mass.mass(bi);
         let ke = 0.5 * mass * h.v.length_squared() + 0.5 * h.om.dot(h.l);
         tally.add(

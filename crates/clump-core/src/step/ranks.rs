@@ -52,8 +52,14 @@ impl World {
         if self.part.is_none() {
             return;
         }
+        let t = std::time::Instant::now();
         ghosts::refresh(self);
+        let t1 = std::time::Instant::now();
         ghosts::reduce(self);
+        if let Some(p) = self.part.as_mut() {
+            p.traffic.ghost_seconds += (t1 - t).as_secs_f64();
+            p.traffic.reduce_seconds += t1.elapsed().as_secs_f64();
+        }
         if self.heat.is_some() {
             super::partition::heat::reduce(self);
         }

@@ -170,6 +170,8 @@ pub(crate) fn build_pair_list(w: &mut World) {
             .contact_table
             .keeps_slip_profile()
             .then_some(&w.neighbors.slip_map),
+        // a rank's part: no pairs between two of its ghosts
+        owned: w.part.as_ref().filter(|p| p.local).map(|p| &p.owned[..]),
     };
     if w.scratch.carry.active {
         w.neighbors.pairs.build_carried(

@@ -235,9 +235,12 @@ impl World {
             .part
             .as_mut()
             .is_some_and(|p| std::mem::take(&mut p.stay_split));
+        if let Some(p) = self.part.as_mut() {
+            p.stop.1 = None;
+        }
         loop {
             let flags = [tripped, hook.stop_requested()];
-            let [trip, interrupt] = self.any_ranks(flags);
+            let [trip, interrupt] = self.or_stop_flags(flags);
             if trip {
                 end = Advance::Tripped;
                 break;
@@ -271,6 +274,24 @@ impl World {
             super::partition::join::join(self)?;
         }
         Ok(end)
+    }
+
+    /// The trip and stop flags of a rank's loop, or-ed over the ranks.
+    /// After a rank's step, the stop requests came with its statistics
+    /// (sent before the step: a request made since goes with the next
+    /// step's) and the trip is every rank's, the hook having read the same
+    /// summed statistics; otherwise (the first step, after a whole step)
+    /// one reduction. This rank's request then goes with the next step's
+    /// statistics.
+    fn or_stop_flags(&mut self, [tripped, stop]: [bool; 2]) -> [bool; 2] {
+        let Some(p) = self.part.as_mut() else {
+            return [tripped, stop];
+        };
+        p.stop.0 = stop;
+        match p.stop.1.take() {
+            Some(any) => [tripped, any],
+            None => self.any_ranks([tripped, stop]),
+        }
     }
 
     /// What the step just taken reports to the hook.

@@ -84,9 +84,6 @@ struct Pending {
     patch: u16,
     /// Its slot among its entry's new histories; `WALL_SLOTS` for none.
     slot: u8,
-    /// The body is this world's own (a ghost's loads and statistics are
-    /// its owner's).
-    owned: bool,
     /// Its law ran as it was collected (a model the lanes do not have;
     /// the result is in [`WallScratch::scalar`]).
     done: bool,
@@ -255,7 +252,6 @@ impl<'a> WallPass<'a> {
         bi: usize,
         com: DVec3,
         entries: Range<usize>,
-        owned: bool,
         sums: &mut ChunkSums,
     ) {
         if self.walls_average {
@@ -374,7 +370,6 @@ impl<'a> WallPass<'a> {
                         entry: q as u32,
                         patch,
                         slot: slot as u8,
-                        owned,
                         done,
                         lever: xc - com,
                         wall_lever: xc - wall.motion.center,
@@ -530,25 +525,22 @@ impl<'a> WallPass<'a> {
             let (f, m) = &mut ws.load[bi - sums.b0];
             *f += fw * scale;
             *m += mw * scale;
-            // a ghost body (partitioned world) adds neither: its owner does
-            if p.owned {
-                // SAFETY: row c of the chunk loads belongs to this chunk only.
-                let load = unsafe { self.loads.get(c * self.nw + wi) };
-                load.force -= fw * scale;
-                load.torque -= tw * scale;
-                let stat = &mut *sums.stat;
-                stat.wall_contacts += 1;
-                stat.elastic_energy += out.elastic_energy * scale;
-                if let Some(s) = self.sums {
-                    s.add_elastic(out.elastic_energy * scale);
-                    s.add_wall(wi, -(fw * scale), -(tw * scale));
-                }
-                let ratio = l.overlap[t] / l.radius[t];
-                if ratio > stat.max_overlap_ratio {
-                    stat.max_overlap_ratio = ratio;
-                    stat.max_overlap_bodies = [self.b.id[bi], 0];
-                    stat.max_overlap_wall = p.wall + 1;
-                }
+            // SAFETY: row c of the chunk loads belongs to this chunk only.
+            let load = unsafe { self.loads.get(c * self.nw + wi) };
+            load.force -= fw * scale;
+            load.torque -= tw * scale;
+            let stat = &mut *sums.stat;
+            stat.wall_contacts += 1;
+            stat.elastic_energy += out.elastic_energy * scale;
+            if let Some(s) = self.sums {
+                s.add_elastic(out.elastic_energy * scale);
+                s.add_wall(wi, -(fw * scale), -(tw * scale));
+            }
+            let ratio = l.overlap[t] / l.radius[t];
+            if ratio > stat.max_overlap_ratio {
+                stat.max_overlap_ratio = ratio;
+                stat.max_overlap_bodies = [self.b.id[bi], 0];
+                stat.max_overlap_wall = p.wall + 1;
             }
             if (p.slot as usize) < WALL_SLOTS {
                 // SAFETY: the entry is of chunk c's bodies.

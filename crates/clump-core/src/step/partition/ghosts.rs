@@ -88,20 +88,26 @@ pub(crate) fn refresh(w: &mut World) {
     let ghosts = part.owned.iter().filter(|&&o| !o).count() as u64;
     part.traffic.ghost_body_steps += ghosts;
     part.traffic.local_body_steps += part.owned.len() as u64;
+    part.traffic.pair_steps += w.neighbors.pairs.topo.len() as u64;
+    part.traffic.ghost_pair_steps += w.neighbors.pairs.left_out as u64;
     part.traffic.steps += 1;
 }
 
 /// Replaces this rank's statistics and wall loads (of its owned bodies and
-/// of the pairs in their rows) by their sums over the ranks, in rank order.
+/// of the pairs in their rows) by their sums over the ranks, in rank order;
+/// the ranks' stop requests ride along (`Part::stop`).
 pub(crate) fn reduce(w: &mut World) {
     let part = w.part.as_mut().expect("a partitioned world");
-    let mine = postcard::to_stdvec(&(&w.stats, &w.walls.loads)).unwrap_or_default();
+    let mine = postcard::to_stdvec(&(&w.stats, &w.walls.loads, part.stop.0)).unwrap_or_default();
     part.traffic.reductions += 1;
     let all = part.comm.all_gather(&mine);
     let mut stats = ContactStats::default();
     let mut loads = vec![WallLoad::default(); w.walls.loads.len()];
+    let mut stop = false;
     for bytes in &all {
-        if let Ok((s, l)) = postcard::from_bytes::<(ContactStats, Vec<WallLoad>)>(bytes) {
+        if let Ok((s, l, halt)) = postcard::from_bytes::<(ContactStats, Vec<WallLoad>, bool)>(bytes)
+        {
+            stop |= halt;
             stats.merge(&s);
             for (a, b) in loads.iter_mut().zip(&l) {
                 a.force += b.force;
@@ -109,6 +115,7 @@ pub(crate) fn reduce(w: &mut World) {
             }
         }
     }
+    part.stop.1 = Some(stop);
     w.stats = stats;
     w.walls.loads = loads;
 }

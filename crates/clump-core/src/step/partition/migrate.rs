@@ -82,7 +82,21 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
     let arrived = migrate_bodies(w, &mut part, &keep)?;
     // 4. the part in the whole world's order
     let (sphere_grid, sorted) = order_arrived(w, &whole, arrived)?;
-    // 5. the lists, as one process's rebuild makes them
+    // 5. who owns what, and who sends whose state
+    let roles = Roles::of(&part.regions, part.halo, me, size, &w.bodies.position);
+    if roles.keep.len() != w.bodies.len() {
+        return Err(StepError::Neighbor(format!(
+            "partition: rank {me} received {} bodies it does not hold",
+            w.bodies.len() - roles.keep.len()
+        )));
+    }
+    part.order = sorted.iter().map(|e| e.0).collect();
+    roles.install(&mut part);
+    part.local = true;
+    part.traffic.rebuilds += 1;
+    w.part = Some(part);
+    // 6. the lists, as one process's rebuild makes them (without the pairs
+    // of two ghosts)
     rebuild_sphere_topology(w);
     references_at_current_poses(w);
     w.neighbors.grid = sphere_grid;
@@ -93,21 +107,6 @@ pub(crate) fn rebuild(w: &mut World) -> Result<(), StepError> {
         .live_entries(ns, &mut w.scratch.wall_carry);
     build_wall_lists(w);
     w.rebuilds += 1;
-    part.traffic.rebuilds += 1;
-
-    // 6. who owns what, and who sends whose state
-    let at: Vec<DVec3> = w.bodies.position.clone();
-    let roles = Roles::of(&part.regions, part.halo, me, size, &at);
-    if roles.keep.len() != at.len() {
-        return Err(StepError::Neighbor(format!(
-            "partition: rank {me} received {} bodies it does not hold",
-            at.len() - roles.keep.len()
-        )));
-    }
-    part.order = sorted.iter().map(|e| e.0).collect();
-    roles.install(&mut part);
-    part.local = true;
-    w.part = Some(part);
     Ok(())
 }
 

@@ -36,6 +36,7 @@ impl World {
             recv: Vec::new(),
             halo: 0.0,
             stay_split: false,
+            stop: (false, None),
             traffic: Traffic::default(),
         }));
     }
@@ -66,8 +67,10 @@ impl World {
         match self.part.as_mut() {
             Some(p) => {
                 p.traffic.reductions += 1;
+                let t = std::time::Instant::now();
                 let mine = flags.map(|f| f as u8);
                 let all = p.comm.all_gather(&mine);
+                p.traffic.reduce_seconds += t.elapsed().as_secs_f64();
                 std::array::from_fn(|k| all.iter().any(|m| m[k] != 0))
             }
             None => flags,
