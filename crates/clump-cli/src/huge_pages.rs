@@ -9,6 +9,8 @@
 //! pair stage's partner reads and the gather's per-body streams walk far
 //! more pages than the TLB holds (docs/performance.md, section 3). The
 //! advice changes where memory comes from, never what is computed.
+//! [`init`] keeps each such block in its own mapping, so that its memory
+//! goes back to the system when it is freed.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 
@@ -20,6 +22,22 @@ const HUGE_PAGE: usize = 2 << 20;
 /// half a huge page each); a block from here on wastes less than a third
 /// of its size in padding, and nothing at the sizes where it matters.
 const HUGE_FROM: usize = HUGE_PAGE;
+
+/// Gives every block of [`HUGE_FROM`] bytes or more its own mapping, for
+/// the life of the program: glibc's malloc otherwise raises its mmap
+/// threshold to the size of each mapped block it frees (up to 32 MiB), so
+/// that later blocks of up to that size come from the heap, whose freed
+/// holes stay resident (and keep their huge-page advice, so that any small
+/// block placed there later is backed by a whole huge page). A fixed
+/// threshold makes a large block's memory go back to the system when it is
+/// freed. Call it first thing in `main`; outside glibc it does nothing.
+pub fn init() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: sets one malloc parameter; no block is touched.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, HUGE_FROM as libc::c_int);
+    }
+}
 
 /// The system allocator, with huge pages for large blocks.
 pub struct HugePages;
@@ -118,6 +136,56 @@ unsafe impl GlobalAlloc for HugePages {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// After `init`, a block of 3 MiB taken after a 5 MiB block was freed
+    /// still gets its own mapping (glibc's count of mapped bytes grows by
+    /// it), where glibc's own rule would have raised the threshold to 5 MiB
+    /// at that free and taken the 3 MiB from the heap. Checked in a child
+    /// process running only this test, so that no other test's freed
+    /// blocks lie in the heap for the 5 MiB to be cut from and no other
+    /// test's blocks change the count.
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    #[test]
+    fn large_blocks_keep_their_own_mappings() {
+        const CHILD: &str = "CLUMP_HUGE_PAGES_TEST_CHILD";
+        if std::env::var_os(CHILD).is_none() {
+            let out = std::process::Command::new(std::env::current_exe().unwrap())
+                .args([
+                    "huge_pages::tests::large_blocks_keep_their_own_mappings",
+                    "--exact",
+                    "--test-threads=1",
+                ])
+                .env(CHILD, "1")
+                .output()
+                .unwrap();
+            let text = String::from_utf8_lossy(&out.stdout);
+            assert!(out.status.success(), "child test failed: {text}");
+            assert!(text.contains("1 passed"), "child ran no test: {text}");
+            return;
+        }
+        // bytes in blocks with their own mappings, glibc's count
+        let mapped = || unsafe { libc::mallinfo2() }.hblkhd;
+        init();
+        unsafe {
+            let five = Layout::from_size_align(5 << 20, 16).unwrap();
+            let before = mapped();
+            // black_box: the optimiser may not drop an allocation it sees
+            // freed unused
+            let p = std::hint::black_box(System.alloc(five));
+            assert!(!p.is_null());
+            assert!(mapped() >= before + (5 << 20));
+            System.dealloc(p, five);
+            let three = Layout::from_size_align(3 << 20, 16).unwrap();
+            let before = mapped();
+            let q = std::hint::black_box(System.alloc(three));
+            assert!(!q.is_null());
+            assert!(
+                mapped() >= before + (3 << 20),
+                "a 3 MiB block after a freed 5 MiB one came from the heap"
+            );
+            System.dealloc(q, three);
+        }
+    }
 
     /// A large block from the allocator is usable end to end, zeroed when
     /// asked, aligned to a huge page, and keeps its bytes when grown (past

@@ -57,6 +57,7 @@ enum Commands {
 }
 
 fn main() -> ExitCode {
+    huge_pages::init();
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {
