@@ -55,6 +55,8 @@ impl World {
                 "partition: a rank piece needs a world split over ranks".into(),
             ));
         }
+        // as `save_state`: the forces of the state saved (after an insertion)
+        self.prepare_split()?;
         let mut o = self.owned_part();
         o.pair_history.sort_by_key(|e| e.0);
         o.pair_slip.sort_by_key(|e| e.0);

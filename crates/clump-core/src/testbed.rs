@@ -256,3 +256,24 @@ mod tests {
 pub fn inject_body_velocity(w: &mut World, i: usize, v: DVec3) {
     w.bodies.velocity[i] = v;
 }
+
+/// Runs `f` on `ranks` in-process ranks (one thread each, with its
+/// [`crate::partition::ThreadComm`]) on `make()`'s world split over them;
+/// returns each rank's result, in rank order.
+pub fn on_thread_ranks<T: Send + 'static>(
+    ranks: usize,
+    make: fn() -> World,
+    f: fn(&mut World) -> T,
+) -> Vec<T> {
+    let handles: Vec<_> = crate::partition::ThreadComm::group(ranks)
+        .into_iter()
+        .map(|comm| {
+            std::thread::spawn(move || {
+                let mut w = make();
+                w.partition(Box::new(comm));
+                f(&mut w)
+            })
+        })
+        .collect();
+    handles.into_iter().map(|h| h.join().unwrap()).collect()
+}

@@ -22,8 +22,14 @@ impl Occupancy {
     /// An occupancy grid for candidates inside `region` whose spheres have
     /// radius ≤ `candidate_max_radius`, filled with the current spheres of
     /// every body of `world` (computed from the body poses, so bodies added
-    /// since the last step count too).
-    pub(crate) fn from_world(world: &World, region: &Region, candidate_max_radius: f64) -> Self {
+    /// since the last step count too). A world split over ranks gathers the
+    /// owned spheres near the region from every rank (a collective call);
+    /// the answers of [`Self::overlaps`] do not depend on their order.
+    pub(crate) fn from_world(
+        world: &mut World,
+        region: &Region,
+        candidate_max_radius: f64,
+    ) -> Self {
         let rmax = candidate_max_radius.max(world.max_radius()).max(1e-300);
         let (rlo, rhi) = region.bounds();
         let margin = candidate_max_radius + world.max_radius();
@@ -51,15 +57,19 @@ impl Occupancy {
             center: Vec::new(),
             radius: Vec::new(),
         };
-        let b = &world.bodies;
-        for i in 0..b.len() {
-            let t = &world.templates[b.template[i] as usize];
-            let (x, q) = (b.position[i], b.orientation[i]);
-            for s in &t.spheres {
-                occ.insert(x + q * s.center, s.radius);
-            }
+        for (c, r) in world.spheres_near(|c| occ.near(c)) {
+            occ.insert(c, r);
         }
         occ
+    }
+
+    /// True when a periodic image of `c` (world frame, m) lies where
+    /// [`Self::insert`] keeps it.
+    fn near(&self, c: DVec3) -> bool {
+        self.images.iter().any(|&i| {
+            let x = c + i;
+            x.cmpge(self.lo).all() && x.cmple(self.hi).all()
+        })
     }
 
     fn key(&self, x: DVec3) -> [i64; 3] {

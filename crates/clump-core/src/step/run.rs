@@ -222,9 +222,15 @@ impl World {
     ) -> Result<Advance, StepError> {
         let mut end = Advance::Reached;
         if !self.phase.forces_ready() {
-            // the whole world's first forces (or after new bodies), as one
-            // process takes them; the rebuild splits it
-            self.prepare()?;
+            if self.is_split() {
+                // new bodies or settings in a split world: the parts rebuilt
+                // and their forces, as one process's prepare
+                self.prepare_split()?;
+            } else {
+                // the whole world's first forces (or after new bodies), as
+                // one process takes them; the rebuild splits it
+                self.prepare()?;
+            }
         }
         // a stop asked by the hook after a step is or-ed over the ranks with
         // the stop requests before the next (one reduction per step)

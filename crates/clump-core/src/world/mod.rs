@@ -228,7 +228,7 @@ impl World {
 
     /// Adds a body; returns its global id.
     pub fn add_body(&mut self, init: &BodyInit) -> Result<u64, WorldError> {
-        let t = self.templates.get(init.template as usize).ok_or_else(|| {
+        self.templates.get(init.template as usize).ok_or_else(|| {
             WorldError::BadReference(format!(
                 "body uses template {}, which does not exist",
                 init.template
@@ -236,6 +236,12 @@ impl World {
         })?;
         let id = self.next_id;
         self.next_id += 1;
+        // a split world: every rank counts the id, the new body's owner keeps it
+        if !self.keeps_new_body(init.position, id) {
+            self.phase.topology_changed();
+            return Ok(id);
+        }
+        let t = &self.templates[init.template as usize];
         self.bodies.push(id, init, t.mass, t.principal_inertia);
         if let Some(h) = self.heat.as_deref() {
             let (temperature, source) = heat_of_new_body(

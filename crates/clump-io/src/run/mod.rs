@@ -697,6 +697,9 @@ impl Runner {
         if o.trajectory.is_some() && self.out.trajectory.is_some() && self.trajectory_in_pieces() {
             e = e.min(self.st.next_trajectory);
         }
+        if self.insert_in_pieces() {
+            e = e.min(self.next_insertion_step());
+        }
         e.min(self.next_whole_step()).max(self.world.step + 1)
     }
 
@@ -712,21 +715,39 @@ impl Runner {
             && self.scenario.fluid.is_none()
     }
 
+    /// True when this run's insertions are decided on the world split over
+    /// the ranks (`clump_core::step::partition::insert`): several ranks,
+    /// without heat or a fluid (whose new bodies' temperatures and
+    /// couplings are set on the whole world).
+    fn insert_in_pieces(&self) -> bool {
+        self.world.part_info().is_some_and(|p| p.size > 1)
+            && self.scenario.heat.is_none()
+            && self.scenario.fluid.is_none()
+    }
+
+    /// The next step at which a stream has bodies due.
+    fn next_insertion_step(&self) -> u64 {
+        let (step, dt) = (self.world.step, self.world.config.dt);
+        let due = self.st.streams.iter().flatten();
+        due.map(|s| s.next_due_step(step, dt))
+            .min()
+            .unwrap_or(u64::MAX)
+    }
+
     /// The next step whose boundary work needs the whole world: the end of
     /// the current stage, an insertion, an output row or frame (every
     /// event but a checkpoint, the step limit, a VTK frame written in
-    /// pieces, a thermo row from reductions and trajectory rows from the
-    /// bodies' owners).
+    /// pieces, a thermo row from reductions, trajectory rows from the
+    /// bodies' owners and an insertion decided on the split world).
     fn next_whole_step(&self) -> u64 {
         let (st, step) = (&self.st, self.world.step);
         let o = &self.scenario.output;
-        let dt = self.world.config.dt;
         let mut e = u64::MAX;
         if let Some(stage) = self.scenario.stages.get(st.stage) {
             e = e.min(step.saturating_add(stage.steps.saturating_sub(st.step_in_stage)));
         }
-        for s in st.streams.iter().flatten() {
-            e = e.min(s.next_due_step(step, dt));
+        if !self.insert_in_pieces() {
+            e = e.min(self.next_insertion_step());
         }
         if o.vtk.is_some() && self.out.vtk.is_some() && !self.vtk_in_pieces() {
             e = e.min(st.next_vtk);

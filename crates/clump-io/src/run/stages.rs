@@ -40,6 +40,8 @@ impl Runner {
                     }
                 }
             }
+            // a world split over ranks: the new bodies' spheres on their ranks
+            self.world.settle_inserted();
         }
         self.write_outputs(finished)?;
         Ok(finished)

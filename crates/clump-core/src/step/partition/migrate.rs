@@ -184,7 +184,9 @@ fn reduce_totals(w: &mut World, part: &mut Part) -> Result<(Totals, Vec<usize>),
 
 /// Step 2: the skin, as one process adapts it, and the lost bodies.
 fn apply_totals(w: &mut World, whole: &Totals) {
-    if w.config.skin.is_none() && w.step > w.neighbors.built_step {
+    // bodies added since the last build keep the skin, as in one process
+    let added = w.phase.topology_dirty();
+    if w.config.skin.is_none() && w.step > w.neighbors.built_step && !added {
         w.neighbors.adapted_skin = w.adapted_skin(whole.displacement2.sqrt());
     }
     w.neighbors.built_step = w.step;

@@ -3,10 +3,11 @@
 //! ([`join`]), rebuild the parts between neighbours ([`migrate`]), refresh
 //! ghosts and sum statistics after each step ([`ghosts`]), the walls' heat
 //! flows ([`heat`]), keep the world split through an event or gather it
-//! ([`split`]).
+//! ([`split`]), insert bodies into a split world ([`insert`]).
 
 pub(crate) mod ghosts;
 pub(crate) mod heat;
+pub(crate) mod insert;
 pub(crate) mod join;
 pub(crate) mod migrate;
 pub(crate) mod restrict;
