@@ -293,6 +293,43 @@ fn thermo_and_trajectory_rows_of_a_split_world_are_one_process_s() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
+/// Stream insertion is decided on the world split over the ranks
+/// (`clump_core::step::partition::insert`: the spheres near the insertion
+/// region gathered from their owners, each new body kept by its owner): the
+/// stones' insertion events (one every 37 steps) keep the world split.
+/// Before, each one gathered the world on every rank and ran the step
+/// before it whole. The bits are `stream_insertion_onto_a_floor_has_the_same_bits`'.
+#[test]
+fn insertion_events_keep_the_world_split() {
+    let (d, gathers) = two_rank_gathers("insert-gathers", "examples/stones.toml");
+    let state = std::fs::read_to_string(d.join("final_state.json")).unwrap();
+    let inserted = state.matches("\"id\"").count();
+    assert!(inserted > 20, "only {inserted} stones inserted");
+    assert!(
+        gathers < inserted / 4,
+        "{gathers} whole-world gathers for {inserted} stones inserted one by one"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Stage changes (a wall switched off, gravity tilted, one rod's velocity
+/// set, a floor belt started) and the packs and the stream that begin with
+/// the stages are done on the world split over the ranks: one process's
+/// files on 2 and 3 ranks, and no gather of the world in the whole run.
+#[test]
+fn stage_changes_and_insertions_keep_the_world_split() {
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_stages.toml";
+    same_bits_at("stages", scenario, "650", &[2, 3]);
+    let (d, gathers) = two_rank_gathers("stages-gathers", scenario);
+    let state = std::fs::read_to_string(d.join("final_state.json")).unwrap();
+    assert!(state.matches("\"id\"").count() > 80, "{state}");
+    assert_eq!(
+        gathers, 0,
+        "whole-world gathers in a run with 2 stage changes"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 /// Runs `scenario` for 1 000 steps on 2 ranks into the folder `name`;
 /// returns the folder and the number of whole-world gathers rank 0
 /// reported.

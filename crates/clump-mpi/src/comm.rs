@@ -79,6 +79,11 @@ impl Comm for MpiComm {
             })
             .collect();
         let total: i32 = counts.iter().sum();
+        if total == 0 {
+            // nothing to gather (every rank knows it): an empty receive
+            // buffer's dangling address would read as MPI_IN_PLACE
+            return vec![Vec::new(); n];
+        }
         let mut buf = vec![0u8; total as usize];
         {
             let mut part = PartitionMut::new(&mut buf[..], &counts[..], &displs[..]);

@@ -698,7 +698,7 @@ impl Runner {
             e = e.min(self.st.next_trajectory);
         }
         if self.insert_in_pieces() {
-            e = e.min(self.next_insertion_step());
+            e = e.min(self.next_insertion_step()).min(self.stage_end_step());
         }
         e.min(self.next_whole_step()).max(self.world.step + 1)
     }
@@ -715,14 +715,27 @@ impl Runner {
             && self.scenario.fluid.is_none()
     }
 
-    /// True when this run's insertions are decided on the world split over
-    /// the ranks (`clump_core::step::partition::insert`): several ranks,
-    /// without heat or a fluid (whose new bodies' temperatures and
-    /// couplings are set on the whole world).
+    /// True when this run's insertions and stage changes are done on the
+    /// world split over the ranks (`clump_core::step::partition::insert`;
+    /// a stage's wall and gravity changes are every rank's, its body
+    /// changes the holders'): several ranks, without heat or a fluid
+    /// (whose new bodies' temperatures and couplings are set on the whole
+    /// world).
     fn insert_in_pieces(&self) -> bool {
         self.world.part_info().is_some_and(|p| p.size > 1)
             && self.scenario.heat.is_none()
             && self.scenario.fluid.is_none()
+    }
+
+    /// The step at which the current stage ends (`u64::MAX` after the last).
+    fn stage_end_step(&self) -> u64 {
+        let (st, step) = (&self.st, self.world.step);
+        self.scenario
+            .stages
+            .get(st.stage)
+            .map_or(u64::MAX, |stage| {
+                step.saturating_add(stage.steps.saturating_sub(st.step_in_stage))
+            })
     }
 
     /// The next step at which a stream has bodies due.
@@ -738,16 +751,14 @@ impl Runner {
     /// the current stage, an insertion, an output row or frame (every
     /// event but a checkpoint, the step limit, a VTK frame written in
     /// pieces, a thermo row from reductions, trajectory rows from the
-    /// bodies' owners and an insertion decided on the split world).
+    /// bodies' owners, and an insertion or a stage change done on the split
+    /// world).
     fn next_whole_step(&self) -> u64 {
-        let (st, step) = (&self.st, self.world.step);
+        let st = &self.st;
         let o = &self.scenario.output;
         let mut e = u64::MAX;
-        if let Some(stage) = self.scenario.stages.get(st.stage) {
-            e = e.min(step.saturating_add(stage.steps.saturating_sub(st.step_in_stage)));
-        }
         if !self.insert_in_pieces() {
-            e = e.min(self.next_insertion_step());
+            e = e.min(self.next_insertion_step()).min(self.stage_end_step());
         }
         if o.vtk.is_some() && self.out.vtk.is_some() && !self.vtk_in_pieces() {
             e = e.min(st.next_vtk);

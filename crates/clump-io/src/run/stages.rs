@@ -76,6 +76,14 @@ impl Runner {
             let bad = |e: clump_core::world::WorldError| {
                 RunError::Input(self.scenario.stage_body_error(si, j, e.to_string()))
             };
+            // a world split over ranks: the ranks that hold the body (its
+            // owner, and its ghosts, whose first half reads it) change it;
+            // no rank holding it is the error of one process
+            let held = self.world.body_index(c.id).is_some();
+            let elsewhere = self.world.is_split() && self.world.any_rank(held) && !held;
+            if elsewhere {
+                continue;
+            }
             if let Some(v) = c.velocity {
                 self.world.set_body_velocity(c.id, v).map_err(bad)?;
             }
