@@ -3,13 +3,14 @@
 //! ([`join`]), rebuild the parts between neighbours ([`migrate`]), refresh
 //! ghosts and sum statistics after each step ([`ghosts`]), the walls' heat
 //! flows ([`heat`]), keep the world split through an event or gather it
-//! ([`split`]).
+//! ([`split`]), take a rank's share of a checkpoint in pieces ([`share`]).
 
 pub(crate) mod ghosts;
 pub(crate) mod heat;
 pub(crate) mod join;
 pub(crate) mod migrate;
 pub(crate) mod restrict;
+pub(crate) mod share;
 pub(crate) mod split;
 pub(crate) mod thermo;
 
