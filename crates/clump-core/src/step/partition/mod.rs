@@ -5,6 +5,7 @@
 //! flows ([`heat`]), keep the world split through an event or gather it
 //! ([`split`]), take a rank's share of a checkpoint in pieces ([`share`]).
 
+pub(crate) mod cost;
 pub(crate) mod ghosts;
 pub(crate) mod heat;
 pub(crate) mod join;
@@ -12,7 +13,9 @@ pub(crate) mod migrate;
 pub(crate) mod restrict;
 pub(crate) mod share;
 pub(crate) mod split;
+pub(crate) mod step_stats;
 pub(crate) mod thermo;
+pub(crate) mod tree;
 
 use crate::partition::{Comm, Part, PartInfo, Regions, Traffic};
 use crate::world::World;

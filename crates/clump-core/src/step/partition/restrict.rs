@@ -60,9 +60,9 @@ pub(crate) fn restrict(
     let grid = grid?;
     let (me, size) = (part.comm.rank(), part.comm.size());
     let at = build_positions(w);
-    let first = &w.spheres.body_first;
-    let cost: Vec<u32> = (0..at.len()).map(|b| first[b + 1] - first[b]).collect();
+    let cost = super::cost::body_costs(w);
     part.regions = Regions::balance(&domain, &at, &cost, size);
+    let first = &w.spheres.body_first;
     part.halo = halo(w);
     let roles = Roles::of(&part.regions, part.halo, me, size, &at);
     let perm = roles.keep.clone();
