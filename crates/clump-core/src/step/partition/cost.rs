@@ -3,21 +3,23 @@
 //! every rank and every run. A body costs its spheres (the gather, the
 //! first half: 22 ns a sphere-step) and the candidate pairs of its spheres
 //! in the last build's list (the pair stage: 26 ns a sphere-step at 1.15
-//! candidate pairs a sphere, so 23 ns a pair), the one-thread stage costs
+//! candidate pairs a sphere, so 23 ns a pair, half of it to each of the
+//! pair's two bodies), the one-thread stage costs
 //! of the settled tetra bed in docs/performance.md ("Where the time
 //! goes"). A bed whose density varies (a heap, a half-filled box) then has
 //! regions of even work rather than of even sphere counts.
 
 use crate::world::World;
 
-/// Cost of a sphere, ns a step.
-pub(crate) const SPHERE_NS: u32 = 22;
-/// Cost of a candidate pair, ns a step.
-pub(crate) const PAIR_NS: u32 = 23;
+/// Cost of a sphere, half-ns a step.
+pub(crate) const SPHERE_COST: u32 = 44;
+/// Cost of a candidate pair to each of its two bodies, half-ns a step
+/// (a pair is evaluated once: half of its 23 ns goes to each body).
+pub(crate) const PAIR_END_COST: u32 = 23;
 
-/// Per body of `w`, its cost: `SPHERE_NS` a sphere and `PAIR_NS` a
-/// candidate pair of one of its spheres in the current pair list (counted
-/// for both bodies of the pair). A list that was built for other spheres
+/// Per body of `w`, its cost: `SPHERE_COST` a sphere and `PAIR_END_COST`
+/// a candidate pair of one of its spheres in the current pair list (each
+/// pair counted for both its bodies). A list that was built for other spheres
 /// (its rows do not match them, after bodies were added or removed) is
 /// not counted: the spheres alone then.
 pub(crate) fn body_costs(w: &World) -> Vec<u32> {
@@ -39,6 +41,6 @@ pub(crate) fn body_costs(w: &World) -> Vec<u32> {
         }
     }
     (0..nb)
-        .map(|b| SPHERE_NS * (first[b + 1] - first[b]) + PAIR_NS * pairs[b])
+        .map(|b| SPHERE_COST * (first[b + 1] - first[b]) + PAIR_END_COST * pairs[b])
         .collect()
 }

@@ -109,3 +109,62 @@ pub(crate) fn reduce(w: &mut World) -> Result<(), String> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::partition::ThreadComm;
+
+    /// Rank `r`'s share: an energy whose `f64` fold in rank order loses its
+    /// small term, an overlap tie between ranks 1 and 3, a body not finite
+    /// on ranks 2 and 4, a stop request on the last rank.
+    fn share(r: usize, n: usize) -> StepTotals {
+        // 1 on rank 0, then +1e17, −1e17, … : a fold in rank order loses the 1
+        let big = match r {
+            0 => 1.0,
+            r if r % 2 == 1 => 1e17,
+            _ => -1e17,
+        };
+        let e = |x: f64| {
+            let mut s = ExactSum::new();
+            s.add(x);
+            s
+        };
+        let last = r == n - 1;
+        StepTotals {
+            stats: ContactStats {
+                pair_contacts: r as u64 + 1,
+                max_overlap_ratio: if r == 1 || r == 3 { 0.5 } else { 0.1 },
+                max_overlap_bodies: [r as u64, 0],
+                non_finite_body: if r == 2 || r == 4 { r as u64 } else { 0 },
+                ..ContactStats::default()
+            },
+            sums: vec![e(big), e(1.0)],
+            stop: last,
+        }
+    }
+
+    #[test]
+    fn the_tree_gives_exact_sums_and_a_rank_order_fold_s_maxima_on_1_to_6_ranks() {
+        for n in 1..=6 {
+            let handles: Vec<_> = ThreadComm::group(n)
+                .into_iter()
+                .enumerate()
+                .map(|(r, mut c)| std::thread::spawn(move || all_reduce(&mut c, share(r, n))))
+                .collect();
+            for h in handles {
+                let t = h.join().unwrap().unwrap();
+                // the ±1e17 cancel in pairs; an unpaired one leaves 1e17 + 1
+                let first = if n % 2 == 1 { 1.0 } else { 1e17 };
+                assert_eq!(t.sums[0].value(), first, "{n} ranks");
+                assert_eq!(t.sums[1].value(), n as f64, "{n} ranks");
+                assert_eq!(t.stats.pair_contacts, (n * (n + 1) / 2) as u64);
+                let tie = if n > 1 { (0.5, 1) } else { (0.1, 0) };
+                assert_eq!(t.stats.max_overlap_ratio, tie.0);
+                assert_eq!(t.stats.max_overlap_bodies[0], tie.1, "the lower rank's on a tie");
+                assert_eq!(t.stats.non_finite_body, if n > 2 { 2 } else { 0 });
+                assert!(t.stop);
+            }
+        }
+    }
+}
