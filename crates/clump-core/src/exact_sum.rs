@@ -253,7 +253,10 @@ impl ExactSum {
         carry(&mut l);
         let top = l[LIMBS - 1];
         let fill = if top < 0 { (1i64 << 32) - 1 } else { 0 };
-        let hi = (0..LIMBS - 1).rev().find(|&i| l[i] != fill).map_or(0, |i| i + 1);
+        let hi = (0..LIMBS - 1)
+            .rev()
+            .find(|&i| l[i] != fill)
+            .map_or(0, |i| i + 1);
         let lo = (0..hi).find(|&i| l[i] != 0).unwrap_or(hi);
         let mut out = Vec::with_capacity(11 + 4 * (hi - lo));
         out.push(self.special);

@@ -35,7 +35,7 @@
 //! one process's world, statistics, wall loads and contact records, so
 //! insertion, output, checkpoints and steering work unchanged; only rank 0
 //! writes files. The regions are re-balanced on every body (recursive
-//! coordinate bisection on sphere counts, [`regions`]) when the world is
+//! coordinate bisection on counted costs, [`regions`]) when the world is
 //! split again.
 //! The price: each event moves every body to every rank
 //! (docs/scaling.md says where that stops scaling).

@@ -1,6 +1,7 @@
-//! The ranks' regions: recursive coordinate bisection of the domain on
-//! sphere counts, redone at every neighbour build (on a sample of the
-//! bodies) and whenever a whole world is split (on all of them).
+//! The ranks' regions: recursive coordinate bisection of the domain on the
+//! bodies' counted costs (`step/partition/cost.rs`: spheres and candidate
+//! pairs), redone at every neighbour build (on a sample of the bodies) and
+//! whenever a whole world is split (on all of them).
 //!
 //! The domain box is cut across its longest side so that the two halves'
 //! costs are in proportion to their numbers of ranks, then each half in

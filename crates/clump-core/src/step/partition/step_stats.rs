@@ -91,7 +91,11 @@ pub(crate) fn reduce(w: &mut World) -> Result<(), String> {
     let t = all_reduce(&mut *part.comm, mine)?;
     let nw = w.walls.loads.len();
     if t.sums.len() != 3 + 6 * nw {
-        return Err(format!("step statistics of {} sums, not {}", t.sums.len(), 3 + 6 * nw));
+        return Err(format!(
+            "step statistics of {} sums, not {}",
+            t.sums.len(),
+            3 + 6 * nw
+        ));
     }
     part.stop.1 = Some(t.stop);
     let v: Vec<f64> = t.sums.iter().map(ExactSum::value).collect();
@@ -161,7 +165,10 @@ mod tests {
                 assert_eq!(t.stats.pair_contacts, (n * (n + 1) / 2) as u64);
                 let tie = if n > 1 { (0.5, 1) } else { (0.1, 0) };
                 assert_eq!(t.stats.max_overlap_ratio, tie.0);
-                assert_eq!(t.stats.max_overlap_bodies[0], tie.1, "the lower rank's on a tie");
+                assert_eq!(
+                    t.stats.max_overlap_bodies[0], tie.1,
+                    "the lower rank's on a tie"
+                );
                 assert_eq!(t.stats.non_finite_body, if n > 2 { 2 } else { 0 });
                 assert!(t.stop);
             }
