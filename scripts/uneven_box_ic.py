@@ -3,9 +3,11 @@
 ("Balance on counted cost"): writes ic_uneven.txt (tetra clumps on a
 lattice of spacing 3.6 mm for x < 0.1 m and 7.2 mm beyond, random
 orientations from Python's generator, seed 7) and uneven.toml (at rest,
-no gravity, fixed skin 0.8 mm). Usage: uneven_box_ic.py; then
+no gravity, fixed skin 0.8 mm). Usage: uneven_box_ic.py TETRA_XYZR
+(../shared/bench/tetra-bed/tetra.xyzr); then
 mpirun -np 4 clump run uneven.toml -o D --steps 300 --threads 1"""
-import math, random
+import math, os, random, subprocess, sys
+xyzr = sys.argv[1]
 rng = random.Random(7)
 rows = []
 def lattice(x0, x1, sp):
@@ -26,6 +28,13 @@ with open("ic_uneven.txt", "w") as f:
              math.sqrt(1 - u1) * math.cos(2 * math.pi * u2), math.sqrt(u1) * math.sin(2 * math.pi * u3)]
         f.write(f"{i+1} {x:.9e} {y:.9e} {z:.9e} " + " ".join(f"{c:.12f}" for c in q) + "\n")
 print(len(rows))
+# the material and template of the shared tetra bed, from its scenario
+# writer (one clump, removed again)
+here = os.path.dirname(os.path.abspath(__file__))
+subprocess.run([sys.executable, os.path.join(here, "tetra_bed_scenario.py"), "1", "1.0", xyzr], check=True)
+bed = open("tetra_1.toml").read()
+os.remove("tetra_1.toml")
+parts = bed[bed.index("[[material]]"):bed.index("[[wall]]")]
 open("uneven.toml", "w").write('''# half-dense box at rest (docs/scaling.md, "Balance on counted cost")
 [simulation]
 dt = 1e-5
@@ -36,27 +45,7 @@ skin = 0.8e-3
 lo = [0.0, 0.0, 0.0]
 hi = [0.3, 0.04, 0.04]
 
-[[material]]
-name = "m"
-youngs_modulus = 5e6
-poisson_ratio = 0.3
-density = 2500
-
-[contact]
-restitution = 0.5
-friction = 0.5
-
-[[template]]
-name = "tetra"
-material = "m"
-spheres = [
-  [4.242640687119284427e-04, 4.242640687119284427e-04, 4.242640687119284427e-04, 1.000000000000000021e-03],
-  [4.242640687119284427e-04, -4.242640687119284427e-04, -4.242640687119284427e-04, 1.000000000000000021e-03],
-  [-4.242640687119284427e-04, 4.242640687119284427e-04, -4.242640687119284427e-04, 1.000000000000000021e-03],
-  [-4.242640687119284427e-04, -4.242640687119284427e-04, 4.242640687119284427e-04, 1.000000000000000021e-03]
-]
-
-[[insert]]
+''' + parts + '''[[insert]]
 kind = "file"
 stage = "A"
 file = "ic_uneven.txt"
