@@ -44,8 +44,9 @@
 //! split, gather and rebuild a world are in `step/partition/`.
 //!
 //! Between events, the statistics of a step (the health check's input) are
-//! summed per rank and then over ranks in rank order: the same on every
-//! rank, but not bit for bit one process's (the body states are).
+//! summed per rank and then exactly over the ranks by a binomial tree
+//! (`step/partition/step_stats.rs`): the same on every rank, but not bit
+//! for bit one process's (the body states are).
 
 mod comm;
 pub mod regions;
