@@ -58,10 +58,13 @@ pub fn run(args: &ResumeArgs) -> ExitCode {
             }
         },
     };
-    let mut runner = match Runner::resume_with(
+    // split over the ranks before the checkpoint's pieces are read: each
+    // rank reads and keeps only its share of the world
+    let mut runner = match Runner::resume_split(
         &args.checkpoint,
         scratch.as_deref().or(args.outdir.as_deref()),
         opts,
+        ranks.comm(),
     ) {
         Ok(r) => r,
         Err(e) => {
@@ -70,11 +73,6 @@ pub fn run(args: &ResumeArgs) -> ExitCode {
             return code;
         }
     };
-    if let Err(e) = ranks.split(&mut runner) {
-        errln!("error: {e}");
-        ranks.fail(2);
-        return ExitCode::from(2);
-    }
     if let Some(d) = device {
         tracing::info!("steps between events on the GPU: {}", d.describe());
         runner.set_device(d);

@@ -60,12 +60,19 @@ impl Ranks {
 
     /// Splits the runner's world over the ranks when there are several.
     pub fn split(&self, runner: &mut Runner) -> Result<(), String> {
+        if let Some(c) = self.comm() {
+            runner.partition(c);
+        }
+        Ok(())
+    }
+
+    /// The communicator of the ranks when there are several.
+    pub fn comm(&self) -> Option<Box<dyn clump_core::partition::Comm>> {
         #[cfg(feature = "mpi")]
         if let Some(m) = self.mpi.as_ref().filter(|m| m.size() > 1) {
-            runner.partition(Box::new(m.comm()));
+            return Some(Box::new(m.comm()));
         }
-        let _ = runner;
-        Ok(())
+        None
     }
 
     /// After the run: removes this rank's scratch folder.

@@ -491,6 +491,47 @@ fn a_restart_on_3_ranks_from_a_checkpoint_of_2_continues_bit_for_bit() {
     let _ = std::fs::remove_dir_all(&two);
 }
 
+/// A checkpoint in pieces written on 4 ranks resumes on 2 ranks (each
+/// reads only the pieces that hold its share) and in one process (every
+/// piece), and both continue bit for bit.
+#[test]
+fn a_checkpoint_of_4_ranks_resumes_on_2_and_in_one_process_bit_for_bit() {
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_straddle.toml";
+    let serial = out_dir("restart4-1");
+    let sc = ["run", scenario, "-o", serial.to_str().unwrap()];
+    clump(0, &[&sc[..], &["--steps", "1000"]].concat());
+    let four = out_dir("restart4-4");
+    clump(
+        4,
+        &[
+            "run",
+            scenario,
+            "-o",
+            four.to_str().unwrap(),
+            "--steps",
+            "517",
+        ],
+    );
+    let ckpt = four.join("checkpoint_000000517.ckpt");
+    assert!(ckpt.exists() && in_pieces(&ckpt), "no checkpoint in pieces");
+    for (np, name) in [(2, "restart4-2"), (0, "restart4-0")] {
+        let d = out_dir(name);
+        let args = ["resume", ckpt.to_str().unwrap(), "-o", d.to_str().unwrap()];
+        clump(np, &[&args[..], &["--steps", "1000"]].concat());
+        let fin = |d: &Path| std::fs::read(d.join("final_state.json")).unwrap();
+        assert!(fin(&d) == fin(&serial), "{name}: the final state differs");
+        let c = "checkpoint_000001000.ckpt";
+        let diff = differing(&serial.join(c), &d.join(c));
+        assert!(
+            diff.is_empty(),
+            "{name}: {diff:?} differ from one process's"
+        );
+        let _ = std::fs::remove_dir_all(&d);
+    }
+    let _ = std::fs::remove_dir_all(&serial);
+    let _ = std::fs::remove_dir_all(&four);
+}
+
 /// The `clump` processes whose parent is `pid` (Linux: from /proc; other
 /// helpers mpirun may fork are left out).
 fn children(pid: u32) -> Vec<u32> {

@@ -243,6 +243,52 @@ impl ExactSum {
         s.special = b[LIMBS * 8] & (POS_INF | NEG_INF | NAN);
         Some(s)
     }
+
+    /// The sum in a short form for messages: the digits between the lowest
+    /// non-zero one and the highest that is not the sign's fill (a few for
+    /// sums of terms of like magnitude), the top limb and the special
+    /// flags. [`ExactSum::from_compact`] reads it back exactly.
+    pub fn to_compact(&self) -> Vec<u8> {
+        let mut l = self.limb;
+        carry(&mut l);
+        let top = l[LIMBS - 1];
+        let fill = if top < 0 { (1i64 << 32) - 1 } else { 0 };
+        let hi = (0..LIMBS - 1)
+            .rev()
+            .find(|&i| l[i] != fill)
+            .map_or(0, |i| i + 1);
+        let lo = (0..hi).find(|&i| l[i] != 0).unwrap_or(hi);
+        let mut out = Vec::with_capacity(11 + 4 * (hi - lo));
+        out.push(self.special);
+        out.extend_from_slice(&top.to_le_bytes());
+        out.push(lo as u8);
+        out.push((hi - lo) as u8);
+        l[lo..hi]
+            .iter()
+            .for_each(|&d| out.extend_from_slice(&(d as u32).to_le_bytes()));
+        out
+    }
+
+    /// The sum of [`ExactSum::to_compact`]'s bytes at the start of `b`, and
+    /// the number of bytes it took; `None` for bytes of another form.
+    pub fn from_compact(b: &[u8]) -> Option<(ExactSum, usize)> {
+        let special = *b.first()?;
+        let top = i64::from_le_bytes(b.get(1..9)?.try_into().ok()?);
+        let (lo, n) = (*b.get(9)? as usize, *b.get(10)? as usize);
+        if lo + n > LIMBS - 1 {
+            return None;
+        }
+        let fill = if top < 0 { (1i64 << 32) - 1 } else { 0 };
+        let mut s = ExactSum::default();
+        s.limb[lo + n..LIMBS - 1].fill(fill);
+        s.limb[LIMBS - 1] = top;
+        let digits = b.get(11..11 + 4 * n)?;
+        for (d, c) in s.limb[lo..lo + n].iter_mut().zip(digits.chunks_exact(4)) {
+            *d = u32::from_le_bytes(c.try_into().ok()?) as i64;
+        }
+        s.special = special & (POS_INF | NEG_INF | NAN);
+        Some((s, 11 + 4 * n))
+    }
 }
 
 /// An exact sum that several threads add to at once (integer atomics;
@@ -344,5 +390,29 @@ mod tests {
         xs.iter().for_each(|&x| a.add(x));
         assert_eq!(a.load().value().to_bits(), s.value().to_bits());
         assert!(ExactSum::from_bytes(&[0; 3]).is_none());
+    }
+
+    #[test]
+    fn the_compact_form_keeps_every_limb() {
+        let cases: [&[f64]; 6] = [
+            &[],
+            &[3.5, -1e-310, 7e200, -7e200, 0.1],
+            &[-0.1, -1e-300, 2.5],
+            &[-1e-300],
+            &[f64::MAX, -5e-324],
+            &[1.0, f64::NAN],
+        ];
+        for xs in cases {
+            let mut s = ExactSum::new();
+            s.add_all(xs.iter().copied());
+            let c = s.to_compact();
+            let (back, n) = ExactSum::from_compact(&c).unwrap();
+            assert_eq!(n, c.len());
+            assert_eq!(back.to_bytes(), s.to_bytes(), "{xs:?}");
+        }
+        let mut s = ExactSum::new();
+        s.add_all([0.25, 1.0, 3.0]);
+        assert!(s.to_compact().len() <= 11 + 4 * 3, "a short sum is short");
+        assert!(ExactSum::from_compact(&[0; 5]).is_none());
     }
 }

@@ -87,6 +87,7 @@ pub mod shape;
 pub mod sphere;
 pub mod state;
 pub mod state_pieces;
+pub mod state_share;
 pub mod stats;
 pub mod steer;
 pub mod step;

@@ -173,6 +173,17 @@ impl World {
     /// Restores a state saved by [`World::save_state`] into a world built
     /// from the same scenario (same templates, materials and walls).
     pub fn restore_state(&mut self, s: WorldState) -> Result<(), String> {
+        self.set_state(s)?;
+        rebuild::rebuild(self, false).map_err(|e| e.to_string())?;
+        self.rebuilds = self.rebuilds.saturating_sub(1);
+        self.phase.forces_evaluated();
+        Ok(())
+    }
+
+    /// Checks `s` against this world's scenario and takes it, without
+    /// building the lists ([`World::restore_state`] builds them whole, a
+    /// rank's share builds them for its part).
+    pub(crate) fn set_state(&mut self, s: WorldState) -> Result<(), String> {
         if s.walls.len() != self.walls.len() {
             return Err(format!(
                 "checkpoint has {} walls, the scenario {}",
@@ -294,9 +305,6 @@ impl World {
         self.neighbors.slip_map = s.pair_slip.into_iter().collect();
         self.neighbors.wall_list = WallList::from_per_sphere(&s.wall_key, &s.wall_hist);
         self.neighbors.wall_list.set_slip_per_sphere(&s.wall_slip);
-        rebuild::rebuild(self, false).map_err(|e| e.to_string())?;
-        self.rebuilds = self.rebuilds.saturating_sub(1);
-        self.phase.forces_evaluated();
         Ok(())
     }
 }

@@ -6,7 +6,7 @@
 //! missing, truncated or foreign piece is a clear error.
 
 use clump_core::partition::ThreadComm;
-use clump_io::run::{load_checkpoint, RunOptions, Runner};
+use clump_io::run::{load_checkpoint, ResumeOptions, RunOptions, Runner};
 use clump_io::scenario;
 use std::path::{Path, PathBuf};
 
@@ -72,6 +72,40 @@ fn run_ranks(sc: &Path, out: &Path, n: usize, steps: u64) {
     for h in handles {
         h.join().unwrap();
     }
+}
+
+/// Resumes `ck` on `n` ranks as threads to step `steps` (rank 0 writes
+/// into `out`); returns the bodies each rank held right after the resume.
+fn resume_ranks(ck: &Path, out: &Path, n: usize, steps: u64) -> Vec<usize> {
+    let handles: Vec<_> = ThreadComm::group(n)
+        .into_iter()
+        .enumerate()
+        .map(|(r, comm)| {
+            let ck = ck.to_path_buf();
+            let d = if r == 0 {
+                out.to_path_buf()
+            } else {
+                out.with_extension(format!("rank{r}"))
+            };
+            std::thread::spawn(move || {
+                let opts = ResumeOptions {
+                    outdir_given: true,
+                    ..Default::default()
+                };
+                let mut runner = Runner::resume_split(&ck, Some(&d), opts, Some(Box::new(comm)))
+                    .unwrap_or_else(|e| panic!("rank {r}: {e}"));
+                let held = runner.world().bodies().len();
+                runner
+                    .run(RunOptions {
+                        max_steps: Some(steps),
+                        ..Default::default()
+                    })
+                    .unwrap_or_else(|e| panic!("rank {r}: {e}"));
+                held
+            })
+        })
+        .collect();
+    handles.into_iter().map(|h| h.join().unwrap()).collect()
 }
 
 /// A checkpoint's world, part by part as bytes (statistics and wall loads
@@ -158,6 +192,24 @@ fn a_checkpoint_in_pieces_holds_one_process_world_and_resumes_bit_for_bit() {
         &resumed.join("checkpoint_000001000.ckpt"),
         &serial.join("checkpoint_000001000.ckpt"),
     );
+    // 2 and 4 ranks resume it, each reading only its share, and end where
+    // one process's run ends, bit for bit
+    for n in [2, 4] {
+        let out = d.join(format!("resumed{n}"));
+        let held = resume_ranks(&ck, &out, n, 1000);
+        assert!(
+            fin(&out) == fin(&serial),
+            "final states differ on {n} ranks"
+        );
+        assert_same_world(
+            &out.join("checkpoint_000001000.ckpt"),
+            &serial.join("checkpoint_000001000.ckpt"),
+        );
+        // every rank holds a share: fewer bodies than the world's 150, and
+        // together at least every body once
+        assert!(held.iter().all(|&b| b < 150), "{n} ranks held {held:?}");
+        assert!(held.iter().sum::<usize>() >= 150, "{n} ranks held {held:?}");
+    }
     // the ranks' run, stopped at a split event, ends with the whole world
     let serial700 = d.join("serial700");
     run(&sc, &serial700, 700);

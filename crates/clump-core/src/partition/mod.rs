@@ -35,7 +35,7 @@
 //! one process's world, statistics, wall loads and contact records, so
 //! insertion, output, checkpoints and steering work unchanged; only rank 0
 //! writes files. The regions are re-balanced on every body (recursive
-//! coordinate bisection on sphere counts, [`regions`]) when the world is
+//! coordinate bisection on counted costs, [`regions`]) when the world is
 //! split again.
 //! The price: each event moves every body to every rank
 //! (docs/scaling.md says where that stops scaling).
@@ -44,8 +44,9 @@
 //! split, gather and rebuild a world are in `step/partition/`.
 //!
 //! Between events, the statistics of a step (the health check's input) are
-//! summed per rank and then over ranks in rank order: the same on every
-//! rank, but not bit for bit one process's (the body states are).
+//! summed per rank and then exactly over the ranks by a binomial tree
+//! (`step/partition/step_stats.rs`): the same on every rank, but not bit
+//! for bit one process's (the body states are).
 
 mod comm;
 pub mod regions;

@@ -1,6 +1,7 @@
-//! The ranks' regions: recursive coordinate bisection of the domain on
-//! sphere counts, redone at every neighbour build (on a sample of the
-//! bodies) and whenever a whole world is split (on all of them).
+//! The ranks' regions: recursive coordinate bisection of the domain on the
+//! bodies' counted costs (`step/partition/cost.rs`: spheres and candidate
+//! pairs), redone at every neighbour build (on a sample of the bodies) and
+//! whenever a whole world is split (on all of them).
 //!
 //! The domain box is cut across its longest side so that the two halves'
 //! costs are in proportion to their numbers of ranks, then each half in
@@ -200,6 +201,25 @@ impl Regions {
             d2 += d * d;
         }
         d2
+    }
+
+    /// True when the box `[lo, hi]` (world frame, m) comes within `halo`
+    /// of the region of `rank` (periodic images included).
+    pub fn box_near_region(&self, lo: DVec3, hi: DVec3, halo: f64, rank: usize) -> bool {
+        let Some((rlo, rhi)) = self.region(rank) else {
+            return false;
+        };
+        let l = self.domain.size();
+        let mut d2 = 0.0;
+        for a in 0..3 {
+            let gap = |s: f64| (rlo[a] - (hi[a] + s)).max((lo[a] + s) - rhi[a]).max(0.0);
+            let mut d = gap(0.0);
+            if self.domain.periodic[a] {
+                d = d.min(gap(-l[a])).min(gap(l[a]));
+            }
+            d2 += d * d;
+        }
+        d2 <= halo * halo
     }
 
     /// The region box of `rank` (world frame, m).

@@ -133,7 +133,7 @@ impl World {
         let (next_stale, pair_time) = gather::pairs_and_gather(self, next);
         times.pair += pair_time.as_secs_f64();
         times.gather -= pair_time.as_secs_f64();
-        self.exchange_after_gather();
+        self.exchange_after_gather()?;
         lap(&mut times.gather, &mut t);
         self.stage_times = times;
         self.end_step(fuse.then_some((next_stale, lags)));

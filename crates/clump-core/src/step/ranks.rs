@@ -2,7 +2,7 @@
 //! what the ranks exchange at the stages of [`World::take_step`]. Each is
 //! called only for a partitioned world.
 
-use super::partition::{ghosts, migrate};
+use super::partition::{ghosts, migrate, step_stats};
 use super::{rebuild, StepError};
 use crate::world::World;
 
@@ -48,20 +48,22 @@ impl World {
     /// After the gather: the ghosts take their owners' new state, and the
     /// statistics, wall loads and walls' heat flows are summed over the
     /// ranks.
-    pub(super) fn exchange_after_gather(&mut self) {
+    pub(super) fn exchange_after_gather(&mut self) -> Result<(), StepError> {
         if self.part.is_none() {
-            return;
+            return Ok(());
         }
         let t = std::time::Instant::now();
         ghosts::refresh(self);
         let t1 = std::time::Instant::now();
-        ghosts::reduce(self);
+        let reduced = step_stats::reduce(self);
         if let Some(p) = self.part.as_mut() {
             p.traffic.ghost_seconds += (t1 - t).as_secs_f64();
             p.traffic.reduce_seconds += t1.elapsed().as_secs_f64();
         }
+        reduced.map_err(|e| StepError::Neighbor(format!("partition: {e}")))?;
         if self.heat.is_some() {
             super::partition::heat::reduce(self);
         }
+        Ok(())
     }
 }

@@ -124,6 +124,27 @@ pub fn load_checkpoint_with_id(
     bytes: &[u8],
     checkpoint: &Path,
 ) -> Result<(Scenario, World, DriverState, Option<String>), RunError> {
+    let (scenario, mut world, driver, run_id, pending) = load_manifest(bytes, checkpoint)?;
+    if let Some(p) = pending {
+        super::pieces::read_share(&mut world, &p)?;
+    }
+    Ok((scenario, world, driver, run_id))
+}
+
+/// What [`load_manifest`] gives: the scenario, the world, the driver state,
+/// the run id, and the pieces still to read.
+pub(super) type Manifest = (
+    Scenario,
+    World,
+    DriverState,
+    Option<String>,
+    Option<super::pieces::Pending>,
+);
+
+/// [`load_checkpoint_with_id`] but for the pieces of a checkpoint in
+/// pieces: the world then holds the manifest's global part (no bodies),
+/// and the pieces are returned unread, for [`super::pieces::read_share`].
+pub(super) fn load_manifest(bytes: &[u8], checkpoint: &Path) -> Result<Manifest, RunError> {
     let (json, fingerprint): (String, u64) =
         crate::checkpoint::decode_checkpoint(bytes, checkpoint)
             .map_err(|e| RunError::InputMessage(e.to_string()))?;
@@ -133,6 +154,7 @@ pub fn load_checkpoint_with_id(
             checkpoint.display()
         ))
     })?;
+    drop(json);
     let scenario = scenario::parse(
         Path::new(&ck.scenario_path),
         ck.scenario_text.clone(),
@@ -163,25 +185,24 @@ pub fn load_checkpoint_with_id(
             scenario.stages.len()
         )));
     }
-    if let Some(refs) = ck.pieces.take() {
-        let pieces = super::pieces::read_pieces(
-            checkpoint,
-            (&ck.run_id, ck.world.step),
-            &refs,
-            fingerprint,
-        )?;
-        ck.world = world.merge_pieces(&ck.world, pieces).map_err(|e| {
-            RunError::InputMessage(format!(
-                "checkpoint {}: its pieces do not make one world: {e}",
-                checkpoint.display()
-            ))
-        })?;
-    }
-    world.restore_state(ck.world).map_err(|e| {
+    let pending = ck.pieces.take().map(|refs| super::pieces::Pending {
+        checkpoint: checkpoint.to_path_buf(),
+        run_id: ck.run_id.clone(),
+        global: ck.world.clone().into_global(),
+        refs,
+        fingerprint,
+    });
+    // a manifest's world holds no bodies: its global part is taken here,
+    // the share of the pieces once they are read
+    let restored = match pending {
+        Some(_) => world.restore_global_part(ck.world),
+        None => world.restore_state(ck.world),
+    };
+    restored.map_err(|e| {
         RunError::InputMessage(format!(
             "checkpoint {} does not fit its scenario: {e}",
             checkpoint.display()
         ))
     })?;
-    Ok((scenario, world, ck.driver, ck.run_id))
+    Ok((scenario, world, ck.driver, ck.run_id, pending))
 }

@@ -403,13 +403,34 @@ impl Runner {
         outdir: Option<&Path>,
         opts: ResumeOptions,
     ) -> Result<Self, RunError> {
+        Self::resume_split(checkpoint, outdir, opts, None)
+    }
+
+    /// [`Self::resume_with`] with the world split over the ranks of `comm`
+    /// (every rank calls it): of a checkpoint in pieces, each rank reads
+    /// only the pieces that hold its share of the world and keeps only that
+    /// share (`pieces::read_share`).
+    pub fn resume_split(
+        checkpoint: &Path,
+        outdir: Option<&Path>,
+        opts: ResumeOptions,
+        comm: Option<Box<dyn clump_core::partition::Comm>>,
+    ) -> Result<Self, RunError> {
         let bytes = std::fs::read(checkpoint).map_err(|e| {
             RunError::InputMessage(format!(
                 "cannot read checkpoint {}: {e}",
                 checkpoint.display()
             ))
         })?;
-        let (scenario, world, driver, run_id) = load_checkpoint_with_id(&bytes, checkpoint)?;
+        let (scenario, mut world, driver, run_id, pending) =
+            checkpoint::load_manifest(&bytes, checkpoint)?;
+        drop(bytes);
+        if let Some(c) = comm {
+            world.partition(c);
+        }
+        if let Some(p) = pending {
+            pieces::read_share(&mut world, &p)?;
+        }
         let at = world.step;
         if let Some(n) = opts.max_steps.filter(|&n| n <= at) {
             return Err(RunError::InputMessage(format!(

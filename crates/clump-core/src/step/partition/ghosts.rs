@@ -1,9 +1,7 @@
 //! After each step: ghosts take their owners' new state (with heat, their
-//! temperature too), and the step's
-//! statistics and wall loads are summed over the ranks.
+//! temperature too); the step's statistics and wall loads are then summed
+//! over the ranks (`super::step_stats`).
 
-use crate::stats::ContactStats;
-use crate::wall::WallLoad;
 use crate::world::World;
 use glam::{DQuat, DVec3};
 
@@ -91,31 +89,4 @@ pub(crate) fn refresh(w: &mut World) {
     part.traffic.pair_steps += w.neighbors.pairs.topo.len() as u64;
     part.traffic.ghost_pair_steps += w.neighbors.pairs.left_out as u64;
     part.traffic.steps += 1;
-}
-
-/// Replaces this rank's statistics and wall loads (of its owned bodies and
-/// of the pairs in their rows) by their sums over the ranks, in rank order;
-/// the ranks' stop requests ride along (`Part::stop`).
-pub(crate) fn reduce(w: &mut World) {
-    let part = w.part.as_mut().expect("a partitioned world");
-    let mine = postcard::to_stdvec(&(&w.stats, &w.walls.loads, part.stop.0)).unwrap_or_default();
-    part.traffic.reductions += 1;
-    let all = part.comm.all_gather(&mine);
-    let mut stats = ContactStats::default();
-    let mut loads = vec![WallLoad::default(); w.walls.loads.len()];
-    let mut stop = false;
-    for bytes in &all {
-        if let Ok((s, l, halt)) = postcard::from_bytes::<(ContactStats, Vec<WallLoad>, bool)>(bytes)
-        {
-            stop |= halt;
-            stats.merge(&s);
-            for (a, b) in loads.iter_mut().zip(&l) {
-                a.force += b.force;
-                a.torque += b.torque;
-            }
-        }
-    }
-    part.stop.1 = Some(stop);
-    w.stats = stats;
-    w.walls.loads = loads;
 }

@@ -125,7 +125,7 @@ fn prepare_parts(w: &mut World) -> Result<(), StepError> {
     w.refresh_props();
     crate::step::gather::compute(w);
     super::ghosts::refresh(w);
-    super::ghosts::reduce(w);
+    super::step_stats::reduce(w).map_err(|e| StepError::Neighbor(format!("partition: {e}")))?;
     w.phase.forces_evaluated();
     Ok(())
 }

@@ -54,7 +54,7 @@ struct Totals {
     lost: LostBodies,
     /// A sample of the kept owned bodies for the balance: a position (the
     /// first of each run of `stride` bodies in storage order, which is a
-    /// spatial order: neighbours) and the run's sphere count.
+    /// spatial order: neighbours) and the run's cost (`super::cost`).
     sample: Vec<(DVec3, u32)>,
 }
 
@@ -148,11 +148,10 @@ fn reduce_totals(w: &mut World, part: &mut Part) -> Result<(Totals, Vec<usize>),
         keep.push(b);
     }
     let stride = keep.len().div_ceil(SAMPLE).max(1);
+    let cost = super::cost::body_costs(w);
     for run in keep.chunks(stride) {
-        let spheres: usize = run.iter().map(|&b| w.spheres.of_body(b).len()).sum();
-        totals
-            .sample
-            .push((w.bodies.position[run[0]], spheres as u32));
+        let c: u32 = run.iter().map(|&b| cost[b]).sum();
+        totals.sample.push((w.bodies.position[run[0]], c));
     }
     part.traffic.reductions += 1;
     let all = part.comm.all_gather(&encode(&totals)?);

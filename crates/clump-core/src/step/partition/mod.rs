@@ -3,16 +3,21 @@
 //! ([`join`]), rebuild the parts between neighbours ([`migrate`]), refresh
 //! ghosts and sum statistics after each step ([`ghosts`]), the walls' heat
 //! flows ([`heat`]), keep the world split through an event or gather it
-//! ([`split`]), insert bodies into a split world ([`insert`]).
+//! ([`split`]), insert bodies into a split world ([`insert`]), take a
+//! rank's share of a checkpoint in pieces ([`share`]).
 
+pub(crate) mod cost;
 pub(crate) mod ghosts;
 pub(crate) mod heat;
 pub(crate) mod insert;
 pub(crate) mod join;
 pub(crate) mod migrate;
 pub(crate) mod restrict;
+pub(crate) mod share;
 pub(crate) mod split;
+pub(crate) mod step_stats;
 pub(crate) mod thermo;
+pub(crate) mod tree;
 
 use crate::partition::{Comm, Part, PartInfo, Regions, Traffic};
 use crate::world::World;

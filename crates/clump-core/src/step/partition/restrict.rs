@@ -30,6 +30,14 @@ pub(crate) fn halo(w: &World) -> f64 {
     (2.0 * largest_extent(w) + w.skin()) * (1.0 + 1e-9)
 }
 
+/// The wrapped build positions of the bodies' centres of mass (world
+/// frame, m), on which regions and roles are decided.
+pub(crate) fn build_positions(w: &World) -> Vec<DVec3> {
+    let domain = &w.config.domain;
+    let pose = &w.neighbors.reference_pose;
+    pose.iter().map(|&(x, _)| domain.wrap(x)).collect()
+}
+
 /// Keeps this rank's part of a whole world whose sphere topology is
 /// current and whose spheres are at their reference poses: balances the
 /// regions on the bodies' build positions, keeps the owned bodies and the
@@ -51,15 +59,10 @@ pub(crate) fn restrict(
     };
     let grid = grid?;
     let (me, size) = (part.comm.rank(), part.comm.size());
-    let at: Vec<DVec3> = w
-        .neighbors
-        .reference_pose
-        .iter()
-        .map(|&(x, _)| domain.wrap(x))
-        .collect();
-    let first = &w.spheres.body_first;
-    let cost: Vec<u32> = (0..at.len()).map(|b| first[b + 1] - first[b]).collect();
+    let at = build_positions(w);
+    let cost = super::cost::body_costs(w);
     part.regions = Regions::balance(&domain, &at, &cost, size);
+    let first = &w.spheres.body_first;
     part.halo = halo(w);
     let roles = Roles::of(&part.regions, part.halo, me, size, &at);
     let perm = roles.keep.clone();

@@ -5,9 +5,10 @@
 //! of point-to-point messages of about 0.6 kB per sum), and every rank
 //! rounds the same exact totals: one process's row, bit for bit (T-73).
 //! The step's counts and largest overlap are already the ranks' sums and
-//! maximum (`super::ghosts::reduce`: integers and a maximum, exact in any
+//! maximum (`super::step_stats::reduce`: integers and a maximum, exact in any
 //! order).
 
+use super::tree::{all_reduce, TreeSum};
 use crate::exact_sum::ExactSum;
 use crate::partition::Comm;
 use crate::thermo::Thermo;
@@ -57,62 +58,47 @@ impl World {
     }
 }
 
-/// Bytes of a list of sums and a count.
-fn encode(sums: &[ExactSum], count: u64) -> Vec<u8> {
-    let mut b = count.to_le_bytes().to_vec();
-    sums.iter().for_each(|s| b.extend(s.to_bytes()));
-    b
-}
+/// A list of exact sums and a count, summed over the ranks.
+struct Sums(Vec<ExactSum>, u64);
 
-/// The sums and count of [`encode`]'s bytes from rank `from`, `n` sums.
-fn decode(b: &[u8], n: usize, from: usize) -> Result<(Vec<ExactSum>, u64), String> {
-    let bad = || format!("rank {from} sent a thermo sum of {} bytes", b.len());
-    let size = (b.len().checked_sub(8).ok_or_else(bad)?) / n.max(1);
-    if b.len() != 8 + size * n {
-        return Err(bad());
+impl TreeSum for Sums {
+    fn encode(&self) -> Vec<u8> {
+        let mut b = self.1.to_le_bytes().to_vec();
+        self.0.iter().for_each(|s| b.extend(s.to_bytes()));
+        b
     }
-    let count = u64::from_le_bytes(b[..8].try_into().map_err(|_| bad())?);
-    let sums = b[8..]
-        .chunks_exact(size.max(1))
-        .take(n)
-        .map(|c| ExactSum::from_bytes(c).ok_or_else(bad))
-        .collect::<Result<_, _>>()?;
-    Ok((sums, count))
+
+    fn decode(b: &[u8], from: usize) -> Result<Self, String> {
+        let bad = || format!("rank {from} sent a thermo sum of {} bytes", b.len());
+        let size = crate::exact_sum::LIMBS * 8 + 1;
+        if b.len() < 8 || (b.len() - 8) % size != 0 {
+            return Err(bad());
+        }
+        let count = u64::from_le_bytes(b[..8].try_into().map_err(|_| bad())?);
+        let sums = b[8..]
+            .chunks_exact(size)
+            .map(|c| ExactSum::from_bytes(c).ok_or_else(bad))
+            .collect::<Result<_, _>>()?;
+        Ok(Sums(sums, count))
+    }
+
+    fn merge(&mut self, next: Self) {
+        self.0.iter_mut().zip(&next.0).for_each(|(a, b)| a.merge(b));
+        self.1 += next.1;
+    }
 }
 
 /// The element-wise total of every rank's `sums` and `count`, on every
-/// rank: summed up a binomial tree to rank 0, then sent back down it.
-/// Exact sums: the tree's shape changes no bit.
+/// rank, by a binomial tree. Exact sums: the tree's shape changes no bit.
 fn all_sum(
     comm: &mut dyn Comm,
-    mut sums: Vec<ExactSum>,
-    mut count: u64,
+    sums: Vec<ExactSum>,
+    count: u64,
 ) -> Result<(Vec<ExactSum>, u64), String> {
-    let (me, size, n) = (comm.rank(), comm.size(), sums.len());
-    let mut k = 1;
-    while k < size {
-        if me % (2 * k) == k {
-            comm.exchange(&[(me - k, encode(&sums, count))], &[]);
-            break;
-        }
-        if me % (2 * k) == 0 && me + k < size {
-            let got = comm.exchange(&[], &[me + k]);
-            let (theirs, c) = decode(&got[0], n, me + k)?;
-            sums.iter_mut().zip(&theirs).for_each(|(a, b)| a.merge(b));
-            count += c;
-        }
-        k *= 2;
+    let n = sums.len();
+    let t = all_reduce(comm, Sums(sums, count))?;
+    if t.0.len() != n {
+        return Err(format!("a thermo sum of {} values, not {n}", t.0.len()));
     }
-    // down the same tree: from the highest level each rank took part in
-    let mut k = size.next_power_of_two();
-    while k > 1 {
-        k /= 2;
-        if me % (2 * k) == k {
-            let got = comm.exchange(&[], &[me - k]);
-            (sums, count) = decode(&got[0], n, me - k)?;
-        } else if me % (2 * k) == 0 && me + k < size {
-            comm.exchange(&[(me + k, encode(&sums, count))], &[]);
-        }
-    }
-    Ok((sums, count))
+    Ok((t.0, t.1))
 }
