@@ -307,7 +307,7 @@ fn run_chunks(
                 gather_cost,
                 &mut balance[FORCE_LOOP],
                 // SAFETY: every run is run once, on one thread.
-                |run| unsafe { pair_run(rows, run, &pair_stats) },
+                |run, part| unsafe { pair_run(rows, run, part, &pair_stats) },
                 fed_earlier,
                 ChunkScratch::new,
                 gather_chunk,
