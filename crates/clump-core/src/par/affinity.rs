@@ -206,29 +206,23 @@ pub(crate) fn for_each_run(
     balance.learn(|r| cost(cuts[r + 1]) - cost(cuts[r]));
 }
 
-/// Chunks per block of [`one_run_in_blocks`]: 8 chunks of the tetra beds
-/// (256 bodies, 1 024 spheres) hold about 100 KB of what the pair stage
-/// reads and writes, well inside a core's 2 MiB L2, so their gather finds
-/// them there; a block is also many batches of the pair kernel, whose
-/// last, partial batch each block ends with.
-const ONE_RUN_BLOCK: usize = 8;
-
 /// [`for_each_run_then`] on one thread: the `n` chunks in blocks of
-/// [`ONE_RUN_BLOCK`], each through `first` and then through `then`, so
-/// that the second stage of a chunk finds in the caches what the first
-/// stage has just read and written of it (in a bed larger than the caches,
-/// the whole run's first stage would have pushed it out). Returns the time
+/// `block` chunks, each through `first` and then through `then`, so that
+/// the second stage of a chunk finds in the caches what the first stage
+/// has just read and written of it (in a bed larger than the caches, the
+/// whole run's first stage would have pushed it out). Returns the time
 /// spent in `first`.
 fn one_run_in_blocks<S>(
     n: usize,
+    block: usize,
     first: impl Fn(std::ops::Range<usize>, std::ops::Range<usize>),
     init: impl Fn() -> S,
     then: impl Fn(&mut S, usize),
 ) -> std::time::Duration {
     let mut first_time = std::time::Duration::ZERO;
     let mut s = init();
-    for c0 in (0..n).step_by(ONE_RUN_BLOCK) {
-        let block = c0..(c0 + ONE_RUN_BLOCK).min(n);
+    for c0 in (0..n).step_by(block.max(1)) {
+        let block = c0..(c0 + block.max(1)).min(n);
         let clock = std::time::Instant::now();
         first(0..n, block.clone());
         first_time += clock.elapsed();
@@ -265,8 +259,9 @@ fn one_run_in_blocks<S>(
 /// first stage's).
 ///
 /// On one thread the run is all `n` chunks, taken in blocks of
-/// [`ONE_RUN_BLOCK`] ([`one_run_in_blocks`]): `first(0..n, block)` for
-/// each block in order, each followed by the `then` of its chunks. This
+/// `one_run_block` chunks ([`one_run_in_blocks`]; `n` or more: the whole
+/// run at once): `first(0..n, block)` for each block in order, each
+/// followed by the `then` of its chunks. This
 /// needs of the stages what the pair stage and the gather give: `first`
 /// of a block completes what the `then` of its chunks read, and `then(c)`
 /// touches nothing that the `first` of later blocks reads or writes.
@@ -276,6 +271,7 @@ pub(crate) fn for_each_run_then<S>(
     first_cost: impl Fn(usize) -> u64 + Sync,
     then_cost: impl Fn(usize) -> u64 + Sync,
     balance: &mut Balance,
+    one_run_block: usize,
     first: impl Fn(std::ops::Range<usize>, std::ops::Range<usize>) + Sync,
     after_earlier: impl Fn(usize) -> bool + Sync,
     init: impl Fn() -> S + Sync,
@@ -284,7 +280,7 @@ pub(crate) fn for_each_run_then<S>(
     use std::sync::atomic::{AtomicU64, Ordering};
     let start = std::time::Instant::now();
     if !several_runs(n) {
-        return one_run_in_blocks(n, first, init, then);
+        return one_run_in_blocks(n, one_run_block, first, init, then);
     }
     let cost = |c: usize| first_cost(c) + then_cost(c);
     let (cuts, runs) = cut(n, &cost, balance);
@@ -505,7 +501,8 @@ mod tests {
             .num_threads(1)
             .build()
             .unwrap();
-        for n in [0, 1, ONE_RUN_BLOCK, 2 * ONE_RUN_BLOCK + 3] {
+        const BLOCK: usize = 8;
+        for n in [0, 1, BLOCK, 2 * BLOCK + 3] {
             let log = Mutex::new(Vec::new());
             pool.install(|| {
                 for_each_run_then(
@@ -513,6 +510,7 @@ mod tests {
                     |c| c as u64,
                     |c| c as u64,
                     &mut Balance::default(),
+                    BLOCK,
                     |run, part| {
                         assert_eq!(run, 0..n);
                         log.lock().unwrap().extend(part.map(|c| (0, c)));
@@ -524,9 +522,9 @@ mod tests {
             });
             // each block: its first stages, then its second stages
             let want: Vec<_> = (0..n)
-                .step_by(ONE_RUN_BLOCK)
+                .step_by(BLOCK)
                 .flat_map(|c0| {
-                    let block = c0..(c0 + ONE_RUN_BLOCK).min(n);
+                    let block = c0..(c0 + BLOCK).min(n);
                     block.clone().map(|c| (0, c)).chain(block.map(|c| (1, c)))
                 })
                 .collect();
@@ -559,6 +557,7 @@ mod tests {
                         |c| c as u64,
                         |c| c as u64,
                         &mut balance,
+                        n,
                         |run, part| {
                             run_start[run.start].store(true, Ordering::Relaxed);
                             for c in part {
@@ -620,6 +619,7 @@ mod tests {
                     |c| c as u64,
                     |c| c as u64,
                     &mut balance,
+                    n,
                     |_, part| {
                         for c in part {
                             *first_by[c].lock().unwrap() = Some(std::thread::current().id());
