@@ -73,10 +73,9 @@ const BODY_PREFETCH: usize = 4;
 /// packed records and sphere lines in the core's cache, where its pair
 /// stage left them. 8 chunks of tetra bodies (256 bodies, 1 024 spheres)
 /// are about 100 KB of what the pair stage reads and writes, well inside
-/// a 2 MiB L2. In a bed within the caches the run is one block: a block
-/// ends with a partial batch of the pair kernel, and at 10⁴ spheres
-/// blocks of 8 chunks cost 4.5 % more instructions for no fewer misses
-/// (callgrind, docs/performance.md section 3).
+/// a 2 MiB L2. In a bed within the caches the run is one block, as
+/// before: the gather finds the records in the cache anyway, and each
+/// block ends with a partial batch of the pair kernel.
 const ONE_RUN_BLOCK: usize = 8;
 
 /// A body's load: force (N) and torque about its centre of mass (N m),
