@@ -206,8 +206,33 @@ pub(crate) fn for_each_run(
     balance.learn(|r| cost(cuts[r + 1]) - cost(cuts[r]));
 }
 
+/// [`for_each_run_then`] on one thread: the `n` chunks in blocks of
+/// `block` chunks, each through `first` and then through `then`, so that
+/// the second stage of a chunk finds in the caches what the first stage
+/// has just read and written of it (in a bed larger than the caches, the
+/// whole run's first stage would have pushed it out). Returns the time
+/// spent in `first`.
+fn one_run_in_blocks<S>(
+    n: usize,
+    block: usize,
+    first: impl Fn(std::ops::Range<usize>, std::ops::Range<usize>),
+    init: impl Fn() -> S,
+    then: impl Fn(&mut S, usize),
+) -> std::time::Duration {
+    let mut first_time = std::time::Duration::ZERO;
+    let mut s = init();
+    for c0 in (0..n).step_by(block.max(1)) {
+        let block = c0..(c0 + block.max(1)).min(n);
+        let clock = std::time::Instant::now();
+        first(0..n, block.clone());
+        first_time += clock.elapsed();
+        block.for_each(|c| then(&mut s, c));
+    }
+    first_time
+}
+
 /// Two stages over the same runs of `n` chunks, one run per thread:
-/// `first(run)`, then `then(scratch, c)` for each chunk `c` of the run
+/// `first(run, run)`, then `then(scratch, c)` for each chunk `c` of the run
 /// (the pair stage and the gather: `step::force`). A chunk's `then` may
 /// read what the `first` of its own and earlier runs wrote, and write what
 /// the `first` of earlier runs read only where `after_earlier(c)` says so
@@ -232,13 +257,22 @@ pub(crate) fn for_each_run(
 /// the runs go to rayon as two loops. Returns the time the calling thread
 /// spent in `first` (for the stage times; on one thread, exactly the
 /// first stage's).
+///
+/// On one thread the run is all `n` chunks, taken in blocks of
+/// `one_run_block` chunks ([`one_run_in_blocks`]; `n` or more: the whole
+/// run at once): `first(0..n, block)` for each block in order, each
+/// followed by the `then` of its chunks. This
+/// needs of the stages what the pair stage and the gather give: `first`
+/// of a block completes what the `then` of its chunks read, and `then(c)`
+/// touches nothing that the `first` of later blocks reads or writes.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn for_each_run_then<S>(
     n: usize,
     first_cost: impl Fn(usize) -> u64 + Sync,
     then_cost: impl Fn(usize) -> u64 + Sync,
     balance: &mut Balance,
-    first: impl Fn(std::ops::Range<usize>) + Sync,
+    one_run_block: usize,
+    first: impl Fn(std::ops::Range<usize>, std::ops::Range<usize>) + Sync,
     after_earlier: impl Fn(usize) -> bool + Sync,
     init: impl Fn() -> S + Sync,
     then: impl Fn(&mut S, usize) + Sync,
@@ -246,11 +280,7 @@ pub(crate) fn for_each_run_then<S>(
     use std::sync::atomic::{AtomicU64, Ordering};
     let start = std::time::Instant::now();
     if !several_runs(n) {
-        first(0..n);
-        let first_time = start.elapsed();
-        let mut s = init();
-        (0..n).for_each(|c| then(&mut s, c));
-        return first_time;
+        return one_run_in_blocks(n, one_run_block, first, init, then);
     }
     let cost = |c: usize| first_cost(c) + then_cost(c);
     let (cuts, runs) = cut(n, &cost, balance);
@@ -280,7 +310,7 @@ pub(crate) fn for_each_run_then<S>(
         let chunks = cuts[t]..cuts[t + 1];
         let clock = std::time::Instant::now();
         let mark = Done(&done[t].0, call);
-        first(chunks.clone());
+        first(chunks.clone(), chunks.clone());
         drop(mark);
         let f = clock.elapsed();
         if t == 0 {
@@ -326,7 +356,7 @@ pub(crate) fn for_each_run_then<S>(
             stage(cuts[t]..cuts[t + 1]);
             time[t].fetch_add(clock.elapsed().as_nanos() as u64, Ordering::Relaxed);
         };
-        run_parts(0, runs, &|t| timed(t, &first));
+        run_parts(0, runs, &|t| timed(t, &|run| first(run.clone(), run)));
         first_time.store(start.elapsed().as_nanos() as u64, Ordering::Relaxed);
         run_parts(0, runs, &|t| {
             timed(t, &|chunks: std::ops::Range<usize>| {
@@ -461,6 +491,47 @@ mod tests {
     use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
     use std::sync::Mutex;
 
+    /// On one thread, `for_each_run_then` takes the chunks in blocks: the
+    /// first stage of each block (of the one run of all chunks), in order,
+    /// then the second stage of its chunks; every chunk through each stage
+    /// once, and through the second only after its first.
+    #[test]
+    fn one_thread_takes_the_chunks_in_blocks() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        const BLOCK: usize = 8;
+        for n in [0, 1, BLOCK, 2 * BLOCK + 3] {
+            let log = Mutex::new(Vec::new());
+            pool.install(|| {
+                for_each_run_then(
+                    n,
+                    |c| c as u64,
+                    |c| c as u64,
+                    &mut Balance::default(),
+                    BLOCK,
+                    |run, part| {
+                        assert_eq!(run, 0..n);
+                        log.lock().unwrap().extend(part.map(|c| (0, c)));
+                    },
+                    |_| false,
+                    || (),
+                    |_, c| log.lock().unwrap().push((1, c)),
+                );
+            });
+            // each block: its first stages, then its second stages
+            let want: Vec<_> = (0..n)
+                .step_by(BLOCK)
+                .flat_map(|c0| {
+                    let block = c0..(c0 + BLOCK).min(n);
+                    block.clone().map(|c| (0, c)).chain(block.map(|c| (1, c)))
+                })
+                .collect();
+            assert_eq!(log.into_inner().unwrap(), want, "{n} chunks");
+        }
+    }
+
     /// `for_each_run_then` runs each chunk's two stages once, the second
     /// after the first, and the chunk that depends on the earlier runs
     /// (here the first chunk of each run) only after their first stage: on
@@ -486,9 +557,10 @@ mod tests {
                         |c| c as u64,
                         |c| c as u64,
                         &mut balance,
-                        |run| {
+                        n,
+                        |run, part| {
                             run_start[run.start].store(true, Ordering::Relaxed);
-                            for c in run {
+                            for c in part {
                                 // the lower chunks slower: a second stage
                                 // that did not wait would overtake them
                                 let us = if c < n / 2 { 200 } else { 20 };
@@ -547,8 +619,9 @@ mod tests {
                     |c| c as u64,
                     |c| c as u64,
                     &mut balance,
-                    |run| {
-                        for c in run {
+                    n,
+                    |_, part| {
+                        for c in part {
                             *first_by[c].lock().unwrap() = Some(std::thread::current().id());
                             first_done[c].store(true, Ordering::Release);
                         }

@@ -48,7 +48,7 @@ pub(crate) fn pair_forces(w: &mut World) {
         nchunks,
         |c| pair_cost(&rows, c),
         balance,
-        |run| unsafe { pair_run(&rows, run, &stats) },
+        |run| unsafe { pair_run(&rows, run.clone(), run, &stats) },
     );
 }
 
@@ -148,34 +148,40 @@ pub(super) fn pair_cost(rows: &RowCtx, c: usize) -> u64 {
     rows.row_start.get(s).map_or(0, |&p| p as u64) + s as u64
 }
 
-/// Evaluates the rows of the body chunks `run`, one thread's run, as one
-/// batch (a batch may span chunks: the statistics go to each pair's own
-/// chunk, in pair order).
+/// Evaluates the rows of the body chunks `part` of the chunks `run`, one
+/// thread's run, as one batch (a batch may span chunks: the statistics go
+/// to each pair's own chunk, in pair order). A run's parts are evaluated
+/// in order, on its thread; the results are those of the whole run at
+/// once (the same pairs in the same order).
 ///
 /// # Safety
 /// This run owns the rows of its bodies in the half list, their bodies'
 /// pair loads and its chunks' statistics slots, no other run's; the column
-/// sums it adds to are of bodies complete in it.
+/// sums it adds to are of bodies complete in it. The parts of `run` before
+/// `part` have been evaluated.
 pub(super) unsafe fn pair_run(
     rows: &RowCtx,
     run: std::ops::Range<usize>,
+    part: std::ops::Range<usize>,
     stats: &SharedMut<ContactStats>,
 ) {
     let first = &rows.sp.body_first;
     let nb = first.len().saturating_sub(1);
-    for c in run.clone() {
+    for c in part.clone() {
         // SAFETY: the run's chunks' slots are this run's.
         unsafe { *stats.get(c) = ContactStats::default() };
     }
-    let b0 = run.start * rows.body_chunk;
-    let b1 = (run.end * rows.body_chunk).min(nb);
+    let b0 = part.start * rows.body_chunk;
+    let b1 = (part.end * rows.body_chunk).min(nb);
     if b0 >= b1 {
         return;
     }
+    let run = first[run.start * rows.body_chunk] as usize
+        ..first[(run.end * rows.body_chunk).min(nb)] as usize;
     // the thread's batch, kept between steps: every slot is written before
     // it is read, and a new zeroed batch (30 KB) cost 0.6 % of the settled
     // tetra bed's instructions
-    BATCH.with(|batch| rows.evaluate(b0..b1, first[b0] as usize, &mut batch.borrow_mut(), stats));
+    BATCH.with(|batch| rows.evaluate(b0..b1, run.clone(), &mut batch.borrow_mut(), stats));
 }
 
 thread_local! {

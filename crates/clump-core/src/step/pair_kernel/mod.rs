@@ -123,9 +123,11 @@ pub(super) struct RowCtx<'a> {
 
 impl RowCtx<'_> {
     /// Evaluates the rows of the spheres of `bodies` (see the module docs),
-    /// using `batch` as scratch. The thread's run starts at sphere
-    /// `run_start`: a body all of whose column pairs lie in rows from
-    /// there on (`first_feed`) is complete in the run, and its column sum
+    /// using `batch` as scratch. The thread's run is the spheres `run`
+    /// (they hold those of `bodies`; one thread evaluates its run's rows
+    /// in one call or in several, in order): a body all of whose column
+    /// pairs lie in rows from `run.start` on (`first_feed`) is complete in
+    /// the run, and its column sum
     /// is accumulated here (it is marked in `body_ready`); the gather sums
     /// the others' (a body on the seam with an earlier run) from the pairs'
     /// records. Which does the sum never changes the result
@@ -141,13 +143,13 @@ impl RowCtx<'_> {
     pub(super) unsafe fn evaluate(
         &self,
         bodies: std::ops::Range<usize>,
-        run_start: usize,
+        run: std::ops::Range<usize>,
         batch: &mut Batch,
         stats: &SharedMut<ContactStats>,
     ) {
         // the flags as constants: tested on every candidate pair, they were
         // 1 % of the settled tetra bed's instructions
-        let (b, r, s) = (bodies, run_start, stats);
+        let (b, r, s) = (bodies, run, stats);
         match (self.table.any_reach(), self.prefetch, self.any_periodic) {
             (false, false, false) => self.evaluate_rows::<false, false, false>(b, r, batch, s),
             (false, false, true) => self.evaluate_rows::<false, false, true>(b, r, batch, s),
@@ -168,7 +170,7 @@ impl RowCtx<'_> {
     unsafe fn evaluate_rows<const REACH: bool, const LARGE: bool, const PERIODIC: bool>(
         &self,
         bodies: std::ops::Range<usize>,
-        run_start: usize,
+        run: std::ops::Range<usize>,
         batch: &mut Batch,
         stats: &SharedMut<ContactStats>,
     ) {
@@ -180,13 +182,13 @@ impl RowCtx<'_> {
         debug_assert!(self.row_start[n] as usize == np);
         let first = &sp.body_first;
         let spheres = at(first, bodies.start) as usize..at(first, bodies.end) as usize;
-        debug_assert!(spheres.end <= n);
-        (batch.run_start, batch.run_end) = (run_start, spheres.end);
+        debug_assert!(run.start <= spheres.start && spheres.end <= run.end && run.end <= n);
+        (batch.run_start, batch.run_end) = (run.start, run.end);
         // one run (one thread) has every body complete in it, and no
         // column lists (`first_feed` is empty)
-        let whole = run_start == 0 && spheres.end == n;
+        let whole = run.start == 0 && run.end == n;
         for b in bodies.clone() {
-            *self.body_ready.get(b) = whole || at(self.first_feed, b) as usize >= run_start;
+            *self.body_ready.get(b) = whole || at(self.first_feed, b) as usize >= run.start;
         }
         batch.carry = None;
         // the batch length lives in a register during the detect pass
