@@ -37,14 +37,54 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-/// The counter is process-wide, and libtest runs the tests of this binary on
-/// parallel threads: a test that builds worlds while another one counts would
-/// show up as "allocations per step" (seen in CI on a 2-core machine). Every
-/// test here holds this lock for its whole body.
-static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
-
-fn serial() -> std::sync::MutexGuard<'static, ()> {
-    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
+/// The counter is process-wide, so this binary runs without libtest's
+/// harness (`harness = false` in Cargo.toml): the checks run one after the
+/// other on the main thread, and nothing else in the process allocates
+/// while a check counts. Under libtest, another test's set-up, or libtest's
+/// own "has been running for over 60 seconds" notice on a loaded machine,
+/// fell into a count now and then.
+fn main() {
+    let checks: [(&str, fn()); 4] = [
+        (
+            "no_heap_allocation_per_step_after_warm_up",
+            no_heap_allocation_per_step_after_warm_up,
+        ),
+        (
+            "memory_is_linear_in_the_number_of_bodies",
+            memory_is_linear_in_the_number_of_bodies,
+        ),
+        (
+            "no_heap_allocation_per_step_with_heat",
+            no_heap_allocation_per_step_with_heat,
+        ),
+        (
+            "no_heap_allocation_per_step_with_a_fluid_velocity_grid",
+            no_heap_allocation_per_step_with_a_fluid_velocity_grid,
+        ),
+    ];
+    // `cargo test NAME` passes NAME on, and `-- --skip NAME` its opposite:
+    // run the checks whose names hold a filter and no skipped name
+    let (mut filters, mut skips) = (Vec::new(), Vec::new());
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        match a.as_str() {
+            "--skip" => skips.extend(args.next()),
+            "--test-threads" | "--format" | "--color" | "--logfile" => {
+                args.next();
+            }
+            _ if a.starts_with('-') => {}
+            _ => filters.push(a),
+        }
+    }
+    let chosen = checks.iter().filter(|(name, _)| {
+        (filters.is_empty() || filters.iter().any(|f| name.contains(f.as_str())))
+            && !skips.iter().any(|k| name.contains(k.as_str()))
+    });
+    for (name, check) in chosen {
+        eprintln!("check {name} ...");
+        check(); // a failed assertion panics: the binary exits non-zero
+        eprintln!("check {name} ... ok");
+    }
 }
 
 fn bed(nx: usize) -> World {
@@ -104,9 +144,7 @@ fn bed(nx: usize) -> World {
     w
 }
 
-#[test]
 fn no_heap_allocation_per_step_after_warm_up() {
-    let _serial = serial();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()
@@ -148,9 +186,7 @@ fn no_heap_allocation_per_step_after_warm_up() {
     });
 }
 
-#[test]
 fn memory_is_linear_in_the_number_of_bodies() {
-    let _serial = serial();
     let measure = |nx: usize| {
         let mut w = bed(nx);
         w.run(200).unwrap();
@@ -188,9 +224,7 @@ fn plain_step_allocations(w: &mut World, n: usize) -> (u64, u64) {
 
 /// The heat stage (`step::heat`) allocates nothing per step either: the
 /// same bed with conduction through every contact and a hot floor.
-#[test]
 fn no_heap_allocation_per_step_with_heat() {
-    let _serial = serial();
     let mut w = bed(10);
     clump_core::testbed::heat_on(&mut w, 1.0, 800.0, 400.0, 300.0, 1e3);
     w.run(3000).unwrap();
@@ -203,10 +237,8 @@ fn no_heap_allocation_per_step_with_heat() {
 
 /// The coupling stage with a fluid whose velocity is sampled from a grid
 /// at every body (`fluid::VelocityGrid`, T-83) allocates nothing per step.
-#[test]
 fn no_heap_allocation_per_step_with_a_fluid_velocity_grid() {
     use clump_core::fluid::{DragLaw, Fluid, VelocityGrid};
-    let _serial = serial();
     let mut w = bed(10);
     w.run(3000).unwrap();
     let mut nodes = Vec::new();
