@@ -8,8 +8,9 @@
 //! (one checkpoint of the whole world, which resumes bit for bit); a rank
 //! killed mid-run (the run stops; its last checkpoint resumes); 2 ranks of
 //! 2 threads each.
-//! Spheres and bodies frames are written in pieces on ranks (`.pvtp`):
-//! the union of the pieces, ordered by body id, is one process's frame.
+//! Spheres and bodies frames are written in pieces on ranks (`.pvtp`, and
+//! `.pvtu` for `vtk_format = "vtu"`): the union of the pieces, ordered by
+//! body id, is one process's frame.
 //! Built only with the `mpi` feature (scripts/test-all.sh runs it).
 #![cfg(feature = "mpi")]
 
@@ -124,8 +125,8 @@ fn differing(a: &Path, b: &Path) -> Vec<&'static str> {
 }
 
 /// A frame's arrays with every point in the order of its `body_id`
-/// (`clump_io::post::read::arrays_by_body`: a `.pvtp` reads as its
-/// pieces), as bits.
+/// (`clump_io::post::read::arrays_by_body`: a `.pvtp` or `.pvtu` reads as
+/// its pieces), as bits.
 fn frame_by_body(path: &Path) -> Vec<(String, Vec<u64>)> {
     clump_io::post::read::arrays_by_body(path)
         .unwrap()
@@ -135,10 +136,11 @@ fn frame_by_body(path: &Path) -> Vec<(String, Vec<u64>)> {
 }
 
 /// The frame `s` of one process's run `a` and of the run on ranks `b`:
-/// `b` holds it in pieces (`.pvtp`); the union of the pieces, ordered by
-/// body id, is one process's frame value for value, bit for bit.
+/// `b` holds it in pieces (`.pvtp`, `.pvtu` for a `.vtu` frame); the union
+/// of the pieces, ordered by body id, is one process's frame value for
+/// value, bit for bit.
 fn assert_same_frame(a: &Path, b: &Path, s: &str, what: &str) {
-    let pvtp = b.join(s.replace(".vtp", ".pvtp"));
+    let pvtp = b.join(s.replace(".vtp", ".pvtp").replace(".vtu", ".pvtu"));
     assert!(pvtp.exists(), "{what}: {s} is not written in pieces");
     let (x, y) = (frame_by_body(&a.join(s)), frame_by_body(&pvtp));
     assert_eq!(
@@ -157,7 +159,7 @@ fn assert_same_frame(a: &Path, b: &Path, s: &str, what: &str) {
 /// Every file of `a` (one process's run) but the manifest (wall times,
 /// paths) equals `b`'s; checkpoints compare by their world, spheres and
 /// bodies frames by their values ([`assert_same_frame`]; `b`'s `.pvd`
-/// lists the `.pvtp` where `a`'s lists the `.vtp`).
+/// lists the `.pvtp` (`.pvtu`) where `a`'s lists the `.vtp` (`.vtu`)).
 fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
     let mut names: Vec<_> = std::fs::read_dir(a)
         .unwrap()
@@ -171,7 +173,8 @@ fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
             continue;
         }
         let (fa, fb) = (a.join(&n), b.join(&n));
-        let piece = (s.starts_with("spheres_") || s.starts_with("bodies_")) && s.ends_with(".vtp");
+        let piece = (s.starts_with("spheres_") || s.starts_with("bodies_"))
+            && (s.ends_with(".vtp") || s.ends_with(".vtu"));
         if piece {
             assert_same_frame(a, b, &s, what);
             checked += 1;
@@ -181,7 +184,10 @@ fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
         if s == "spheres.pvd" || s == "bodies.pvd" {
             let text = std::fs::read_to_string(&fb).unwrap();
             assert!(
-                std::fs::read_to_string(&fa).unwrap() == text.replace(".pvtp\"", ".vtp\""),
+                std::fs::read_to_string(&fa).unwrap()
+                    == text
+                        .replace(".pvtp\"", ".vtp\"")
+                        .replace(".pvtu\"", ".vtu\""),
                 "{what}: {s} does not list one process's frames"
             );
         } else if s.ends_with(".ckpt") {
@@ -270,6 +276,44 @@ fn frames_of_a_split_world_are_one_process_s() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
+/// `scenario` (a file without relative paths) with `vtk_format = "vtu"`
+/// appended to its last table, `[output]`, in a temporary file.
+fn with_vtu_frames(scenario: &str, name: &str) -> PathBuf {
+    let text = std::fs::read_to_string(repo().join(scenario)).unwrap();
+    assert!(text
+        .trim_end()
+        .rsplit("\n[")
+        .next()
+        .unwrap()
+        .starts_with("output]"));
+    let p = std::env::temp_dir().join(format!("clump-mpi-{}-{name}.toml", std::process::id()));
+    std::fs::write(&p, text + "vtk_format = \"vtu\"\n").unwrap();
+    p
+}
+
+/// `.vtu` frames are written in pieces too (`.pvtu`, parallel
+/// UnstructuredGrid), keeping the world split: the pieces' union is one
+/// process's `.vtu` frame, and the walls frames are one process's bytes.
+#[test]
+fn vtu_frames_of_a_split_world_are_one_process_s() {
+    let toml = with_vtu_frames(
+        "crates/clump-cli/tests/fixtures/periodic_frames.toml",
+        "vtu",
+    );
+    let scenario = toml.to_str().unwrap();
+    same_bits_at("vtu-frames", scenario, "1000", &[3]);
+    let (d, gathers) = two_rank_gathers("vtu-gathers", scenario);
+    let frames = files_ending(&d, ".pvtu") / 2;
+    assert!(frames > 10, "only {frames} frames");
+    assert_eq!(files_ending(&d, ".pvtp") + files_ending(&d, ".vtp"), 0);
+    assert!(
+        gathers < frames / 2,
+        "{gathers} whole-world gathers for {frames} frames written in pieces"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_file(&toml);
+}
+
 /// Thermo rows come from exact sums reduced over the ranks (T-73) and
 /// trajectory rows from the tracked bodies' owners: a row where nothing
 /// else is due keeps the world split, and `thermo.csv` and every
@@ -340,7 +384,8 @@ fn files_ending(d: &Path, suffix: &str) -> usize {
 }
 
 /// VTK's own readers and ParaView see every sphere and body of a 4-rank
-/// run's frames once, with one process's values
+/// run's frames once, with one process's values, for `.vtp` and `.vtu`
+/// frames
 /// (`scripts/check_pvtp.py` under ParaView's `pvpython`; skipped with a
 /// note where it is not installed).
 #[test]
@@ -354,23 +399,32 @@ fn paraview_reads_a_4_rank_run_s_frames_as_one_process_s() {
         return;
     }
     let scenario = "crates/clump-cli/tests/fixtures/periodic_frames.toml";
-    let (one, four) = (out_dir("pv-1"), out_dir("pv-4"));
-    let (a, b) = (one.to_str().unwrap(), four.to_str().unwrap());
-    clump(0, &["run", scenario, "-o", a, "--steps", "600"]);
-    clump(4, &["run", scenario, "-o", b, "--steps", "600"]);
-    let out = Command::new("pvpython")
-        .arg(repo().join("scripts/check_pvtp.py"))
-        .args([a, b])
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success() && text.contains("ParaView (OpenDataFile spheres.pvd)"),
-        "{text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let _ = std::fs::remove_dir_all(&one);
-    let _ = std::fs::remove_dir_all(&four);
+    let vtu = with_vtu_frames(scenario, "pv-vtu");
+    for (tag, scenario) in [("vtp", scenario), ("vtu", vtu.to_str().unwrap())] {
+        let (one, four) = (
+            out_dir(&format!("pv-{tag}-1")),
+            out_dir(&format!("pv-{tag}-4")),
+        );
+        let (a, b) = (one.to_str().unwrap(), four.to_str().unwrap());
+        clump(0, &["run", scenario, "-o", a, "--steps", "600"]);
+        clump(4, &["run", scenario, "-o", b, "--steps", "600"]);
+        let out = Command::new("pvpython")
+            .arg(repo().join("scripts/check_pvtp.py"))
+            .args([a, b])
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success()
+                && text.contains("ParaView (OpenDataFile spheres.pvd)")
+                && text.contains(&format!(".p{tag}: ")),
+            "{tag}: {text}\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let _ = std::fs::remove_dir_all(&one);
+        let _ = std::fs::remove_dir_all(&four);
+    }
+    let _ = std::fs::remove_file(&vtu);
 }
 
 /// Ranks × threads: 2 ranks of 2 threads each give one process's files
