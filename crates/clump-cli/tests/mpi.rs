@@ -156,6 +156,44 @@ fn assert_same_frame(a: &Path, b: &Path, s: &str, what: &str) {
     }
 }
 
+/// The contact frame `s` of one process's run `a` and of the run on ranks
+/// `b` (in pieces, `.pvtp`): the same contacts, each once, with the same
+/// values bit for bit (every cell array and both line ends of each
+/// contact, compared as sets of rows: the pieces hold the contacts in the
+/// ranks' order).
+fn assert_same_contacts(a: &Path, b: &Path, s: &str, what: &str) {
+    let pvtp = b.join(s.replace(".vtp", ".pvtp"));
+    assert!(pvtp.exists(), "{what}: {s} is not written in pieces");
+    let rows = |p: &Path| {
+        let a = clump_io::post::read::read_vtp(p).unwrap();
+        let n = a["cell:body_i"].len();
+        let mut names: Vec<&String> = a.keys().collect();
+        names.sort();
+        let mut rows: Vec<Vec<u64>> = (0..n)
+            .map(|i| {
+                names
+                    .iter()
+                    .flat_map(|k| {
+                        let v = &a[*k];
+                        let c = v.len() / n.max(1);
+                        v[c * i..c * (i + 1)].iter().map(|x| x.to_bits())
+                    })
+                    .collect()
+            })
+            .collect();
+        rows.sort();
+        (names.into_iter().cloned().collect::<Vec<_>>(), rows)
+    };
+    let (x, y) = (rows(&a.join(s)), rows(&pvtp));
+    assert_eq!(x.0, y.0, "{what}: {s}: the arrays differ");
+    assert!(
+        x.1 == y.1,
+        "{what}: {s}: {} contacts in pieces, one process has {}, or their values differ",
+        y.1.len(),
+        x.1.len()
+    );
+}
+
 /// Every file of `a` (one process's run) but the manifest (wall times,
 /// paths) equals `b`'s; checkpoints compare by their world, spheres and
 /// bodies frames by their values ([`assert_same_frame`]; `b`'s `.pvd`
@@ -180,8 +218,13 @@ fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
             checked += 1;
             continue;
         }
+        if s.starts_with("contacts_") && s.ends_with(".vtp") {
+            assert_same_contacts(a, b, &s, what);
+            checked += 1;
+            continue;
+        }
         assert!(fb.exists(), "{what}: {s} is missing");
-        if s == "spheres.pvd" || s == "bodies.pvd" {
+        if s == "spheres.pvd" || s == "bodies.pvd" || s == "contacts.pvd" {
             let text = std::fs::read_to_string(&fb).unwrap();
             assert!(
                 std::fs::read_to_string(&fa).unwrap()
@@ -279,16 +322,59 @@ fn frames_of_a_split_world_are_one_process_s() {
 /// `scenario` (a file without relative paths) with `vtk_format = "vtu"`
 /// appended to its last table, `[output]`, in a temporary file.
 fn with_vtu_frames(scenario: &str, name: &str) -> PathBuf {
+    with_output(scenario, name, "vtk_format = \"vtu\"\n")
+}
+
+/// `scenario` (a file without relative paths) with `lines` appended to its
+/// last table, `[output]`, in a temporary file.
+fn with_output(scenario: &str, name: &str, lines: &str) -> PathBuf {
     let text = std::fs::read_to_string(repo().join(scenario)).unwrap();
-    assert!(text
-        .trim_end()
-        .rsplit("\n[")
-        .next()
-        .unwrap()
-        .starts_with("output]"));
+    let last = text.trim_end().rsplit("\n[").next().unwrap();
+    assert!(
+        last.starts_with("output]"),
+        "{scenario}: [output] is not last"
+    );
     let p = std::env::temp_dir().join(format!("clump-mpi-{}-{name}.toml", std::process::id()));
-    std::fs::write(&p, text + "vtk_format = \"vtu\"\n").unwrap();
+    std::fs::write(&p, text + lines).unwrap();
     p
+}
+
+/// Contact frames are written in pieces, one per rank with the contacts
+/// it counts (`.pvtp` in `contacts.pvd`), keeping the world split: the
+/// pieces' union is one process's contacts, and `network_<step>.csv`
+/// (edges sent to rank 0 only) is one process's bytes.
+#[test]
+fn contact_frames_of_a_split_world_are_one_process_s() {
+    let toml = with_output(
+        "crates/clump-cli/tests/fixtures/periodic_frames.toml",
+        "contacts",
+        "contacts = { every = 0.0041 }\n",
+    );
+    let scenario = toml.to_str().unwrap();
+    same_bits_at("contact-frames", scenario, "1000", &[2, 3]);
+    let (d, gathers) = two_rank_gathers("contacts-gathers", scenario);
+    let contact_frames = std::fs::read_dir(&d)
+        .unwrap()
+        .filter(|e| {
+            let n = e.as_ref().unwrap().file_name();
+            let n = n.to_string_lossy();
+            n.starts_with("contacts_") && n.ends_with(".pvtp")
+        })
+        .count();
+    assert!(contact_frames > 10, "only {contact_frames} contact frames");
+    let edges = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.to_string_lossy().contains("network_"))
+        .map(|p| std::fs::read_to_string(p).unwrap().lines().count() - 1)
+        .max();
+    assert!(edges.is_some_and(|e| e > 0), "no frame with contacts");
+    assert!(
+        gathers < contact_frames / 2,
+        "{gathers} whole-world gathers for {contact_frames} contact frames written in pieces"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_file(&toml);
 }
 
 /// `.vtu` frames are written in pieces too (`.pvtu`, parallel

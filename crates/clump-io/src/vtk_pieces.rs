@@ -29,10 +29,10 @@ pub fn collection_name(kind: &str, label: u64, ext: &str) -> String {
 }
 
 /// True for a piece name of [`piece_name`] or a `<kind>_<digits>.pvtp`
-/// (`.pvtu`).
+/// (`.pvtu`), of the spheres, bodies or contacts frames.
 pub fn is_piece_file(name: &str) -> bool {
     let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-    let Some(rest) = ["spheres_", "bodies_"]
+    let Some(rest) = ["spheres_", "bodies_", "contacts_"]
         .iter()
         .find_map(|p| name.strip_prefix(p))
     else {

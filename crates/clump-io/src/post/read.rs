@@ -178,7 +178,7 @@ pub fn contact_frames(run: &Path) -> Result<Vec<(u64, f64)>, String> {
         .iter()
         .map(|(t, f)| {
             f.strip_prefix("contacts_")
-                .and_then(|x| x.strip_suffix(".vtp"))
+                .and_then(|x| x.strip_suffix(".vtp").or_else(|| x.strip_suffix(".pvtp")))
                 .and_then(|x| x.parse().ok())
                 .map(|s| (s, *t))
                 .ok_or_else(|| format!("{}: unexpected entry {f}", path.display()))
@@ -187,7 +187,8 @@ pub fn contact_frames(run: &Path) -> Result<Vec<(u64, f64)>, String> {
 }
 
 /// The frame at `step` of the run in `run`: `bodies_<step>.vtp`,
-/// `contacts_<step>.vtp`, `domain.json`.
+/// `contacts_<step>.vtp`, `domain.json` (a run on MPI ranks: the `.pvtp`
+/// of its pieces, read in the ranks' order).
 pub fn read_frame(run: &Path, step: u64, time: f64) -> Result<Frame, String> {
     let dj = run.join("domain.json");
     let text =
@@ -230,7 +231,12 @@ pub fn read_frame(run: &Path, step: u64, time: f64) -> Result<Frame, String> {
             torque: v3(&torque, i),
         })
         .collect();
-    let c = read_vtp(&run.join(format!("contacts_{step:06}.vtp")))?;
+    let plain = run.join(format!("contacts_{step:06}.vtp"));
+    let c = read_vtp(&if plain.exists() {
+        plain
+    } else {
+        run.join(format!("contacts_{step:06}.pvtp"))
+    })?;
     let (pts, f, n, o, p, bi, bj, wall, sl) = (
         need(&c, "Points")?,
         need(&c, "cell:force")?,

@@ -28,6 +28,7 @@
 #![allow(clippy::manual_is_multiple_of, clippy::result_large_err)]
 
 mod checkpoint;
+mod contact_ranks;
 pub mod device;
 mod error;
 mod manifest;
@@ -693,6 +694,9 @@ impl Runner {
         if self.thermo_in_pieces() {
             e = e.min(self.st.next_thermo);
         }
+        if self.contacts_in_pieces() {
+            e = e.min(self.st.next_contacts);
+        }
         let o = &self.scenario.output;
         if o.trajectory.is_some() && self.out.trajectory.is_some() && self.trajectory_in_pieces() {
             e = e.min(self.st.next_trajectory);
@@ -714,9 +718,9 @@ impl Runner {
 
     /// The next step whose boundary work needs the whole world: the end of
     /// the current stage, an insertion, an output row or frame (every
-    /// event but a checkpoint, the step limit, a VTK frame written in
-    /// pieces, a thermo row from reductions and trajectory rows from the
-    /// bodies' owners).
+    /// event but a checkpoint, the step limit, a VTK or contact frame
+    /// written in pieces, a thermo row from reductions and trajectory rows
+    /// from the bodies' owners).
     fn next_whole_step(&self) -> u64 {
         let (st, step) = (&self.st, self.world.step);
         let o = &self.scenario.output;
@@ -737,7 +741,7 @@ impl Runner {
         if o.trajectory.is_some() && self.out.trajectory.is_some() && !self.trajectory_in_pieces() {
             e = e.min(st.next_trajectory);
         }
-        if o.contacts.is_some() && self.out.contacts.is_some() {
+        if o.contacts.is_some() && self.out.contacts.is_some() && !self.contacts_in_pieces() {
             e = e.min(st.next_contacts);
         }
         if o.fields.is_some() && self.out.fields.is_some() {
