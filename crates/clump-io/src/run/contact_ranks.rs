@@ -21,7 +21,6 @@ use crate::post::network::{csv_line, edges, CSV_HEADER};
 use crate::vtk_contacts::{contacts_vtp, ContactSeries};
 use crate::vtk_pieces::piece_name;
 use clump_core::world::World;
-use std::collections::HashSet;
 use std::path::PathBuf;
 
 impl Runner {
@@ -37,12 +36,7 @@ impl Runner {
 /// ([`World::piece_mask`]); the bodies stay (the partners' positions give
 /// the network's branch vectors).
 fn counted(world: &World, frame: &Frame) -> Frame {
-    let mask = world.piece_mask().expect("a world split over ranks");
-    let ids = &world.bodies().id;
-    let mine: HashSet<u64> = (0..ids.len())
-        .filter(|&i| mask[i])
-        .map(|i| ids[i])
-        .collect();
+    let mine = super::fields_ranks::piece_ids(world);
     let mut f = frame.clone();
     if let Some(cs) = f.contacts.as_mut() {
         cs.retain(|c| mine.contains(&c.body_i));

@@ -31,6 +31,7 @@ mod checkpoint;
 mod contact_ranks;
 pub mod device;
 mod error;
+mod fields_ranks;
 mod manifest;
 pub mod outdir;
 mod outputs;
@@ -697,6 +698,9 @@ impl Runner {
         if self.contacts_in_pieces() {
             e = e.min(self.st.next_contacts);
         }
+        if self.fields_in_pieces() {
+            e = e.min(self.st.next_fields);
+        }
         let o = &self.scenario.output;
         if o.trajectory.is_some() && self.out.trajectory.is_some() && self.trajectory_in_pieces() {
             e = e.min(self.st.next_trajectory);
@@ -719,8 +723,8 @@ impl Runner {
     /// The next step whose boundary work needs the whole world: the end of
     /// the current stage, an insertion, an output row or frame (every
     /// event but a checkpoint, the step limit, a VTK or contact frame
-    /// written in pieces, a thermo row from reductions and trajectory rows
-    /// from the bodies' owners).
+    /// written in pieces, fields and thermo rows from reductions and
+    /// trajectory rows from the bodies' owners).
     fn next_whole_step(&self) -> u64 {
         let (st, step) = (&self.st, self.world.step);
         let o = &self.scenario.output;
@@ -744,7 +748,7 @@ impl Runner {
         if o.contacts.is_some() && self.out.contacts.is_some() && !self.contacts_in_pieces() {
             e = e.min(st.next_contacts);
         }
-        if o.fields.is_some() && self.out.fields.is_some() {
+        if o.fields.is_some() && self.out.fields.is_some() && !self.fields_in_pieces() {
             e = e.min(st.next_fields);
         }
         if o.flow.is_some() && self.out.flow.is_some() {

@@ -270,14 +270,28 @@ impl Runner {
                 }
             }
         }
+        let fields_in_pieces = self.fields_in_pieces();
         if let (Some((every, _)), Some(fs)) = (&o.fields, self.out.fields.as_mut()) {
             let due =
                 step >= self.st.next_fields || (finished && self.st.last_fields != Some(step));
-            if let (true, Some(frame)) = (due, snap) {
-                fs.add(frame)
-                    .map_err(rt("cannot write the coarse-grained fields"))?;
-                self.st.last_fields = Some(step);
-                self.st.next_fields = step + every;
+            // on ranks every rank takes part, also one without bodies
+            let frame = if fields_in_pieces {
+                captured.as_ref()
+            } else {
+                snap
+            };
+            if let (true, Some(frame)) = (due, frame) {
+                let written = if fields_in_pieces {
+                    super::fields_ranks::write_fields_in_pieces(&mut self.world, fs, frame)?
+                } else {
+                    fs.add(frame)
+                        .map_err(rt("cannot write the coarse-grained fields"))?;
+                    true
+                };
+                if written {
+                    self.st.last_fields = Some(step);
+                    self.st.next_fields = step + *every;
+                }
             }
         }
         if let (Some((every, probes)), Some(log)) = (&o.flow, self.out.flow.as_mut()) {

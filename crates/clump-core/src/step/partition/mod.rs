@@ -3,12 +3,14 @@
 //! ([`join`]), rebuild the parts between neighbours ([`migrate`]), refresh
 //! ghosts and sum statistics after each step ([`ghosts`]), the walls' heat
 //! flows ([`heat`]), keep the world split through an event or gather it
-//! ([`split`]).
+//! ([`split`]), reduce outputs' partial results over the ranks
+//! ([`reduce`]).
 
 pub(crate) mod ghosts;
 pub(crate) mod heat;
 pub(crate) mod join;
 pub(crate) mod migrate;
+pub(crate) mod reduce;
 pub(crate) mod restrict;
 pub(crate) mod split;
 pub(crate) mod thermo;
