@@ -400,6 +400,32 @@ fn vtu_frames_of_a_split_world_are_one_process_s() {
     let _ = std::fs::remove_file(&toml);
 }
 
+/// Coarse-grained fields are fixed-point sums (T-74) reduced over the
+/// ranks: a fields event keeps the world split, and every `fields_*.vti`,
+/// `fields_*.csv` and the time average are one process's bytes
+/// (`same_bits_at` compares every file).
+#[test]
+fn fields_of_a_split_world_are_one_process_s() {
+    let toml = with_output(
+        "crates/clump-cli/tests/fixtures/periodic_frames.toml",
+        "fields",
+        "contacts = { every = 0.0041 }\n\n[output.fields]\nevery = 0.0029\naxes = [\"z\"]\ncells = [12]\nwidth = 0.003\naverage = true\n",
+    );
+    let scenario = toml.to_str().unwrap();
+    same_bits_at("fields", scenario, "1000", &[2, 3]);
+    let (d, gathers) = two_rank_gathers("fields-gathers", scenario);
+    let fields = files_ending(&d, ".vti") - 1;
+    assert!(fields > 10, "only {fields} fields frames");
+    let mean = std::fs::read_to_string(d.join("fields_mean.csv")).unwrap();
+    assert!(mean.lines().count() == 13, "{mean}");
+    assert!(
+        gathers < fields / 2,
+        "{gathers} whole-world gathers for {fields} fields frames summed over the ranks"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_file(&toml);
+}
+
 /// Thermo rows come from exact sums reduced over the ranks (T-73) and
 /// trajectory rows from the tracked bodies' owners: a row where nothing
 /// else is due keeps the world split, and `thermo.csv` and every

@@ -32,11 +32,10 @@ impl Runner {
 }
 
 /// The contacts of `frame` (the rank's capture) that this rank counts:
-/// those whose sphere `i` belongs to a body of the rank's piece
-/// ([`World::piece_mask`]); the bodies stay (the partners' positions give
+/// those whose sphere `i` belongs to a body of the rank's piece (`mine`,
+/// [`World::piece_mask`]); the bodies stay (the partners' positions give
 /// the network's branch vectors).
-fn counted(world: &World, frame: &Frame) -> Frame {
-    let mine = super::fields_ranks::piece_ids(world);
+fn counted(mine: &std::collections::HashSet<u64>, frame: &Frame) -> Frame {
     let mut f = frame.clone();
     if let Some(cs) = f.contacts.as_mut() {
         cs.retain(|c| mine.contains(&c.body_i));
@@ -58,11 +57,9 @@ pub(super) fn write_contacts_in_pieces(
     let (me, n, step) = (info.rank, info.size, frame.step);
     let dir = std::fs::canonicalize(series.dir()).unwrap_or_else(|_| series.dir().to_path_buf());
     let dir = PathBuf::from(from_root(world, &dir.to_string_lossy()));
-    let mine = counted(world, frame);
+    let (keep, owned) = super::fields_ranks::piece_ids(world, frame);
+    let mine = counted(&keep, frame);
     let held = mine.contacts.as_ref().map_or(0, Vec::len);
-    let owned = world
-        .piece_mask()
-        .map_or(0, |m| m.iter().filter(|&&k| k).count());
     let piece = contacts_vtp(&mine, series.wall_names());
     let path = dir.join(piece_name("contacts", step, me, n, "vtp"));
     // rank 0's piece declares the arrays, so it is written even when empty

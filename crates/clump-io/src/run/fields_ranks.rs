@@ -22,14 +22,18 @@ impl Runner {
     }
 }
 
-/// The ids of the bodies of this rank's piece ([`World::piece_mask`]).
-pub(super) fn piece_ids(world: &World) -> HashSet<u64> {
+/// The ids of the bodies of this rank's piece ([`World::piece_mask`]) and
+/// how many of them `frame` (captured before this boundary's insertions)
+/// holds.
+pub(super) fn piece_ids(world: &World, frame: &Frame) -> (HashSet<u64>, usize) {
     let mask = world.piece_mask().expect("a world split over ranks");
     let ids = &world.bodies().id;
-    (0..ids.len())
+    let keep: HashSet<u64> = (0..ids.len())
         .filter(|&i| mask[i])
         .map(|i| ids[i])
-        .collect()
+        .collect();
+    let held = frame.bodies.iter().filter(|b| keep.contains(&b.id)).count();
+    (keep, held)
 }
 
 fn bad(what: &str, from: usize) -> String {
@@ -45,12 +49,12 @@ pub(super) fn write_fields_in_pieces(
     series: &mut FieldSeries,
     frame: &Frame,
 ) -> Result<bool, RunError> {
-    let keep = piece_ids(world);
+    let (keep, held) = piece_ids(world, frame);
     let grid = series.grid(&frame.domain);
     let mut extent = Extent::default();
     deposit(frame, &grid, Some(&keep), &mut |k, _, v| extent.see(k, v));
     let mut mine = extent.to_bytes();
-    mine.extend((keep.len() as u64).to_le_bytes());
+    mine.extend((held as u64).to_le_bytes());
     let merge = |acc: &mut Vec<u8>, theirs: &[u8], from: usize| -> Result<(), String> {
         let split = |b: &[u8]| -> Option<(Extent, u64)> {
             let (e, n) = b.split_at_checked(b.len().checked_sub(8)?)?;
