@@ -559,12 +559,20 @@ fn two_ranks_of_two_threads_have_the_same_bits() {
 /// the bodies frames' temperatures and the checkpoint are one process's.
 #[test]
 fn heat_and_convection_have_the_same_bits_at_2_and_3_ranks() {
-    same_bits_at(
-        "heat",
-        "crates/clump-cli/tests/fixtures/periodic_heat.toml",
-        "1000",
-        &[2, 3],
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_heat.toml";
+    same_bits_at("heat", scenario, "1000", &[2, 3]);
+    // the thermo rows (temperatures, heat, wall heat flow, fluid force)
+    // come from reductions: they keep the world split
+    let (d, gathers) = two_rank_gathers("heat-gathers", scenario);
+    let thermo = std::fs::read_to_string(d.join("thermo.csv")).unwrap();
+    assert!(thermo.lines().next().unwrap().contains("fluid_fz[N]"));
+    let rows = thermo.lines().count() - 1;
+    assert!(rows > 15, "only {rows} thermo rows");
+    assert!(
+        gathers < rows / 4,
+        "{gathers} whole-world gathers for {rows} thermo rows"
     );
+    let _ = std::fs::remove_dir_all(&d);
 }
 
 #[test]

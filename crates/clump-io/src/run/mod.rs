@@ -710,14 +710,11 @@ impl Runner {
 
     /// True when this run's thermo rows come from reductions over the ranks
     /// ([`World::thermo_of_ranks`]): a world split over several ranks,
-    /// with a thermo output, without heat or a fluid (their columns need
-    /// the whole world).
+    /// with a thermo output (with heat or a fluid too).
     fn thermo_in_pieces(&self) -> bool {
         self.world.part_info().is_some_and(|p| p.size > 1)
             && self.out.thermo.is_some()
             && self.scenario.output.thermo.is_some()
-            && self.scenario.heat.is_none()
-            && self.scenario.fluid.is_none()
     }
 
     /// The next step whose boundary work needs the whole world: the end of
