@@ -115,6 +115,31 @@ impl Fields {
             .collect()
     }
 
+    /// The fields of fixed-point sums ([`deposit`]'s terms summed, T-74):
+    /// each sum rounded once, the kinetic stress taken about the mean
+    /// velocity.
+    pub fn from_fixed(g: &super::fields_sum::FixedGrid) -> Fields {
+        use field::*;
+        let cells = g.cells();
+        let mut out = Fields::zeros(cells);
+        let vec3 = |c, f| DVec3::from_array(std::array::from_fn(|i| g.value(c, f, i)));
+        let mat3 = |c, f| DMat3::from_cols_array(&std::array::from_fn(|i| g.value(c, f, i)));
+        for c in 0..cells {
+            out.density[c] = g.value(c, DENSITY, 0);
+            out.momentum[c] = vec3(c, MOMENTUM);
+            out.kinetic_stress[c] = mat3(c, KINETIC);
+            out.contact_stress[c] = mat3(c, CONTACT);
+            out.contact_density[c] = g.value(c, CONTACTS, 0);
+            out.fabric_density[c] = mat3(c, FABRIC);
+            out.number_density[c] = g.value(c, NUMBER, 0);
+            out.order_density[c] = mat3(c, ORDER);
+            out.coordination_density[c] = g.value(c, COORDINATION, 0);
+            out.solid_fraction[c] = g.value(c, SOLID, 0);
+        }
+        out.about_mean_velocity();
+        out
+    }
+
     /// Takes the mean velocity's part `p ⊗ p / ρ` off the kinetic stress
     /// `Σ m v ⊗ v φ` (the stress about the local mean velocity).
     pub fn about_mean_velocity(&mut self) {
@@ -172,7 +197,7 @@ pub fn coarse_grain(frame: &Frame, grid: &Grid) -> Fields {
     deposit(frame, grid, None, &mut |k, _, v| extent.see(k, v));
     let mut sums = super::fields_sum::FixedGrid::new(grid.len(), &extent);
     deposit(frame, grid, None, &mut |k, cell, v| sums.add(k, cell, v));
-    sums.fields()
+    Fields::from_fixed(&sums)
 }
 
 /// The field indices of [`deposit`]'s terms, in [`Fields`]' order.

@@ -1,6 +1,7 @@
 //! Fixed-point sums of the coarse-grained fields (T-74 in
 //! docs/theory.md): the same terms give the same bits in any order, so a
-//! field summed by ranks in pieces is one process's field.
+//! field summed by ranks in pieces is one process's field
+//! ([`super::fields::Fields::from_fixed`] reads them).
 //!
 //! Each field `f` (density, momentum, …: [`super::fields::field`]) gets
 //! one scale `2^k_f`, fixed by its largest term `|t|_max < 2^e` and its
@@ -15,12 +16,10 @@
 //! needs a first pass over the terms ([`Extent`]) and, on ranks, a
 //! reduction of the extents before the sums.
 
-use super::fields::Fields;
-use glam::{DMat3, DVec3};
-
 /// Fields summed.
 pub const FIELDS: usize = 10;
-/// Components of each field, in [`super::fields::field`]'s order.
+/// Components of each field, in the order of the field numbers of
+/// [`super::fields::deposit`].
 const COMPONENTS: [usize; FIELDS] = [1, 3, 9, 9, 1, 9, 1, 9, 1, 1];
 /// Components of all fields, per cell.
 const SLOTS: usize = 44;
@@ -158,32 +157,16 @@ impl FixedGrid {
         Some(FixedGrid { k, sums })
     }
 
-    /// The fields: each sum rounded once to f64 and scaled back, the
-    /// kinetic stress taken about the mean velocity.
-    pub fn fields(&self) -> Fields {
-        let cells = self.sums.len() / SLOTS;
-        let mut out = Fields::zeros(cells);
-        let value = |c: usize, f: usize, i: usize| -> f64 {
-            ldexp(self.sums[c * SLOTS + FIRST[f] + i] as f64, -self.k[f])
-        };
-        let vec3 = |c, f| DVec3::from_array(std::array::from_fn(|i| value(c, f, i)));
-        let mat3 = |c, f| DMat3::from_cols_array(&std::array::from_fn(|i| value(c, f, i)));
-        use super::fields::field::*;
-        debug_assert_eq!(COMPONENTS.iter().sum::<usize>(), SLOTS);
-        for c in 0..cells {
-            out.density[c] = value(c, DENSITY, 0);
-            out.momentum[c] = vec3(c, MOMENTUM);
-            out.kinetic_stress[c] = mat3(c, KINETIC);
-            out.contact_stress[c] = mat3(c, CONTACT);
-            out.contact_density[c] = value(c, CONTACTS, 0);
-            out.fabric_density[c] = mat3(c, FABRIC);
-            out.number_density[c] = value(c, NUMBER, 0);
-            out.order_density[c] = mat3(c, ORDER);
-            out.coordination_density[c] = value(c, COORDINATION, 0);
-            out.solid_fraction[c] = value(c, SOLID, 0);
-        }
-        out.about_mean_velocity();
-        out
+    /// Cells of the grid.
+    pub fn cells(&self) -> usize {
+        self.sums.len() / SLOTS
+    }
+
+    /// Component `i` of field `f` in `cell`: its sum rounded once to f64
+    /// and scaled back.
+    pub fn value(&self, cell: usize, f: usize, i: usize) -> f64 {
+        debug_assert!(i < COMPONENTS[f]);
+        ldexp(self.sums[cell * SLOTS + FIRST[f] + i] as f64, -self.k[f])
     }
 }
 
@@ -216,6 +199,6 @@ mod tests {
         assert_eq!(fwd, m);
         // the exact total: every term is an integer multiple of 2^-39
         let exact: i128 = terms.iter().map(|t| ldexp(*t, 39) as i128).sum();
-        assert_eq!(fwd.fields().density[0], ldexp(exact as f64, -39));
+        assert_eq!(fwd.value(0, 0, 0), ldexp(exact as f64, -39));
     }
 }

@@ -7,7 +7,7 @@
 //! tree to rank 0, which writes one process's fields bit for bit.
 
 use super::{RunError, Runner};
-use crate::post::fields::deposit;
+use crate::post::fields::{deposit, Fields};
 use crate::post::fields_sum::{Extent, FixedGrid};
 use crate::post::frame::Frame;
 use crate::post::spec::FieldSeries;
@@ -97,7 +97,7 @@ pub(super) fn write_fields_in_pieces(
     let total =
         FixedGrid::from_bytes(&total).ok_or_else(|| RunError::Runtime(bad("field sums", 0)))?;
     series
-        .add_fields(grid, total.fields(), frame.step)
+        .add_fields(grid, Fields::from_fixed(&total), frame.step)
         .map_err(|e| RunError::Runtime(format!("cannot write the coarse-grained fields: {e}")))?;
     Ok(true)
 }
