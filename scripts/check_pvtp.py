@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
 """Reads a run's spheres and bodies frames with VTK's own readers and checks
-that a run on MPI ranks (frames in pieces, `.pvtp`) shows every sphere and
-every body exactly once, with the values of one process's run.
+that a run on MPI ranks (frames in pieces, `.pvtp`, or `.pvtu` for
+`vtk_format = "vtu"`) shows every sphere and every body exactly once, with
+the values of one process's run.
 
     check_pvtp.py SERIAL_RUN RANKS_RUN
 
 Runs under ParaView's `pvpython` (or any python with the `vtk` package).
 For every frame of SERIAL_RUN/spheres.pvd and bodies.pvd it reads the
 serial `.vtp` with vtkXMLPolyDataReader and the ranks' `.pvtp` with
-vtkXMLPPolyDataReader, and compares, point by point after ordering by
+vtkXMLPPolyDataReader (`.vtu` with vtkXMLUnstructuredGridReader, `.pvtu`
+with vtkXMLPUnstructuredGridReader), and compares, point by point after ordering by
 `body_id` (stable), the points and every point array (exact equality).
 With `paraview.simple` at hand, it also opens RANKS_RUN/spheres.pvd as
 ParaView does and checks the number of points at the last time.
@@ -19,10 +21,20 @@ import re
 import sys
 
 try:
-    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPPolyDataReader
+    from vtkmodules.vtkIOXML import (
+        vtkXMLPolyDataReader,
+        vtkXMLPPolyDataReader,
+        vtkXMLPUnstructuredGridReader,
+        vtkXMLUnstructuredGridReader,
+    )
     from vtkmodules.util.numpy_support import vtk_to_numpy
 except ImportError:  # the plain `vtk` package
-    from vtk import vtkXMLPolyDataReader, vtkXMLPPolyDataReader
+    from vtk import (
+        vtkXMLPolyDataReader,
+        vtkXMLPPolyDataReader,
+        vtkXMLPUnstructuredGridReader,
+        vtkXMLUnstructuredGridReader,
+    )
     from vtk.util.numpy_support import vtk_to_numpy
 import numpy as np
 
@@ -33,7 +45,13 @@ def frames(run, kind):
 
 
 def read(path):
-    r = vtkXMLPPolyDataReader() if path.endswith(".pvtp") else vtkXMLPolyDataReader()
+    readers = {
+        ".vtp": vtkXMLPolyDataReader,
+        ".pvtp": vtkXMLPPolyDataReader,
+        ".vtu": vtkXMLUnstructuredGridReader,
+        ".pvtu": vtkXMLPUnstructuredGridReader,
+    }
+    r = readers[os.path.splitext(path)[1]]()
     r.SetFileName(path)
     r.Update()
     out = r.GetOutput()

@@ -481,9 +481,11 @@ fn particles(a: &PostArgs, out: &Path, made: &mut Vec<PathBuf>) -> Result<(), St
     let Some(f) = last_spheres_frame(&a.run_dir) else {
         return Ok(()); // no VTK output: nothing to draw
     };
-    if f.extension().is_some_and(|e| e != "vtp" && e != "pvtp") {
+    if f.extension()
+        .is_some_and(|e| !["vtp", "pvtp", "vtu", "pvtu"].iter().any(|x| e == *x))
+    {
         outln!(
-            "note: particles.png is drawn from .vtp frames only (this run wrote {})",
+            "note: particles.png is drawn from .vtp and .vtu frames only (this run wrote {})",
             f.display()
         );
         return Ok(());

@@ -8,8 +8,9 @@
 //! (one checkpoint of the whole world, which resumes bit for bit); a rank
 //! killed mid-run (the run stops; its last checkpoint resumes); 2 ranks of
 //! 2 threads each.
-//! Spheres and bodies frames are written in pieces on ranks (`.pvtp`):
-//! the union of the pieces, ordered by body id, is one process's frame.
+//! Spheres and bodies frames are written in pieces on ranks (`.pvtp`, and
+//! `.pvtu` for `vtk_format = "vtu"`): the union of the pieces, ordered by
+//! body id, is one process's frame.
 //! Built only with the `mpi` feature (scripts/test-all.sh runs it).
 #![cfg(feature = "mpi")]
 
@@ -124,8 +125,8 @@ fn differing(a: &Path, b: &Path) -> Vec<&'static str> {
 }
 
 /// A frame's arrays with every point in the order of its `body_id`
-/// (`clump_io::post::read::arrays_by_body`: a `.pvtp` reads as its
-/// pieces), as bits.
+/// (`clump_io::post::read::arrays_by_body`: a `.pvtp` or `.pvtu` reads as
+/// its pieces), as bits.
 fn frame_by_body(path: &Path) -> Vec<(String, Vec<u64>)> {
     clump_io::post::read::arrays_by_body(path)
         .unwrap()
@@ -135,10 +136,11 @@ fn frame_by_body(path: &Path) -> Vec<(String, Vec<u64>)> {
 }
 
 /// The frame `s` of one process's run `a` and of the run on ranks `b`:
-/// `b` holds it in pieces (`.pvtp`); the union of the pieces, ordered by
-/// body id, is one process's frame value for value, bit for bit.
+/// `b` holds it in pieces (`.pvtp`, `.pvtu` for a `.vtu` frame); the union
+/// of the pieces, ordered by body id, is one process's frame value for
+/// value, bit for bit.
 fn assert_same_frame(a: &Path, b: &Path, s: &str, what: &str) {
-    let pvtp = b.join(s.replace(".vtp", ".pvtp"));
+    let pvtp = b.join(s.replace(".vtp", ".pvtp").replace(".vtu", ".pvtu"));
     assert!(pvtp.exists(), "{what}: {s} is not written in pieces");
     let (x, y) = (frame_by_body(&a.join(s)), frame_by_body(&pvtp));
     assert_eq!(
@@ -154,10 +156,48 @@ fn assert_same_frame(a: &Path, b: &Path, s: &str, what: &str) {
     }
 }
 
+/// The contact frame `s` of one process's run `a` and of the run on ranks
+/// `b` (in pieces, `.pvtp`): the same contacts, each once, with the same
+/// values bit for bit (every cell array and both line ends of each
+/// contact, compared as sets of rows: the pieces hold the contacts in the
+/// ranks' order).
+fn assert_same_contacts(a: &Path, b: &Path, s: &str, what: &str) {
+    let pvtp = b.join(s.replace(".vtp", ".pvtp"));
+    assert!(pvtp.exists(), "{what}: {s} is not written in pieces");
+    let rows = |p: &Path| {
+        let a = clump_io::post::read::read_vtp(p).unwrap();
+        let n = a["cell:body_i"].len();
+        let mut names: Vec<&String> = a.keys().collect();
+        names.sort();
+        let mut rows: Vec<Vec<u64>> = (0..n)
+            .map(|i| {
+                names
+                    .iter()
+                    .flat_map(|k| {
+                        let v = &a[*k];
+                        let c = v.len() / n.max(1);
+                        v[c * i..c * (i + 1)].iter().map(|x| x.to_bits())
+                    })
+                    .collect()
+            })
+            .collect();
+        rows.sort();
+        (names.into_iter().cloned().collect::<Vec<_>>(), rows)
+    };
+    let (x, y) = (rows(&a.join(s)), rows(&pvtp));
+    assert_eq!(x.0, y.0, "{what}: {s}: the arrays differ");
+    assert!(
+        x.1 == y.1,
+        "{what}: {s}: {} contacts in pieces, one process has {}, or their values differ",
+        y.1.len(),
+        x.1.len()
+    );
+}
+
 /// Every file of `a` (one process's run) but the manifest (wall times,
 /// paths) equals `b`'s; checkpoints compare by their world, spheres and
 /// bodies frames by their values ([`assert_same_frame`]; `b`'s `.pvd`
-/// lists the `.pvtp` where `a`'s lists the `.vtp`).
+/// lists the `.pvtp` (`.pvtu`) where `a`'s lists the `.vtp` (`.vtu`)).
 fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
     let mut names: Vec<_> = std::fs::read_dir(a)
         .unwrap()
@@ -171,17 +211,26 @@ fn assert_same_outputs(a: &Path, b: &Path, what: &str) {
             continue;
         }
         let (fa, fb) = (a.join(&n), b.join(&n));
-        let piece = (s.starts_with("spheres_") || s.starts_with("bodies_")) && s.ends_with(".vtp");
+        let piece = (s.starts_with("spheres_") || s.starts_with("bodies_"))
+            && (s.ends_with(".vtp") || s.ends_with(".vtu"));
         if piece {
             assert_same_frame(a, b, &s, what);
             checked += 1;
             continue;
         }
+        if s.starts_with("contacts_") && s.ends_with(".vtp") {
+            assert_same_contacts(a, b, &s, what);
+            checked += 1;
+            continue;
+        }
         assert!(fb.exists(), "{what}: {s} is missing");
-        if s == "spheres.pvd" || s == "bodies.pvd" {
+        if s == "spheres.pvd" || s == "bodies.pvd" || s == "contacts.pvd" {
             let text = std::fs::read_to_string(&fb).unwrap();
             assert!(
-                std::fs::read_to_string(&fa).unwrap() == text.replace(".pvtp\"", ".vtp\""),
+                std::fs::read_to_string(&fa).unwrap()
+                    == text
+                        .replace(".pvtp\"", ".vtp\"")
+                        .replace(".pvtu\"", ".vtu\""),
                 "{what}: {s} does not list one process's frames"
             );
         } else if s.ends_with(".ckpt") {
@@ -268,6 +317,113 @@ fn frames_of_a_split_world_are_one_process_s() {
         "{gathers} whole-world gathers for {frames} frames written in pieces"
     );
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// `scenario` (a file without relative paths) with `vtk_format = "vtu"`
+/// appended to its last table, `[output]`, in a temporary file.
+fn with_vtu_frames(scenario: &str, name: &str) -> PathBuf {
+    with_output(scenario, name, "vtk_format = \"vtu\"\n")
+}
+
+/// `scenario` (a file without relative paths) with `lines` appended to its
+/// last table, `[output]`, in a temporary file.
+fn with_output(scenario: &str, name: &str, lines: &str) -> PathBuf {
+    let text = std::fs::read_to_string(repo().join(scenario)).unwrap();
+    let last = text.trim_end().rsplit("\n[").next().unwrap();
+    assert!(
+        last.starts_with("output]"),
+        "{scenario}: [output] is not last"
+    );
+    let p = std::env::temp_dir().join(format!("clump-mpi-{}-{name}.toml", std::process::id()));
+    std::fs::write(&p, text + lines).unwrap();
+    p
+}
+
+/// Contact frames are written in pieces, one per rank with the contacts
+/// it counts (`.pvtp` in `contacts.pvd`), keeping the world split: the
+/// pieces' union is one process's contacts, and `network_<step>.csv`
+/// (edges sent to rank 0 only) is one process's bytes.
+#[test]
+fn contact_frames_of_a_split_world_are_one_process_s() {
+    let toml = with_output(
+        "crates/clump-cli/tests/fixtures/periodic_frames.toml",
+        "contacts",
+        "contacts = { every = 0.0041 }\n",
+    );
+    let scenario = toml.to_str().unwrap();
+    same_bits_at("contact-frames", scenario, "1000", &[2, 3]);
+    let (d, gathers) = two_rank_gathers("contacts-gathers", scenario);
+    let contact_frames = std::fs::read_dir(&d)
+        .unwrap()
+        .filter(|e| {
+            let n = e.as_ref().unwrap().file_name();
+            let n = n.to_string_lossy();
+            n.starts_with("contacts_") && n.ends_with(".pvtp")
+        })
+        .count();
+    assert!(contact_frames > 10, "only {contact_frames} contact frames");
+    let edges = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.to_string_lossy().contains("network_"))
+        .map(|p| std::fs::read_to_string(p).unwrap().lines().count() - 1)
+        .max();
+    assert!(edges.is_some_and(|e| e > 0), "no frame with contacts");
+    assert!(
+        gathers < contact_frames / 2,
+        "{gathers} whole-world gathers for {contact_frames} contact frames written in pieces"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_file(&toml);
+}
+
+/// `.vtu` frames are written in pieces too (`.pvtu`, parallel
+/// UnstructuredGrid), keeping the world split: the pieces' union is one
+/// process's `.vtu` frame, and the walls frames are one process's bytes.
+#[test]
+fn vtu_frames_of_a_split_world_are_one_process_s() {
+    let toml = with_vtu_frames(
+        "crates/clump-cli/tests/fixtures/periodic_frames.toml",
+        "vtu",
+    );
+    let scenario = toml.to_str().unwrap();
+    same_bits_at("vtu-frames", scenario, "1000", &[3]);
+    let (d, gathers) = two_rank_gathers("vtu-gathers", scenario);
+    let frames = files_ending(&d, ".pvtu") / 2;
+    assert!(frames > 10, "only {frames} frames");
+    assert_eq!(files_ending(&d, ".pvtp") + files_ending(&d, ".vtp"), 0);
+    assert!(
+        gathers < frames / 2,
+        "{gathers} whole-world gathers for {frames} frames written in pieces"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_file(&toml);
+}
+
+/// Coarse-grained fields are fixed-point sums (T-74) reduced over the
+/// ranks: a fields event keeps the world split, and every `fields_*.vti`,
+/// `fields_*.csv` and the time average are one process's bytes
+/// (`same_bits_at` compares every file).
+#[test]
+fn fields_of_a_split_world_are_one_process_s() {
+    let toml = with_output(
+        "crates/clump-cli/tests/fixtures/periodic_frames.toml",
+        "fields",
+        "contacts = { every = 0.0041 }\n\n[output.fields]\nevery = 0.0029\naxes = [\"z\"]\ncells = [12]\nwidth = 0.003\naverage = true\n",
+    );
+    let scenario = toml.to_str().unwrap();
+    same_bits_at("fields", scenario, "1000", &[2, 3]);
+    let (d, gathers) = two_rank_gathers("fields-gathers", scenario);
+    let fields = files_ending(&d, ".vti") - 1;
+    assert!(fields > 10, "only {fields} fields frames");
+    let mean = std::fs::read_to_string(d.join("fields_mean.csv")).unwrap();
+    assert!(mean.lines().count() == 13, "{mean}");
+    assert!(
+        gathers < fields / 2,
+        "{gathers} whole-world gathers for {fields} fields frames summed over the ranks"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+    let _ = std::fs::remove_file(&toml);
 }
 
 /// Thermo rows come from exact sums reduced over the ranks (T-73) and
@@ -377,7 +533,8 @@ fn files_ending(d: &Path, suffix: &str) -> usize {
 }
 
 /// VTK's own readers and ParaView see every sphere and body of a 4-rank
-/// run's frames once, with one process's values
+/// run's frames once, with one process's values, for `.vtp` and `.vtu`
+/// frames
 /// (`scripts/check_pvtp.py` under ParaView's `pvpython`; skipped with a
 /// note where it is not installed).
 #[test]
@@ -391,23 +548,32 @@ fn paraview_reads_a_4_rank_run_s_frames_as_one_process_s() {
         return;
     }
     let scenario = "crates/clump-cli/tests/fixtures/periodic_frames.toml";
-    let (one, four) = (out_dir("pv-1"), out_dir("pv-4"));
-    let (a, b) = (one.to_str().unwrap(), four.to_str().unwrap());
-    clump(0, &["run", scenario, "-o", a, "--steps", "600"]);
-    clump(4, &["run", scenario, "-o", b, "--steps", "600"]);
-    let out = Command::new("pvpython")
-        .arg(repo().join("scripts/check_pvtp.py"))
-        .args([a, b])
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success() && text.contains("ParaView (OpenDataFile spheres.pvd)"),
-        "{text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let _ = std::fs::remove_dir_all(&one);
-    let _ = std::fs::remove_dir_all(&four);
+    let vtu = with_vtu_frames(scenario, "pv-vtu");
+    for (tag, scenario) in [("vtp", scenario), ("vtu", vtu.to_str().unwrap())] {
+        let (one, four) = (
+            out_dir(&format!("pv-{tag}-1")),
+            out_dir(&format!("pv-{tag}-4")),
+        );
+        let (a, b) = (one.to_str().unwrap(), four.to_str().unwrap());
+        clump(0, &["run", scenario, "-o", a, "--steps", "600"]);
+        clump(4, &["run", scenario, "-o", b, "--steps", "600"]);
+        let out = Command::new("pvpython")
+            .arg(repo().join("scripts/check_pvtp.py"))
+            .args([a, b])
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success()
+                && text.contains("ParaView (OpenDataFile spheres.pvd)")
+                && text.contains(&format!(".p{tag}: ")),
+            "{tag}: {text}\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let _ = std::fs::remove_dir_all(&one);
+        let _ = std::fs::remove_dir_all(&four);
+    }
+    let _ = std::fs::remove_file(&vtu);
 }
 
 /// Ranks × threads: 2 ranks of 2 threads each give one process's files
@@ -430,12 +596,20 @@ fn two_ranks_of_two_threads_have_the_same_bits() {
 /// the bodies frames' temperatures and the checkpoint are one process's.
 #[test]
 fn heat_and_convection_have_the_same_bits_at_2_and_3_ranks() {
-    same_bits_at(
-        "heat",
-        "crates/clump-cli/tests/fixtures/periodic_heat.toml",
-        "1000",
-        &[2, 3],
+    let scenario = "crates/clump-cli/tests/fixtures/periodic_heat.toml";
+    same_bits_at("heat", scenario, "1000", &[2, 3]);
+    // the thermo rows (temperatures, heat, wall heat flow, fluid force)
+    // come from reductions: they keep the world split
+    let (d, gathers) = two_rank_gathers("heat-gathers", scenario);
+    let thermo = std::fs::read_to_string(d.join("thermo.csv")).unwrap();
+    assert!(thermo.lines().next().unwrap().contains("fluid_fz[N]"));
+    let rows = thermo.lines().count() - 1;
+    assert!(rows > 15, "only {rows} thermo rows");
+    assert!(
+        gathers < rows / 4,
+        "{gathers} whole-world gathers for {rows} thermo rows"
     );
+    let _ = std::fs::remove_dir_all(&d);
 }
 
 #[test]

@@ -75,6 +75,7 @@ impl World {
     pub fn thermo(&self) -> Thermo {
         let [kt, kr, pe] = self.body_energy_sums(None);
         let sums = self.neighbors.records.sums.at_step(self.step);
+        let extra = self.body_extra_sums(None);
         Thermo {
             time: self.time,
             step: self.step,
@@ -90,10 +91,8 @@ impl World {
             max_overlap_ratio: self.stats.max_overlap_ratio,
             lost_bodies: self.lost.total(),
             wall_loads: sums.map_or_else(|| self.walls.loads.clone(), |s| wall_loads(&s.1)),
-            heat: self.heat_thermo(),
-            fluid_force: self
-                .fluid()
-                .map(|_| self.fluid_forces().iter().copied().sum()),
+            heat: self.heat_thermo_of(&extra, self.bodies.len() as u64),
+            fluid_force: self.fluid_force_of(&extra),
         }
     }
 
@@ -118,27 +117,77 @@ impl World {
         s
     }
 
-    /// The thermal part of [`World::thermo`]; sums in storage order.
-    fn heat_thermo(&self) -> Option<HeatThermo> {
-        let h = self.heat.as_deref()?;
-        let t = &self.bodies.temperature;
-        let n = t.len();
-        let (mut sum, mut lo, mut hi, mut content) = (0.0, f64::INFINITY, f64::NEG_INFINITY, 0.0);
-        for (b, &tb) in t.iter().enumerate() {
-            sum += tb;
-            lo = lo.min(tb);
-            hi = hi.max(tb);
-            content += self.heat_capacity(b) * tb;
+    /// The temperature and heat sums and the fluid force sums of the
+    /// bodies (of `mask` only, when given), when the world has heat or a
+    /// fluid (T-73: the same bits in any order).
+    pub(crate) fn body_extra_sums(&self, mask: Option<&[bool]>) -> BodyExtraSums {
+        let mut x = BodyExtraSums::default();
+        let keep = |i: usize| mask.map_or(true, |m| m[i]);
+        if self.heat.is_some() {
+            for (b, &tb) in self.bodies.temperature.iter().enumerate() {
+                if keep(b) {
+                    x.sums[0].add(tb);
+                    x.sums[1].add(self.heat_capacity(b) * tb);
+                    x.lo = x.lo.min(tb);
+                    x.hi = x.hi.max(tb);
+                }
+            }
         }
+        if self.fluid().is_some() {
+            for (b, f) in self.fluid_forces().iter().enumerate() {
+                if keep(b) {
+                    (0..3).for_each(|k| x.sums[2 + k].add(f[k]));
+                }
+            }
+        }
+        x
+    }
+
+    /// The thermal part of [`World::thermo`] from the sums `x` of `n`
+    /// bodies (the walls' heat flows are every rank's, T-94).
+    pub(crate) fn heat_thermo_of(&self, x: &BodyExtraSums, n: u64) -> Option<HeatThermo> {
+        let h = self.heat.as_deref()?;
         let none = n == 0;
         Some(HeatThermo {
-            mean_temperature: if none { f64::NAN } else { sum / n as f64 },
-            min_temperature: if none { f64::NAN } else { lo },
-            max_temperature: if none { f64::NAN } else { hi },
-            heat_content: content,
+            mean_temperature: if none {
+                f64::NAN
+            } else {
+                x.sums[0].value() / n as f64
+            },
+            min_temperature: if none { f64::NAN } else { x.lo },
+            max_temperature: if none { f64::NAN } else { x.hi },
+            heat_content: x.sums[1].value(),
             wall_flow: h.wall_flow.clone(),
             wall_heat: h.wall_heat.clone(),
             stability: h.stability,
         })
+    }
+
+    /// The total fluid force of [`World::thermo`] from the sums `x`.
+    pub(crate) fn fluid_force_of(&self, x: &BodyExtraSums) -> Option<glam::DVec3> {
+        self.fluid()
+            .map(|_| glam::DVec3::from_array(std::array::from_fn(|k| x.sums[2 + k].value())))
+    }
+}
+
+/// The bodies' sums of [`World::body_extra_sums`]: temperature, heat
+/// content, fluid force (x, y, z), and the lowest and highest temperature.
+#[derive(Debug, Clone)]
+pub(crate) struct BodyExtraSums {
+    /// Σ T, Σ m c T, Σ f_x, Σ f_y, Σ f_z.
+    pub sums: [ExactSum; 5],
+    /// Lowest temperature (+∞ without bodies).
+    pub lo: f64,
+    /// Highest temperature (−∞ without bodies).
+    pub hi: f64,
+}
+
+impl Default for BodyExtraSums {
+    fn default() -> Self {
+        BodyExtraSums {
+            sums: Default::default(),
+            lo: f64::INFINITY,
+            hi: f64::NEG_INFINITY,
+        }
     }
 }

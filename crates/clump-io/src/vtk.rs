@@ -406,7 +406,7 @@ impl PvdWriter {
                     } else if let (Some(dir), false) = (path.parent(), f.contains(['/', '\\'])) {
                         // a frame after the restart belongs to the run that is
                         // being rewound: delete it rather than leave it orphaned
-                        if f.ends_with(".pvtp") {
+                        if f.ends_with(".pvtp") || f.ends_with(".pvtu") {
                             for piece in
                                 crate::vtk_pieces::sources(&dir.join(&f)).unwrap_or_default()
                             {
@@ -547,11 +547,12 @@ impl VtkSeries {
 
     /// Rank 0's part of a frame written in pieces ([`crate::vtk_pieces`]),
     /// once every rank's piece is on disk: `spheres_<label>.pvtp` and
-    /// `bodies_<label>.pvtp` listing the pieces of the ranks `listed` (of
-    /// `n`), with the arrays declared in rank 0's pieces `headers`
-    /// (spheres, bodies), appended to the collections; the walls frame
-    /// whole. `bodies`: the frame's bodies over all ranks (the spheres and
-    /// bodies series start at the first frame with bodies, as in
+    /// `bodies_<label>.pvtp` (`.pvtu` in that format) listing the pieces
+    /// of the ranks `listed` (of `n`), with the arrays declared in rank 0's
+    /// pieces `headers` (spheres, bodies, in the series' format), appended
+    /// to the collections; the walls frame whole, in the series' format.
+    /// `bodies`: the frame's bodies over all ranks (the spheres and bodies
+    /// series start at the first frame with bodies, as in
     /// [`Self::write_frame`]).
     pub fn write_parallel_frame(
         &mut self,
@@ -562,15 +563,17 @@ impl VtkSeries {
         n: usize,
         bodies: usize,
     ) -> io::Result<()> {
+        use crate::vtk_pieces::{collection_name, parallel_file, piece_name};
+        let ext = self.format.extension();
         if bodies > 0 || !self.spheres.entries().is_empty() {
             for (k, (kind, head)) in ["spheres", "bodies"].into_iter().zip(headers).enumerate() {
                 let sources: Vec<String> = listed
                     .iter()
-                    .map(|&r| crate::vtk_pieces::piece_name(kind, label, r, n))
+                    .map(|&r| piece_name(kind, label, r, n, ext))
                     .collect();
-                let x = crate::vtk_pieces::pvtp(head, &sources)
+                let x = parallel_file(head, &sources)
                     .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))?;
-                let name = format!("{kind}_{label:06}.pvtp");
+                let name = collection_name(kind, label, ext);
                 write_atomic(self.dir.join(&name), &x)?;
                 let pvd = if k == 0 {
                     &mut self.spheres
@@ -580,8 +583,8 @@ impl VtkSeries {
                 pvd.append(world.time, &name)?;
             }
         }
-        let name = format!("walls_{label:06}.vtp");
-        write_atomic(self.dir.join(&name), &walls_vtp(world))?;
+        let name = format!("walls_{label:06}.{ext}");
+        write_atomic(self.dir.join(&name), &self.format.encode(walls_vtp(world)))?;
         self.walls.append(world.time, &name)
     }
 

@@ -114,4 +114,45 @@ impl ContactSeries {
         )?;
         self.pvd.append(frame.time, &name)
     }
+
+    /// The folder of the series.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// The walls' names (the frames' field data `wall_names`).
+    pub fn wall_names(&self) -> &[String] {
+        &self.wall_names
+    }
+
+    /// Rank 0's part of a contact frame written in pieces (one
+    /// `contacts_<step>.rank<r>of<n>.vtp` per rank, see
+    /// [`crate::vtk_pieces`]), once every piece is on disk:
+    /// `contacts_<step>.pvtp` listing the pieces of the ranks `listed` (of
+    /// `n`), with the arrays declared in rank 0's piece `head`, appended
+    /// to the collection at `time`; and `network_<step>.csv`, `network`.
+    pub fn write_parallel_frame(
+        &mut self,
+        time: f64,
+        step: u64,
+        head: &[u8],
+        listed: &[usize],
+        n: usize,
+        network: &str,
+    ) -> io::Result<()> {
+        use crate::vtk_pieces::{collection_name, parallel_file, piece_name};
+        let sources: Vec<String> = listed
+            .iter()
+            .map(|&r| piece_name("contacts", step, r, n, "vtp"))
+            .collect();
+        let x = parallel_file(head, &sources)
+            .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))?;
+        let name = collection_name("contacts", step, "vtp");
+        write_atomic(self.dir.join(&name), &x)?;
+        write_atomic(
+            self.dir.join(format!("network_{step:06}.csv")),
+            network.as_bytes(),
+        )?;
+        self.pvd.append(time, &name)
+    }
 }

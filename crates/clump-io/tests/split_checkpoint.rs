@@ -272,7 +272,38 @@ fn frame_bits(path: &Path) -> Vec<(String, Vec<u64>)> {
 /// one process's bytes.
 #[test]
 fn frames_in_pieces_hold_one_process_s_frames() {
-    let d = dir("frames");
+    frames_in_pieces("frames", "vtp");
+}
+
+/// The same for frames in `.vtu` (`vtk_format = "vtu"`: `.pvtu` and one
+/// `.vtu` per rank), and a series reopened for a resumed run at an earlier
+/// frame deletes the later collections and every piece they list.
+#[test]
+fn vtu_frames_in_pieces_hold_one_process_s_frames_and_rewind() {
+    let three = frames_in_pieces("frames-vtu", "vtu");
+    let pvd = std::fs::read_to_string(three.join("spheres.pvd")).unwrap();
+    let time_of = |name: &str| -> f64 {
+        let line = pvd.lines().find(|l| l.contains(name)).unwrap();
+        let t = &line[line.find("timestep=\"").unwrap() + 10..];
+        t[..t.find('"').unwrap()].parse().unwrap()
+    };
+    clump_io::vtk::VtkSeries::resume(&three, time_of("spheres_000274.pvtu")).unwrap();
+    for (step, kept) in [(274u64, true), (411, false), (685, false)] {
+        for kind in ["spheres", "bodies"] {
+            let mut names = vec![format!("{kind}_{step:06}.pvtu")];
+            names.extend((0..3).map(|r| format!("{kind}_{step:06}.rank{r}of3.vtu")));
+            for n in names {
+                assert_eq!(three.join(&n).exists(), kept, "{n}");
+            }
+        }
+    }
+}
+
+/// Runs the frames scenario (a frame every 137 steps, in `ext`) on one
+/// process and on 3 ranks, compares the frames, returns the 3 ranks'
+/// folder.
+fn frames_in_pieces(name: &str, ext: &str) -> PathBuf {
+    let d = dir(name);
     let base = scenario_file(&d);
     let text = std::fs::read_to_string(&base).unwrap();
     let sc = d.join("frames.toml");
@@ -280,7 +311,7 @@ fn frames_in_pieces_hold_one_process_s_frames() {
         &sc,
         text.replace(
             "vtk = { every_steps = 1000 }",
-            "vtk = { every_steps = 137 }",
+            &format!("vtk = {{ every_steps = 137 }}\nvtk_format = \"{ext}\""),
         ),
     )
     .unwrap();
@@ -291,21 +322,22 @@ fn frames_in_pieces_hold_one_process_s_frames() {
     assert!(read(one.join("final_state.json")) == read(three.join("final_state.json")));
     for step in [0u64, 137, 274, 411, 548, 685] {
         for kind in ["spheres", "bodies"] {
-            let plain = one.join(format!("{kind}_{step:06}.vtp"));
-            let pieces = three.join(format!("{kind}_{step:06}.pvtp"));
-            assert!(!three.join(format!("{kind}_{step:06}.vtp")).exists());
+            let plain = one.join(format!("{kind}_{step:06}.{ext}"));
+            let pieces = three.join(format!("{kind}_{step:06}.p{ext}"));
+            assert!(!three.join(format!("{kind}_{step:06}.{ext}")).exists());
             let (a, b) = (frame_bits(&plain), frame_bits(&pieces));
             assert_eq!(a.len(), b.len(), "{kind} {step}: the arrays differ");
             for (x, y) in a.iter().zip(&b) {
                 assert!(x == y, "{kind} {step}: array {} differs", x.0);
             }
         }
-        let walls = format!("walls_{step:06}.vtp");
+        let walls = format!("walls_{step:06}.{ext}");
         assert!(
             read(one.join(&walls)) == read(three.join(&walls)),
             "{walls}"
         );
     }
     let pvd = std::fs::read_to_string(three.join("bodies.pvd")).unwrap();
-    assert_eq!(pvd.matches(".pvtp\"").count(), 6, "{pvd}");
+    assert_eq!(pvd.matches(&format!(".p{ext}\"")).count(), 6, "{pvd}");
+    three
 }

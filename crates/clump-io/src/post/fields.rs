@@ -115,6 +115,43 @@ impl Fields {
             .collect()
     }
 
+    /// The fields of fixed-point sums ([`deposit`]'s terms summed, T-74):
+    /// each sum rounded once, the kinetic stress taken about the mean
+    /// velocity.
+    pub fn from_fixed(g: &super::fields_sum::FixedGrid) -> Fields {
+        use field::*;
+        let cells = g.cells();
+        let mut out = Fields::zeros(cells);
+        let vec3 = |c, f| DVec3::from_array(std::array::from_fn(|i| g.value(c, f, i)));
+        let mat3 = |c, f| DMat3::from_cols_array(&std::array::from_fn(|i| g.value(c, f, i)));
+        for c in 0..cells {
+            out.density[c] = g.value(c, DENSITY, 0);
+            out.momentum[c] = vec3(c, MOMENTUM);
+            out.kinetic_stress[c] = mat3(c, KINETIC);
+            out.contact_stress[c] = mat3(c, CONTACT);
+            out.contact_density[c] = g.value(c, CONTACTS, 0);
+            out.fabric_density[c] = mat3(c, FABRIC);
+            out.number_density[c] = g.value(c, NUMBER, 0);
+            out.order_density[c] = mat3(c, ORDER);
+            out.coordination_density[c] = g.value(c, COORDINATION, 0);
+            out.solid_fraction[c] = g.value(c, SOLID, 0);
+        }
+        out.about_mean_velocity();
+        out
+    }
+
+    /// Takes the mean velocity's part `p ⊗ p / ρ` off the kinetic stress
+    /// `Σ m v ⊗ v φ` (the stress about the local mean velocity).
+    pub fn about_mean_velocity(&mut self) {
+        for c in 0..self.density.len() {
+            let r = self.density[c];
+            if r > 0.0 {
+                let p = self.momentum[c];
+                self.kinetic_stress[c] -= DMat3::from_cols(p * p.x, p * p.y, p * p.z) / r;
+            }
+        }
+    }
+
     /// Adds `other` times `k` (time averaging).
     pub fn add_scaled(&mut self, other: &Fields, k: f64) {
         fn add<T: Copy + std::ops::Add<Output = T> + std::ops::Mul<f64, Output = T>>(
@@ -152,12 +189,62 @@ const GL4: [(f64, f64); 4] = [
 ];
 
 /// The fields of `frame` on `grid` (contacts ignored when the frame has
-/// none recorded).
+/// none recorded): every body's and contact's terms summed in fixed point
+/// ([`super::fields_sum`], T-74), so that the same terms give the same bits
+/// in any order, also summed by ranks in pieces.
 pub fn coarse_grain(frame: &Frame, grid: &Grid) -> Fields {
-    let mut f = Fields::zeros(grid.len());
+    let mut extent = super::fields_sum::Extent::default();
+    deposit(frame, grid, None, &mut |k, _, v| extent.see(k, v));
+    let mut sums = super::fields_sum::FixedGrid::new(grid.len(), &extent);
+    deposit(frame, grid, None, &mut |k, cell, v| sums.add(k, cell, v));
+    Fields::from_fixed(&sums)
+}
+
+/// The field indices of [`deposit`]'s terms, in [`Fields`]' order.
+pub mod field {
+    /// Mass density.
+    pub const DENSITY: usize = 0;
+    /// Momentum density.
+    pub const MOMENTUM: usize = 1;
+    /// Kinetic stress (`Σ m v ⊗ v φ`, before the mean velocity's part).
+    pub const KINETIC: usize = 2;
+    /// Contact stress.
+    pub const CONTACT: usize = 3;
+    /// Contact density.
+    pub const CONTACTS: usize = 4;
+    /// Fabric density.
+    pub const FABRIC: usize = 5;
+    /// Number density.
+    pub const NUMBER: usize = 6;
+    /// Order density.
+    pub const ORDER: usize = 7;
+    /// Coordination density.
+    pub const COORDINATION: usize = 8;
+    /// Solid fraction.
+    pub const SOLID: usize = 9;
+}
+
+/// Hands every term of the fields of `frame` on `grid` to
+/// `sink(field, cell, components)` (a vector's 3, a matrix's 9 columns
+/// first; [`field`] numbers the fields): the bodies whose ids `keep`
+/// holds and the contacts whose sphere `i` belongs to one of them (all
+/// without `keep`). The kinetic stress's terms are `m v ⊗ v φ`; the mean
+/// velocity's part is taken off once the sums are made
+/// ([`Fields::about_mean_velocity`]).
+pub fn deposit(
+    frame: &Frame,
+    grid: &Grid,
+    keep: Option<&std::collections::HashSet<u64>>,
+    sink: &mut dyn FnMut(usize, usize, &[f64]),
+) {
+    use field::*;
     let mut w = Vec::new();
     let counts = super::network::body_counts(frame);
+    let kept = |id: u64| keep.is_none_or(|k| k.contains(&id));
     for (k, b) in frame.bodies.iter().enumerate() {
+        if !kept(b.id) {
+            continue;
+        }
         grid.weights(b.position, &mut w);
         let u = b.long_axis();
         let q = DMat3::from_cols(u * u.x, u * u.y, u * u.z) * 1.5 - DMat3::IDENTITY * 0.5;
@@ -168,25 +255,20 @@ pub fn coarse_grain(frame: &Frame, grid: &Grid) -> Fields {
         );
         let z = counts.as_ref().map_or(0.0, |c| c[k][0] as f64);
         for &(cell, p) in &w {
-            f.density[cell] += b.mass * p;
-            f.momentum[cell] += b.velocity * (b.mass * p);
-            f.kinetic_stress[cell] += mvv * p;
-            f.number_density[cell] += p;
-            f.order_density[cell] += q * p;
-            f.coordination_density[cell] += z * p;
-            f.solid_fraction[cell] += b.volume * p;
-        }
-    }
-    // kinetic stress about the local mean velocity
-    for c in 0..grid.len() {
-        let r = f.density[c];
-        if r > 0.0 {
-            let p = f.momentum[c];
-            f.kinetic_stress[c] -= DMat3::from_cols(p * p.x, p * p.y, p * p.z) / r;
+            sink(DENSITY, cell, &[b.mass * p]);
+            sink(MOMENTUM, cell, &(b.velocity * (b.mass * p)).to_array());
+            sink(KINETIC, cell, &(mvv * p).to_cols_array());
+            sink(NUMBER, cell, &[p]);
+            sink(ORDER, cell, &(q * p).to_cols_array());
+            sink(COORDINATION, cell, &[z * p]);
+            sink(SOLID, cell, &[b.volume * p]);
         }
     }
     let index = frame.index_by_id();
     for c in frame.contacts.iter().flatten() {
+        if !kept(c.body_i) {
+            continue;
+        }
         let nn = DMat3::from_cols(
             c.normal * c.normal.x,
             c.normal * c.normal.y,
@@ -194,8 +276,8 @@ pub fn coarse_grain(frame: &Frame, grid: &Grid) -> Fields {
         );
         grid.weights(c.point, &mut w);
         for &(cell, p) in &w {
-            f.contact_density[cell] += p;
-            f.fabric_density[cell] += nn * p;
+            sink(CONTACTS, cell, &[p]);
+            sink(FABRIC, cell, &(nn * p).to_cols_array());
         }
         let mut sides = [(c.body_i, c.force), (0, DVec3::ZERO)];
         if let Side::Body(j) = c.partner {
@@ -214,11 +296,14 @@ pub fn coarse_grain(frame: &Frame, grid: &Grid) -> Fields {
                     let t = (s as f64 + x) / segs as f64;
                     grid.weights(r + l * t, &mut w);
                     for &(cell, p) in &w {
-                        f.contact_stress[cell] -= fl * (p * wt / segs as f64);
+                        sink(
+                            CONTACT,
+                            cell,
+                            &(-(fl * (p * wt / segs as f64))).to_cols_array(),
+                        );
                     }
                 }
             }
         }
     }
-    f
 }

@@ -9,6 +9,7 @@
 
 pub mod bed;
 pub mod fields;
+pub mod fields_sum;
 pub mod flow;
 pub mod frame;
 pub mod grid;

@@ -89,25 +89,34 @@ pub fn body_counts(frame: &Frame) -> Option<Vec<[u32; 3]>> {
     Some(out)
 }
 
+/// The header line of the network CSV.
+pub const CSV_HEADER: &str =
+    "body_i,body_j,contacts,force_x[N],force_y[N],force_z[N],branch_x[m],branch_y[m],branch_z[m]\n";
+
 /// The network as CSV text, one edge per line, with a header.
 pub fn csv(frame: &Frame) -> String {
-    let mut s = String::from(
-        "body_i,body_j,contacts,force_x[N],force_y[N],force_z[N],branch_x[m],branch_y[m],branch_z[m]\n",
-    );
+    let mut s = String::from(CSV_HEADER);
     for e in edges(frame) {
-        let _ = writeln!(
-            s,
-            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e}",
-            e.body_i,
-            e.body_j,
-            e.contacts,
-            e.force.x,
-            e.force.y,
-            e.force.z,
-            e.branch.x,
-            e.branch.y,
-            e.branch.z
-        );
+        s.push_str(&csv_line(&e));
     }
+    s
+}
+
+/// One edge's line of the CSV (with its newline).
+pub fn csv_line(e: &Edge) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e}",
+        e.body_i,
+        e.body_j,
+        e.contacts,
+        e.force.x,
+        e.force.y,
+        e.force.z,
+        e.branch.x,
+        e.branch.y,
+        e.branch.z
+    );
     s
 }

@@ -21,19 +21,20 @@ fn attr<'a>(line: &'a str, name: &str) -> Option<&'a str> {
 }
 
 /// The arrays of a `.vtp` written by Clump: point data and `Points` under
-/// their names, cell data under `cell:<name>`. A `.pvtp` (a frame of a run
-/// on MPI ranks, [`crate::vtk_pieces`]) reads as its pieces one after
-/// another, in the order it lists them; every piece must hold the same
-/// arrays.
+/// their names, cell data under `cell:<name>` (a `.vtu` of Clump reads
+/// alike: the same arrays, its `Cells` skipped). A `.pvtp` or `.pvtu` (a
+/// frame of a run on MPI ranks, [`crate::vtk_pieces`]) reads as its pieces
+/// one after another, in the order it lists them; every piece must hold
+/// the same arrays.
 pub fn read_vtp(path: &Path) -> Result<Arrays, String> {
-    if path.extension().is_some_and(|e| e == "pvtp") {
+    if path.extension().is_some_and(|e| e == "pvtp" || e == "pvtu") {
         return read_pvtp(path);
     }
     read_one_vtp(path)
 }
 
 /// The point arrays of a spheres or bodies frame ([`read_vtp`], so also a
-/// `.pvtp` in pieces) with the points in the order of their `body_id`
+/// `.pvtp` or `.pvtu` in pieces) with the points in the order of their `body_id`
 /// (stable: a body's spheres stay in their order), sorted by name: the
 /// same for a frame of one process and the pieces of any rank count.
 pub fn arrays_by_body(path: &Path) -> Result<Vec<(String, Vec<f64>)>, String> {
@@ -107,6 +108,7 @@ fn read_one_vtp(path: &Path) -> Result<Arrays, String> {
             "<PointData",
             "<CellData",
             "<Points",
+            "<Cells",
             "<Verts",
             "<Lines",
             "<Polys",
@@ -176,7 +178,7 @@ pub fn contact_frames(run: &Path) -> Result<Vec<(u64, f64)>, String> {
         .iter()
         .map(|(t, f)| {
             f.strip_prefix("contacts_")
-                .and_then(|x| x.strip_suffix(".vtp"))
+                .and_then(|x| x.strip_suffix(".vtp").or_else(|| x.strip_suffix(".pvtp")))
                 .and_then(|x| x.parse().ok())
                 .map(|s| (s, *t))
                 .ok_or_else(|| format!("{}: unexpected entry {f}", path.display()))
@@ -185,20 +187,17 @@ pub fn contact_frames(run: &Path) -> Result<Vec<(u64, f64)>, String> {
 }
 
 /// The frame at `step` of the run in `run`: `bodies_<step>.vtp`,
-/// `contacts_<step>.vtp`, `domain.json`.
+/// `contacts_<step>.vtp`, `domain.json` (a run on MPI ranks: the `.pvtp`
+/// of its pieces, read in the ranks' order).
 pub fn read_frame(run: &Path, step: u64, time: f64) -> Result<Frame, String> {
     let dj = run.join("domain.json");
     let text =
         std::fs::read_to_string(&dj).map_err(|e| format!("cannot read {}: {e}", dj.display()))?;
     let domain: Domain =
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", dj.display()))?;
-    // a run on MPI ranks writes its frames in pieces
-    let plain = run.join(format!("bodies_{step:06}.vtp"));
-    let b = read_vtp(&if plain.exists() {
-        plain
-    } else {
-        run.join(format!("bodies_{step:06}.pvtp"))
-    })?;
+    // a run on MPI ranks writes its frames in pieces; `.vtu` in that format
+    let names = ["vtp", "pvtp", "vtu", "pvtu"].map(|e| run.join(format!("bodies_{step:06}.{e}")));
+    let b = read_vtp(names.iter().find(|p| p.exists()).unwrap_or(&names[0]))?;
     let need = |a: &Arrays, k: &str| -> Result<Vec<f64>, String> {
         a.get(k)
             .cloned()
@@ -232,7 +231,12 @@ pub fn read_frame(run: &Path, step: u64, time: f64) -> Result<Frame, String> {
             torque: v3(&torque, i),
         })
         .collect();
-    let c = read_vtp(&run.join(format!("contacts_{step:06}.vtp")))?;
+    let plain = run.join(format!("contacts_{step:06}.vtp"));
+    let c = read_vtp(&if plain.exists() {
+        plain
+    } else {
+        run.join(format!("contacts_{step:06}.pvtp"))
+    })?;
     let (pts, f, n, o, p, bi, bj, wall, sl) = (
         need(&c, "Points")?,
         need(&c, "cell:force")?,

@@ -102,7 +102,18 @@ impl FieldSeries {
     pub fn add(&mut self, frame: &Frame) -> io::Result<Fields> {
         let grid = self.spec.grid(&frame.domain);
         let f = coarse_grain(frame, &grid);
-        self.write(&grid, &f, &format!("{:06}", frame.step))?;
+        self.add_fields(grid, f, frame.step)
+    }
+
+    /// The grid of the series in `domain`.
+    pub fn grid(&self, domain: &Domain) -> Grid {
+        self.spec.grid(domain)
+    }
+
+    /// Writes the fields `f` on `grid` of the frame at `step` (made
+    /// elsewhere, e.g. summed over ranks) and keeps them for the average.
+    pub fn add_fields(&mut self, grid: Grid, f: Fields, step: u64) -> io::Result<Fields> {
+        self.write(&grid, &f, &format!("{step:06}"))?;
         if self.spec.average {
             match &mut self.sum {
                 Some((_, s, n)) => {

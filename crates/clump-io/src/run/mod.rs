@@ -28,8 +28,10 @@
 #![allow(clippy::manual_is_multiple_of, clippy::result_large_err)]
 
 mod checkpoint;
+mod contact_ranks;
 pub mod device;
 mod error;
+mod fields_ranks;
 mod manifest;
 pub mod outdir;
 mod outputs;
@@ -714,6 +716,12 @@ impl Runner {
         if self.thermo_in_pieces() {
             e = e.min(self.st.next_thermo);
         }
+        if self.contacts_in_pieces() {
+            e = e.min(self.st.next_contacts);
+        }
+        if self.fields_in_pieces() {
+            e = e.min(self.st.next_fields);
+        }
         let o = &self.scenario.output;
         if o.trajectory.is_some() && self.out.trajectory.is_some() && self.trajectory_in_pieces() {
             e = e.min(self.st.next_trajectory);
@@ -726,14 +734,11 @@ impl Runner {
 
     /// True when this run's thermo rows come from reductions over the ranks
     /// ([`World::thermo_of_ranks`]): a world split over several ranks,
-    /// with a thermo output, without heat or a fluid (their columns need
-    /// the whole world).
+    /// with a thermo output (with heat or a fluid too).
     fn thermo_in_pieces(&self) -> bool {
         self.world.part_info().is_some_and(|p| p.size > 1)
             && self.out.thermo.is_some()
             && self.scenario.output.thermo.is_some()
-            && self.scenario.heat.is_none()
-            && self.scenario.fluid.is_none()
     }
 
     /// True when this run's insertions and stage changes are done on the
@@ -770,10 +775,10 @@ impl Runner {
 
     /// The next step whose boundary work needs the whole world: the end of
     /// the current stage, an insertion, an output row or frame (every
-    /// event but a checkpoint, the step limit, a VTK frame written in
-    /// pieces, a thermo row from reductions, trajectory rows from the
-    /// bodies' owners, and an insertion or a stage change done on the split
-    /// world).
+    /// event but a checkpoint, the step limit, a VTK or contact frame
+    /// written in pieces, fields and thermo rows from reductions,
+    /// trajectory rows from the bodies' owners, and an insertion or a stage
+    /// change done on the split world).
     fn next_whole_step(&self) -> u64 {
         let st = &self.st;
         let o = &self.scenario.output;
@@ -790,10 +795,10 @@ impl Runner {
         if o.trajectory.is_some() && self.out.trajectory.is_some() && !self.trajectory_in_pieces() {
             e = e.min(st.next_trajectory);
         }
-        if o.contacts.is_some() && self.out.contacts.is_some() {
+        if o.contacts.is_some() && self.out.contacts.is_some() && !self.contacts_in_pieces() {
             e = e.min(st.next_contacts);
         }
-        if o.fields.is_some() && self.out.fields.is_some() {
+        if o.fields.is_some() && self.out.fields.is_some() && !self.fields_in_pieces() {
             e = e.min(st.next_fields);
         }
         if o.flow.is_some() && self.out.flow.is_some() {

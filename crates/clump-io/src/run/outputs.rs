@@ -240,29 +240,58 @@ impl Runner {
         let o = self.scenario.output.clone();
         // a frame without bodies has nothing to show (and VTK series start
         // at their first frame with bodies)
-        let snap = self.snap.take().filter(|f| !f.bodies.is_empty());
+        let captured = self.snap.take();
+        let snap = captured.as_ref().filter(|f| !f.bodies.is_empty());
         // a contact frame (only where the step recorded its contacts) comes
         // with a bodies frame at the same step, for `clump post`
         let mut contact_frame = false;
+        let contacts_in_pieces = self.contacts_in_pieces();
         if let (Some(every), Some(cs)) = (o.contacts, self.out.contacts.as_mut()) {
             let due =
                 step >= self.st.next_contacts || (finished && self.st.last_contacts != Some(step));
-            if let (true, Some(frame)) = (due, snap.as_ref()) {
-                cs.write_frame(frame)
-                    .map_err(rt("cannot write contact output"))?;
-                self.st.last_contacts = Some(step);
-                self.st.next_contacts = step + every;
-                contact_frame = true;
+            // on ranks every rank takes part, also one without bodies
+            let frame = if contacts_in_pieces {
+                captured.as_ref()
+            } else {
+                snap
+            };
+            if let (true, Some(frame)) = (due, frame) {
+                let written = if contacts_in_pieces {
+                    super::contact_ranks::write_contacts_in_pieces(&mut self.world, cs, frame)?
+                } else {
+                    cs.write_frame(frame)
+                        .map_err(rt("cannot write contact output"))?;
+                    true
+                };
+                if written {
+                    self.st.last_contacts = Some(step);
+                    self.st.next_contacts = step + every;
+                    contact_frame = true;
+                }
             }
         }
+        let fields_in_pieces = self.fields_in_pieces();
         if let (Some((every, _)), Some(fs)) = (&o.fields, self.out.fields.as_mut()) {
             let due =
                 step >= self.st.next_fields || (finished && self.st.last_fields != Some(step));
-            if let (true, Some(frame)) = (due, snap.as_ref()) {
-                fs.add(frame)
-                    .map_err(rt("cannot write the coarse-grained fields"))?;
-                self.st.last_fields = Some(step);
-                self.st.next_fields = step + every;
+            // on ranks every rank takes part, also one without bodies
+            let frame = if fields_in_pieces {
+                captured.as_ref()
+            } else {
+                snap
+            };
+            if let (true, Some(frame)) = (due, frame) {
+                let written = if fields_in_pieces {
+                    super::fields_ranks::write_fields_in_pieces(&mut self.world, fs, frame)?
+                } else {
+                    fs.add(frame)
+                        .map_err(rt("cannot write the coarse-grained fields"))?;
+                    true
+                };
+                if written {
+                    self.st.last_fields = Some(step);
+                    self.st.next_fields = step + *every;
+                }
             }
         }
         if let (Some((every, probes)), Some(log)) = (&o.flow, self.out.flow.as_mut()) {
@@ -280,7 +309,7 @@ impl Runner {
                 || contact_frame
                 || (finished && self.st.last_vtk != Some(step))
             {
-                let counts: Option<crate::vtk::BodyCounts> = snap.as_ref().and_then(|f| {
+                let counts: Option<crate::vtk::BodyCounts> = snap.and_then(|f| {
                     let n = crate::post::network::body_counts(f)?;
                     Some(f.bodies.iter().map(|b| b.id).zip(n).collect())
                 });

@@ -1,6 +1,6 @@
 //! VTK frames of a world split over MPI ranks, in pieces
 //! ([`crate::vtk_pieces`]): every rank writes its bodies' piece into rank
-//! 0's folder, then rank 0 writes the `.pvtp` collections, the walls and
+//! 0's folder, then rank 0 writes the `.pvtp` (`.pvtu`) collections, the walls and
 //! the `.pvd` entries. The world need not be whole: a split world's piece
 //! holds the rank's owned bodies, a whole one's the bodies in the rank's
 //! region ([`World::piece_mask`]).
@@ -9,21 +9,14 @@ use super::pieces::{from_root, gather_reports};
 use super::{RunError, Runner};
 use crate::vtk::{bodies_vtp_of, spheres_vtp_of, BodyCounts, VtkSeries};
 use crate::vtk_pieces::piece_name;
-use crate::vtu::VtkFormat;
 use clump_core::world::World;
 use std::path::{Path, PathBuf};
 
 impl Runner {
     /// True when this run's VTK frames are written in pieces: a world
-    /// split over several ranks, frames in `.vtp` (`.vtu` frames are
-    /// written whole by rank 0).
+    /// split over several ranks, with VTK frames (`.vtp` or `.vtu`).
     pub(super) fn vtk_in_pieces(&self) -> bool {
-        self.world.part_info().is_some_and(|p| p.size > 1)
-            && self
-                .out
-                .vtk
-                .as_ref()
-                .is_some_and(|v| v.format() == VtkFormat::Vtp)
+        self.world.part_info().is_some_and(|p| p.size > 1) && self.out.vtk.is_some()
     }
 }
 
@@ -42,10 +35,12 @@ pub(super) fn write_frame_in_pieces(
     let dir = PathBuf::from(from_root(world, &dir.to_string_lossy()));
     let mask = world.piece_mask().expect("a world split over ranks");
     let mine = mask.iter().filter(|&&k| k).count();
-    let spheres = spheres_vtp_of(world, Some(&mask));
-    let bodies = bodies_vtp_of(world, counts, Some(&mask));
+    let format = vtk.format();
+    let ext = format.extension();
+    let spheres = format.encode(spheres_vtp_of(world, Some(&mask)));
+    let bodies = format.encode(bodies_vtp_of(world, counts, Some(&mask)));
     let write = |kind: &str, bytes: &[u8]| {
-        let path = dir.join(piece_name(kind, label, me, n));
+        let path = dir.join(piece_name(kind, label, me, n, ext));
         crate::atomic::write_atomic(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))
     };
     // rank 0's piece declares the arrays, so it is written even when empty
@@ -70,14 +65,14 @@ pub(super) fn write_frame_in_pieces(
         .map_err(|e| RunError::Runtime(format!("cannot write VTK output: {e}")))?;
     if !vtk.started() {
         // no bodies yet anywhere: the series has not started
-        remove_own_pieces(&dir, label, n);
+        remove_own_pieces(&dir, label, n, ext);
     }
     Ok(())
 }
 
 /// Removes rank 0's pieces of the frame at `label`.
-fn remove_own_pieces(dir: &Path, label: u64, n: usize) {
+fn remove_own_pieces(dir: &Path, label: u64, n: usize, ext: &str) {
     for kind in ["spheres", "bodies"] {
-        let _ = std::fs::remove_file(dir.join(piece_name(kind, label, 0, n)));
+        let _ = std::fs::remove_file(dir.join(piece_name(kind, label, 0, n, ext)));
     }
 }

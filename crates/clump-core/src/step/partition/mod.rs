@@ -4,7 +4,8 @@
 //! ghosts and sum statistics after each step ([`ghosts`]), the walls' heat
 //! flows ([`heat`]), keep the world split through an event or gather it
 //! ([`split`]), insert bodies into a split world ([`insert`]), take a
-//! rank's share of a checkpoint in pieces ([`share`]).
+//! rank's share of a checkpoint in pieces ([`share`]), reduce outputs'
+//! partial results over the ranks ([`reduce`]).
 
 pub(crate) mod cost;
 pub(crate) mod ghosts;
@@ -12,6 +13,7 @@ pub(crate) mod heat;
 pub(crate) mod insert;
 pub(crate) mod join;
 pub(crate) mod migrate;
+pub(crate) mod reduce;
 pub(crate) mod restrict;
 pub(crate) mod share;
 pub(crate) mod split;

@@ -18,16 +18,13 @@ impl World {
     /// The thermo row of this rank's world (a collective call on a split
     /// world: every rank makes it and gets the same row); [`World::thermo`]
     /// on a whole one. An error when the split world's last step made no
-    /// exact sums, or the world has heat or a fluid (their columns need the
-    /// whole world).
+    /// exact sums. With heat or a fluid, the temperature and heat sums and
+    /// the fluid force are exact sums over the owned bodies too, the
+    /// lowest and highest temperature a minimum and maximum over the ranks,
+    /// the walls' heat flows every rank's already (T-94).
     pub fn thermo_of_ranks(&mut self) -> Result<Thermo, String> {
         if !self.is_split() {
             return Ok(self.thermo());
-        }
-        if self.heat.is_some() || self.fluid().is_some() {
-            return Err(
-                "a thermo row of a world with heat or a fluid needs the whole world".into(),
-            );
         }
         let Some((elastic, walls)) = self.neighbors.records.sums.at_step(self.step) else {
             return Err(format!(
@@ -39,17 +36,27 @@ impl World {
         let count = owned.iter().filter(|&&o| o).count() as u64;
         let mut sums = self.body_energy_sums(Some(owned)).to_vec();
         sums.push(elastic);
+        let n_walls = walls.len();
         sums.extend(walls.iter().flatten());
+        let mut extra = self.body_extra_sums(Some(owned));
+        sums.extend(extra.sums.iter().cloned());
         let part = self.part.as_mut().expect("a split world");
         part.traffic.reductions += 1;
         let (sums, count) = all_sum(&mut *part.comm, sums, count)?;
+        let k = 4 + 6 * n_walls;
+        extra.sums = std::array::from_fn(|i| sums[k + i].clone());
+        if self.heat.is_some() {
+            (extra.lo, extra.hi) = temperature_range(self, extra.lo, extra.hi)?;
+        }
         let mut t = self.thermo();
         t.bodies = count as usize;
         t.kinetic_translational = sums[0].value();
         t.kinetic_rotational = sums[1].value();
         t.potential = sums[2].value();
         t.elastic = sums[3].value();
-        let walls: Vec<_> = sums[4..]
+        t.heat = self.heat_thermo_of(&extra, count);
+        t.fluid_force = self.fluid_force_of(&extra);
+        let walls: Vec<_> = sums[4..k]
             .chunks_exact(6)
             .map(|c| std::array::from_fn(|k| c[k]))
             .collect();
@@ -60,6 +67,29 @@ impl World {
 
 /// A list of exact sums and a count, summed over the ranks.
 struct Sums(Vec<ExactSum>, u64);
+
+/// The lowest and highest temperature over the ranks (every rank's `lo`
+/// and `hi`, reduced up and down a binomial tree: exact in any order).
+fn temperature_range(w: &mut World, lo: f64, hi: f64) -> Result<(f64, f64), String> {
+    let bytes = [lo.to_le_bytes(), hi.to_le_bytes()].concat();
+    let pair = |b: &[u8]| -> Option<(f64, f64)> {
+        let lo = f64::from_le_bytes(b.get(..8)?.try_into().ok()?);
+        Some((lo, f64::from_le_bytes(b.get(8..16)?.try_into().ok()?)))
+    };
+    let merge = |acc: &mut Vec<u8>, theirs: &[u8], from: usize| -> Result<(), String> {
+        let bad = || {
+            format!(
+                "rank {from} sent a temperature range of {} bytes",
+                theirs.len()
+            )
+        };
+        let ((a, b), (c, d)) = (pair(acc).ok_or_else(bad)?, pair(theirs).ok_or_else(bad)?);
+        *acc = [a.min(c).to_le_bytes(), b.max(d).to_le_bytes()].concat();
+        Ok(())
+    };
+    let all = w.all_reduce(bytes, &merge)?;
+    pair(&all).ok_or_else(|| "a temperature range of the wrong size".into())
+}
 
 impl TreeSum for Sums {
     fn encode(&self) -> Vec<u8> {
