@@ -20,29 +20,56 @@ pub(crate) trait TreeSum: Sized {
 }
 
 /// The total of every rank's `mine` (see the module's doc), on every rank.
-pub(crate) fn all_reduce<T: TreeSum>(comm: &mut dyn Comm, mut mine: T) -> Result<T, String> {
+pub(crate) fn all_reduce<T: TreeSum>(comm: &mut dyn Comm, mine: T) -> Result<T, String> {
+    let mine = up(comm, mine, T::encode, |acc, b, from| {
+        acc.merge(T::decode(b, from)?);
+        Ok(())
+    })?;
+    down(comm, mine, T::encode, T::decode)
+}
+
+/// Up the tree to rank 0: `absorb(acc, bytes, from)` folds rank `from`'s
+/// subtree total in. The total on rank 0; elsewhere the rank's partial
+/// total, already sent up.
+pub(crate) fn up<T>(
+    comm: &mut dyn Comm,
+    mut mine: T,
+    encode: impl Fn(&T) -> Vec<u8>,
+    mut absorb: impl FnMut(&mut T, &[u8], usize) -> Result<(), String>,
+) -> Result<T, String> {
     let (me, size) = (comm.rank(), comm.size());
     let mut k = 1;
     while k < size {
         if me % (2 * k) == k {
-            comm.exchange(&[(me - k, mine.encode())], &[]);
+            comm.exchange(&[(me - k, encode(&mine))], &[]);
             break;
         }
         if me % (2 * k) == 0 && me + k < size {
             let got = comm.exchange(&[], &[me + k]);
-            mine.merge(T::decode(&got[0], me + k)?);
+            absorb(&mut mine, &got[0], me + k)?;
         }
         k *= 2;
     }
-    // down the same tree: from the highest level each rank took part in
+    Ok(mine)
+}
+
+/// Rank 0's total down the same tree, from the highest level each rank
+/// took part in: every rank returns it.
+pub(crate) fn down<T>(
+    comm: &mut dyn Comm,
+    mut mine: T,
+    encode: impl Fn(&T) -> Vec<u8>,
+    decode: impl Fn(&[u8], usize) -> Result<T, String>,
+) -> Result<T, String> {
+    let (me, size) = (comm.rank(), comm.size());
     let mut k = size.next_power_of_two();
     while k > 1 {
         k /= 2;
         if me % (2 * k) == k {
             let got = comm.exchange(&[], &[me - k]);
-            mine = T::decode(&got[0], me - k)?;
+            mine = decode(&got[0], me - k)?;
         } else if me % (2 * k) == 0 && me + k < size {
-            comm.exchange(&[(me + k, mine.encode())], &[]);
+            comm.exchange(&[(me + k, encode(&mine))], &[]);
         }
     }
     Ok(mine)
