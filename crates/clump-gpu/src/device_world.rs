@@ -8,7 +8,7 @@ use clump_core::world::World;
 use glam::{DQuat, DVec3};
 
 /// The kernels, one WGSL module.
-const SHADER: [&str; 8] = [
+const SHADER: [&str; 9] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/periodic.wgsl"),
     include_str!("shaders/rotation.wgsl"),
@@ -17,9 +17,10 @@ const SHADER: [&str; 8] = [
     include_str!("shaders/rolling.wgsl"),
     include_str!("shaders/contact.wgsl"),
     include_str!("shaders/walls.wgsl"),
+    include_str!("shaders/mesh.wgsl"),
 ];
 /// Storage bindings of the module (common.wgsl).
-const N_BINDINGS: u32 = 30;
+const N_BINDINGS: u32 = 31;
 /// f64s per contact's springs: tangential (3), then rolling (3)
 /// (common.wgsl `ld_hist`, `ld_roll`).
 pub(crate) const HIST: usize = 6;
@@ -507,6 +508,13 @@ impl DeviceWorld {
         ))
     }
 
+    /// The mesh wall slots' keys (mesh.rs), one per (sphere, wall slot).
+    pub(crate) fn mesh_keys(&self) -> Result<Vec<u32>, GpuError> {
+        let u: Vec<u32> = self.gpu.read(&self.buffers[30])?;
+        let at = u[0] as usize;
+        Ok(u[at..at + self.n.ns * self.n.nwf].to_vec())
+    }
+
     /// Number of spheres on the device.
     pub fn spheres(&self) -> usize {
         self.n.ns
@@ -522,6 +530,8 @@ pub(crate) struct Springs {
     pub nbr: Vec<u32>,
     pub hist: Vec<f64>,
     pub whist: Vec<f64>,
+    /// Mesh wall slots' keys (mesh.rs), one per (sphere, wall slot).
+    pub wkey: Vec<u32>,
 }
 
 /// The bodies of `world` in ascending id: the device's order, whatever
@@ -567,6 +577,10 @@ struct HostArrays {
     sref: Vec<f64>,
     walls: Vec<f64>,
     laws: Vec<f64>,
+    /// Mesh walls' meshes (mesh.rs); their f64s follow `walls`.
+    meshes: crate::mesh::MeshArrays,
+    /// Where the meshes' f64s start in `walls`.
+    walls_len: usize,
 }
 
 impl HostArrays {
@@ -633,6 +647,9 @@ impl HostArrays {
         let sets = if table.moving { BATCH as usize + 1 } else { 1 };
         let mut walls = table.rows();
         walls.resize(sets * walls.len(), 0.0);
+        let meshes = crate::mesh::MeshArrays::new(world.walls.meshes(), rmax);
+        let walls_len = walls.len();
+        walls.extend(&meshes.f);
         let nwf = crate::walls::face_bases(&world.walls).1;
         // indices 0-16 common.wgsl, 17 periodic.wgsl
         let mut pu = vec![0u32; crate::periodic::PU_PERIODIC + 1];
@@ -733,6 +750,8 @@ impl HostArrays {
                 sref,
                 walls,
                 laws,
+                meshes,
+                walls_len,
             },
             n,
         ))
@@ -780,6 +799,11 @@ impl HostArrays {
         }
         out.push(gpu.buffer("laws", &self.laws));
         out.push(gpu.zeroed::<f64>("sx0", 3 * n.ns));
+        let keys = match &springs {
+            Some(sp) => padded(&sp.wkey, n.ns * nw),
+            None => vec![0; n.ns * nw],
+        };
+        out.push(gpu.buffer("mesh_u", &self.meshes.with_keys(&keys, self.walls_len)));
         out
     }
 }

@@ -17,6 +17,7 @@
 pub mod bed;
 pub mod context;
 pub mod device_world;
+mod mesh;
 pub mod periodic;
 pub mod steps;
 pub mod support;

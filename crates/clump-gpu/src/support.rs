@@ -3,7 +3,6 @@
 //! on, so `clump check --device gpu` can refuse it at the key.
 
 use clump_core::rotation::RotationScheme;
-use clump_core::wall::WallShape;
 use clump_core::world::World;
 
 /// One step of a scenario key's path: a table key or an array index.
@@ -122,13 +121,7 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
         );
     }
     for (k, w) in world.walls.iter().enumerate() {
-        // every motion the CPU path allows runs (walls.rs)
-        if matches!(w.shape, WallShape::Mesh { .. }) {
-            no(
-                wall_key(k, Some("type")),
-                "\"plane\", \"cylinder\" or \"box\"",
-            );
-        }
+        // every shape and motion the CPU path allows runs (walls.rs, mesh.rs)
         if w.multi_contact != clump_core::multi_contact::MultiContact::Sum {
             no(wall_key(k, Some("multi_contact")), "\"sum\"");
         }

@@ -57,6 +57,10 @@ fn springs_at(a: &[f64], k: usize) -> (DVec3, DVec3) {
     )
 }
 
+fn is_mesh(w: &clump_core::wall::Wall) -> bool {
+    matches!(w.shape, clump_core::wall::WallShape::Mesh { .. })
+}
+
 fn bad_state(e: impl std::fmt::Display) -> DeviceError {
     DeviceError::Overflow(format!("device state: {e}"))
 }
@@ -115,14 +119,28 @@ impl Springs {
         let nw = world.walls.len();
         let (base, nwf) = crate::walls::face_bases(&world.walls);
         let mut whist = vec![0.0; HIST * ns * nwf];
+        let mut wkey = vec![0u32; ns * nwf];
         let cpu_gid = &world.spheres().gid;
         for (s, (keys, hs)) in state.wall_key.iter().zip(&state.wall_hist).enumerate() {
+            // a mesh wall's slots in the order of its keys (mesh.rs)
+            let mut mesh_used = HashMap::new();
             for (&key, h) in keys.iter().zip(hs) {
-                let (w, face) = if key == 0 { (nw, 0) } else { slot_wall(key) };
-                if w >= nw || face >= crate::walls::faces(&world.walls[w]) {
+                let (w, mut face) = if key == 0 { (nw, 0) } else { slot_wall(key) };
+                if w >= nw {
+                    continue;
+                }
+                if is_mesh(&world.walls[w]) {
+                    let used = mesh_used.entry(w).or_insert(0);
+                    face = *used;
+                    *used += 1;
+                }
+                if face >= crate::walls::faces(&world.walls[w]) {
                     continue;
                 }
                 let slot = find(cpu_gid[s])? as usize * nwf + base[w] + face;
+                if is_mesh(&world.walls[w]) {
+                    wkey[slot] = key;
+                }
                 let o = HIST * slot;
                 whist[o..o + 3].copy_from_slice(&h.tangential.to_array());
                 whist[o + 3..o + 6].copy_from_slice(&h.rolling.to_array());
@@ -133,6 +151,7 @@ impl Springs {
             nbr,
             hist,
             whist,
+            wkey,
         })
     }
 }
@@ -257,6 +276,7 @@ impl DeviceWorld {
         gids: &[u64],
     ) -> Result<(Vec<[u32; WALL_SLOTS]>, Vec<[ContactHistory; WALL_SLOTS]>), DeviceError> {
         let whist = self.read_f64(27)?;
+        let wkey = self.mesh_keys()?;
         let (base, nwf) = crate::walls::face_bases(&world.walls);
         let at: HashMap<u64, usize> = gids.iter().enumerate().map(|(d, &g)| (g, d)).collect();
         let cpu_gid = &world.spheres().gid;
@@ -270,9 +290,19 @@ impl DeviceWorld {
             for (w, face) in (0..world.walls.len())
                 .flat_map(|w| (0..crate::walls::faces(&world.walls[w])).map(move |f| (w, f)))
             {
-                let (t, r) = springs_at(&whist, d * nwf + base[w] + face);
-                if (t != DVec3::ZERO || r != DVec3::ZERO) && used < WALL_SLOTS {
-                    keys[s][used] = slot_key(w, face);
+                let slot = d * nwf + base[w] + face;
+                let (t, r) = springs_at(&whist, slot);
+                // a mesh slot is kept with its key (the stored normal
+                // matters to the next step's match, whatever its springs)
+                let key = if is_mesh(&world.walls[w]) {
+                    wkey[slot]
+                } else if t != DVec3::ZERO || r != DVec3::ZERO {
+                    slot_key(w, face)
+                } else {
+                    0
+                };
+                if key != 0 && used < WALL_SLOTS {
+                    keys[s][used] = key;
                     hists[s][used] = ContactHistory {
                         tangential: t,
                         rolling: r,

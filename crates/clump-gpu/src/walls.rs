@@ -11,10 +11,12 @@
 //! copy back to the world.
 //!
 //! Each wall has one contact slot per face per sphere (a box seen from
-//! inside has six faces, every other shape one): slot `face_base + face`
-//! of the sphere's row of `NF` slots, `NF` the walls' total face count.
+//! inside has six faces, a mesh one per contact it keeps (mesh.rs), every
+//! other shape one): slot `face_base + face` of the sphere's row of `NF`
+//! slots, `NF` the walls' total face count.
 
 use clump_core::wall::{Wall, WallShape};
+use glam::DVec3;
 
 /// f64s per wall in `walls` (walls.wgsl `W_*`).
 pub(crate) const WALL_ROW: usize = 24;
@@ -23,12 +25,14 @@ pub(crate) const WALL_ROW: usize = 24;
 const PLANE: f64 = 0.0;
 const CYLINDER: f64 = 1.0;
 const BOX: f64 = 2.0;
+const MESH: f64 = 3.0;
 
 /// Faces of a wall, each with its own contact slot: the six of a box
 /// seen from inside (a sphere in a corner touches several), else one.
 pub(crate) fn faces(w: &Wall) -> usize {
     match w.shape {
         WallShape::Box { inside: true, .. } => 6,
+        WallShape::Mesh { .. } => crate::mesh::MESH_SLOTS,
         _ => 1,
     }
 }
@@ -47,7 +51,9 @@ pub(crate) fn face_bases(walls: &[Wall]) -> (Vec<usize>, usize) {
 /// Wall `w`'s row: the geometry (two vectors and a radius), the shape,
 /// inside, the material, its first slot, then the motion (velocity,
 /// angular velocity, centre, surface velocity), world frame, SI units,
-/// and whether it is active (an inactive wall touches nothing).
+/// and whether it is active (an inactive wall touches nothing). A mesh
+/// wall's geometry is its pose: the position, the orientation's x y z
+/// and w, and the mesh index where `inside` would be (mesh.wgsl).
 fn row(w: &Wall, base: usize) -> [f64; WALL_ROW] {
     let (kind, a, b, radius, inside) = match w.shape {
         WallShape::Plane { point, normal } => (PLANE, point, normal, 0.0, false),
@@ -58,8 +64,37 @@ fn row(w: &Wall, base: usize) -> [f64; WALL_ROW] {
             inside,
         } => (CYLINDER, point, axis, radius, inside),
         WallShape::Box { lo, hi, inside } => (BOX, lo, hi, 0.0, inside),
-        WallShape::Mesh { .. } => unreachable!("refused by support::unsupported"),
+        WallShape::Mesh {
+            mesh,
+            position,
+            orientation: q,
+        } => {
+            let mut r = row_of(
+                w,
+                base,
+                MESH,
+                position,
+                DVec3::new(q.x, q.y, q.z),
+                q.w,
+                false,
+            );
+            r[8] = mesh as f64;
+            return r;
+        }
     };
+    row_of(w, base, kind, a, b, radius, inside)
+}
+
+/// A wall row from its parts (see [`row`]).
+fn row_of(
+    w: &Wall,
+    base: usize,
+    kind: f64,
+    a: DVec3,
+    b: DVec3,
+    radius: f64,
+    inside: bool,
+) -> [f64; WALL_ROW] {
     let m = &w.motion;
     let mut r = [0.0; WALL_ROW];
     r[0..3].copy_from_slice(&a.to_array());

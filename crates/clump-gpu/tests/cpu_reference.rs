@@ -48,7 +48,17 @@ fn compare_world(cpu: World) -> f64 {
 
 /// [`compare_world`], also returning the device and the CPU world at the
 /// end (step 3000).
-fn compare_keep(mut cpu: World) -> (f64, DeviceWorld, World) {
+fn compare_keep(cpu: World) -> (f64, DeviceWorld, World) {
+    compare_at(cpu, &[1, 10, 100, 1000, 2000, 3000], |_| {})
+}
+
+/// [`compare_keep`] at the steps `checkpoints`, calling `each` with the
+/// CPU world at each.
+fn compare_at(
+    mut cpu: World,
+    checkpoints: &[u64],
+    mut each: impl FnMut(&World),
+) -> (f64, DeviceWorld, World) {
     let rotation = cpu.config.rotation;
     let size = cpu.config.domain.size().max_element();
     let mut dev = DeviceWorld::upload(Gpu::new().unwrap(), &cpu).unwrap_or_else(|e| panic!("{e}"));
@@ -60,7 +70,7 @@ fn compare_keep(mut cpu: World) -> (f64, DeviceWorld, World) {
     cpu.prepare().unwrap();
     let mut done = 0;
     let mut worst = 0.0f64;
-    for &at in &[1u64, 10, 100, 1000, 2000, 3000] {
+    for &at in checkpoints {
         let t0 = std::time::Instant::now();
         dev.run(at - done).unwrap_or_else(|e| panic!("{e}"));
         let gpu_x = dev.positions().unwrap();
@@ -74,6 +84,7 @@ fn compare_keep(mut cpu: World) -> (f64, DeviceWorld, World) {
             (dev.spheres() as f64 * (at - done) as f64) / secs
         );
         worst = worst.max(dev_rel);
+        each(&cpu);
         done = at;
     }
     assert!(
@@ -541,4 +552,120 @@ fn device_step_agrees_with_the_cpu_path_with_box_walls() {
         most >= 2,
         "no sphere touched two faces of the container at once"
     );
+}
+
+// ---- mesh walls (mesh.rs, mesh.wgsl) ----
+
+/// Per mesh wall of `w`, the CPU path's contacts of its spheres now
+/// (`TriMesh::sphere_contacts` in the mesh frame, as `WallShape::contacts`
+/// calls it): face, edge and vertex contacts, and spheres whose contacts
+/// the merge rule cut (fewer than with the merge angle zero).
+fn mesh_features(w: &World) -> Vec<[usize; 4]> {
+    use clump_core::wall::mesh::closest::Feature;
+    use clump_core::wall::mesh::{MeshContact, MAX_MESH_CONTACTS};
+    let sp = w.spheres();
+    let mut out = Vec::new();
+    for wall in w.walls.iter() {
+        let Some((m, pos, q)) = wall.shape.mesh_pose() else {
+            continue;
+        };
+        let mesh = &w.walls.meshes()[m as usize];
+        let mut unmerged = mesh.clone();
+        unmerged.merge_angle = 0.0;
+        let mut count = [0usize; 4];
+        for s in 0..sp.state.len() {
+            let mut buf = [MeshContact::default(); MAX_MESH_CONTACTS];
+            let xl = q.inverse() * (sp.position(s) - pos);
+            let k = mesh.sphere_contacts(xl, sp.state[s].radius, 0.0, &mut buf);
+            for c in &buf[..k] {
+                count[match c.feature {
+                    Feature::Face => 0,
+                    Feature::Edge(_) => 1,
+                    Feature::Vertex(_) => 2,
+                }] += 1;
+            }
+            let all = unmerged.sphere_contacts(xl, sp.state[s].radius, 0.0, &mut buf);
+            count[3] += (all > k) as usize;
+        }
+        out.push(count);
+    }
+    out
+}
+
+/// `bed` on both paths for 3000 steps, compared every 250: the largest
+/// difference relative to the box (criterion 1e-9), and per mesh wall its
+/// contacts summed over the checkpoints ([`mesh_features`]).
+fn mesh_compare(bed: World) -> (f64, Vec<[usize; 4]>, World) {
+    let at: Vec<u64> = [1, 10, 100]
+        .into_iter()
+        .chain((1..=12).map(|k| 250 * k))
+        .collect();
+    let mut seen: Vec<[usize; 4]> = Vec::new();
+    let (worst, _, cpu) = compare_at(bed, &at, |w| {
+        let f = mesh_features(w);
+        seen.resize(f.len(), [0; 4]);
+        for (a, b) in seen.iter_mut().zip(&f) {
+            (0..4).for_each(|k| a[k] += b[k]);
+        }
+    });
+    eprintln!("mesh contacts (face, edge, vertex, spheres on several) per mesh wall: {seen:?}");
+    (worst, seen, cpu)
+}
+
+/// A bed poured onto a static mesh floor (an inverted eight-facet cone:
+/// concave seams, its apex a vertex) around a static cuboid mesh post
+/// turned by 30° (convex edges and corners, a pose that is not the
+/// identity). The CPU run meets spheres on a floor seam (two facets'
+/// contacts merged into one) and edge or vertex contacts on the post; the device agrees within 1e-9 of the
+/// box. The rule for several triangles matters here: the same bed with
+/// the merge angle zero (every near-duplicate edge or vertex contact of
+/// the neighbouring triangles kept) ends far from it on the CPU path.
+#[test]
+fn device_step_agrees_with_the_cpu_path_on_a_static_mesh_floor() {
+    let merge = clump_core::wall::mesh::DEFAULT_MERGE_ANGLE;
+    let (worst, seen, cpu) = mesh_compare(clump_gpu::bed::mesh_floor_bed(merge));
+    assert!(worst < 1e-9, "mesh floor: {worst:e} of the box");
+    // the floor's facets meet at 14° (merged into one patch at a seam),
+    // the post's edges and corners are convex (edge and vertex contacts)
+    assert!(
+        seen[0][0] > 0 && seen[0][3] > 0 && seen[1][0] > 0 && seen[1][1] + seen[1][2] > 0,
+        "the floor needs contacts merged at its seams, the post edge or vertex contacts: {seen:?}"
+    );
+    let mut unmerged = clump_gpu::bed::mesh_floor_bed(0.0);
+    unmerged.prepare().unwrap();
+    unmerged.run(3000).unwrap();
+    let size = cpu.config.domain.size().max_element();
+    let (a, b) = (cpu.bodies(), unmerged.bodies());
+    let at: std::collections::HashMap<u64, usize> =
+        b.id.iter().enumerate().map(|(k, &id)| (id, k)).collect();
+    let moved = (0..a.len())
+        .map(|i| {
+            (a.position[i] - b.position[at[&a.id[i]]])
+                .abs()
+                .max_element()
+        })
+        .fold(0.0, f64::max)
+        / size;
+    eprintln!("merge angle 0 instead of 15°: the CPU run moves by {moved:.3e} of the box");
+    assert!(
+        moved > 1e-6,
+        "the merge rule changed the run by only {moved:e}"
+    );
+}
+
+/// A turning mesh drum (36 facets 10° apart; end caps) and a mesh bar that moves down into the bed while
+/// it turns: the device takes the walls' poses from the host (the CPU
+/// path's `Wall::advance`), its slots follow the contacts by normal, and
+/// it agrees with the CPU path within 1e-9 of the box. Both meshes are
+/// touched; the bar by its edges and corners, each found on two or more
+/// triangles and merged into one contact.
+#[test]
+fn device_step_agrees_with_the_cpu_path_with_a_turning_mesh_drum() {
+    let (worst, seen, cpu) = mesh_compare(clump_gpu::bed::mesh_drum_bed());
+    assert!(worst < 1e-9, "mesh drum: {worst:e} of the box");
+    assert!(
+        seen.iter().all(|f| f[0] > 0) && seen[1][1] + seen[1][2] > 0 && seen[1][3] > 0,
+        "both meshes touched, the bar by edges or corners (each found on two triangles, merged): {seen:?}"
+    );
+    assert!(cpu.stats.wall_contacts > 0);
 }
