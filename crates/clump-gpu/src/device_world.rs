@@ -510,9 +510,8 @@ impl DeviceWorld {
 
     /// The mesh wall slots' keys (mesh.rs), one per (sphere, wall slot).
     pub(crate) fn mesh_keys(&self) -> Result<Vec<u32>, GpuError> {
-        let u: Vec<u32> = self.gpu.read(&self.buffers[30])?;
-        let at = u[0] as usize;
-        Ok(u[at..at + self.n.ns * self.n.nwf].to_vec())
+        let u = self.gpu.read(&self.buffers[30])?;
+        Ok(crate::mesh::keys_of(u, self.n.ns * self.n.nwf))
     }
 
     /// Number of spheres on the device.
@@ -577,10 +576,7 @@ struct HostArrays {
     sref: Vec<f64>,
     walls: Vec<f64>,
     laws: Vec<f64>,
-    /// Mesh walls' meshes (mesh.rs); their f64s follow `walls`.
     meshes: crate::mesh::MeshArrays,
-    /// Where the meshes' f64s start in `walls`.
-    walls_len: usize,
 }
 
 impl HostArrays {
@@ -647,8 +643,7 @@ impl HostArrays {
         let sets = if table.moving { BATCH as usize + 1 } else { 1 };
         let mut walls = table.rows();
         walls.resize(sets * walls.len(), 0.0);
-        let meshes = crate::mesh::MeshArrays::new(world.walls.meshes(), rmax);
-        let walls_len = walls.len();
+        let meshes = crate::mesh::MeshArrays::new(world.walls.meshes(), rmax, walls.len());
         walls.extend(&meshes.f);
         let nwf = crate::walls::face_bases(&world.walls).1;
         // indices 0-16 common.wgsl, 17 periodic.wgsl
@@ -751,7 +746,6 @@ impl HostArrays {
                 walls,
                 laws,
                 meshes,
-                walls_len,
             },
             n,
         ))
@@ -799,11 +793,8 @@ impl HostArrays {
         }
         out.push(gpu.buffer("laws", &self.laws));
         out.push(gpu.zeroed::<f64>("sx0", 3 * n.ns));
-        let keys = match &springs {
-            Some(sp) => padded(&sp.wkey, n.ns * nw),
-            None => vec![0; n.ns * nw],
-        };
-        out.push(gpu.buffer("mesh_u", &self.meshes.with_keys(&keys, self.walls_len)));
+        let keys = springs.map(|sp| sp.wkey).unwrap_or_default();
+        out.push(gpu.buffer("mesh_u", &self.meshes.with_keys(&keys, n.ns * nw)));
         out
     }
 }

@@ -49,6 +49,8 @@ pub(crate) struct MeshArrays {
     pub u: Vec<u32>,
     /// The meshes' f64s, to append to `walls`.
     pub f: Vec<f64>,
+    /// Where they start in `walls`.
+    walls_len: usize,
 }
 
 /// Grid of one mesh's triangles (mesh frame): origin, cell edge, cells
@@ -130,8 +132,9 @@ impl Grid {
 
 impl MeshArrays {
     /// The meshes of a world (`WallSet::meshes`); `rmax` is its largest
-    /// sphere radius, m.
-    pub(crate) fn new(meshes: &[TriMesh], rmax: f64) -> MeshArrays {
+    /// sphere radius, m; their f64s go after the `walls_len` f64s of the
+    /// wall row sets in `walls`.
+    pub(crate) fn new(meshes: &[TriMesh], rmax: f64, walls_len: usize) -> MeshArrays {
         let mut u = vec![0u32; HEAD + MESH_ROW * meshes.len()];
         u[1] = meshes.len() as u32;
         // global f64s: the cosine of the slot match angle
@@ -174,17 +177,24 @@ impl MeshArrays {
             f.extend(m.normals().iter().flat_map(|n| n.to_array()));
             u[HEAD + MESH_ROW * k..HEAD + MESH_ROW * (k + 1)].copy_from_slice(&row);
         }
-        MeshArrays { u, f }
+        MeshArrays { u, f, walls_len }
     }
 
-    /// `mesh_u` whole: the arrays, then the slot keys `keys` (one per
-    /// sphere and wall slot), whose offset goes in the header; `walls_len`
-    /// is where the meshes' f64s start in `walls`.
-    pub(crate) fn with_keys(&self, keys: &[u32], walls_len: usize) -> Vec<u32> {
+    /// `mesh_u` whole: the arrays, then the `slots` slot keys (one per
+    /// sphere and wall slot) from `keys`, zero after them; the offsets of
+    /// the keys and of the meshes' f64s go in the header.
+    pub(crate) fn with_keys(&self, keys: &[u32], slots: usize) -> Vec<u32> {
         let mut u = self.u.clone();
         u[0] = u.len() as u32;
-        u[2] = walls_len as u32;
+        u[2] = self.walls_len as u32;
         u.extend_from_slice(keys);
+        u.resize(u[0] as usize + slots.max(keys.len()).max(1), 0);
         u
     }
+}
+
+/// The slot keys of `mesh_u` as read back (`slots` of them).
+pub(crate) fn keys_of(mesh_u: Vec<u32>, slots: usize) -> Vec<u32> {
+    let at = mesh_u[0] as usize;
+    mesh_u[at..at + slots].to_vec()
 }
