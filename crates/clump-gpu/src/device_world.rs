@@ -8,7 +8,7 @@ use clump_core::world::World;
 use glam::{DQuat, DVec3};
 
 /// The kernels, one WGSL module.
-const SHADER: [&str; 8] = [
+const SHADER: [&str; 10] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/periodic.wgsl"),
     include_str!("shaders/rotation.wgsl"),
@@ -17,6 +17,8 @@ const SHADER: [&str; 8] = [
     include_str!("shaders/rolling.wgsl"),
     include_str!("shaders/contact.wgsl"),
     include_str!("shaders/walls.wgsl"),
+    include_str!("shaders/average.wgsl"),
+    include_str!("shaders/lost.wgsl"),
 ];
 /// Storage bindings of the module (common.wgsl).
 const N_BINDINGS: u32 = 30;
@@ -53,7 +55,8 @@ const K_GATHER_KICK: usize = 14;
 const K_REBUILD_ARGS: usize = 15;
 const K_TABLE_SAVE: usize = 16;
 const K_WALL_STEP: usize = 17;
-const ENTRIES: [&str; 18] = [
+const K_PAIR_TOUCH: usize = 18;
+const ENTRIES: [&str; 19] = [
     "first_half",
     "spheres",
     "sort_reset",
@@ -72,6 +75,7 @@ const ENTRIES: [&str; 18] = [
     "rebuild_args",
     "table_save",
     "wall_step",
+    "pair_touch",
 ];
 /// Index of the walls' row set of this step (common.wgsl PU_WSTEP).
 const PU_WSTEP: usize = 15;
@@ -159,6 +163,9 @@ pub struct DeviceWorld {
     dt: f64,
     /// The walls at `step` (the host advances them, walls.rs).
     pub(crate) walls: crate::walls::WallTable,
+    /// `simulation.multi_contact = "average"`: the pairs' touches are
+    /// counted before their forces (average.wgsl).
+    average: bool,
 }
 
 /// The step's compiled kernels and their layouts: made once per device,
@@ -244,14 +251,6 @@ fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// `v` followed by zeros up to `len` entries (at least one: a buffer is
-/// never empty).
-fn padded<T: Copy + Default>(v: &[T], len: usize) -> Vec<T> {
-    let mut out = v.to_vec();
-    out.resize(len.max(v.len()).max(1), T::default());
-    out
-}
-
 fn flat3(v: &[DVec3]) -> Vec<f64> {
     v.iter().flat_map(|a| [a.x, a.y, a.z]).collect()
 }
@@ -325,6 +324,7 @@ impl DeviceWorld {
             builds: 0,
             dt: world.config.dt,
             walls: crate::walls::WallTable::new(&world.walls, world.config.dt),
+            average: crate::average::pairs_average(world),
         })
     }
 
@@ -351,13 +351,9 @@ impl DeviceWorld {
         if self.walls.moving {
             // the walls of each step of this submission, from row set 0
             let rows = self.walls.advance(steps);
+            self.gpu.write(&self.buffers[26], &rows);
             self.gpu
-                .queue
-                .write_buffer(&self.buffers[26], 0, bytemuck::cast_slice(&rows));
-            let at = (PU_WSTEP * 4) as u64;
-            self.gpu
-                .queue
-                .write_buffer(&self.buffers[1], at, bytemuck::bytes_of(&0u32));
+                .write_at(&self.buffers[1], (PU_WSTEP * 4) as u64, &[0u32]);
         }
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         if prepare {
@@ -440,6 +436,9 @@ impl DeviceWorld {
         self.dispatch_build(&mut pass, K_PAIRS_SCAN, A_ONE);
         self.dispatch_build(&mut pass, K_PAIRS_FILL, A_SPHERES);
         self.dispatch_build(&mut pass, K_PAIRS_MIRROR, A_SPHERES);
+        if self.average {
+            self.dispatch(&mut pass, K_PAIR_TOUCH, n.ns);
+        }
         self.dispatch(&mut pass, K_PAIR_FORCES, n.ns);
         self.dispatch(&mut pass, K_SPHERE_GATHER, n.ns);
         self.dispatch(&mut pass, last, n.nb);
@@ -489,7 +488,7 @@ impl DeviceWorld {
         world.walls.clone_from_slice(&self.walls.walls);
         world.step = self.step;
         world.time = self.time;
-        Ok(())
+        self.remove_lost(world)
     }
 
     /// The f64 array at `binding` (common.wgsl), whole.
@@ -497,14 +496,19 @@ impl DeviceWorld {
         self.gpu.read(&self.buffers[binding])
     }
 
+    /// The u32 array at `binding` (common.wgsl), whole.
+    pub(crate) fn read_u32(&self, binding: usize) -> Result<Vec<u32>, GpuError> {
+        self.gpu.read(&self.buffers[binding])
+    }
+
     /// The current pair table: offsets per sphere, neighbour and spring
-    /// per entry.
+    /// per entry, the entries in use only (the offsets say how many).
     pub(crate) fn table(&self) -> Result<(Vec<u32>, Vec<u32>, Vec<f64>), GpuError> {
-        Ok((
-            self.gpu.read(&self.buffers[17])?,
-            self.gpu.read(&self.buffers[18])?,
-            self.gpu.read(&self.buffers[19])?,
-        ))
+        let noff: Vec<u32> = self.gpu.read(&self.buffers[17])?;
+        let used = (noff[self.n.ns] as usize).min(self.n.cap);
+        let nbr = self.gpu.read_prefix(&self.buffers[18], used)?;
+        let hist = self.gpu.read_prefix(&self.buffers[19], HIST * used)?;
+        Ok((noff, nbr, hist))
     }
 
     /// Number of spheres on the device.
@@ -634,8 +638,10 @@ impl HostArrays {
         let mut walls = table.rows();
         walls.resize(sets * walls.len(), 0.0);
         let nwf = crate::walls::face_bases(&world.walls).1;
-        // indices 0-16 common.wgsl, 17 periodic.wgsl
-        let mut pu = vec![0u32; crate::periodic::PU_PERIODIC + 1];
+        // indices 0-16 common.wgsl, 17 periodic.wgsl, 18 average.wgsl,
+        // 19 lost.wgsl
+        let mut pu = vec![0u32; crate::lost::PU_LOST + 1];
+        pu[crate::average::PU_AVERAGE] = crate::average::pairs_average(world) as u32;
         // common.wgsl PU_NWF
         pu[16] = nwf as u32;
         // common.wgsl PU_ROT (support.rs refuses the other schemes)
@@ -758,8 +764,8 @@ impl HostArrays {
         match &springs {
             Some(sp) => {
                 out.push(gpu.buffer("noff", &sp.noff));
-                out.push(gpu.buffer("nbr", &padded(&sp.nbr, n.cap)));
-                out.push(gpu.buffer("hist", &padded(&sp.hist, HIST * n.cap)));
+                out.push(gpu.buffer_prefix("nbr", &sp.nbr, n.cap));
+                out.push(gpu.buffer_prefix("hist", &sp.hist, HIST * n.cap));
             }
             None => {
                 out.push(gpu.zeroed::<u32>("noff", n.ns + 1));
@@ -775,7 +781,7 @@ impl HostArrays {
         out.push(gpu.zeroed::<f64>("sft", 12 * n.ns));
         out.push(gpu.buffer("walls", &self.walls));
         match &springs {
-            Some(sp) => out.push(gpu.buffer("whist", &padded(&sp.whist, HIST * n.ns * nw))),
+            Some(sp) => out.push(gpu.buffer_prefix("whist", &sp.whist, HIST * n.ns * nw)),
             None => out.push(gpu.zeroed::<f64>("whist", HIST * n.ns * nw)),
         }
         out.push(gpu.buffer("laws", &self.laws));

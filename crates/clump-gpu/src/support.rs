@@ -111,9 +111,6 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
     if c.added_mass.coefficient != 0.0 {
         no(keys("integrator.added_mass"), "none");
     }
-    if c.multi_contact != clump_core::multi_contact::MultiContact::Sum {
-        no(keys("simulation.multi_contact"), "\"sum\"");
-    }
     let t = &world.contact_table;
     if t.any_extended() || t.any_reach() {
         no(
@@ -128,9 +125,6 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
                 wall_key(k, Some("type")),
                 "\"plane\", \"cylinder\" or \"box\"",
             );
-        }
-        if w.multi_contact != clump_core::multi_contact::MultiContact::Sum {
-            no(wall_key(k, Some("multi_contact")), "\"sum\"");
         }
     }
     if world.heat.is_some() {

@@ -17,7 +17,7 @@
 use clump_core::wall::{Wall, WallShape};
 
 /// f64s per wall in `walls` (walls.wgsl `W_*`).
-pub(crate) const WALL_ROW: usize = 24;
+pub(crate) const WALL_ROW: usize = 25;
 
 /// Shape codes of walls.wgsl (`W_KIND`).
 const PLANE: f64 = 0.0;
@@ -47,7 +47,8 @@ pub(crate) fn face_bases(walls: &[Wall]) -> (Vec<usize>, usize) {
 /// Wall `w`'s row: the geometry (two vectors and a radius), the shape,
 /// inside, the material, its first slot, then the motion (velocity,
 /// angular velocity, centre, surface velocity), world frame, SI units,
-/// and whether it is active (an inactive wall touches nothing).
+/// whether it is active (an inactive wall touches nothing), and whether
+/// its `multi_contact` is "average" (average.wgsl `W_AVERAGE`).
 fn row(w: &Wall, base: usize) -> [f64; WALL_ROW] {
     let (kind, a, b, radius, inside) = match w.shape {
         WallShape::Plane { point, normal } => (PLANE, point, normal, 0.0, false),
@@ -74,6 +75,7 @@ fn row(w: &Wall, base: usize) -> [f64; WALL_ROW] {
     r[17..20].copy_from_slice(&m.center.to_array());
     r[20..23].copy_from_slice(&m.surface_velocity.to_array());
     r[23] = w.active as u8 as f64;
+    r[24] = (w.multi_contact == clump_core::multi_contact::MultiContact::Average) as u8 as f64;
     r
 }
 

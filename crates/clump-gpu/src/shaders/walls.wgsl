@@ -7,7 +7,7 @@
 // The host computes the walls' geometry for every step of a submission
 // (walls.rs): row set PU_WSTEP of `walls` is this step's.
 
-const WALL_ROW: u32 = 24u;  // f64s per wall (walls.rs WALL_ROW)
+const WALL_ROW: u32 = 25u;  // f64s per wall (walls.rs WALL_ROW); W_AVERAGE is average.wgsl's
 const W_KIND: u32 = 7u;     // 0 plane (point, normal), 1 cylinder (point, axis, radius), 2 box (lo, hi)
 const W_INSIDE: u32 = 8u;
 const W_MAT: u32 = 9u;
@@ -118,7 +118,8 @@ fn wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<functi
     let faces = select(1u, 6u, u32(wall_f(w, W_KIND)) == 2u && wall_f(w, W_INSIDE) != 0.0lf);
     var touch: array<Touch, 4>;
     var k = 0u;
-    if (wall_f(w, W_ACTIVE) != 0.0lf) { k = wall_touches(w, x, r, &touch); }
+    // a lost body (lost.wgsl) touches nothing
+    if (wall_f(w, W_ACTIVE) != 0.0lf && !lost(sown[2u * i])) { k = wall_touches(w, x, r, &touch); }
     var live = array<bool, 6>(false, false, false, false, false, false);
     let b = sown[2u * i];
     let com = ld_bx(b);
@@ -127,6 +128,9 @@ fn wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<functi
     let ww = wall_v3(w, W_OMEGA);
     let cw = wall_v3(w, W_CENTER);
     let sw = wall_v3(w, W_SURFACE);
+    // the multi-contact scale (average.wgsl; 1 under "sum")
+    var sc = 1.0lf;
+    if (k > 0u) { sc = wall_scale(i, w); }
     for (var t = 0u; t < k; t++) {
         let n = touch[t].n;
         let overlap = touch[t].overlap;
@@ -142,15 +146,17 @@ fn wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<functi
         let vrel = v_body - v_wall;
         let out = sliding(law, n, overlap, vrel, r, bm[9u * b], ld_whist(slot));
         st_whist(slot, out.xi);
-        *fsum += out.force;
+        // the load times the scale, the torque's sum scaled as a whole
+        // (wall_contacts.rs flush)
+        *fsum += out.force * sc;
         if (law.roll != ROLL_NONE) {
             // the wall's rolling: w_rel = w_body - w_wall
             let rc = rolling_couple(law.roll, law.mu_r, law.eta_r, n, ld_bw(b) - ww, r, bm[9u * b],
                                     out.f_n, out.kn, ld_wroll(slot));
             st_wroll(slot, rc.spring);
-            *tsum += cross3(lever, out.force) + rc.couple;
+            *tsum += (cross3(lever, out.force) + rc.couple) * sc;
         } else {
-            *tsum += cross3(lever, out.force);
+            *tsum += cross3(lever, out.force) * sc;
         }
     }
     for (var f = 0u; f < faces; f++) {

@@ -1,0 +1,35 @@
+// Bodies that leave the domain through a non-periodic side (clump-core
+// boundary.rs `Domain::exit_cause`, lost.rs): a body whose centre of mass
+// lies beyond a non-periodic side after its drift is marked lost (bit 7
+// of its DOF word, the side x_lo, x_hi, y_lo, y_hi, z_lo, z_hi + 1 in bits
+// 8-10, the first side beyond which it lies, x then y then z). From then
+// on it stays where it is and touches nothing; the host removes it at the
+// next download with the CPU path's count (lost.rs). The CPU path removes
+// such a body at its next list rebuild: the two agree while a leaving body
+// touches nothing after its centre crossed the side.
+
+const PU_LOST: u32 = 19u; // 1: a body was marked lost; after average.wgsl's PU_AVERAGE
+const LOST_BIT: u32 = 128u;
+
+fn lost(b: u32) -> bool {
+    return (u32(bm[9u * b + 8u]) & LOST_BIT) != 0u;
+}
+
+// Marks body b lost when its centre of mass lies beyond a non-periodic side.
+fn mark_if_outside(b: u32) {
+    let x = ld_bx(b);
+    var side = 6u;
+    for (var a = 0u; a < 3u; a++) {
+        if (side < 6u || is_periodic(a)) { continue; }
+        if (x[a] < pf[PF_LO + a]) {
+            side = 2u * a;
+        } else if (x[a] > pf[PF_HI + a]) {
+            side = 2u * a + 1u;
+        }
+    }
+    if (side == 6u) { return; }
+    let flags = u32(bm[9u * b + 8u]);
+    bm[9u * b + 8u] = f64(flags | LOST_BIT | ((side + 1u) << 8u));
+    // every invocation that marks one stores the same 1
+    pu[PU_LOST] = 1u;
+}
