@@ -56,7 +56,8 @@ const K_REBUILD_ARGS: usize = 15;
 const K_TABLE_SAVE: usize = 16;
 const K_WALL_STEP: usize = 17;
 const K_PAIR_TOUCH: usize = 18;
-const ENTRIES: [&str; 19] = [
+const K_MARK_LOST: usize = 19;
+const ENTRIES: [&str; 20] = [
     "first_half",
     "spheres",
     "sort_reset",
@@ -76,6 +77,7 @@ const ENTRIES: [&str; 19] = [
     "table_save",
     "wall_step",
     "pair_touch",
+    "mark_lost",
 ];
 /// Index of the walls' row set of this step (common.wgsl PU_WSTEP).
 const PU_WSTEP: usize = 15;
@@ -422,6 +424,8 @@ impl DeviceWorld {
     fn encode_forces(&self, enc: &mut wgpu::CommandEncoder, last: usize) {
         let n = self.n;
         let mut pass = enc.begin_compute_pass(&Default::default());
+        // bodies beyond a non-periodic side leave at a build (lost.wgsl)
+        self.dispatch_build(&mut pass, K_MARK_LOST, A_SPHERES);
         self.dispatch_build(&mut pass, K_SORT_RESET, A_ONE);
         let p = n.npow2.trailing_zeros() as usize;
         for _ in 0..p * (p + 1) / 2 {

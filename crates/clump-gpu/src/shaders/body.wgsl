@@ -90,7 +90,6 @@ fn first_half(@builtin(global_invocation_id) gid: vec3<u32>) {
     let dt = pf[PF_DT];
     if (driven(i)) {
         driven_first_half(i, dt);
-        mark_if_outside(i);
         return;
     }
     let dtfm = bm[9u * i + 7u];
@@ -124,7 +123,6 @@ fn first_half(@builtin(global_invocation_id) gid: vec3<u32>) {
     st_bx(i, x);
     st_bw(i, w);
     bq[4u * i] = qn.x; bq[4u * i + 1u] = qn.y; bq[4u * i + 2u] = qn.z; bq[4u * i + 3u] = qn.w;
-    mark_if_outside(i);
 }
 
 // Sphere centres r = r_cm + R(q) r_b, their lever arms R(q) r_b, whether
