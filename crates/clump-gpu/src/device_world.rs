@@ -8,7 +8,7 @@ use clump_core::world::World;
 use glam::{DQuat, DVec3};
 
 /// The kernels, one WGSL module.
-const SHADER: [&str; 10] = [
+const SHADER: [&str; 11] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/periodic.wgsl"),
     include_str!("shaders/rotation.wgsl"),
@@ -19,6 +19,7 @@ const SHADER: [&str; 10] = [
     include_str!("shaders/walls.wgsl"),
     include_str!("shaders/average.wgsl"),
     include_str!("shaders/lost.wgsl"),
+    include_str!("shaders/scatter.wgsl"),
 ];
 /// Storage bindings of the module (common.wgsl).
 const N_BINDINGS: u32 = 30;
@@ -57,7 +58,8 @@ const K_TABLE_SAVE: usize = 16;
 const K_WALL_STEP: usize = 17;
 const K_PAIR_TOUCH: usize = 18;
 const K_MARK_LOST: usize = 19;
-const ENTRIES: [&str; 20] = [
+const K_WHIST_SCATTER: usize = 20;
+const ENTRIES: [&str; 21] = [
     "first_half",
     "spheres",
     "sort_reset",
@@ -78,6 +80,7 @@ const ENTRIES: [&str; 20] = [
     "wall_step",
     "pair_touch",
     "mark_lost",
+    "whist_scatter",
 ];
 /// Index of the walls' row set of this step (common.wgsl PU_WSTEP).
 const PU_WSTEP: usize = 15;
@@ -283,7 +286,7 @@ impl DeviceWorld {
     ) -> Result<DeviceWorld, DeviceError> {
         let (host, n) = HostArrays::new(world)?;
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let buffers = host.buffers(&gpu, n, springs);
+        let (buffers, sparse) = host.buffers(&gpu, n, springs);
         let entries: Vec<wgpu::BindGroupEntry> = (0..N_BINDINGS as usize)
             .map(|b| wgpu::BindGroupEntry {
                 binding: b as u32,
@@ -309,6 +312,16 @@ impl DeviceWorld {
                 resource: args.as_entire_binding(),
             }],
         });
+        if sparse > 0 {
+            // the wall springs sent sparse, into their slots (scatter.wgsl)
+            let mut enc = gpu.device.create_command_encoder(&Default::default());
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&kernels.pipelines[K_WHIST_SCATTER]);
+            pass.set_bind_group(0, &group, &[]);
+            pass.dispatch_workgroups(sparse.div_ceil(64) as u32, 1, 1);
+            drop(pass);
+            gpu.queue.submit(Some(enc.finish()));
+        }
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Device(format!("setting up the device step: {e}")).into());
         }
@@ -748,8 +761,9 @@ impl HostArrays {
         ))
     }
 
-    /// The storage buffers of group 0, by binding.
-    fn buffers(&self, gpu: &Gpu, n: Sizes, springs: Option<Springs>) -> Vec<wgpu::Buffer> {
+    /// The storage buffers of group 0, by binding, and the number of wall
+    /// springs sent sparse in `pout` for `whist_scatter` (scatter.wgsl).
+    fn buffers(&self, gpu: &Gpu, n: Sizes, springs: Option<Springs>) -> (Vec<wgpu::Buffer>, usize) {
         let nw = n.nwf.max(1);
         let mut out = vec![gpu.buffer("pf", &self.pf), gpu.buffer("pu", &self.pu)];
         for (k, a) in self.bodies.iter().enumerate() {
@@ -781,15 +795,23 @@ impl HostArrays {
         out.push(gpu.zeroed::<u32>("old_nbr", n.cap));
         out.push(gpu.zeroed::<f64>("old_hist", HIST * n.cap));
         out.push(gpu.zeroed::<u32>("mirror", n.cap));
-        out.push(gpu.zeroed::<f64>("pout", 9 * n.cap));
+        // the wall springs go sparse in `pout` where they fit (walls.rs
+        // `sparse_slots`), else whole into `whist`
+        let sparse = springs
+            .as_ref()
+            .and_then(|sp| crate::walls::sparse_slots(&sp.whist, 9 * n.cap));
+        match &sparse {
+            Some(s) => out.push(gpu.buffer_prefix("pout", s, 9 * n.cap)),
+            None => out.push(gpu.zeroed::<f64>("pout", 9 * n.cap)),
+        }
         out.push(gpu.zeroed::<f64>("sft", 12 * n.ns));
         out.push(gpu.buffer("walls", &self.walls));
-        match &springs {
-            Some(sp) => out.push(gpu.buffer_prefix("whist", &sp.whist, HIST * n.ns * nw)),
-            None => out.push(gpu.zeroed::<f64>("whist", HIST * n.ns * nw)),
+        match (&springs, &sparse) {
+            (Some(sp), None) => out.push(gpu.buffer_prefix("whist", &sp.whist, HIST * n.ns * nw)),
+            _ => out.push(gpu.zeroed::<f64>("whist", HIST * n.ns * nw)),
         }
         out.push(gpu.buffer("laws", &self.laws));
         out.push(gpu.zeroed::<f64>("sx0", 3 * n.ns));
-        out
+        (out, sparse.map_or(0, |s| s[0] as usize))
     }
 }

@@ -125,3 +125,18 @@ impl WallTable {
         out
     }
 }
+
+/// The wall springs `whist` (6 f64s per slot) as the upload sends them
+/// (scatter.wgsl): their count, then per slot not zero its index and its
+/// springs; `None` when that does not fit in `room` f64s.
+pub(crate) fn sparse_slots(whist: &[f64], room: usize) -> Option<Vec<f64>> {
+    let mut out = vec![0.0];
+    for (slot, h) in whist.chunks_exact(6).enumerate() {
+        if h.iter().any(|&x| x != 0.0) {
+            out.push(slot as f64);
+            out.extend_from_slice(h);
+        }
+    }
+    out[0] = ((out.len() - 1) / 7) as f64;
+    (out.len() <= room).then_some(out)
+}
