@@ -312,16 +312,7 @@ impl DeviceWorld {
                 resource: args.as_entire_binding(),
             }],
         });
-        if sparse > 0 {
-            // the wall springs sent sparse, into their slots (scatter.wgsl)
-            let mut enc = gpu.device.create_command_encoder(&Default::default());
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&kernels.pipelines[K_WHIST_SCATTER]);
-            pass.set_bind_group(0, &group, &[]);
-            pass.dispatch_workgroups(sparse.div_ceil(64) as u32, 1, 1);
-            drop(pass);
-            gpu.queue.submit(Some(enc.finish()));
-        }
+        crate::walls::scatter(&gpu, &kernels.pipelines[K_WHIST_SCATTER], &group, sparse);
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Device(format!("setting up the device step: {e}")).into());
         }
@@ -795,23 +786,15 @@ impl HostArrays {
         out.push(gpu.zeroed::<u32>("old_nbr", n.cap));
         out.push(gpu.zeroed::<f64>("old_hist", HIST * n.cap));
         out.push(gpu.zeroed::<u32>("mirror", n.cap));
-        // the wall springs go sparse in `pout` where they fit (walls.rs
-        // `sparse_slots`), else whole into `whist`
-        let sparse = springs
-            .as_ref()
-            .and_then(|sp| crate::walls::sparse_slots(&sp.whist, 9 * n.cap));
-        match &sparse {
-            Some(s) => out.push(gpu.buffer_prefix("pout", s, 9 * n.cap)),
-            None => out.push(gpu.zeroed::<f64>("pout", 9 * n.cap)),
-        }
+        let whist = springs.as_ref().map(|sp| &sp.whist[..]);
+        let (pout, whist, sparse) =
+            crate::walls::spring_buffers(gpu, whist, 9 * n.cap, HIST * n.ns * nw);
+        out.push(pout);
         out.push(gpu.zeroed::<f64>("sft", 12 * n.ns));
         out.push(gpu.buffer("walls", &self.walls));
-        match (&springs, &sparse) {
-            (Some(sp), None) => out.push(gpu.buffer_prefix("whist", &sp.whist, HIST * n.ns * nw)),
-            _ => out.push(gpu.zeroed::<f64>("whist", HIST * n.ns * nw)),
-        }
+        out.push(whist);
         out.push(gpu.buffer("laws", &self.laws));
         out.push(gpu.zeroed::<f64>("sx0", 3 * n.ns));
-        (out, sparse.map_or(0, |s| s[0] as usize))
+        (out, sparse)
     }
 }

@@ -14,6 +14,7 @@
 //! inside has six faces, every other shape one): slot `face_base + face`
 //! of the sphere's row of `NF` slots, `NF` the walls' total face count.
 
+use crate::context::Gpu;
 use clump_core::wall::{Wall, WallShape};
 
 /// f64s per wall in `walls` (walls.wgsl `W_*`).
@@ -139,4 +140,54 @@ pub(crate) fn sparse_slots(whist: &[f64], room: usize) -> Option<Vec<f64>> {
     }
     out[0] = ((out.len() - 1) / 7) as f64;
     (out.len() <= room).then_some(out)
+}
+
+/// `pout` and `whist` of an upload with the wall springs `whist` (6 f64s
+/// per slot, `len` f64s in all; none: all zero), and how many springs go
+/// sparse in `pout` (`room` f64s) for [`scatter`]; where they do not fit,
+/// `whist` is sent whole.
+pub(crate) fn spring_buffers(
+    gpu: &Gpu,
+    whist: Option<&[f64]>,
+    room: usize,
+    len: usize,
+) -> (wgpu::Buffer, wgpu::Buffer, usize) {
+    match whist.map(|w| (w, sparse_slots(w, room))) {
+        Some((_, Some(s))) => (
+            gpu.buffer_prefix("pout", &s, room),
+            gpu.zeroed::<f64>("whist", len),
+            s[0] as usize,
+        ),
+        Some((w, None)) => (
+            gpu.zeroed::<f64>("pout", room),
+            gpu.buffer_prefix("whist", w, len),
+            0,
+        ),
+        None => (
+            gpu.zeroed::<f64>("pout", room),
+            gpu.zeroed::<f64>("whist", len),
+            0,
+        ),
+    }
+}
+
+/// The `count` wall springs sent sparse into their slots (scatter.wgsl
+/// `whist_scatter`, its pipeline `scatter`), before the first step.
+pub(crate) fn scatter(
+    gpu: &Gpu,
+    pipeline: &wgpu::ComputePipeline,
+    group: &wgpu::BindGroup,
+    count: usize,
+) {
+    if count == 0 {
+        return;
+    }
+    let mut enc = gpu.device.create_command_encoder(&Default::default());
+    {
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, group, &[]);
+        pass.dispatch_workgroups(count.div_ceil(64) as u32, 1, 1);
+    }
+    gpu.queue.submit(Some(enc.finish()));
 }
