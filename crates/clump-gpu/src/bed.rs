@@ -132,7 +132,7 @@ pub fn periodic_bed_law(
 }
 
 /// [`bed_in`] with the domain's periodic axes `periodic`.
-fn bed_periodic(
+pub fn bed_periodic(
     n: usize,
     layers: usize,
     rotation: RotationScheme,
@@ -236,20 +236,7 @@ pub fn drum_bed() -> World {
                 ..Default::default()
             },
         ),
-        (
-            WallShape::Cylinder {
-                point: pin,
-                axis: DVec3::X,
-                radius: 0.25 * PITCH,
-                inside: false,
-            },
-            WallMotion {
-                velocity: DVec3::new(0.0, 0.0, -0.1),
-                angular_velocity: DVec3::new(30.0, 0.0, 0.0),
-                center: pin,
-                ..Default::default()
-            },
-        ),
+        turning_pin(pin),
     ];
     let law = PairProperties::default();
     bed_in(6, 3, RotationScheme::NoSquish, law, walls, |_, b| {
@@ -282,17 +269,7 @@ pub fn container_bed() -> World {
                 ..Default::default()
             },
         ),
-        (
-            WallShape::Box {
-                lo: mid - DVec3::new(0.2 * PITCH, 0.2 * PITCH, 0.0),
-                hi: mid + DVec3::new(0.2 * PITCH, 0.2 * PITCH, 1.2 * PITCH),
-                inside: false,
-            },
-            WallMotion {
-                surface_velocity: DVec3::new(0.0, 0.05, 0.0),
-                ..Default::default()
-            },
-        ),
+        conveyor_post(mid),
         (
             WallShape::Plane {
                 point: DVec3::new(0.0, 0.0, 1.5 * PITCH),
@@ -434,4 +411,77 @@ pub fn mesh_drum_bed() -> World {
         ],
     );
     w
+}
+
+/// The bed of [`periodic_bed`] (periodic in x and y, 4 × 4 pitches, three
+/// layers) with walls inside the periodic box: the floor, a pin (a
+/// cylinder seen from outside, along x through both periodic x faces,
+/// radius 0.25 pitch, turning at 30 rad/s about its axis) coming down at
+/// 0.1 m/s from 3.6 pitches into the bed, and a post (a box seen from
+/// outside, 0.4 × 0.4 × 1.2 pitches, its surface moving at 0.05 m/s along
+/// y) in the middle, less the clumps of the two lower layers around it.
+/// Walls 0 (floor), 1 (pin), 2 (post).
+pub fn periodic_walls_bed() -> World {
+    let mid = DVec3::new(2.0 * PITCH, 2.0 * PITCH, 0.0);
+    let pin = DVec3::new(0.0, 2.0 * PITCH, 3.6 * PITCH);
+    let floor = WallShape::Plane {
+        point: DVec3::ZERO,
+        normal: DVec3::Z,
+    };
+    let walls = vec![
+        (floor, WallMotion::default()),
+        turning_pin(pin),
+        conveyor_post(mid),
+    ];
+    let law = PairProperties::default();
+    let periodic = [true, true, false];
+    bed_periodic(
+        4,
+        3,
+        RotationScheme::NoSquish,
+        law,
+        walls,
+        periodic,
+        |_, b| {
+            let d = (b.position - mid).truncate().abs();
+            !(d.max_element() < PITCH && b.position.z < 2.0 * PITCH)
+        },
+    )
+}
+
+/// A pin through `pin` (a cylinder seen from outside, along x, radius
+/// 0.25 pitch) turning at 30 rad/s about its axis and coming down at
+/// 0.1 m/s.
+fn turning_pin(pin: DVec3) -> (WallShape, WallMotion) {
+    (
+        WallShape::Cylinder {
+            point: pin,
+            axis: DVec3::X,
+            radius: 0.25 * PITCH,
+            inside: false,
+        },
+        WallMotion {
+            velocity: DVec3::new(0.0, 0.0, -0.1),
+            angular_velocity: DVec3::new(30.0, 0.0, 0.0),
+            center: pin,
+            ..Default::default()
+        },
+    )
+}
+
+/// A post standing on the floor at `mid` (a box seen from outside, 0.4 ×
+/// 0.4 × 1.2 pitches) whose surface moves at 0.05 m/s along y like a
+/// conveyor.
+fn conveyor_post(mid: DVec3) -> (WallShape, WallMotion) {
+    (
+        WallShape::Box {
+            lo: mid - DVec3::new(0.2 * PITCH, 0.2 * PITCH, 0.0),
+            hi: mid + DVec3::new(0.2 * PITCH, 0.2 * PITCH, 1.2 * PITCH),
+            inside: false,
+        },
+        WallMotion {
+            surface_velocity: DVec3::new(0.0, 0.05, 0.0),
+            ..Default::default()
+        },
+    )
 }

@@ -13,7 +13,7 @@
 //! (sphere, wall).
 
 use crate::context::Gpu;
-use crate::device_world::{DeviceError, DeviceWorld, Kernels, Springs, HIST};
+use crate::device_world::{DeviceError, DeviceWorld, Kernels, Springs, ENTRIES_PER_SPHERE, HIST};
 use crate::support::unsupported;
 use clump_core::contact::ContactHistory;
 use clump_core::neighbor::walls::WALL_SLOTS;
@@ -183,7 +183,7 @@ impl DeviceWorld {
 
     fn load(gpu: Gpu, kernels: Kernels, world: &mut World) -> Result<DeviceWorld, DeviceError> {
         let state = world.save_state().map_err(bad_state)?;
-        let cap = crate::device_world::table_capacity(world);
+        let cap = table_capacity(world);
         let springs = Springs::of(world, &state, cap)?;
         DeviceWorld::bind(gpu, kernels, world, Some(springs))
     }
@@ -232,7 +232,8 @@ impl DeviceWorld {
         s.step = self.step;
         s.time = self.time;
         s.built_step = self.step;
-        world.restore_state(s).map_err(bad_state)
+        world.restore_state(s).map_err(bad_state)?;
+        self.remove_lost(world)
     }
 
     /// The springs of the pair table's owning entries that are not zero,
@@ -321,6 +322,11 @@ impl DeviceWorld {
 pub struct DeviceStepper {
     parts: Option<DeviceWorld>,
     gpu: Option<Gpu>,
+    /// `CLUMP_GPU_TRAFFIC` set: each stretch reports on stderr the bytes
+    /// it copied each way (the measurement of docs/testing.md).
+    report: bool,
+    /// Bytes copied (host to device, device to host) by the stretches so far.
+    pub traffic: (u64, u64),
 }
 
 impl DeviceStepper {
@@ -329,6 +335,8 @@ impl DeviceStepper {
         DeviceStepper {
             parts: None,
             gpu: Some(gpu),
+            report: std::env::var_os("CLUMP_GPU_TRAFFIC").is_some(),
+            traffic: (0, 0),
         }
     }
 
@@ -356,6 +364,11 @@ impl DeviceStepper {
                 return Ok(world.step - first);
             }
         }
+        let before = match (&self.parts, &self.gpu) {
+            (Some(d), _) => d.gpu.traffic(),
+            (None, Some(g)) => g.traffic(),
+            (None, None) => (0, 0),
+        };
         let mut dev = match (self.parts.take(), self.gpu.take()) {
             (Some(d), _) => d.reload(world)?,
             (None, Some(g)) => DeviceWorld::continue_from(g, world)?,
@@ -372,8 +385,28 @@ impl DeviceStepper {
             }
         }
         dev.download_state(world)?;
+        let after = dev.gpu.traffic();
+        let (up, down) = (after.0 - before.0, after.1 - before.1);
+        self.traffic = (self.traffic.0 + up, self.traffic.1 + down);
+        if self.report {
+            eprintln!(
+                "device stretch to step {}: {up} bytes to the device, {down} bytes back ({} bodies, {} spheres)",
+                dev.step,
+                dev.ids.len(),
+                dev.spheres()
+            );
+        }
         let done = dev.step - first;
         self.parts = Some(dev);
         Ok(done)
     }
+}
+
+/// Entries of the device pair table for `world`.
+fn table_capacity(world: &World) -> usize {
+    let b = world.bodies();
+    (0..b.len())
+        .map(|i| world.templates[b.template[i] as usize].spheres.len())
+        .sum::<usize>()
+        * ENTRIES_PER_SPHERE
 }

@@ -15,11 +15,12 @@
 //! other shape one): slot `face_base + face` of the sphere's row of `NF`
 //! slots, `NF` the walls' total face count.
 
+use crate::context::Gpu;
 use clump_core::wall::{Wall, WallShape};
 use glam::DVec3;
 
 /// f64s per wall in `walls` (walls.wgsl `W_*`).
-pub(crate) const WALL_ROW: usize = 24;
+pub(crate) const WALL_ROW: usize = 25;
 
 /// Shape codes of walls.wgsl (`W_KIND`).
 const PLANE: f64 = 0.0;
@@ -51,7 +52,8 @@ pub(crate) fn face_bases(walls: &[Wall]) -> (Vec<usize>, usize) {
 /// Wall `w`'s row: the geometry (two vectors and a radius), the shape,
 /// inside, the material, its first slot, then the motion (velocity,
 /// angular velocity, centre, surface velocity), world frame, SI units,
-/// and whether it is active (an inactive wall touches nothing). A mesh
+/// whether it is active (an inactive wall touches nothing), and whether
+/// its `multi_contact` is "average" (average.wgsl `W_AVERAGE`). A mesh
 /// wall's geometry is its pose: the position, the orientation's x y z
 /// and w, and the mesh index where `inside` would be (mesh.wgsl).
 fn row(w: &Wall, base: usize) -> [f64; WALL_ROW] {
@@ -109,6 +111,7 @@ fn row_of(
     r[17..20].copy_from_slice(&m.center.to_array());
     r[20..23].copy_from_slice(&m.surface_velocity.to_array());
     r[23] = w.active as u8 as f64;
+    r[24] = (w.multi_contact == clump_core::multi_contact::MultiContact::Average) as u8 as f64;
     r
 }
 
@@ -157,4 +160,69 @@ impl WallTable {
         }
         out
     }
+}
+
+/// The wall springs `whist` (6 f64s per slot) as the upload sends them
+/// (scatter.wgsl): their count, then per slot not zero its index and its
+/// springs; `None` when that does not fit in `room` f64s.
+pub(crate) fn sparse_slots(whist: &[f64], room: usize) -> Option<Vec<f64>> {
+    let mut out = vec![0.0];
+    for (slot, h) in whist.chunks_exact(6).enumerate() {
+        if h.iter().any(|&x| x != 0.0) {
+            out.push(slot as f64);
+            out.extend_from_slice(h);
+        }
+    }
+    out[0] = ((out.len() - 1) / 7) as f64;
+    (out.len() <= room).then_some(out)
+}
+
+/// `pout` and `whist` of an upload with the wall springs `whist` (6 f64s
+/// per slot, `len` f64s in all; none: all zero), and how many springs go
+/// sparse in `pout` (`room` f64s) for [`scatter`]; where they do not fit,
+/// `whist` is sent whole.
+pub(crate) fn spring_buffers(
+    gpu: &Gpu,
+    whist: Option<&[f64]>,
+    room: usize,
+    len: usize,
+) -> (wgpu::Buffer, wgpu::Buffer, usize) {
+    match whist.map(|w| (w, sparse_slots(w, room))) {
+        Some((_, Some(s))) => (
+            gpu.buffer_prefix("pout", &s, room),
+            gpu.zeroed::<f64>("whist", len),
+            s[0] as usize,
+        ),
+        Some((w, None)) => (
+            gpu.zeroed::<f64>("pout", room),
+            gpu.buffer_prefix("whist", w, len),
+            0,
+        ),
+        None => (
+            gpu.zeroed::<f64>("pout", room),
+            gpu.zeroed::<f64>("whist", len),
+            0,
+        ),
+    }
+}
+
+/// The `count` wall springs sent sparse into their slots (scatter.wgsl
+/// `whist_scatter`, its pipeline `scatter`), before the first step.
+pub(crate) fn scatter(
+    gpu: &Gpu,
+    pipeline: &wgpu::ComputePipeline,
+    group: &wgpu::BindGroup,
+    count: usize,
+) {
+    if count == 0 {
+        return;
+    }
+    let mut enc = gpu.device.create_command_encoder(&Default::default());
+    {
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, group, &[]);
+        pass.dispatch_workgroups(count.div_ceil(64) as u32, 1, 1);
+    }
+    gpu.queue.submit(Some(enc.finish()));
 }

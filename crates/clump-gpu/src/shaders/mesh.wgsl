@@ -286,7 +286,11 @@ fn mesh_wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<f
     let kb = mesh_u[M_KEYS] + row;
     var touch: array<Touch, 4>;
     var k = 0u;
-    if (wall_f(w, W_ACTIVE) != 0.0lf) { k = mesh_touches(w, x, r, &touch); }
+    // a lost body (lost.wgsl) touches nothing
+    if (wall_f(w, W_ACTIVE) != 0.0lf && !lost(sown[2u * i])) { k = mesh_touches(w, x, r, &touch); }
+    // the multi-contact scale (average.wgsl; 1 under "sum")
+    var sc = 1.0lf;
+    if (k > 0u) { sc = wall_scale(i, w); }
     var old_key: array<u32, 4>;
     var old_t: array<vec3<f64>, 4>;
     var old_r: array<vec3<f64>, 4>;
@@ -311,7 +315,7 @@ fn mesh_wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<f
         var r0 = vec3<f64>(0.0lf);
         if (best < 4u) { used[best] = true; h0 = old_t[best]; r0 = old_r[best]; }
         mesh_u[kb + t] = ((w << 16u) | oct_encode(n)) + 1u;
-        let sp = touch_law(i, w, n, touch[t].overlap, h0, r0, fsum, tsum);
+        let sp = touch_law(i, w, n, touch[t].overlap, h0, r0, sc, fsum, tsum);
         st_whist(row + t, sp.t);
         st_wroll(row + t, sp.r);
     }
