@@ -647,8 +647,8 @@ impl HostArrays {
         walls.resize(sets * walls.len(), 0.0);
         let nwf = crate::walls::face_bases(&world.walls).1;
         // indices 0-16 common.wgsl, 17 periodic.wgsl, 18 average.wgsl,
-        // 19 lost.wgsl
-        let mut pu = vec![0u32; crate::lost::PU_LOST + 1];
+        // 19 lost.wgsl (lost.rs PU_LOST)
+        let mut pu = vec![0u32; 20];
         pu[crate::average::PU_AVERAGE] = crate::average::pairs_average(world) as u32;
         // common.wgsl PU_NWF
         pu[16] = nwf as u32;
