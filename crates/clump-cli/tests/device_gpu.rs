@@ -262,6 +262,29 @@ fn the_mill_runs_on_the_gpu_as_on_the_cpu_path() {
     }
 }
 
+/// `gpu_mesh_drum.toml`: a mesh wall end to end from the scenario's keys,
+/// the example's STL drum (5 184 triangles) at rest, then turning from
+/// the stage change at step 500 (the checkpoint of the hand-overs, with
+/// mesh contacts live); the four runs agree as the pour's do.
+#[cfg(feature = "gpu")]
+#[test]
+fn a_mesh_drum_runs_on_the_gpu_as_on_the_cpu_path() {
+    let tmp = four_runs("crates/clump-cli/tests/fixtures/gpu_mesh_drum.toml", 0.12);
+    let (head, rows) = thermo(&tmp.path().join("cpu"));
+    let col = |name: &str| head.iter().position(|h| h == name).unwrap();
+    let (fx, step, walls) = (col("drum_fx[N]"), col("step"), col("wall_contacts"));
+    let at_500 = rows.iter().find(|r| r[step] == 500.0).unwrap();
+    assert!(
+        at_500[walls] > 0.0,
+        "no mesh contact at the hand-over step: it would not test the slots' trip"
+    );
+    assert!(
+        rows.iter()
+            .any(|r| r[step] > 500.0 && (fx..fx + 3).any(|k| r[k] != 0.0)),
+        "the turning drum never touched: the comparison would not test it"
+    );
+}
+
 /// A scenario the GPU path refuses: the refusal names the key, and
 /// nothing is written (the output folder is not even made).
 #[cfg(feature = "gpu")]

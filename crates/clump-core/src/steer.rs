@@ -210,12 +210,22 @@ impl World {
 
     /// Removes body `id` with its spheres and their contacts.
     pub fn remove_body(&mut self, id: u64) -> Result<(), WorldError> {
+        self.remove_lost_body(id, crate::lost::LossCause::Removed)
+    }
+
+    /// Removes body `id` as [`Self::remove_body`] does, counting it as
+    /// lost for `cause` (another device found it beyond a side).
+    pub fn remove_lost_body(
+        &mut self,
+        id: u64,
+        cause: crate::lost::LossCause,
+    ) -> Result<(), WorldError> {
         let i = self.steer_index(id)?;
         let keep: Vec<u32> = (0..self.bodies.len() as u32)
             .filter(|&k| k as usize != i)
             .collect();
         self.bodies.permute(&keep);
-        self.lost.record(crate::lost::LossCause::Removed);
+        self.lost.record(cause);
         self.phase.topology_changed();
         Ok(())
     }

@@ -7,7 +7,7 @@ use clump_core::multi_contact::MultiContact;
 use clump_core::rotation::RotationScheme;
 use clump_core::shape::{builtin, ClumpTemplate};
 use clump_core::testbed::{tetra_material, tetra_template};
-use clump_core::wall::{Wall, WallMotion, WallShape};
+use clump_core::wall::{TriMesh, Wall, WallMotion, WallShape};
 use clump_core::world::{AddedMass, World, WorldConfig};
 use glam::{DQuat, DVec3};
 
@@ -63,7 +63,16 @@ pub fn box_bed_law(
     law: PairProperties,
     each: impl Fn(u64, &mut BodyInit),
 ) -> World {
-    let l = n as f64 * PITCH;
+    let walls = box_planes(n as f64 * PITCH, true);
+    bed_in(n, layers, rotation, law, walls, |k, b| {
+        each(k, b);
+        true
+    })
+}
+
+/// Static planes closing the box `[0, l]² × [0, ∞)`: the floor (with
+/// `floor`), then the sides at x = 0, y = 0, x = l, y = l.
+fn box_planes(l: f64, floor: bool) -> Vec<(WallShape, WallMotion)> {
     let planes = [
         (DVec3::ZERO, DVec3::Z),
         (DVec3::ZERO, DVec3::X),
@@ -71,14 +80,10 @@ pub fn box_bed_law(
         (DVec3::new(l, l, 0.0), -DVec3::X),
         (DVec3::new(l, l, 0.0), -DVec3::Y),
     ];
-    let walls = planes
-        .into_iter()
-        .map(|(point, normal)| (WallShape::Plane { point, normal }, WallMotion::default()))
-        .collect();
-    bed_in(n, layers, rotation, law, walls, |k, b| {
-        each(k, b);
-        true
-    })
+    planes[!floor as usize..]
+        .iter()
+        .map(|&(point, normal)| (WallShape::Plane { point, normal }, WallMotion::default()))
+        .collect()
 }
 
 /// The bed of [`box_bed_law`] in the walls `walls` (shape and motion
@@ -127,7 +132,7 @@ pub fn periodic_bed_law(
 }
 
 /// [`bed_in`] with the domain's periodic axes `periodic`.
-fn bed_periodic(
+pub fn bed_periodic(
     n: usize,
     layers: usize,
     rotation: RotationScheme,
@@ -231,20 +236,7 @@ pub fn drum_bed() -> World {
                 ..Default::default()
             },
         ),
-        (
-            WallShape::Cylinder {
-                point: pin,
-                axis: DVec3::X,
-                radius: 0.25 * PITCH,
-                inside: false,
-            },
-            WallMotion {
-                velocity: DVec3::new(0.0, 0.0, -0.1),
-                angular_velocity: DVec3::new(30.0, 0.0, 0.0),
-                center: pin,
-                ..Default::default()
-            },
-        ),
+        turning_pin(pin),
     ];
     let law = PairProperties::default();
     bed_in(6, 3, RotationScheme::NoSquish, law, walls, |_, b| {
@@ -277,17 +269,7 @@ pub fn container_bed() -> World {
                 ..Default::default()
             },
         ),
-        (
-            WallShape::Box {
-                lo: mid - DVec3::new(0.2 * PITCH, 0.2 * PITCH, 0.0),
-                hi: mid + DVec3::new(0.2 * PITCH, 0.2 * PITCH, 1.2 * PITCH),
-                inside: false,
-            },
-            WallMotion {
-                surface_velocity: DVec3::new(0.0, 0.05, 0.0),
-                ..Default::default()
-            },
-        ),
+        conveyor_post(mid),
         (
             WallShape::Plane {
                 point: DVec3::new(0.0, 0.0, 1.5 * PITCH),
@@ -303,4 +285,203 @@ pub fn container_bed() -> World {
     });
     w.walls[2].active = false;
     w
+}
+
+/// The mesh walls `meshes` (a mesh, its pose and its motion each) added
+/// to `w` after its other walls, static material 0, in order.
+fn add_meshes(w: &mut World, meshes: Vec<(TriMesh, DVec3, DQuat, WallMotion)>) {
+    for (mesh, position, orientation, motion) in meshes {
+        let k = w.walls.len();
+        let mesh = w.add_mesh(mesh);
+        w.add_wall(Wall {
+            name: format!("wall{k}"),
+            shape: WallShape::Mesh {
+                mesh,
+                position,
+                orientation,
+            },
+            material: 0,
+            motion,
+            multi_contact: MultiContact::Sum,
+            active: true,
+        })
+        .expect("a valid test bed");
+    }
+}
+
+/// A static mesh floor and post in a 4 × 4 pitch box: the floor an
+/// inverted eight-facet cone one pitch deep (a hopper bottom: its seams
+/// are concave, its apex a vertex) over the whole box, merge angle
+/// `merge` rad; the post a 1 × 1 × 3 pitch cuboid mesh turned by 30°
+/// about z in the middle (convex edges and corners). The box's side
+/// planes (walls 0-3) close it; walls 4 (floor) and 5 (post). Three
+/// layers of clumps, raised by a pitch and thrown down at 0.3 m/s, less
+/// those in the post.
+pub fn mesh_floor_bed(merge: f64) -> World {
+    use clump_core::wall::mesh::primitives::{cuboid, revolve};
+    let l = 4.0 * PITCH;
+    let mid = DVec3::new(0.5 * l, 0.5 * l, 0.0);
+    let walls = box_planes(l, false);
+    let post = |p: DVec3| (p - mid).truncate().length() < 1.3 * PITCH;
+    let mut w = bed_in(
+        4,
+        3,
+        RotationScheme::NoSquish,
+        PairProperties::default(),
+        walls,
+        |_, b| {
+            b.position.z += PITCH;
+            b.velocity.z -= 0.3;
+            !post(b.position)
+        },
+    );
+    let (v, t) = revolve(&[(0.0, 0.0), (0.75 * l, PITCH)], 8, 0.0);
+    let mut floor = TriMesh::new(v, t).expect("a valid test bed");
+    floor.merge_angle = merge;
+    let (v, t) = cuboid(
+        DVec3::new(-0.5, -0.5, 0.0) * PITCH,
+        DVec3::new(0.5, 0.5, 3.0) * PITCH,
+    );
+    let mut post = TriMesh::new(v, t).expect("a valid test bed");
+    post.merge_angle = merge;
+    let turn = DQuat::from_rotation_z(std::f64::consts::PI / 6.0);
+    add_meshes(
+        &mut w,
+        vec![
+            (floor, mid, DQuat::IDENTITY, WallMotion::default()),
+            (post, mid, turn, WallMotion::default()),
+        ],
+    );
+    w
+}
+
+/// A mesh drum (a closed 36-facet cylinder, radius 3 pitches, 5 pitches
+/// long, along z, its bottom cap the floor) turning at 20 rad/s about its
+/// axis in a 6 × 6 pitch box, and a mesh bar (a 3 × 0.5 × 0.5 pitch
+/// cuboid along x) coming down from 3 pitches at 0.15 m/s while it
+/// turns at 10 rad/s about its own y axis; three layers of clumps within
+/// 2 pitches of the drum's axis, thrown down at 0.3 m/s. Walls 0 (drum),
+/// 1 (bar).
+pub fn mesh_drum_bed() -> World {
+    use clump_core::wall::mesh::primitives::{cuboid, cylinder};
+    let c = DVec3::new(3.0 * PITCH, 3.0 * PITCH, 0.0);
+    let mut w = bed_in(
+        6,
+        3,
+        RotationScheme::NoSquish,
+        PairProperties::default(),
+        vec![],
+        |_, b| {
+            b.velocity.z -= 0.3;
+            (b.position - c).truncate().length() < 2.0 * PITCH
+        },
+    );
+    let (v, t) = cylinder(3.0 * PITCH, 5.0 * PITCH, 36, 0.0);
+    let drum = TriMesh::new(v, t).expect("a valid test bed");
+    let (v, t) = cuboid(
+        DVec3::new(-1.5, -0.25, -0.25) * PITCH,
+        DVec3::new(1.5, 0.25, 0.25) * PITCH,
+    );
+    let bar = TriMesh::new(v, t).expect("a valid test bed");
+    let bar_at = c + DVec3::new(0.0, 0.0, 3.0 * PITCH);
+    add_meshes(
+        &mut w,
+        vec![
+            (
+                drum,
+                c + DVec3::new(0.0, 0.0, 2.5 * PITCH),
+                DQuat::IDENTITY,
+                WallMotion {
+                    angular_velocity: DVec3::new(0.0, 0.0, 20.0),
+                    center: c,
+                    ..Default::default()
+                },
+            ),
+            (
+                bar,
+                bar_at,
+                DQuat::IDENTITY,
+                WallMotion {
+                    velocity: DVec3::new(0.0, 0.0, -0.15),
+                    angular_velocity: DVec3::new(0.0, 10.0, 0.0),
+                    center: bar_at,
+                    ..Default::default()
+                },
+            ),
+        ],
+    );
+    w
+}
+
+/// The bed of [`periodic_bed`] (periodic in x and y, 4 × 4 pitches, three
+/// layers) with walls inside the periodic box: the floor, a pin (a
+/// cylinder seen from outside, along x through both periodic x faces,
+/// radius 0.25 pitch, turning at 30 rad/s about its axis) coming down at
+/// 0.1 m/s from 3.6 pitches into the bed, and a post (a box seen from
+/// outside, 0.4 × 0.4 × 1.2 pitches, its surface moving at 0.05 m/s along
+/// y) in the middle, less the clumps of the two lower layers around it.
+/// Walls 0 (floor), 1 (pin), 2 (post).
+pub fn periodic_walls_bed() -> World {
+    let mid = DVec3::new(2.0 * PITCH, 2.0 * PITCH, 0.0);
+    let pin = DVec3::new(0.0, 2.0 * PITCH, 3.6 * PITCH);
+    let floor = WallShape::Plane {
+        point: DVec3::ZERO,
+        normal: DVec3::Z,
+    };
+    let walls = vec![
+        (floor, WallMotion::default()),
+        turning_pin(pin),
+        conveyor_post(mid),
+    ];
+    let law = PairProperties::default();
+    let periodic = [true, true, false];
+    bed_periodic(
+        4,
+        3,
+        RotationScheme::NoSquish,
+        law,
+        walls,
+        periodic,
+        |_, b| {
+            let d = (b.position - mid).truncate().abs();
+            !(d.max_element() < PITCH && b.position.z < 2.0 * PITCH)
+        },
+    )
+}
+
+/// A pin through `pin` (a cylinder seen from outside, along x, radius
+/// 0.25 pitch) turning at 30 rad/s about its axis and coming down at
+/// 0.1 m/s.
+fn turning_pin(pin: DVec3) -> (WallShape, WallMotion) {
+    (
+        WallShape::Cylinder {
+            point: pin,
+            axis: DVec3::X,
+            radius: 0.25 * PITCH,
+            inside: false,
+        },
+        WallMotion {
+            velocity: DVec3::new(0.0, 0.0, -0.1),
+            angular_velocity: DVec3::new(30.0, 0.0, 0.0),
+            center: pin,
+            ..Default::default()
+        },
+    )
+}
+
+/// A post standing on the floor at `mid` (a box seen from outside, 0.4 ×
+/// 0.4 × 1.2 pitches) whose surface moves at 0.05 m/s along y like a
+/// conveyor.
+fn conveyor_post(mid: DVec3) -> (WallShape, WallMotion) {
+    (
+        WallShape::Box {
+            lo: mid - DVec3::new(0.2 * PITCH, 0.2 * PITCH, 0.0),
+            hi: mid + DVec3::new(0.2 * PITCH, 0.2 * PITCH, 1.2 * PITCH),
+            inside: false,
+        },
+        WallMotion {
+            surface_velocity: DVec3::new(0.0, 0.05, 0.0),
+            ..Default::default()
+        },
+    )
 }

@@ -41,6 +41,9 @@ pub struct Gpu {
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
     pub info: wgpu::AdapterInfo,
+    /// Bytes copied host to device and device to host so far (integer
+    /// counters: what crosses the bus, ARCHITECTURE.md).
+    traffic: [std::sync::atomic::AtomicU64; 2],
 }
 
 impl Gpu {
@@ -76,6 +79,7 @@ impl Gpu {
             device,
             queue,
             info,
+            traffic: Default::default(),
         })
     }
 
@@ -91,6 +95,17 @@ impl Gpu {
         )
     }
 
+    /// Bytes copied so far: (host to device, device to host).
+    pub fn traffic(&self) -> (u64, u64) {
+        let get = |k: usize| self.traffic[k].load(std::sync::atomic::Ordering::Relaxed);
+        (get(0), get(1))
+    }
+
+    /// Counts `bytes` copied host to device (`k` 0) or back (`k` 1).
+    fn count(&self, k: usize, bytes: u64) {
+        self.traffic[k].fetch_add(bytes, std::sync::atomic::Ordering::Relaxed);
+    }
+
     /// A storage buffer holding `data`, readable back by `read`.
     pub fn buffer<T: bytemuck::Pod>(&self, label: &str, data: &[T]) -> wgpu::Buffer {
         // wgpu refuses zero-sized bindings: an empty array still gets one element's room.
@@ -99,6 +114,7 @@ impl Gpu {
         if contents.is_empty() {
             contents.resize(std::mem::size_of::<T>().max(4), 0);
         }
+        self.count(0, contents.len() as u64);
         self.device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -109,13 +125,36 @@ impl Gpu {
             })
     }
 
-    /// A zeroed storage buffer of `n` elements of `T`.
+    /// A zeroed storage buffer of `n` elements of `T`. Nothing crosses
+    /// the bus: wgpu clears a new buffer on the device.
     pub fn zeroed<T: bytemuck::Pod + bytemuck::Zeroable>(
         &self,
         label: &str,
         n: usize,
     ) -> wgpu::Buffer {
-        self.buffer(label, &vec![T::zeroed(); n.max(1)])
+        let size = (n.max(1) * std::mem::size_of::<T>()).max(4) as u64;
+        self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: size.next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT),
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_SRC
+                | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// A zeroed storage buffer of `n` elements of `T` that starts with
+    /// `data` (`data.len() <= n`): only `data` crosses the bus.
+    pub fn buffer_prefix<T: bytemuck::Pod + bytemuck::Zeroable>(
+        &self,
+        label: &str,
+        data: &[T],
+        n: usize,
+    ) -> wgpu::Buffer {
+        debug_assert!(data.len() <= n.max(1));
+        let buffer = self.zeroed::<T>(label, n);
+        self.write(&buffer, data);
+        buffer
     }
 
     /// A compute pipeline for `entry` of `wgsl`, its bind group laid out
@@ -161,7 +200,25 @@ impl Gpu {
 
     /// Copies `buffer` to the host (blocks until the queue is idle).
     pub fn read<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer) -> Result<Vec<T>, GpuError> {
-        let size = buffer.size();
+        let n = buffer.size() as usize / std::mem::size_of::<T>();
+        self.read_prefix(buffer, n)
+    }
+
+    /// Copies the first `n` elements of `buffer` to the host (blocks
+    /// until the queue is idle).
+    pub fn read_prefix<T: bytemuck::Pod>(
+        &self,
+        buffer: &wgpu::Buffer,
+        n: usize,
+    ) -> Result<Vec<T>, GpuError> {
+        if n == 0 {
+            return Ok(Vec::new());
+        }
+        let bytes = (n * std::mem::size_of::<T>()) as u64;
+        let size = bytes
+            .next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT)
+            .clamp(wgpu::COPY_BUFFER_ALIGNMENT, buffer.size());
+        self.count(1, size);
         let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("staging"),
             size,
@@ -189,7 +246,8 @@ impl Gpu {
             let view = slice
                 .get_mapped_range()
                 .map_err(|e| GpuError::Device(e.to_string()))?;
-            bytemuck::cast_slice(&view).to_vec()
+            let t: &[T] = bytemuck::cast_slice(&view);
+            t[..n.min(t.len())].to_vec()
         };
         staging.unmap();
         Ok(out)
@@ -197,7 +255,27 @@ impl Gpu {
 
     /// Overwrites the start of `buffer` with `data`.
     pub fn write<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer, data: &[T]) {
+        self.write_at(buffer, 0, data);
+    }
+
+    /// Overwrites `buffer` from byte `offset` on with `data`.
+    pub fn write_at<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer, offset: u64, data: &[T]) {
+        self.count(0, std::mem::size_of_val(data) as u64);
         self.queue
-            .write_buffer(buffer, 0, bytemuck::cast_slice(data));
+            .write_buffer(buffer, offset, bytemuck::cast_slice(data));
+    }
+}
+
+/// A read-write storage buffer at `binding`, seen by compute shaders.
+pub(crate) fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
     }
 }

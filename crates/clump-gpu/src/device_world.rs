@@ -8,7 +8,7 @@ use clump_core::world::World;
 use glam::{DQuat, DVec3};
 
 /// The kernels, one WGSL module.
-const SHADER: [&str; 8] = [
+const SHADER: [&str; 12] = [
     include_str!("shaders/common.wgsl"),
     include_str!("shaders/periodic.wgsl"),
     include_str!("shaders/rotation.wgsl"),
@@ -17,16 +17,20 @@ const SHADER: [&str; 8] = [
     include_str!("shaders/rolling.wgsl"),
     include_str!("shaders/contact.wgsl"),
     include_str!("shaders/walls.wgsl"),
+    include_str!("shaders/mesh.wgsl"),
+    include_str!("shaders/average.wgsl"),
+    include_str!("shaders/lost.wgsl"),
+    include_str!("shaders/scatter.wgsl"),
 ];
 /// Storage bindings of the module (common.wgsl).
-const N_BINDINGS: u32 = 30;
+const N_BINDINGS: u32 = 31;
 /// f64s per contact's springs: tangential (3), then rolling (3)
 /// (common.wgsl `ld_hist`, `ld_roll`).
 pub(crate) const HIST: usize = 6;
 /// f64s per material pair in `laws` (contact.wgsl LAW_ROW).
 const LAW_ROW: usize = 11;
 /// Pair-table entries reserved per sphere (each pair twice, one entry per side).
-const ENTRIES_PER_SPHERE: usize = 16;
+pub(crate) const ENTRIES_PER_SPHERE: usize = 16;
 /// Index of the integer parameter holding the overflow bits (common.wgsl PU_OVERFLOW).
 const PU_OVERFLOW: usize = 11;
 /// Index of the count of table builds (common.wgsl PU_BUILDS).
@@ -53,7 +57,10 @@ const K_GATHER_KICK: usize = 14;
 const K_REBUILD_ARGS: usize = 15;
 const K_TABLE_SAVE: usize = 16;
 const K_WALL_STEP: usize = 17;
-const ENTRIES: [&str; 18] = [
+const K_PAIR_TOUCH: usize = 18;
+const K_MARK_LOST: usize = 19;
+const K_WHIST_SCATTER: usize = 20;
+const ENTRIES: [&str; 21] = [
     "first_half",
     "spheres",
     "sort_reset",
@@ -72,9 +79,15 @@ const ENTRIES: [&str; 18] = [
     "rebuild_args",
     "table_save",
     "wall_step",
+    "pair_touch",
+    "mark_lost",
+    "whist_scatter",
 ];
 /// Index of the walls' row set of this step (common.wgsl PU_WSTEP).
 const PU_WSTEP: usize = 15;
+/// Index of the "a body was marked lost" flag (lost.wgsl PU_LOST), after
+/// average.wgsl's PU_AVERAGE.
+pub(crate) const PU_LOST: usize = crate::average::PU_AVERAGE + 1;
 /// Steps per submission of [`DeviceWorld::run`] (row sets of moving walls: one more).
 const BATCH: u64 = 64;
 /// The indirect dispatch sizes `rebuild_args` writes (pairs.wgsl): one
@@ -159,6 +172,9 @@ pub struct DeviceWorld {
     dt: f64,
     /// The walls at `step` (the host advances them, walls.rs).
     pub(crate) walls: crate::walls::WallTable,
+    /// `simulation.multi_contact = "average"`: the pairs' touches are
+    /// counted before their forces (average.wgsl).
+    average: bool,
 }
 
 /// The step's compiled kernels and their layouts: made once per device,
@@ -177,13 +193,15 @@ impl Kernels {
             .device
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("clump step"),
-                entries: &(0..N_BINDINGS).map(storage_entry).collect::<Vec<_>>(),
+                entries: &(0..N_BINDINGS)
+                    .map(crate::context::storage_entry)
+                    .collect::<Vec<_>>(),
             });
         let args_layout = gpu
             .device
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("clump build sizes"),
-                entries: &[storage_entry(0)],
+                entries: &[crate::context::storage_entry(0)],
             });
         let pl = gpu
             .device
@@ -230,28 +248,6 @@ impl Kernels {
     }
 }
 
-/// A read-write storage buffer at `binding`, seen by compute shaders.
-fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: false },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-/// `v` followed by zeros up to `len` entries (at least one: a buffer is
-/// never empty).
-fn padded<T: Copy + Default>(v: &[T], len: usize) -> Vec<T> {
-    let mut out = v.to_vec();
-    out.resize(len.max(v.len()).max(1), T::default());
-    out
-}
-
 fn flat3(v: &[DVec3]) -> Vec<f64> {
     v.iter().flat_map(|a| [a.x, a.y, a.z]).collect()
 }
@@ -282,7 +278,7 @@ impl DeviceWorld {
     ) -> Result<DeviceWorld, DeviceError> {
         let (host, n) = HostArrays::new(world)?;
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let buffers = host.buffers(&gpu, n, springs);
+        let (buffers, sparse) = host.buffers(&gpu, n, springs);
         let entries: Vec<wgpu::BindGroupEntry> = (0..N_BINDINGS as usize)
             .map(|b| wgpu::BindGroupEntry {
                 binding: b as u32,
@@ -308,6 +304,7 @@ impl DeviceWorld {
                 resource: args.as_entire_binding(),
             }],
         });
+        crate::walls::scatter(&gpu, &kernels.pipelines[K_WHIST_SCATTER], &group, sparse);
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Device(format!("setting up the device step: {e}")).into());
         }
@@ -325,6 +322,7 @@ impl DeviceWorld {
             builds: 0,
             dt: world.config.dt,
             walls: crate::walls::WallTable::new(&world.walls, world.config.dt),
+            average: crate::average::pairs_average(world),
         })
     }
 
@@ -351,13 +349,9 @@ impl DeviceWorld {
         if self.walls.moving {
             // the walls of each step of this submission, from row set 0
             let rows = self.walls.advance(steps);
+            self.gpu.write(&self.buffers[26], &rows);
             self.gpu
-                .queue
-                .write_buffer(&self.buffers[26], 0, bytemuck::cast_slice(&rows));
-            let at = (PU_WSTEP * 4) as u64;
-            self.gpu
-                .queue
-                .write_buffer(&self.buffers[1], at, bytemuck::bytes_of(&0u32));
+                .write_at(&self.buffers[1], (PU_WSTEP * 4) as u64, &[0u32]);
         }
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         if prepare {
@@ -426,6 +420,8 @@ impl DeviceWorld {
     fn encode_forces(&self, enc: &mut wgpu::CommandEncoder, last: usize) {
         let n = self.n;
         let mut pass = enc.begin_compute_pass(&Default::default());
+        // bodies beyond a non-periodic side leave at a build (lost.wgsl)
+        self.dispatch_build(&mut pass, K_MARK_LOST, A_SPHERES);
         self.dispatch_build(&mut pass, K_SORT_RESET, A_ONE);
         let p = n.npow2.trailing_zeros() as usize;
         for _ in 0..p * (p + 1) / 2 {
@@ -440,6 +436,9 @@ impl DeviceWorld {
         self.dispatch_build(&mut pass, K_PAIRS_SCAN, A_ONE);
         self.dispatch_build(&mut pass, K_PAIRS_FILL, A_SPHERES);
         self.dispatch_build(&mut pass, K_PAIRS_MIRROR, A_SPHERES);
+        if self.average {
+            self.dispatch(&mut pass, K_PAIR_TOUCH, n.ns);
+        }
         self.dispatch(&mut pass, K_PAIR_FORCES, n.ns);
         self.dispatch(&mut pass, K_SPHERE_GATHER, n.ns);
         self.dispatch(&mut pass, last, n.nb);
@@ -489,7 +488,7 @@ impl DeviceWorld {
         world.walls.clone_from_slice(&self.walls.walls);
         world.step = self.step;
         world.time = self.time;
-        Ok(())
+        self.remove_lost(world)
     }
 
     /// The f64 array at `binding` (common.wgsl), whole.
@@ -497,14 +496,25 @@ impl DeviceWorld {
         self.gpu.read(&self.buffers[binding])
     }
 
+    /// The u32 array at `binding` (common.wgsl), whole.
+    pub(crate) fn read_u32(&self, binding: usize) -> Result<Vec<u32>, GpuError> {
+        self.gpu.read(&self.buffers[binding])
+    }
+
     /// The current pair table: offsets per sphere, neighbour and spring
-    /// per entry.
+    /// per entry, the entries in use only (the offsets say how many).
     pub(crate) fn table(&self) -> Result<(Vec<u32>, Vec<u32>, Vec<f64>), GpuError> {
-        Ok((
-            self.gpu.read(&self.buffers[17])?,
-            self.gpu.read(&self.buffers[18])?,
-            self.gpu.read(&self.buffers[19])?,
-        ))
+        let noff: Vec<u32> = self.gpu.read(&self.buffers[17])?;
+        let used = (noff[self.n.ns] as usize).min(self.n.cap);
+        let nbr = self.gpu.read_prefix(&self.buffers[18], used)?;
+        let hist = self.gpu.read_prefix(&self.buffers[19], HIST * used)?;
+        Ok((noff, nbr, hist))
+    }
+
+    /// The mesh wall slots' keys (mesh.rs), one per (sphere, wall slot).
+    pub(crate) fn mesh_keys(&self) -> Result<Vec<u32>, GpuError> {
+        let u = self.gpu.read(&self.buffers[30])?;
+        Ok(crate::mesh::keys_of(u, self.n.ns * self.n.nwf))
     }
 
     /// Number of spheres on the device.
@@ -522,6 +532,8 @@ pub(crate) struct Springs {
     pub nbr: Vec<u32>,
     pub hist: Vec<f64>,
     pub whist: Vec<f64>,
+    /// Mesh wall slots' keys (mesh.rs), one per (sphere, wall slot).
+    pub wkey: Vec<u32>,
 }
 
 /// The bodies of `world` in ascending id: the device's order, whatever
@@ -548,15 +560,6 @@ fn dof_bits(force: [bool; 3], torque: [bool; 3], start_step: u64) -> f64 {
         + driven as f64
 }
 
-/// Entries of the device pair table for `world`.
-pub(crate) fn table_capacity(world: &World) -> usize {
-    let b = world.bodies();
-    (0..b.len())
-        .map(|i| world.templates[b.template[i] as usize].spheres.len())
-        .sum::<usize>()
-        * ENTRIES_PER_SPHERE
-}
-
 /// The host's copy of what goes to the device at upload.
 struct HostArrays {
     pf: Vec<f64>,
@@ -567,6 +570,7 @@ struct HostArrays {
     sref: Vec<f64>,
     walls: Vec<f64>,
     laws: Vec<f64>,
+    meshes: crate::mesh::MeshArrays,
 }
 
 impl HostArrays {
@@ -633,9 +637,13 @@ impl HostArrays {
         let sets = if table.moving { BATCH as usize + 1 } else { 1 };
         let mut walls = table.rows();
         walls.resize(sets * walls.len(), 0.0);
+        let meshes = crate::mesh::MeshArrays::new(world.walls.meshes(), rmax, walls.len());
+        walls.extend(&meshes.f);
         let nwf = crate::walls::face_bases(&world.walls).1;
-        // indices 0-16 common.wgsl, 17 periodic.wgsl
-        let mut pu = vec![0u32; crate::periodic::PU_PERIODIC + 1];
+        // indices 0-16 common.wgsl, 17 periodic.wgsl, 18 average.wgsl,
+        // 19 lost.wgsl
+        let mut pu = vec![0u32; PU_LOST + 1];
+        pu[crate::average::PU_AVERAGE] = crate::average::pairs_average(world) as u32;
         // common.wgsl PU_NWF
         pu[16] = nwf as u32;
         // common.wgsl PU_ROT (support.rs refuses the other schemes)
@@ -733,13 +741,15 @@ impl HostArrays {
                 sref,
                 walls,
                 laws,
+                meshes,
             },
             n,
         ))
     }
 
-    /// The storage buffers of group 0, by binding.
-    fn buffers(&self, gpu: &Gpu, n: Sizes, springs: Option<Springs>) -> Vec<wgpu::Buffer> {
+    /// The storage buffers of group 0, by binding, and the number of wall
+    /// springs sent sparse in `pout` for `whist_scatter` (scatter.wgsl).
+    fn buffers(&self, gpu: &Gpu, n: Sizes, springs: Option<Springs>) -> (Vec<wgpu::Buffer>, usize) {
         let nw = n.nwf.max(1);
         let mut out = vec![gpu.buffer("pf", &self.pf), gpu.buffer("pu", &self.pu)];
         for (k, a) in self.bodies.iter().enumerate() {
@@ -758,8 +768,8 @@ impl HostArrays {
         match &springs {
             Some(sp) => {
                 out.push(gpu.buffer("noff", &sp.noff));
-                out.push(gpu.buffer("nbr", &padded(&sp.nbr, n.cap)));
-                out.push(gpu.buffer("hist", &padded(&sp.hist, HIST * n.cap)));
+                out.push(gpu.buffer_prefix("nbr", &sp.nbr, n.cap));
+                out.push(gpu.buffer_prefix("hist", &sp.hist, HIST * n.cap));
             }
             None => {
                 out.push(gpu.zeroed::<u32>("noff", n.ns + 1));
@@ -771,15 +781,17 @@ impl HostArrays {
         out.push(gpu.zeroed::<u32>("old_nbr", n.cap));
         out.push(gpu.zeroed::<f64>("old_hist", HIST * n.cap));
         out.push(gpu.zeroed::<u32>("mirror", n.cap));
-        out.push(gpu.zeroed::<f64>("pout", 9 * n.cap));
+        let whist = springs.as_ref().map(|sp| &sp.whist[..]);
+        let (pout, whist, sparse) =
+            crate::walls::spring_buffers(gpu, whist, 9 * n.cap, HIST * n.ns * nw);
+        out.push(pout);
         out.push(gpu.zeroed::<f64>("sft", 12 * n.ns));
         out.push(gpu.buffer("walls", &self.walls));
-        match &springs {
-            Some(sp) => out.push(gpu.buffer("whist", &padded(&sp.whist, HIST * n.ns * nw))),
-            None => out.push(gpu.zeroed::<f64>("whist", HIST * n.ns * nw)),
-        }
+        out.push(whist);
         out.push(gpu.buffer("laws", &self.laws));
         out.push(gpu.zeroed::<f64>("sx0", 3 * n.ns));
-        out
+        let keys = springs.map(|sp| sp.wkey).unwrap_or_default();
+        out.push(gpu.buffer("mesh_u", &self.meshes.with_keys(&keys, n.ns * nw)));
+        (out, sparse)
     }
 }

@@ -8,15 +8,21 @@
 //! - `device_world`: a world's arrays on the device, the step's kernels in
 //!   order (`shaders/*.wgsl`);
 //! - `periodic`: periodic boxes, the host's half (`shaders/periodic.wgsl`);
+//! - `average`: `average` multi-contact, the host's half (`shaders/average.wgsl`);
+//! - `lost`: bodies leaving through a non-periodic side, removed at
+//!   downloads (`shaders/lost.wgsl`);
 //! - `transfer`: the copies in and out at events, springs included, and
 //!   the stepper a runner hands the steps between its events to.
 //!
 //! ARCHITECTURE.md ("The device path") describes the device data layout,
 //! the kernels in step order and what crosses the bus and when.
 
+mod average;
 pub mod bed;
 pub mod context;
 pub mod device_world;
+mod lost;
+mod mesh;
 pub mod periodic;
 pub mod steps;
 pub mod support;

@@ -3,7 +3,6 @@
 //! on, so `clump check --device gpu` can refuse it at the key.
 
 use clump_core::rotation::RotationScheme;
-use clump_core::wall::WallShape;
 use clump_core::world::World;
 
 /// One step of a scenario key's path: a table key or an array index.
@@ -55,13 +54,6 @@ fn keys(dotted: &'static str) -> Vec<KeySeg> {
     dotted.split('.').map(KeySeg::Key).collect()
 }
 
-/// `wall[k]` and then `key`, if any.
-fn wall_key(k: usize, key: Option<&'static str>) -> Vec<KeySeg> {
-    let mut p = vec![KeySeg::Key("wall"), KeySeg::Index(k)];
-    p.extend(key.map(KeySeg::Key));
-    p
-}
-
 /// Everything in `world` the device step does not do (empty: it runs):
 /// [`unsupported_settings`] and bodies before their start step (a
 /// stream's ballistic entry; [`crate::DeviceStepper`] takes those steps on
@@ -111,9 +103,6 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
     if c.added_mass.coefficient != 0.0 {
         no(keys("integrator.added_mass"), "none");
     }
-    if c.multi_contact != clump_core::multi_contact::MultiContact::Sum {
-        no(keys("simulation.multi_contact"), "\"sum\"");
-    }
     let t = &world.contact_table;
     if t.any_extended() || t.any_reach() {
         no(
@@ -121,18 +110,8 @@ pub fn unsupported_settings(world: &World) -> Vec<Unsupported> {
             "Hertz-Mindlin or linear laws, rolling resistance none, cdt or epsd, without twisting, cohesion or micro-slip",
         );
     }
-    for (k, w) in world.walls.iter().enumerate() {
-        // every motion the CPU path allows runs (walls.rs)
-        if matches!(w.shape, WallShape::Mesh { .. }) {
-            no(
-                wall_key(k, Some("type")),
-                "\"plane\", \"cylinder\" or \"box\"",
-            );
-        }
-        if w.multi_contact != clump_core::multi_contact::MultiContact::Sum {
-            no(wall_key(k, Some("multi_contact")), "\"sum\"");
-        }
-    }
+    // every wall shape, motion and multi_contact the CPU path allows
+    // runs (walls.rs, mesh.rs, average.rs)
     if world.heat.is_some() {
         no(keys("heat"), "off");
     }

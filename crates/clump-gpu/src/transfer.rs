@@ -13,7 +13,7 @@
 //! (sphere, wall).
 
 use crate::context::Gpu;
-use crate::device_world::{DeviceError, DeviceWorld, Kernels, Springs, HIST};
+use crate::device_world::{DeviceError, DeviceWorld, Kernels, Springs, ENTRIES_PER_SPHERE, HIST};
 use crate::support::unsupported;
 use clump_core::contact::ContactHistory;
 use clump_core::neighbor::walls::WALL_SLOTS;
@@ -55,6 +55,10 @@ fn springs_at(a: &[f64], k: usize) -> (DVec3, DVec3) {
         DVec3::new(a[o], a[o + 1], a[o + 2]),
         DVec3::new(a[o + 3], a[o + 4], a[o + 5]),
     )
+}
+
+fn is_mesh(w: &clump_core::wall::Wall) -> bool {
+    matches!(w.shape, clump_core::wall::WallShape::Mesh { .. })
 }
 
 fn bad_state(e: impl std::fmt::Display) -> DeviceError {
@@ -115,14 +119,28 @@ impl Springs {
         let nw = world.walls.len();
         let (base, nwf) = crate::walls::face_bases(&world.walls);
         let mut whist = vec![0.0; HIST * ns * nwf];
+        let mut wkey = vec![0u32; ns * nwf];
         let cpu_gid = &world.spheres().gid;
         for (s, (keys, hs)) in state.wall_key.iter().zip(&state.wall_hist).enumerate() {
+            // a mesh wall's slots in the order of its keys (mesh.rs)
+            let mut mesh_used = HashMap::new();
             for (&key, h) in keys.iter().zip(hs) {
-                let (w, face) = if key == 0 { (nw, 0) } else { slot_wall(key) };
-                if w >= nw || face >= crate::walls::faces(&world.walls[w]) {
+                let (w, mut face) = if key == 0 { (nw, 0) } else { slot_wall(key) };
+                if w >= nw {
+                    continue;
+                }
+                if is_mesh(&world.walls[w]) {
+                    let used = mesh_used.entry(w).or_insert(0);
+                    face = *used;
+                    *used += 1;
+                }
+                if face >= crate::walls::faces(&world.walls[w]) {
                     continue;
                 }
                 let slot = find(cpu_gid[s])? as usize * nwf + base[w] + face;
+                if is_mesh(&world.walls[w]) {
+                    wkey[slot] = key;
+                }
                 let o = HIST * slot;
                 whist[o..o + 3].copy_from_slice(&h.tangential.to_array());
                 whist[o + 3..o + 6].copy_from_slice(&h.rolling.to_array());
@@ -133,6 +151,7 @@ impl Springs {
             nbr,
             hist,
             whist,
+            wkey,
         })
     }
 }
@@ -164,7 +183,7 @@ impl DeviceWorld {
 
     fn load(gpu: Gpu, kernels: Kernels, world: &mut World) -> Result<DeviceWorld, DeviceError> {
         let state = world.save_state().map_err(bad_state)?;
-        let cap = crate::device_world::table_capacity(world);
+        let cap = table_capacity(world);
         let springs = Springs::of(world, &state, cap)?;
         DeviceWorld::bind(gpu, kernels, world, Some(springs))
     }
@@ -213,7 +232,8 @@ impl DeviceWorld {
         s.step = self.step;
         s.time = self.time;
         s.built_step = self.step;
-        world.restore_state(s).map_err(bad_state)
+        world.restore_state(s).map_err(bad_state)?;
+        self.remove_lost(world)
     }
 
     /// The springs of the pair table's owning entries that are not zero,
@@ -257,6 +277,7 @@ impl DeviceWorld {
         gids: &[u64],
     ) -> Result<(Vec<[u32; WALL_SLOTS]>, Vec<[ContactHistory; WALL_SLOTS]>), DeviceError> {
         let whist = self.read_f64(27)?;
+        let wkey = self.mesh_keys()?;
         let (base, nwf) = crate::walls::face_bases(&world.walls);
         let at: HashMap<u64, usize> = gids.iter().enumerate().map(|(d, &g)| (g, d)).collect();
         let cpu_gid = &world.spheres().gid;
@@ -270,9 +291,19 @@ impl DeviceWorld {
             for (w, face) in (0..world.walls.len())
                 .flat_map(|w| (0..crate::walls::faces(&world.walls[w])).map(move |f| (w, f)))
             {
-                let (t, r) = springs_at(&whist, d * nwf + base[w] + face);
-                if (t != DVec3::ZERO || r != DVec3::ZERO) && used < WALL_SLOTS {
-                    keys[s][used] = slot_key(w, face);
+                let slot = d * nwf + base[w] + face;
+                let (t, r) = springs_at(&whist, slot);
+                // a mesh slot is kept with its key (the stored normal
+                // matters to the next step's match, whatever its springs)
+                let key = if is_mesh(&world.walls[w]) {
+                    wkey[slot]
+                } else if t != DVec3::ZERO || r != DVec3::ZERO {
+                    slot_key(w, face)
+                } else {
+                    0
+                };
+                if key != 0 && used < WALL_SLOTS {
+                    keys[s][used] = key;
                     hists[s][used] = ContactHistory {
                         tangential: t,
                         rolling: r,
@@ -291,6 +322,11 @@ impl DeviceWorld {
 pub struct DeviceStepper {
     parts: Option<DeviceWorld>,
     gpu: Option<Gpu>,
+    /// `CLUMP_GPU_TRAFFIC` set: each stretch reports on stderr the bytes
+    /// it copied each way (the measurement of docs/testing.md).
+    report: bool,
+    /// Bytes copied (host to device, device to host) by the stretches so far.
+    pub traffic: (u64, u64),
 }
 
 impl DeviceStepper {
@@ -299,6 +335,8 @@ impl DeviceStepper {
         DeviceStepper {
             parts: None,
             gpu: Some(gpu),
+            report: std::env::var_os("CLUMP_GPU_TRAFFIC").is_some(),
+            traffic: (0, 0),
         }
     }
 
@@ -326,6 +364,11 @@ impl DeviceStepper {
                 return Ok(world.step - first);
             }
         }
+        let before = match (&self.parts, &self.gpu) {
+            (Some(d), _) => d.gpu.traffic(),
+            (None, Some(g)) => g.traffic(),
+            (None, None) => (0, 0),
+        };
         let mut dev = match (self.parts.take(), self.gpu.take()) {
             (Some(d), _) => d.reload(world)?,
             (None, Some(g)) => DeviceWorld::continue_from(g, world)?,
@@ -342,8 +385,28 @@ impl DeviceStepper {
             }
         }
         dev.download_state(world)?;
+        let after = dev.gpu.traffic();
+        let (up, down) = (after.0 - before.0, after.1 - before.1);
+        self.traffic = (self.traffic.0 + up, self.traffic.1 + down);
+        if self.report {
+            eprintln!(
+                "device stretch to step {}: {up} bytes to the device, {down} bytes back ({} bodies, {} spheres)",
+                dev.step,
+                dev.ids.len(),
+                dev.spheres()
+            );
+        }
         let done = dev.step - first;
         self.parts = Some(dev);
         Ok(done)
     }
+}
+
+/// Entries of the device pair table for `world`.
+fn table_capacity(world: &World) -> usize {
+    let b = world.bodies();
+    (0..b.len())
+        .map(|i| world.templates[b.template[i] as usize].spheres.len())
+        .sum::<usize>()
+        * ENTRIES_PER_SPHERE
 }

@@ -7,33 +7,15 @@
 //! agree to round-off amplified by the contacts: the criterion is
 //! 1e-9 of the domain size after a few thousand steps.
 
+mod common;
+
 use clump_core::rotation::RotationScheme;
 use clump_core::world::World;
 use clump_gpu::bed::{box_bed, periodic_bed};
 use clump_gpu::periodic::nearest_image;
 use clump_gpu::{DeviceWorld, Gpu};
+use common::{compare_at, cpu_apart, max_dev, with_multi};
 use glam::DVec3;
-
-/// Largest coordinate difference, m, between the device's bodies and the
-/// CPU world's, matched by id (the CPU path reorders its bodies), the
-/// nearest image along periodic axes (the two paths wrap a body into the
-/// box at different steps: the device when it leaves, the CPU path at its
-/// next list rebuild).
-fn max_dev(dev: &DeviceWorld, x: &[DVec3], cpu: &World) -> f64 {
-    let b = cpu.bodies();
-    let domain = cpu.config.domain;
-    let at: std::collections::HashMap<u64, usize> =
-        b.id.iter().enumerate().map(|(k, &id)| (id, k)).collect();
-    dev.ids
-        .iter()
-        .zip(x)
-        .map(|(id, p)| {
-            nearest_image(&domain, *p - b.position[at[id]])
-                .abs()
-                .max_element()
-        })
-        .fold(0.0, f64::max)
-}
 
 /// The bed under `rotation`, `at` steps on both paths; the largest
 /// position difference over the checkpoints, relative to the box.
@@ -48,39 +30,8 @@ fn compare_world(cpu: World) -> f64 {
 
 /// [`compare_world`], also returning the device and the CPU world at the
 /// end (step 3000).
-fn compare_keep(mut cpu: World) -> (f64, DeviceWorld, World) {
-    let rotation = cpu.config.rotation;
-    let size = cpu.config.domain.size().max_element();
-    let mut dev = DeviceWorld::upload(Gpu::new().unwrap(), &cpu).unwrap_or_else(|e| panic!("{e}"));
-    eprintln!(
-        "{rotation:?}: adapter {}, {} spheres",
-        dev.gpu.describe(),
-        dev.spheres()
-    );
-    cpu.prepare().unwrap();
-    let mut done = 0;
-    let mut worst = 0.0f64;
-    for &at in &[1u64, 10, 100, 1000, 2000, 3000] {
-        let t0 = std::time::Instant::now();
-        dev.run(at - done).unwrap_or_else(|e| panic!("{e}"));
-        let gpu_x = dev.positions().unwrap();
-        let secs = t0.elapsed().as_secs_f64();
-        cpu.run(at - done).unwrap();
-        let dev_rel = max_dev(&dev, &gpu_x, &cpu) / size;
-        eprintln!(
-            "step {at}: max |x_gpu - x_cpu| / L = {dev_rel:.3e}; contacts on the CPU {}; device table builds {}, {:.0} sphere-steps/s",
-            format!("{} pair, {} wall", cpu.stats.pair_contacts, cpu.stats.wall_contacts),
-            dev.builds,
-            (dev.spheres() as f64 * (at - done) as f64) / secs
-        );
-        worst = worst.max(dev_rel);
-        done = at;
-    }
-    assert!(
-        cpu.stats.pair_contacts > 0,
-        "the bed must have contacts for the comparison to mean anything"
-    );
-    (worst, dev, cpu)
+fn compare_keep(cpu: World) -> (f64, DeviceWorld, World) {
+    compare_at(cpu, &[1, 10, 100, 1000, 2000, 3000], |_| {})
 }
 
 /// The criterion: 1e-9 of the domain size after 3000 steps.
@@ -258,20 +209,26 @@ fn periodic_traffic(mut w: World) -> (usize, usize) {
     (crossings, across)
 }
 
-#[test]
-fn device_runs_are_bit_reproducible() {
-    let w = box_bed(4, 3, RotationScheme::NoSquish);
+/// Whether two device runs of `w`, 500 steps each, end with the same bits.
+fn bit_reproducible(w: &World) -> bool {
     let run = || {
-        let mut d = DeviceWorld::upload(Gpu::new().unwrap(), &w).unwrap();
+        let mut d = DeviceWorld::upload(Gpu::new().unwrap(), w).unwrap();
         d.run(500).unwrap();
         d.positions().unwrap()
     };
     let (a, b) = (run(), run());
-    let same = a
-        .iter()
+    a.iter()
         .zip(&b)
-        .all(|(p, q)| p.to_array().map(f64::to_bits) == q.to_array().map(f64::to_bits));
-    assert!(same, "two device runs of the same world differ");
+        .all(|(p, q)| p.to_array().map(f64::to_bits) == q.to_array().map(f64::to_bits))
+}
+
+#[test]
+fn device_runs_are_bit_reproducible() {
+    let w = box_bed(4, 3, RotationScheme::NoSquish);
+    assert!(
+        bit_reproducible(&w),
+        "two device runs of the same world differ"
+    );
 }
 
 /// Fixed and driven bodies (dof.rs): every sixth clump is fixed (at rest,
@@ -540,5 +497,151 @@ fn device_step_agrees_with_the_cpu_path_with_box_walls() {
     assert!(
         most >= 2,
         "no sphere touched two faces of the container at once"
+    );
+}
+
+/// `average` multi-contact (T-34, multi_contact.rs) on the device against
+/// the CPU path, to the criterion: between clumps and with the
+/// five planes of the box bed, and with the container bed's box walls
+/// (a body's touches with the faces of one box counted together). Each
+/// switch changes the CPU run (so bodies did touch a body or a wall at
+/// several spheres at once, and the counts matter).
+#[test]
+fn device_step_agrees_with_the_cpu_path_with_average_contacts() {
+    use clump_core::multi_contact::MultiContact::{Average, Sum};
+    let bed = |p, w| with_multi(box_bed(4, 3, RotationScheme::NoSquish), p, w);
+    let size = box_bed(4, 3, RotationScheme::NoSquish)
+        .config
+        .domain
+        .size()
+        .max_element();
+    let pairs_matter = cpu_apart(bed(Average, Average), bed(Sum, Average), 3000) / size;
+    let walls_matter = cpu_apart(bed(Average, Average), bed(Average, Sum), 3000) / size;
+    eprintln!(
+        "average against sum on the CPU path after 3000 steps: pairs {pairs_matter:.3e}, walls {walls_matter:.3e} of the box"
+    );
+    assert!(
+        pairs_matter > 1e-6 && walls_matter > 1e-6,
+        "average changed the CPU run by only {pairs_matter:e} (pairs), {walls_matter:e} (walls)"
+    );
+    let worst = compare_world(bed(Average, Average));
+    eprintln!("average, box bed: worst {worst:.3e} of the box");
+    assert!(
+        worst < 1e-9,
+        "average, box bed: {worst:e} of the domain size"
+    );
+    let container = || with_multi(clump_gpu::bed::container_bed(), Average, Average);
+    let box_matter = cpu_apart(
+        container(),
+        with_multi(clump_gpu::bed::container_bed(), Average, Sum),
+        3000,
+    ) / size;
+    eprintln!("average box walls against sum on the CPU path: {box_matter:.3e} of the box");
+    assert!(
+        box_matter > 1e-6,
+        "average box walls changed the run by only {box_matter:e}"
+    );
+    let worst = compare_world(container());
+    eprintln!("average, container bed: worst {worst:.3e} of the box");
+    assert!(
+        worst < 1e-9,
+        "average, container bed: {worst:e} of the domain size"
+    );
+}
+
+/// Two device runs of an `average` bed give the same bits (integer counts,
+/// no atomics).
+#[test]
+fn average_device_runs_are_bit_reproducible() {
+    use clump_core::multi_contact::MultiContact::Average;
+    let w = with_multi(box_bed(4, 3, RotationScheme::NoSquish), Average, Average);
+    assert!(
+        bit_reproducible(&w),
+        "two average device runs of the same world differ"
+    );
+}
+
+/// Cylinder and box walls inside a box periodic in x and y
+/// (`bed::periodic_walls_bed`: a turning pin through both periodic x
+/// faces coming down into the bed, a conveyor post), against the CPU path
+/// as `walls_agree` does.
+#[test]
+fn device_step_agrees_with_the_cpu_path_with_walls_in_a_periodic_box() {
+    walls_agree(clump_gpu::bed::periodic_walls_bed, at_closed_form);
+}
+
+/// Bodies leaving a box periodic in x and y through its open floor (no
+/// wall: the jostling periodic bed falls out through z_lo): the device
+/// removes the same bodies as the CPU path, with the same counts per side,
+/// and the bodies left agree to the criterion. Both remove a body
+/// at a list build, which with the same skin (fixed here: the CPU path
+/// adapts its own otherwise) comes at the same steps.
+#[test]
+fn bodies_leave_a_periodic_box_as_on_the_cpu_path() {
+    let bed = || {
+        let law = clump_core::contact::PairProperties::default();
+        let mut w = clump_gpu::bed::bed_periodic(
+            4,
+            2,
+            RotationScheme::NoSquish,
+            law,
+            vec![],
+            [true, true, false],
+            |_, _| true,
+        );
+        w.config.skin = Some(0.2e-3);
+        w
+    };
+    let mut cpu = bed();
+    let all: Vec<u64> = cpu.bodies().id.clone();
+    let size = cpu.config.domain.size().max_element();
+    let mut dev = DeviceWorld::upload(Gpu::new().unwrap(), &cpu).unwrap();
+    cpu.prepare().unwrap();
+    let mut seen = 0;
+    for &at in &[1000u64, 2000, 3000] {
+        cpu.run(at - cpu.step).unwrap();
+        dev.run(at - dev.step).unwrap();
+        let cpu_ids: Vec<u64> = all
+            .iter()
+            .copied()
+            .filter(|id| !cpu.bodies().id.contains(id))
+            .collect();
+        let sides = cpu.lost.through_side;
+        let mut after = bed();
+        dev.download(&mut after).unwrap_or_else(|e| panic!("{e}"));
+        let dev_ids: Vec<u64> = all
+            .iter()
+            .copied()
+            .filter(|id| !after.bodies().id.contains(id))
+            .collect();
+        eprintln!(
+            "step {at}: lost per side on the CPU path {sides:?}, on the device {:?}; {} bodies left",
+            after.lost.through_side,
+            after.bodies().len()
+        );
+        assert_eq!(dev_ids, cpu_ids, "step {at}: the device lost other bodies");
+        assert_eq!(
+            after.lost.through_side, sides,
+            "step {at}: other counts per side"
+        );
+        // the bodies left, matched by id
+        let b = cpu.bodies();
+        let at_id: std::collections::HashMap<u64, usize> =
+            b.id.iter().enumerate().map(|(k, &id)| (id, k)).collect();
+        let a = after.bodies();
+        let worst = (0..a.len())
+            .map(|k| {
+                let d = a.position[k] - b.position[at_id[&a.id[k]]];
+                nearest_image(&cpu.config.domain, d).abs().max_element() / size
+            })
+            .fold(0.0, f64::max);
+        eprintln!("step {at}: bodies left within {worst:.3e} of the box");
+        assert!(worst < 1e-9, "step {at}: {worst:e} of the domain size");
+        seen = dev_ids.len();
+    }
+    assert!(
+        seen > 0 && seen < all.len(),
+        "{seen} of {} bodies lost: the test needs some",
+        all.len()
     );
 }

@@ -302,3 +302,64 @@ fn moving_box_walls_make_the_trip() {
         "the walls handed back are not the CPU path's"
     );
 }
+
+/// The hand-over step of the mesh drum bed: its clumps touch the drum's
+/// floor cap by then.
+const MESH_HALF: u64 = 500;
+
+/// Mesh wall slots of the world's state: (slots in use, those with a
+/// spring), which must both be non-zero at the hand-over.
+fn mesh_springs(w: &mut World) -> (usize, usize) {
+    let s = w.save_state().unwrap();
+    let keys = s.wall_key.iter().flatten().filter(|&&k| k != 0).count();
+    let live = s
+        .wall_hist
+        .iter()
+        .flatten()
+        .filter(|h| h.tangential != glam::DVec3::ZERO)
+        .count();
+    (keys, live)
+}
+
+/// Mesh walls through the hand-over (`bed::mesh_drum_bed`: a turning mesh
+/// drum and a moving mesh bar, every wall a mesh): the device's bits kept
+/// with mesh contacts live, both directions within 1e-12 of the CPU path,
+/// the walls' poses handed back as the CPU path has them. A mesh slot's
+/// key holds its contact's normal, by which the next step finds it: with
+/// the keys' normals replaced at the hand-over (code 0, straight down),
+/// the springs are lost to the next step and the run ends far from the
+/// CPU path's.
+#[test]
+fn mesh_walls_make_the_trip() {
+    let bed = clump_gpu::bed::mesh_drum_bed;
+    hand_over_keeps_the_device_bits(bed, mesh_springs, MESH_HALF, true);
+    both_ways_agree(bed, MESH_HALF, true);
+    let mut cpu = bed();
+    cpu.prepare().unwrap();
+    cpu.run(MESH_HALF).unwrap();
+    let mut dev = bed();
+    let mut stepper = DeviceStepper::new(Gpu::new().unwrap());
+    on_device(&mut dev, &mut stepper, MESH_HALF);
+    assert!(
+        dev.walls.iter().zip(cpu.walls.iter()).all(|(a, b)| a == b),
+        "the mesh walls handed back are not the CPU path's"
+    );
+    cpu.run(MESH_HALF).unwrap();
+    let mut s = dev.save_state().unwrap();
+    s.wall_key
+        .iter_mut()
+        .flatten()
+        .filter(|k| **k != 0)
+        .for_each(|k| *k = ((*k - 1) & 0xFFFF_0000) + 1);
+    dev.restore_state(s).unwrap();
+    on_device(&mut dev, &mut stepper, 2 * MESH_HALF);
+    let d = max_rel(&dev, &cpu);
+    eprintln!(
+        "mesh slot normals lost at step {MESH_HALF}: {d:.3e} of the box after {} steps",
+        2 * MESH_HALF
+    );
+    assert!(
+        d > 1e-9,
+        "losing the mesh slots' normals changed the run by only {d:e}"
+    );
+}

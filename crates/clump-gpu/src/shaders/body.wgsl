@@ -85,6 +85,8 @@ fn driven_first_half(i: u32, dt: f64) {
 fn first_half(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
     if (i >= pu[PU_NB]) { return; }
+    // a lost body stays where it left (lost.wgsl)
+    if (lost(i)) { return; }
     let dt = pf[PF_DT];
     if (driven(i)) {
         driven_first_half(i, dt);
@@ -206,7 +208,7 @@ fn body_gather(@builtin(global_invocation_id) gid: vec3<u32>) {
 @compute @workgroup_size(64)
 fn gather_kick(@builtin(global_invocation_id) gid: vec3<u32>) {
     let b = gid.x;
-    if (b >= pu[PU_NB]) { return; }
+    if (b >= pu[PU_NB] || lost(b)) { return; }
     let fm = body_load(b);
     store_load(b, fm[0], fm[1]);
     // a driven body keeps its prescribed v and w (its load is only summed)

@@ -78,9 +78,10 @@ fn pair_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         // j's nearest image across a periodic face (periodic.wgsl)
         let dv = ld_sx(i) - partner_of(i, j);
         // the pair kernel's test (step/pair_kernel): a pair of the table
-        // that does not touch exerts nothing and loses its spring
+        // that does not touch exerts nothing and loses its spring; nor
+        // does one with a lost body (lost.wgsl)
         let rsum = ri + rj;
-        if (!(dot3(dv, dv) < rsum * rsum)) {
+        if (!(dot3(dv, dv) < rsum * rsum) || lost(bi) || lost(bj)) {
             st_hist(e, vec3<f64>(0.0lf));
             st_roll(e, vec3<f64>(0.0lf));
             for (var c = 0u; c < 9u; c++) { pout[9u * e + c] = 0.0lf; }
@@ -102,7 +103,9 @@ fn pair_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         let m_star = mi * mj / (mi + mj);
         let out = sliding(law, nrm, overlap, vrel, r_star, m_star, ld_hist(e));
         st_hist(e, out.xi);
-        let f = out.force;
+        // the multi-contact scale (average.wgsl; 1 under "sum")
+        let sc = pair_scale(i, e);
+        let f = out.force * sc;
         var ti = cross3(lever_i, f);
         var tj = cross3(f, lever_j);
         if (law.roll != ROLL_NONE) {
@@ -111,8 +114,8 @@ fn pair_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
             let rc = rolling_couple(law.roll, law.mu_r, law.eta_r, nrm, ld_bw(bi) - ld_bw(bj),
                                     r_star, m_star, out.f_n, out.kn, ld_roll(e));
             st_roll(e, rc.spring);
-            ti = ti + rc.couple;
-            tj = tj - rc.couple;
+            ti = ti + rc.couple * sc;
+            tj = tj - rc.couple * sc;
         }
         for (var c = 0u; c < 3u; c++) {
             pout[9u * e + c] = f[c];

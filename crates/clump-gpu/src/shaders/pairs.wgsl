@@ -97,7 +97,7 @@ fn cells_bounds(@builtin(global_invocation_id) gid: vec3<u32>) {
 // Whether spheres i and j (of different bodies) are nearer than their
 // radius sum plus the skin: a pair of the table.
 fn near(i: u32, j: u32) -> bool {
-    if (sown[2u * i] == sown[2u * j]) { return false; }
+    if (sown[2u * i] == sown[2u * j] || lost(sown[2u * i]) || lost(sown[2u * j])) { return false; }
     let d = ld_sx(i) - partner_of(i, j);
     let cut = sref[4u * i + 3u] + sref[4u * j + 3u] + pf[PF_SKIN];
     return dot3(d, d) < cut * cut;

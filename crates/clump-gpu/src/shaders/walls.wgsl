@@ -7,8 +7,8 @@
 // The host computes the walls' geometry for every step of a submission
 // (walls.rs): row set PU_WSTEP of `walls` is this step's.
 
-const WALL_ROW: u32 = 24u;  // f64s per wall (walls.rs WALL_ROW)
-const W_KIND: u32 = 7u;     // 0 plane (point, normal), 1 cylinder (point, axis, radius), 2 box (lo, hi)
+const WALL_ROW: u32 = 25u;  // f64s per wall (walls.rs WALL_ROW); W_AVERAGE is average.wgsl's
+const W_KIND: u32 = 7u;     // 0 plane (point, normal), 1 cylinder (point, axis, radius), 2 box (lo, hi), 3 mesh (mesh.wgsl)
 const W_INSIDE: u32 = 8u;
 const W_MAT: u32 = 9u;
 const W_BASE: u32 = 10u;    // the wall's first slot in a sphere's row
@@ -36,6 +36,7 @@ struct Touch { n: vec3<f64>, overlap: f64, face: u32 }
 // radius r (at most MAX_TOUCHES), how many
 fn wall_touches(w: u32, x: vec3<f64>, r: f64, out: ptr<function, array<Touch, 4>>) -> u32 {
     let kind = u32(wall_f(w, W_KIND));
+    if (kind == 3u) { return mesh_touches(w, x, r, out); }
     let inside = wall_f(w, W_INSIDE) != 0.0lf;
     let a = wall_v3(w, 0u);
     let b = wall_v3(w, 3u);
@@ -108,18 +109,16 @@ fn wall_touches(w: u32, x: vec3<f64>, r: f64, out: ptr<function, array<Touch, 4>
     return 1u;
 }
 
-// Sphere i's contacts with wall w, added to its wall force and torque
-// about its body's centre; each face's springs in slot (i, face), cleared
-// where it does not touch.
-fn wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<function, vec3<f64>>) {
+struct WallSprings { t: vec3<f64>, r: vec3<f64> }
+
+// The law of sphere i's touch of wall w with unit normal n and overlap
+// `overlap`, springs (t0, r0) before it: its force and its torque about
+// the body's centre, times the multi-contact scale `sc` (average.wgsl
+// `wall_scale`; 1 under "sum"), added to the sums; the springs after it.
+fn touch_law(i: u32, w: u32, n: vec3<f64>, overlap: f64, t0: vec3<f64>, r0: vec3<f64>, sc: f64,
+             fsum: ptr<function, vec3<f64>>, tsum: ptr<function, vec3<f64>>) -> WallSprings {
     let x = ld_sx(i);
     let r = sref[4u * i + 3u];
-    let row = i * pu[PU_NWF] + u32(wall_f(w, W_BASE));
-    let faces = select(1u, 6u, u32(wall_f(w, W_KIND)) == 2u && wall_f(w, W_INSIDE) != 0.0lf);
-    var touch: array<Touch, 4>;
-    var k = 0u;
-    if (wall_f(w, W_ACTIVE) != 0.0lf) { k = wall_touches(w, x, r, &touch); }
-    var live = array<bool, 6>(false, false, false, false, false, false);
     let b = sown[2u * i];
     let com = ld_bx(b);
     let law = law_of(sown[2u * i + 1u], u32(wall_f(w, W_MAT)));
@@ -127,31 +126,57 @@ fn wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<functi
     let ww = wall_v3(w, W_OMEGA);
     let cw = wall_v3(w, W_CENTER);
     let sw = wall_v3(w, W_SURFACE);
+    // geometry::contact_point, sphere::point_velocity,
+    // Wall::surface_velocity_at less the surface velocity's normal part
+    let xc = x - n * (r - 0.5lf * overlap);
+    let lever = xc - com;
+    let v_body = ld_bv(b) + cross3(ld_bw(b), lever);
+    var v_wall = (vw + cross3(ww, xc - cw)) + sw;
+    v_wall -= n * dot3(n, sw);
+    let vrel = v_body - v_wall;
+    let out = sliding(law, n, overlap, vrel, r, bm[9u * b], t0);
+    // the load times the scale, the torque's sum scaled as a whole
+    // (wall_contacts.rs flush)
+    *fsum += out.force * sc;
+    var roll = r0;
+    if (law.roll != ROLL_NONE) {
+        // the wall's rolling: w_rel = w_body - w_wall
+        let rc = rolling_couple(law.roll, law.mu_r, law.eta_r, n, ld_bw(b) - ww, r, bm[9u * b],
+                                out.f_n, out.kn, r0);
+        roll = rc.spring;
+        *tsum += (cross3(lever, out.force) + rc.couple) * sc;
+    } else {
+        *tsum += cross3(lever, out.force) * sc;
+    }
+    return WallSprings(out.xi, roll);
+}
+
+// Sphere i's contacts with wall w, added to its wall force and torque
+// about its body's centre; each face's springs in slot (i, face), cleared
+// where it does not touch. A mesh wall's are mesh.wgsl's.
+fn wall_contact(i: u32, w: u32, fsum: ptr<function, vec3<f64>>, tsum: ptr<function, vec3<f64>>) {
+    if (u32(wall_f(w, W_KIND)) == 3u) {
+        mesh_wall_contact(i, w, fsum, tsum);
+        return;
+    }
+    let x = ld_sx(i);
+    let r = sref[4u * i + 3u];
+    let row = i * pu[PU_NWF] + u32(wall_f(w, W_BASE));
+    let faces = select(1u, 6u, u32(wall_f(w, W_KIND)) == 2u && wall_f(w, W_INSIDE) != 0.0lf);
+    var touch: array<Touch, 4>;
+    var k = 0u;
+    // a lost body (lost.wgsl) touches nothing
+    if (wall_f(w, W_ACTIVE) != 0.0lf && !lost(sown[2u * i])) { k = wall_touches(w, x, r, &touch); }
+    var live = array<bool, 6>(false, false, false, false, false, false);
+    // the multi-contact scale (average.wgsl; 1 under "sum")
+    var sc = 1.0lf;
+    if (k > 0u) { sc = wall_scale(i, w); }
     for (var t = 0u; t < k; t++) {
-        let n = touch[t].n;
-        let overlap = touch[t].overlap;
         let slot = row + touch[t].face;
         live[touch[t].face] = true;
-        // geometry::contact_point, sphere::point_velocity,
-        // Wall::surface_velocity_at less the surface velocity's normal part
-        let xc = x - n * (r - 0.5lf * overlap);
-        let lever = xc - com;
-        let v_body = ld_bv(b) + cross3(ld_bw(b), lever);
-        var v_wall = (vw + cross3(ww, xc - cw)) + sw;
-        v_wall -= n * dot3(n, sw);
-        let vrel = v_body - v_wall;
-        let out = sliding(law, n, overlap, vrel, r, bm[9u * b], ld_whist(slot));
-        st_whist(slot, out.xi);
-        *fsum += out.force;
-        if (law.roll != ROLL_NONE) {
-            // the wall's rolling: w_rel = w_body - w_wall
-            let rc = rolling_couple(law.roll, law.mu_r, law.eta_r, n, ld_bw(b) - ww, r, bm[9u * b],
-                                    out.f_n, out.kn, ld_wroll(slot));
-            st_wroll(slot, rc.spring);
-            *tsum += cross3(lever, out.force) + rc.couple;
-        } else {
-            *tsum += cross3(lever, out.force);
-        }
+        let sp = touch_law(i, w, touch[t].n, touch[t].overlap, ld_whist(slot), ld_wroll(slot), sc, fsum, tsum);
+        st_whist(slot, sp.t);
+        st_wroll(slot, sp.r);
     }
     for (var f = 0u; f < faces; f++) {
         if (!live[f]) {
