@@ -750,8 +750,20 @@ fn stones_on_two_ranks(d: &Path, stderr: std::process::Stdio) -> std::process::C
 /// processes and waits up to 60 s for mpirun to end; on a hang kills every
 /// rank and mpirun. Returns whether it hung.
 fn signal_rank_1_and_wait(child: &mut std::process::Child, signal: &str) -> bool {
-    let ranks = children(child.id());
-    assert_eq!(ranks.len(), 2, "mpirun's children: {ranks:?}");
+    // /proc may show the two ranks a moment late or miss one in a scan:
+    // look again for up to 10 s while mpirun runs
+    let t = std::time::Instant::now();
+    let mut ranks = children(child.id());
+    while ranks.len() != 2 && t.elapsed().as_secs() < 10 && child.try_wait().unwrap().is_none() {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        ranks = children(child.id());
+    }
+    assert_eq!(
+        ranks.len(),
+        2,
+        "mpirun's children: {ranks:?} (mpirun's exit: {:?})",
+        child.try_wait().unwrap()
+    );
     let st = Command::new("kill")
         .args([signal, &ranks[1].to_string()])
         .status()
